@@ -1,0 +1,41 @@
+# Two commands do all the set-up on a fresh Debian machine:
+#   make run   installs what is missing, builds build/pkm and runs the kinematics demo on the shipped hexapod
+#   make test  installs what is missing, builds and runs the whole test suite
+# Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make bench, make format, make tidy.
+JOBS ?= $(shell nproc)
+BUILD ?= build
+EXAMPLE ?= examples/machines/hexapod_ch5.yaml
+
+.PHONY: deps configure build run test sanitize bench format tidy clean
+
+deps:
+	@bash scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON > /dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	$(BUILD)/pkm demo --machine $(EXAMPLE)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+sanitize: deps
+	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DPKM_SANITIZE=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON > /dev/null
+	@cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	@for b in $(BUILD)/bench/*; do $$b --benchmark_min_time=0.2; done
+
+format:
+	@find src apps tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+
+tidy: build
+	@find src apps -name '*.cpp' | xargs clang-tidy -p $(BUILD) --quiet
+
+clean:
+	rm -rf build build-asan

@@ -1,0 +1,97 @@
+#include "machine/hexapod.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <fmt/format.h>
+
+#include "kinematics/coordinate_jacobian.hpp"
+#include "kinematics/platform_newton.hpp"
+
+namespace pkm {
+
+Hexapod::Hexapod(const HexapodGeometry& geometry, AngleConvention convention, const Pose& home)
+    : geometry_(geometry), convention_(convention) {
+  home_ = home;
+  // Base plane: least-squares plane through the six base joints, normal oriented towards the home platform.
+  base_centroid_mm_.setZero();
+  for (const auto& a : geometry_.base_joints_mm) base_centroid_mm_ += a / 6.0;
+  Eigen::Matrix<double, 3, 6> spread;
+  for (int j = 0; j < 6; ++j) spread.col(j) = geometry_.base_joints_mm[j] - base_centroid_mm_;
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 6>> svd(spread, Eigen::ComputeFullU);
+  base_normal_ = svd.matrixU().col(2);
+  Eigen::Vector3d platform_centroid = Eigen::Vector3d::Zero();
+  for (const auto& b : geometry_.platform_joints_mm) platform_centroid += home_.to_base(b) / 6.0;
+  if (base_normal_.dot(platform_centroid - base_centroid_mm_) < 0) base_normal_ = -base_normal_;
+  home_mode_ = assembly_mode(home_);
+
+  int merged_pairs = 0;
+  for (int j = 0; j < 6; ++j) {
+    for (int k = j + 1; k < 6; ++k) {
+      if ((geometry_.platform_joints_mm[j] - geometry_.platform_joints_mm[k]).norm() < 1e-9) ++merged_pairs;
+    }
+  }
+  six_three_ = merged_pairs == 3;
+}
+
+Eigen::Matrix<double, 6, 6> Hexapod::twist_jacobian(const Pose& pose) const noexcept {
+  Eigen::Matrix<double, 6, 6> j;
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d arm = pose.rotation * geometry_.platform_joints_mm[i];
+    const Eigen::Vector3d unit = (arm + pose.position_mm - geometry_.base_joints_mm[i]).normalized();
+    j.block<1, 3>(i, 0) = unit.transpose();
+    j.block<1, 3>(i, 3) = arm.cross(unit).transpose();
+  }
+  return j;
+}
+
+int Hexapod::assembly_mode(const Pose& pose) const {
+  const double det = twist_jacobian(pose).determinant();
+  bool all_above = true;
+  bool all_below = true;
+  for (const auto& b : geometry_.platform_joints_mm) {
+    const double side = base_normal_.dot(pose.to_base(b) - base_centroid_mm_);
+    all_above = all_above && side > 0;
+    all_below = all_below && side < 0;
+  }
+  const int side_code = all_above ? 0 : (all_below ? 2 : 4);
+  return side_code + (det >= 0 ? 0 : 1);
+}
+
+Result<ActuatorVector> Hexapod::inverse(const Pose& pose) const {
+  ActuatorVector lengths(6);
+  strut_lengths(pose, lengths.data());
+  for (int j = 0; j < 6; ++j) {
+    if (!(lengths[j] > 0.0)) {
+      return make_error(ErrorCode::unreachable,
+                        fmt::format("strut {} would have zero length: platform joint on its base joint", j + 1));
+    }
+  }
+  return lengths;
+}
+
+Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose& guess,
+                                    const FkOptions& options) const {
+  if (actuators.size() != 6) {
+    return make_error(ErrorCode::bad_input, fmt::format("a hexapod needs 6 strut lengths, got {}", actuators.size()));
+  }
+  auto solution = solve_platform_fk(*this, true, actuators, guess, options);
+  if (!solution) return solution;
+  const int mode = assembly_mode(solution->pose);
+  solution->branch = mode == home_mode_ ? 0 : mode + 1;
+  if (options.require_home_branch && mode != home_mode_) {
+    const PoseVector c = vector_from_pose(convention_, solution->pose);
+    return make_error(ErrorCode::wrong_branch,
+                      fmt::format("forward kinematics converged to another assembly mode than the home pose's "
+                                  "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
+                                  c[0], c[1], c[2]));
+  }
+  return solution;
+}
+
+Result<JacobianMatrix> Hexapod::jacobian(const Pose& pose) const {
+  const JacobianMatrix twist = twist_jacobian(pose);
+  return coordinate_jacobian(twist, convention_, angles_from_rotation(convention_, pose.rotation),
+                             AxisMask::all());
+}
+
+}  // namespace pkm

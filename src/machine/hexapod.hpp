@@ -1,0 +1,68 @@
+#pragma once
+// Hexapod 6-UPS (Gough–Stewart platform), 6-6 or 6-3 layout, with the tool point as pose origin.
+//   L_j = | p + R·b'_j − A_j |                      (dissertation eq. 20/22, correct form; ch2 §4.5)
+// A_j: base (universal) joint centres in the base frame; b'_j: platform (spherical) joint centres in the tool
+// frame (platform frame shifted to the tool point). Pairwise-merged platform joints (6-3) are equal b'_j.
+#include <array>
+
+#include "machine/mechanism.hpp"
+
+namespace pkm {
+
+struct HexapodGeometry {
+  std::array<Eigen::Vector3d, 6> base_joints_mm;
+  std::array<Eigen::Vector3d, 6> platform_joints_mm;  ///< in the tool frame
+};
+
+class Hexapod final : public Mechanism {
+ public:
+  Hexapod(const HexapodGeometry& geometry, AngleConvention convention, const Pose& home);
+
+  MechanismType type() const override { return MechanismType::hexapod; }
+  int actuator_count() const override { return 6; }
+  AngleConvention convention() const override { return convention_; }
+  AxisMask controlled_axes() const override { return AxisMask::all(); }
+
+  Result<ActuatorVector> inverse(const Pose& pose) const override;
+  Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
+                             const FkOptions& options = {}) const override;
+  Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
+                                              const FkOptions& options = {}) const override;
+  Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+
+  /// Hot path: strut lengths of a pose, no checks, no allocation.
+  void strut_lengths(const Pose& pose, double* lengths_mm) const noexcept {
+    for (int j = 0; j < 6; ++j) {
+      lengths_mm[j] = (pose.rotation * geometry_.platform_joints_mm[j] + pose.position_mm - geometry_.base_joints_mm[j]).norm();
+    }
+  }
+  /// Twist Jacobian (columns v, ω about the tool point), rows = unit strut vectors (Plücker lines).
+  Eigen::Matrix<double, 6, 6> twist_jacobian(const Pose& pose) const noexcept;
+
+  const HexapodGeometry& geometry() const { return geometry_; }
+  bool is_six_three() const { return six_three_; }
+
+  // Leg interface for solve_platform_fk.
+  int leg_count() const { return 6; }
+  const Eigen::Vector3d& platform_joint(int j) const { return geometry_.platform_joints_mm[j]; }
+  bool leg_value(int j, const Eigen::Vector3d& joint, double& q, Eigen::Vector3d& g) const {
+    const Eigen::Vector3d d = joint - geometry_.base_joints_mm[j];
+    q = d.norm();
+    if (!(q > 0.0)) return false;
+    g = d / q;
+    return true;
+  }
+
+ private:
+  /// Assembly-mode signature: sign of det J and side of the base-joint plane of the platform joints.
+  int assembly_mode(const Pose& pose) const;
+
+  HexapodGeometry geometry_;
+  AngleConvention convention_;
+  Eigen::Vector3d base_centroid_mm_;
+  Eigen::Vector3d base_normal_;
+  int home_mode_ = 0;
+  bool six_three_ = false;
+};
+
+}  // namespace pkm

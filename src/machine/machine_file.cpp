@@ -1,0 +1,167 @@
+#include "machine/machine_file.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/units.hpp"
+
+namespace pkm {
+namespace {
+
+bool is_planar(MechanismType type) { return type == MechanismType::planar2 || type == MechanismType::planar3; }
+
+Result<ActuatorLimits> read_limits(const YAML::Node& root, const YamlReader& reader) {
+  ActuatorLimits limits;
+  const YAML::Node node = root["limits"];
+  if (!node) return limits;
+  if (auto keys = reader.check_keys(node, "limits", {"actuator_min", "actuator_max", "actuator_speed", "actuator_accel"});
+      !keys) {
+    return keys.error();
+  }
+  struct Field {
+    const char* key;
+    std::optional<double>* value;
+  };
+  for (Field f : {Field{"actuator_min", &limits.min}, Field{"actuator_max", &limits.max},
+                  Field{"actuator_speed", &limits.speed}, Field{"actuator_accel", &limits.accel}}) {
+    auto v = reader.optional_number(node, f.key);
+    if (!v) return v.error();
+    *f.value = *v;
+  }
+  if (limits.min) limits.min_line = yaml_line(node["actuator_min"]);
+  if (limits.max) limits.max_line = yaml_line(node["actuator_max"]);
+  if (limits.min && limits.max && *limits.min >= *limits.max) {
+    return reader.error_at(node["actuator_max"], "limits.actuator_max",
+                           fmt::format("must be greater than actuator_min ({} >= {})", *limits.min, *limits.max));
+  }
+  for (Field f : {Field{"actuator_speed", &limits.speed}, Field{"actuator_accel", &limits.accel}}) {
+    if (*f.value && !(**f.value > 0.0)) {
+      return reader.error_at(node[f.key], fmt::format("limits.{}", f.key), "must be positive");
+    }
+  }
+  return limits;
+}
+
+void convert_limits_to_radians(ActuatorLimits& limits) {
+  for (std::optional<double>* v : {&limits.min, &limits.max, &limits.speed, &limits.accel}) {
+    if (*v) **v = rad_from_deg(**v);
+  }
+}
+
+}  // namespace
+
+Result<Machine> parse_machine_text(const std::string& yaml_text, const std::string& source_name) {
+  YamlReader reader(source_name);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}:{}: not valid YAML: {}", source_name, e.mark.line + 1, e.msg));
+  }
+  if (!root || !root.IsMap()) {
+    return make_error(ErrorCode::bad_input, fmt::format("{}:1: expected a mapping with at least 'type:'", source_name));
+  }
+
+  auto type_name = reader.required_string(root, "type");
+  if (!type_name) return type_name.error();
+  const auto type = mechanism_type_from_string(*type_name);
+  const MechanismFileEntry* entry = nullptr;
+  for (const auto& e : mechanism_file_entries()) {
+    if (type && e.type == *type) entry = &e;
+  }
+  if (!entry) {
+    std::string known;
+    for (const auto& e : mechanism_file_entries()) known += (known.empty() ? "" : " | ") + std::string(to_string(e.type));
+    return reader.error_at(root["type"], "type", fmt::format("unknown mechanism '{}' (known: {})", *type_name, known));
+  }
+
+  // Unknown keys are errors: a misspelt key must not silently fall back to a default.
+  std::vector<std::string_view> allowed = {"name", "description", "type", "angles", "tool", "limits", "home"};
+  allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
+  for (const auto& item : root) {
+    const std::string key = item.first.as<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      return reader.error_at(item.first, key, fmt::format("unknown key for type {} (allowed: {})", *type_name, list));
+    }
+  }
+
+  AngleConvention convention = AngleConvention::abc;
+  if (is_planar(entry->type)) {
+    if (root["angles"]) {
+      return reader.error_at(root["angles"], "angles", "planar mechanisms have one angle, phi; remove this key");
+    }
+  } else {
+    auto angles = reader.required_string(root, "angles");
+    if (!angles) return angles.error();
+    const auto parsed = angle_convention_from_string(*angles);
+    if (!parsed) {
+      return reader.error_at(root["angles"], "angles",
+                             fmt::format("unknown angle convention '{}' (known: abc | krylov | euler_zxz)", *angles));
+    }
+    convention = *parsed;
+  }
+
+  Eigen::Vector3d tool = Eigen::Vector3d::Zero();
+  if (root["tool"]) {
+    auto t = reader.point(root["tool"], "tool", is_planar(entry->type) ? 2 : 3);
+    if (!t) return t.error();
+    tool = *t;
+  }
+
+  auto limits = read_limits(root, reader);
+  if (!limits) return limits.error();
+
+  std::optional<PoseVector> home;
+  if (root["home"]) {
+    const int n = entry->home_values;
+    auto values = reader.numbers(root, "home", n);
+    if (!values) return values.error();
+    PoseVector h = PoseVector::Zero();
+    if (n == 2) {
+      h << (*values)[0], (*values)[1], 0, 0, 0, 0;
+    } else if (n == 3) {
+      h << (*values)[0], (*values)[1], 0, 0, 0, rad_from_deg((*values)[2]);
+    } else {
+      for (int i = 0; i < 6; ++i) h[i] = i < 3 ? (*values)[i] : rad_from_deg((*values)[i]);
+    }
+    home = h;
+  }
+
+  const MechanismSpec spec{root, reader, convention, tool, home, *limits};
+  auto mechanism = entry->build(spec);
+  if (!mechanism) return mechanism.error();
+
+  Machine machine;
+  machine.source = source_name;
+  machine.name = root["name"] && root["name"].IsScalar() ? root["name"].Scalar() : std::string(*type_name);
+  machine.mechanism = std::move(mechanism.value());
+  machine.limits = *limits;
+  if (machine.mechanism->actuators_are_angles()) convert_limits_to_radians(machine.limits);
+  machine.home_given = home.has_value();
+
+  // The home pose must itself be a valid configuration of the machine.
+  auto home_actuators = machine.mechanism->inverse(machine.mechanism->home());
+  const YAML::Node where = root["home"] ? root["home"] : root["type"];
+  if (!home_actuators) {
+    return reader.error_at(where, "home", "the home pose is not reachable: " + home_actuators.error().message);
+  }
+  if (auto in_range = check_actuator_range(machine, *home_actuators); !in_range) {
+    return reader.error_at(where, "home", "the home pose is outside the actuator range: " + in_range.error().message);
+  }
+  return machine;
+}
+
+Result<Machine> load_machine_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return make_error(ErrorCode::io, fmt::format("{}: cannot open machine file", path));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_machine_text(buffer.str(), path);
+}
+
+}  // namespace pkm

@@ -1,0 +1,92 @@
+#pragma once
+// One interface for every mechanism, so that every stage of pkm works for all of them.
+//
+// Pose coordinates are the six of PoseVector (x, y, z mm; three angles in the mechanism's convention, rad).
+// A mechanism controls some of them (`controlled_axes`); reduced-DOF mechanisms compute the others
+// (`complete_pose`). Actuator coordinates are strut lengths or carriage positions in mm, or, for carriages on
+// a circle, angles in rad (`actuator_unit`).
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/pose.hpp"
+#include "core/result.hpp"
+#include "machine/mechanism_type.hpp"
+
+namespace pkm {
+
+constexpr int kMaxActuators = 6;
+/// Up to six actuator coordinates; fixed capacity, never allocates.
+using ActuatorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1>;
+/// Actuator rates from controlled-coordinate rates: rows = actuators, columns = controlled coordinates.
+using JacobianMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxActuators, 6>;
+
+/// Which of the six pose coordinates a mechanism controls (x, y, z, angle 1, angle 2, angle 3).
+struct AxisMask {
+  std::array<bool, 6> controlled{};
+  int count() const {
+    int n = 0;
+    for (bool c : controlled) n += c ? 1 : 0;
+    return n;
+  }
+  static AxisMask all() { return {{true, true, true, true, true, true}}; }
+  static AxisMask translations() { return {{true, true, true, false, false, false}}; }
+};
+
+/// Solver limits for forward kinematics (a parameter, never a hidden constant; STYLE habit 5).
+struct FkOptions {
+  double tolerance_mm = 1e-10;  ///< max |actuator residual| at convergence (mm, or rad for angular actuators)
+  int max_iterations = 60;      ///< Newton iterations before giving up
+  double min_rcond = 1e-13;     ///< reciprocal condition number below which the Jacobian counts as singular
+  bool require_home_branch = true;  ///< reject a solution in another assembly mode than the home pose's
+};
+
+/// One forward-kinematics solution.
+struct FkSolution {
+  Pose pose;
+  int iterations = 0;
+  double residual_mm = 0.0;  ///< max |IK(pose) − actuators|
+  int branch = 0;            ///< assembly-mode label; 0 = the home pose's mode for single-solution solvers
+};
+
+class Mechanism {
+ public:
+  virtual ~Mechanism() = default;
+
+  virtual MechanismType type() const = 0;
+  virtual int actuator_count() const = 0;
+  /// The convention of the angle coordinates of PoseVector (planar mechanisms: abc, φ is angle 3 = C).
+  virtual AngleConvention convention() const = 0;
+  virtual AxisMask controlled_axes() const = 0;
+  /// "mm" for lengths and carriage positions, "rad" for angular actuators (shown as degrees to users).
+  virtual bool actuators_are_angles() const { return false; }
+
+  /// Fills in the coordinates the mechanism does not control, keeping the controlled ones.
+  virtual Result<Pose> complete_pose(const Pose& pose) const { return pose; }
+  /// Inverse kinematics; uses only the controlled coordinates of `pose`.
+  virtual Result<ActuatorVector> inverse(const Pose& pose) const = 0;
+  /// Forward kinematics from a guess (warm start), in the assembly mode of the guess.
+  virtual Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
+                                     const FkOptions& options = {}) const = 0;
+  /// All assembly modes, where the mechanism can enumerate them.
+  virtual Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
+                                                      const FkOptions& options = {}) const;
+  /// d(actuators)/d(controlled coordinates), angle rates in rad in the mechanism's convention.
+  virtual Result<JacobianMatrix> jacobian(const Pose& pose) const = 0;
+
+  /// The pose the machine starts from; FK without a guess starts here and takes its assembly mode.
+  const Pose& home() const { return home_; }
+  void set_home(const Pose& home) { home_ = home; }
+
+ protected:
+  Pose home_;
+};
+
+/// Names of the controlled coordinates, e.g. {"x","y","z","A","B","C"} or {"x","y","phi"}.
+std::vector<std::string> controlled_coordinate_names(const Mechanism& mechanism);
+/// All six coordinate names of the convention (planar: x, y, z, -, -, phi).
+std::array<std::string, 6> pose_coordinate_names(const Mechanism& mechanism);
+
+}  // namespace pkm

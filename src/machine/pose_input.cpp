@@ -1,0 +1,98 @@
+#include "machine/pose_input.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+
+#include "core/units.hpp"
+
+namespace pkm {
+
+Result<std::vector<double>> parse_number_list(std::string_view text, std::string_view field) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    std::string token(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+    const auto first = token.find_first_not_of(" \t");
+    const auto last = token.find_last_not_of(" \t");
+    token = first == std::string::npos ? "" : token.substr(first, last - first + 1);
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (token.empty() || ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: '{}' is not a number (item {} of '{}')", field, token, out.size() + 1, text));
+    }
+    out.push_back(value);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double>& values, std::string_view field) {
+  const MechanismType type = mechanism.type();
+  PoseVector c = PoseVector::Zero();
+  const AxisMask mask = mechanism.controlled_axes();
+  const auto names = controlled_coordinate_names(mechanism);
+  if (type == MechanismType::planar2 || type == MechanismType::planar3) {
+    const std::size_t n = type == MechanismType::planar2 ? 2 : 3;
+    if (values.size() != n) {
+      return make_error(ErrorCode::bad_input, fmt::format("{}: a {} pose is {} numbers ({}), got {}", field,
+                                                          to_string(type), n, fmt::join(names, ","), values.size()));
+    }
+    c[0] = values[0];
+    c[1] = values[1];
+    if (n == 3) c[5] = rad_from_deg(values[2]);
+  } else if (values.size() == 6) {
+    for (int i = 0; i < 6; ++i) c[i] = i < 3 ? values[i] : rad_from_deg(values[i]);
+  } else if (static_cast<int>(values.size()) == mask.count()) {
+    int k = 0;
+    for (int i = 0; i < 6; ++i) {
+      if (mask.controlled[i]) c[i] = i < 3 ? values[k++] : rad_from_deg(values[k++]);
+    }
+  } else {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}: expected 6 numbers x,y,z (mm) and 3 angles (deg, {} convention){}, got {}",
+                                  field, to_string(mechanism.convention()),
+                                  mask.count() < 6 ? fmt::format(", or the controlled {}", fmt::join(names, ","))
+                                                   : std::string(),
+                                  values.size()));
+  }
+  return mechanism.complete_pose(pose_from_vector(mechanism.convention(), c));
+}
+
+std::vector<double> user_from_pose(const Mechanism& mechanism, const Pose& pose) {
+  const PoseVector c = vector_from_pose(mechanism.convention(), pose);
+  switch (mechanism.type()) {
+    case MechanismType::planar2: return {c[0], c[1]};
+    case MechanismType::planar3: return {c[0], c[1], deg_from_rad(c[5])};
+    default: break;
+  }
+  return {c[0], c[1], c[2], deg_from_rad(c[3]), deg_from_rad(c[4]), deg_from_rad(c[5])};
+}
+
+Result<ActuatorVector> actuators_from_user(const Mechanism& mechanism, const std::vector<double>& values,
+                                           std::string_view field) {
+  const int n = mechanism.actuator_count();
+  if (static_cast<int>(values.size()) != n) {
+    return make_error(ErrorCode::bad_input, fmt::format("{}: a {} has {} actuators, got {} numbers", field,
+                                                        to_string(mechanism.type()), n, values.size()));
+  }
+  ActuatorVector q(n);
+  for (int j = 0; j < n; ++j) q[j] = mechanism.actuators_are_angles() ? rad_from_deg(values[j]) : values[j];
+  return q;
+}
+
+std::vector<double> user_from_actuators(const Mechanism& mechanism, const ActuatorVector& actuators) {
+  std::vector<double> out;
+  for (int j = 0; j < actuators.size(); ++j) {
+    out.push_back(mechanism.actuators_are_angles() ? deg_from_rad(actuators[j]) : actuators[j]);
+  }
+  return out;
+}
+
+const char* actuator_unit_name(const Mechanism& mechanism) { return mechanism.actuators_are_angles() ? "deg" : "mm"; }
+
+}  // namespace pkm
