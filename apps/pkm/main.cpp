@@ -1,1 +1,21 @@
-int main() { return 0; }
+// pkm: plans, executes and analyses motion for parallel-kinematic machines. Each subcommand lives in cmd_*.cpp.
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pkm: kinematics and motion for parallel-kinematic machines (hexapods, tripods, tricepts, glides)"};
+  app.require_subcommand(1);
+  int exit_code = 0;
+  pkm::cli::add_ik_command(app, exit_code);
+  pkm::cli::add_fk_command(app, exit_code);
+  pkm::cli::add_check_command(app, exit_code);
+  pkm::cli::add_bench_command(app, exit_code);
+  pkm::cli::add_demo_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  return exit_code;
+}

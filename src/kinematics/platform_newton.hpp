@@ -75,14 +75,22 @@ Result<FkSolution> solve_platform_fk(const Legs& legs, bool rotates, const Actua
     return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
   }
   double norm = state.residual.norm();
+  double last_rcond = -1.0;  // of the Jacobian at the previous iterate; < 0 before the first solve
   for (int iteration = 0; iteration <= options.max_iterations; ++iteration) {
     const double max_abs = state.residual.cwiseAbs().maxCoeff();
     if (max_abs <= options.tolerance_mm) {
+      // A solution at a singular configuration is reported, not returned: its neighbourhood is not unique.
+      if (last_rcond < 0) last_rcond = Eigen::PartialPivLU<JacobianMatrix>(state.jacobian).rcond();
+      if (!(last_rcond >= options.min_rcond)) {
+        return make_error(ErrorCode::singular,
+                          "forward kinematics: these actuator values put the mechanism in a singular configuration");
+      }
       return FkSolution{pose, iteration, max_abs, 0};
     }
     if (iteration == options.max_iterations) break;
     const Eigen::PartialPivLU<JacobianMatrix> lu(state.jacobian);
-    if (!(lu.rcond() >= options.min_rcond)) {
+    last_rcond = lu.rcond();
+    if (!(last_rcond >= options.min_rcond)) {
       return make_error(ErrorCode::singular,
                         "forward kinematics: the Jacobian is singular on the way to a solution "
                         "(the actuator values may lie at a singular configuration)");

@@ -78,10 +78,10 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
   if (!solution) return solution;
   const int mode = assembly_mode(solution->pose);
   solution->branch = mode == home_mode_ ? 0 : mode + 1;
-  if (options.require_home_branch && mode != home_mode_) {
+  if (options.require_same_branch && mode != assembly_mode(guess)) {
     const PoseVector c = vector_from_pose(convention_, solution->pose);
     return make_error(ErrorCode::wrong_branch,
-                      fmt::format("forward kinematics converged to another assembly mode than the home pose's "
+                      fmt::format("forward kinematics converged to another assembly mode than the guess's "
                                   "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
                                   c[0], c[1], c[2]));
   }

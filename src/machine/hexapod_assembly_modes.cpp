@@ -102,7 +102,7 @@ Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q, co
   std::vector<FkSolution> solutions;
   constexpr int kSamples = 2880;
   FkOptions polish = options;
-  polish.require_home_branch = false;
+  polish.require_same_branch = false;
   for (int b1 : {-1, 1}) {
     for (int b2 : {-1, 1}) {
       std::array<Eigen::Vector3d, 3> pts;

@@ -40,7 +40,9 @@ struct FkOptions {
   double tolerance_mm = 1e-10;  ///< max |actuator residual| at convergence (mm, or rad for angular actuators)
   int max_iterations = 60;      ///< Newton iterations before giving up
   double min_rcond = 1e-13;     ///< reciprocal condition number below which the Jacobian counts as singular
-  bool require_home_branch = true;  ///< reject a solution in another assembly mode than the home pose's
+  /// Reject a solution in another assembly mode than the guess's: along a path the guess is the previous pose,
+  /// so a change of mode means the solver jumped across a singularity or onto a mirrored assembly.
+  bool require_same_branch = true;
 };
 
 /// One forward-kinematics solution.
@@ -48,7 +50,7 @@ struct FkSolution {
   Pose pose;
   int iterations = 0;
   double residual_mm = 0.0;  ///< max |IK(pose) − actuators|
-  int branch = 0;            ///< assembly-mode label; 0 = the home pose's mode for single-solution solvers
+  int branch = 0;            ///< assembly-mode label; 0 = the home pose's mode
 };
 
 class Mechanism {

@@ -6,7 +6,10 @@ namespace pkm {
 
 const std::vector<MechanismFileEntry>& mechanism_file_entries() {
   static const std::vector<MechanismFileEntry> entries = {
+      planar2_file_entry(), planar3_file_entry(),
       hexapod_file_entry(),
+      tripod_file_entry(), tricept_file_entry(),
+      hexapod_refined_file_entry(), glide_file_entry(), rotopod_file_entry(),
   };
   return entries;
 }

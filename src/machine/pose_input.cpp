@@ -64,7 +64,8 @@ Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double
 }
 
 std::vector<double> user_from_pose(const Mechanism& mechanism, const Pose& pose) {
-  const PoseVector c = vector_from_pose(mechanism.convention(), pose);
+  // "+ 0.0" turns a negative zero into zero, so users never see "-0.00".
+  const PoseVector c = vector_from_pose(mechanism.convention(), pose).array() + 0.0;
   switch (mechanism.type()) {
     case MechanismType::planar2: return {c[0], c[1]};
     case MechanismType::planar3: return {c[0], c[1], deg_from_rad(c[5])};

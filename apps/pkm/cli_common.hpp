@@ -1,0 +1,27 @@
+#pragma once
+// Shared pieces of the pkm subcommands: loading the machine, reporting errors, exit codes.
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "machine/machine_file.hpp"
+
+namespace pkm::cli {
+
+/// Exit codes (docs/cli.md): 0 success, 2 bad input or file, 3 unreachable / out of limits / other assembly
+/// mode, 4 singular or not converged. CLI11 usage errors keep CLI11's own non-zero codes.
+int exit_code_for(ErrorCode code);
+
+/// Prints "pkm <command>: error: <message>" on stderr and returns the exit code for the error.
+int report_error(const std::string& command, const Error& error);
+
+/// Loads a machine file or reports why not.
+Result<Machine> load_machine_or_report(const std::string& path);
+
+/// Formats a number for tables: fixed with `decimals` digits.
+std::string fixed(double value, int decimals);
+
+/// Prints JSON (2-space indent) on stdout.
+void print_json(const nlohmann::json& json);
+
+}  // namespace pkm::cli

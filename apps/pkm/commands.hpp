@@ -1,0 +1,13 @@
+#pragma once
+// One function per subcommand; each adds its options to the app and sets `exit_code` when it runs.
+#include <CLI/CLI.hpp>
+
+namespace pkm::cli {
+
+void add_ik_command(CLI::App& app, int& exit_code);
+void add_fk_command(CLI::App& app, int& exit_code);
+void add_check_command(CLI::App& app, int& exit_code);
+void add_bench_command(CLI::App& app, int& exit_code);
+void add_demo_command(CLI::App& app, int& exit_code);
+
+}  // namespace pkm::cli

@@ -1,0 +1,30 @@
+#pragma once
+// Mobility (degrees of freedom) of a mechanism by the Somov–Malyshev formula (dissertation eq. 1, 2):
+//   spatial  H = 6(k − 1) − 5p1 − 4p2 − 3p3 − 2p4 − p5
+//   planar   H = 3(k − 1) − 2p1 − p2
+// k counts every link including the base; p_i counts kinematic pairs with i degrees of freedom
+// (prismatic/revolute/screw 1, cylindrical/universal 2, spherical 3).
+#include <array>
+#include <string>
+
+#include "machine/mechanism.hpp"
+
+namespace pkm {
+
+struct MechanismStructure {
+  std::string notation;          ///< e.g. "6-UPS", "3-RPR"
+  bool planar = false;
+  int links = 0;                 ///< k, including the base
+  std::array<int, 5> pairs{};    ///< pairs[i] = number of pairs with i + 1 DOF
+  int idle_freedoms = 0;         ///< freedoms that move no output (a strut spinning between two spherical joints)
+};
+
+int spatial_mobility(int links, const std::array<int, 5>& pairs_by_dof);
+int planar_mobility(int links, int one_dof_pairs, int two_dof_pairs);
+/// H of the structure (planar or spatial formula), idle freedoms not yet subtracted.
+int mobility(const MechanismStructure& structure);
+
+/// The structure of a loaded mechanism, as the seeds count it (ch2 §1.2 table).
+MechanismStructure structure_of(const Mechanism& mechanism);
+
+}  // namespace pkm

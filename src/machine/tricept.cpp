@@ -1,0 +1,225 @@
+#include "machine/tricept.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <cmath>
+
+namespace pkm {
+
+Tricept::Tricept(const TriceptGeometry& geometry, AngleConvention convention)
+    : geometry_(geometry), convention_(convention) {
+  for (int j = 0; j < 3; ++j) {
+    platform_tool_mm_[j] = geometry_.platform_joints_mm[j] - Eigen::Vector3d(0, 0, geometry_.tool_offset_mm);
+  }
+}
+
+Result<Tricept> Tricept::create(const TriceptGeometry& geometry, AngleConvention convention,
+                                const Eigen::Vector3d& home_position_mm) {
+  const auto& b = geometry.platform_joints_mm;
+  const Eigen::Vector3d u = b[1] - b[0], v = b[2] - b[0];
+  if (!(u.cross(v).squaredNorm() > 1e-12 * u.squaredNorm() * v.squaredNorm()) || u.isZero() || v.isZero()) {
+    return make_error(ErrorCode::bad_input, "the three flange joints are collinear");
+  }
+  Tricept tricept(geometry, convention);
+  Pose home;
+  home.position_mm = home_position_mm;
+  auto complete = tricept.complete_pose(home);
+  if (!complete) return complete.error();
+  tricept.home_ = *complete;
+  Eigen::Vector3d lengths;
+  Eigen::Matrix3d j;
+  if (!tricept.evaluate(home_position_mm, lengths, &j)) {
+    return make_error(ErrorCode::unreachable, "a strut has zero length at the home pose");
+  }
+  if (!(Eigen::PartialPivLU<Eigen::Matrix3d>(j).rcond() > 1e-9)) {
+    return make_error(ErrorCode::singular, "the tricept is singular at its home pose (det dL/dP = 0)");
+  }
+  tricept.home_sign_ = j.determinant() >= 0 ? 1 : -1;
+  return tricept;
+}
+
+bool Tricept::axis_of(const Eigen::Vector3d& p, TriceptAxis& axis) const noexcept {
+  // The tool point lies on the axis beyond O: P − O = (ρ + tool_offset)·e, e = B·e_z = (C − O)/ρ.
+  const Eigen::Vector3d r = p - geometry_.center_joint_mm;
+  const double d = r.norm();
+  if (!(d > 0.0) || !(r.z() > 0.0)) return false;  // |α| < 90°: the axis points to the +z side of O
+  axis.rho_mm = d - geometry_.tool_offset_mm;
+  if (!(axis.rho_mm > 0.0)) return false;
+  // (34), (35) with atan2 for the quadrants (ch2 §4.9 recommendation); r has the direction of C − O.
+  axis.alpha_rad = std::atan2(-r.y(), r.z());
+  axis.beta_rad = std::atan2(r.x(), std::hypot(r.y(), r.z()));
+  axis.center_mm = geometry_.center_joint_mm + (axis.rho_mm / d) * r;
+  return true;
+}
+
+bool Tricept::evaluate(const Eigen::Vector3d& p, Eigen::Vector3d& lengths_mm,
+                       Eigen::Matrix3d* jacobian) const noexcept {
+  TriceptAxis axis;
+  if (!axis_of(p, axis)) return false;
+  const Eigen::Matrix3d rx = rot_x(axis.alpha_rad);
+  const Eigen::Matrix3d rotation = rx * rot_y(axis.beta_rad);  // (36): B = Rx(α)·Ry(β)
+  // Angular velocity per unit tool-point velocity: ω = α̇·e_x + β̇·Rx(α)e_y with ∇α, ∇β from (34), (35).
+  Eigen::Matrix3d omega = Eigen::Matrix3d::Zero();
+  if (jacobian != nullptr) {
+    const Eigen::Vector3d r = p - geometry_.center_joint_mm;
+    const double yz_sq = r.y() * r.y() + r.z() * r.z();
+    const double s = std::sqrt(yz_sq);
+    const double d_sq = yz_sq + r.x() * r.x();
+    const Eigen::Vector3d grad_alpha(0.0, -r.z() / yz_sq, r.y() / yz_sq);
+    const Eigen::Vector3d grad_beta(s / d_sq, -r.x() * r.y() / (s * d_sq), -r.x() * r.z() / (s * d_sq));
+    omega = Eigen::Vector3d::UnitX() * grad_alpha.transpose() + rx.col(1) * grad_beta.transpose();
+  }
+  for (int j = 0; j < 3; ++j) {
+    const Eigen::Vector3d arm = rotation * platform_tool_mm_[j];
+    const Eigen::Vector3d strut = p + arm - geometry_.base_joints_mm[j];
+    lengths_mm[j] = strut.norm();
+    if (!(lengths_mm[j] > 0.0)) return false;
+    if (jacobian != nullptr) {
+      const Eigen::Vector3d unit = strut / lengths_mm[j];
+      // dL = u·(dP + ω × arm) = (u + Ωᵀ(arm × u))·dP
+      jacobian->row(j) = unit.transpose() + arm.cross(unit).transpose() * omega;
+    }
+  }
+  return true;
+}
+
+Result<Pose> Tricept::complete_pose(const Pose& pose) const {
+  TriceptAxis axis;
+  if (!axis_of(pose.position_mm, axis)) {
+    const Eigen::Vector3d r = pose.position_mm - geometry_.center_joint_mm;
+    std::string why;
+    if (!(r.norm() > 0.0)) {
+      why = "the tool point is on the central joint O";
+    } else if (!(r.z() > 0.0)) {
+      why = "the manipulator axis would point to or below the horizontal through the central joint O";
+    } else {
+      why = fmt::format("the central leg would need |OC| = {:.3f} mm <= 0 (tool offset {:.3f} mm)",
+                        r.norm() - geometry_.tool_offset_mm, geometry_.tool_offset_mm);
+    }
+    return make_error(ErrorCode::unreachable,
+                      fmt::format("tool point ({:.3f}, {:.3f}, {:.3f}) mm is out of reach: {}",
+                                  pose.position_mm.x(), pose.position_mm.y(), pose.position_mm.z(), why));
+  }
+  Pose out;
+  out.position_mm = pose.position_mm;
+  out.rotation = rot_x(axis.alpha_rad) * rot_y(axis.beta_rad);
+  return out;
+}
+
+Result<ActuatorVector> Tricept::inverse(const Pose& pose) const {
+  auto complete = complete_pose(pose);
+  if (!complete) return complete.error();
+  Eigen::Vector3d lengths;
+  if (!evaluate(pose.position_mm, lengths, nullptr)) {
+    return make_error(ErrorCode::unreachable,
+                      "a strut would have zero length: flange joint on its base joint");
+  }
+  ActuatorVector out(3);
+  out = lengths;
+  return out;
+}
+
+Result<JacobianMatrix> Tricept::jacobian(const Pose& pose) const {
+  auto complete = complete_pose(pose);
+  if (!complete) return complete.error();
+  Eigen::Vector3d lengths;
+  Eigen::Matrix3d j;
+  if (!evaluate(pose.position_mm, lengths, &j)) {
+    return make_error(ErrorCode::singular, "a strut has zero length: its direction is undefined");
+  }
+  JacobianMatrix out(3, 3);
+  out = j;
+  return out;
+}
+
+Result<FkSolution> Tricept::forward(const ActuatorVector& q, const Pose& guess,
+                                    const FkOptions& options) const {
+  if (q.size() != 3) {
+    return make_error(ErrorCode::bad_input, fmt::format("a tricept needs 3 strut lengths, got {}", q.size()));
+  }
+  const Eigen::Vector3d target = q.head<3>();
+  for (int j = 0; j < 3; ++j) {
+    if (!(target[j] > 0.0)) {
+      return make_error(ErrorCode::bad_input, fmt::format("strut {} length must be positive", j + 1));
+    }
+  }
+  // Damped Newton on the tool point (3 unknowns, eq. 38), with a backtracking line search on |L(P) − q|.
+  constexpr int kMaxHalvings = 30;
+  Eigen::Vector3d p = guess.position_mm;
+  Eigen::Vector3d lengths;
+  Eigen::Matrix3d j;
+  if (!evaluate(p, lengths, &j)) {
+    return make_error(ErrorCode::unreachable,
+                      "forward kinematics: the start guess is outside the reachable space");
+  }
+  const int guess_sign = j.determinant() >= 0 ? 1 : -1;  // assembly mode of the guess
+  Eigen::Vector3d f = lengths - target;
+  double norm = f.norm();
+  int iteration = 0;
+  bool converged = false;
+  for (; iteration <= options.max_iterations; ++iteration) {
+    if (f.cwiseAbs().maxCoeff() <= options.tolerance_mm) {
+      converged = true;
+      break;
+    }
+    if (iteration == options.max_iterations) break;
+    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(j);
+    if (!(lu.rcond() >= options.min_rcond)) {
+      return make_error(ErrorCode::singular,
+                        "forward kinematics: the Jacobian is singular on the way to a solution "
+                        "(the strut lengths may lie at a singular configuration)");
+    }
+    const Eigen::Vector3d step = lu.solve(-f);
+    bool accepted = false;
+    double fraction = 1.0;
+    for (int halving = 0; halving < kMaxHalvings; ++halving, fraction *= 0.5) {
+      const Eigen::Vector3d trial = p + fraction * step;
+      Eigen::Vector3d trial_lengths;
+      Eigen::Matrix3d trial_j;
+      if (!evaluate(trial, trial_lengths, &trial_j)) continue;
+      const Eigen::Vector3d trial_f = trial_lengths - target;
+      const double trial_norm = trial_f.norm();
+      if (trial_norm < norm || trial_norm <= options.tolerance_mm) {
+        p = trial;
+        f = trial_f;
+        j = trial_j;
+        norm = trial_norm;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) break;
+  }
+  if (!converged) {
+    return make_error(
+        ErrorCode::not_converged,
+        fmt::format("forward kinematics did not converge within {} iterations (residual {:.3g} mm); "
+                    "the strut lengths may be out of reach, or give a guess closer to the solution",
+                    options.max_iterations, f.cwiseAbs().maxCoeff()));
+  }
+  // A solution at a singular configuration is reported, not returned: its neighbourhood is not unique.
+  if (!(Eigen::PartialPivLU<Eigen::Matrix3d>(j).rcond() >= options.min_rcond)) {
+    return make_error(ErrorCode::singular,
+                      "forward kinematics: these strut lengths put the tricept in a singular configuration");
+  }
+  FkSolution solution;
+  solution.pose.position_mm = p;
+  TriceptAxis axis;
+  axis_of(p, axis);
+  solution.pose.rotation = rot_x(axis.alpha_rad) * rot_y(axis.beta_rad);
+  solution.iterations = iteration;
+  solution.residual_mm = f.cwiseAbs().maxCoeff();
+  const int sign = j.determinant() >= 0 ? 1 : -1;
+  solution.branch = sign == home_sign_ ? 0 : 1;
+  if (options.require_same_branch && sign != guess_sign) {
+    return make_error(ErrorCode::wrong_branch,
+                      fmt::format("forward kinematics converged to another assembly mode than the guess's "
+                                  "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
+                                  p.x(), p.y(), p.z()));
+  }
+  return solution;
+}
+
+}  // namespace pkm
