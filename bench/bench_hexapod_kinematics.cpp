@@ -68,7 +68,7 @@ void report(benchmark::State& state, const FkStats& s) {
   state.counters["worst_us"] = s.worst_us;
 }
 
-void BM_FK_warm_path(benchmark::State& state, const char* file) {
+void BM_FK_warm_path(benchmark::State& state, const char* file, bool keep_workspace) {
   const Hexapod& h = hexapod_of(file);
   // A circle of radius 40 mm with angles turning 0.01° per 0.1 mm step.
   const PoseVector home = vector_from_pose(h.convention(), h.home());
@@ -86,9 +86,12 @@ void BM_FK_warm_path(benchmark::State& state, const char* file) {
   FkStats stats;
   std::size_t i = 1;
   Pose previous = path[0];
+  PlatformFkWorkspace<6> workspace;
+  const FkOptions options;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    auto fk = h.forward(lengths[i], previous);
+    if (!keep_workspace) workspace.reset();
+    auto fk = h.forward(lengths[i], previous, options, workspace);
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     stats.worst_us = std::max(stats.worst_us, us);
     ++stats.solves;
@@ -96,16 +99,22 @@ void BM_FK_warm_path(benchmark::State& state, const char* file) {
       stats.iterations += fk->iterations;
       stats.converged += (fk->pose.position_mm - path[i].position_mm).norm() < 1e-6 ? 1 : 0;
     }
-    previous = path[i];
+    previous = fk ? fk->pose : path[i];
     if (++i == path.size()) {
       i = 1;
       previous = path[0];
+      workspace.reset();
     }
   }
   report(state, stats);
 }
-BENCHMARK_CAPTURE(BM_FK_warm_path, ch5, "hexapod_ch5.yaml");
-BENCHMARK_CAPTURE(BM_FK_warm_path, genhexkins, "hexapod_genhexkins.yaml");
+// "previous pose": each call starts from the previous solution only (as genhexkins does);
+// "workspace": Hexapod::forward with a workspace, as a servo loop calls it: the previous call's factorisation
+// and a start extrapolated from the last two solutions.
+BENCHMARK_CAPTURE(BM_FK_warm_path, ch5_previous_pose, "hexapod_ch5.yaml", false);
+BENCHMARK_CAPTURE(BM_FK_warm_path, ch5_workspace, "hexapod_ch5.yaml", true);
+BENCHMARK_CAPTURE(BM_FK_warm_path, genhexkins_previous_pose, "hexapod_genhexkins.yaml", false);
+BENCHMARK_CAPTURE(BM_FK_warm_path, genhexkins_workspace, "hexapod_genhexkins.yaml", true);
 
 void BM_FK_cold(benchmark::State& state, const char* file, double range_mm, double range_deg) {
   const Hexapod& h = hexapod_of(file);

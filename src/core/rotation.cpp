@@ -73,6 +73,33 @@ Eigen::Matrix3d rot_z(double a) {
 }
 
 Eigen::Matrix3d rotation_from_angles(AngleConvention convention, const Eigen::Vector3d& angles_rad) {
+  // Closed forms (one sincos per angle; this is on the IK hot path). The tests check them against the
+  // products of elementary rotations that define the conventions.
+  const double s1 = std::sin(angles_rad[0]), c1 = std::cos(angles_rad[0]);
+  const double s2 = std::sin(angles_rad[1]), c2 = std::cos(angles_rad[1]);
+  const double s3 = std::sin(angles_rad[2]), c3 = std::cos(angles_rad[2]);
+  Eigen::Matrix3d r;
+  switch (convention) {
+    case AngleConvention::abc:  // Rz(C)Ry(B)Rx(A), (A, B, C) = angles; eq. 12
+      r << c2 * c3, s1 * s2 * c3 - c1 * s3, c1 * s2 * c3 + s1 * s3,  //
+          c2 * s3, s1 * s2 * s3 + c1 * c3, c1 * s2 * s3 - s1 * c3,    //
+          -s2, s1 * c2, c1 * c2;
+      return r;
+    case AngleConvention::krylov:  // Rz(-ψ)Rx(-ϑ)Ry(-γ), (ψ, ϑ, γ) = angles; eq. 15 (rows l, m, n)
+      r << c1 * c3 + s2 * s1 * s3, s1 * c2, s1 * s2 * c3 - c1 * s3,  //
+          c1 * s2 * s3 - s1 * c3, c1 * c2, s1 * s3 + c1 * s2 * c3,    //
+          c2 * s3, -s2, c2 * c3;
+      return r;
+    case AngleConvention::euler_zxz:  // Rz(ψ)Rx(ϑ)Rz(φ), (ψ, ϑ, φ) = angles; eq. 13
+      r << c1 * c3 - c2 * s1 * s3, -c1 * s3 - c2 * s1 * c3, s1 * s2,  //
+          s1 * c3 + c2 * c1 * s3, -s1 * s3 + c2 * c1 * c3, -c1 * s2,   //
+          s2 * s3, s2 * c3, c2;
+      return r;
+  }
+  return Eigen::Matrix3d::Identity();
+}
+
+Eigen::Matrix3d rotation_from_elementary_product(AngleConvention convention, const Eigen::Vector3d& angles_rad) {
   const Sequence seq = sequence_of(convention);
   Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
   for (const Elementary& f : seq.factors) r = r * elementary(f.axis, f.sign * angles_rad[f.angle_index]);
@@ -140,12 +167,17 @@ Eigen::Vector3d angles_from_quaternion(AngleConvention convention, const Eigen::
 Eigen::Matrix3d rotation_from_rotation_vector(const Eigen::Vector3d& omega) {
   const double angle = omega.norm();
   const Eigen::Matrix3d k = skew(omega);
-  if (angle < 1e-8) {
-    // Second-order series; the neglected terms are below 1e-24 relative.
-    return Eigen::Matrix3d::Identity() + k + 0.5 * k * k;
+  double a, b;
+  if (angle < 1e-2) {
+    // Series of sin(θ)/θ and (1 − cos θ)/θ²; the first neglected terms are below 3e-17 (FK steps are small,
+    // and this keeps sin/cos off the hot path).
+    const double t2 = angle * angle;
+    a = 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0));
+    b = 0.5 - t2 / 24.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0));
+  } else {
+    a = std::sin(angle) / angle;
+    b = (1.0 - std::cos(angle)) / (angle * angle);
   }
-  const double a = std::sin(angle) / angle;
-  const double b = (1.0 - std::cos(angle)) / (angle * angle);
   return Eigen::Matrix3d::Identity() + a * k + b * k * k;
 }
 

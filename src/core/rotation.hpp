@@ -31,6 +31,9 @@ Eigen::Matrix3d rot_z(double angle_rad);
 /// R from an angle triple (radians) in the named convention.
 Eigen::Matrix3d rotation_from_angles(AngleConvention convention, const Eigen::Vector3d& angles_rad);
 
+/// The same R as the literal product of the convention's elementary rotations (slower; the definition).
+Eigen::Matrix3d rotation_from_elementary_product(AngleConvention convention, const Eigen::Vector3d& angles_rad);
+
 /// The angle triple (radians) of R in the named convention. Of the two triples that give the same R, the one
 /// with the middle angle in [-90°, 90°] (abc, krylov) or [0°, 180°] (euler_zxz) is returned. At the singular
 /// middle angle the first angle is set to 0 and the last one carries the whole rotation about that axis.

@@ -7,105 +7,226 @@
 // rotation on the manifold (not the angles) keeps convergence quadratic at any tilt; LinuxCNC's genhexkins
 // subtracts the angular step from roll/pitch/yaw and is only linear away from zero tilt (anchors.md).
 // A backtracking line search on |f| makes cold starts robust; the Jacobian's reciprocal condition number is
-// checked before every solve, so a singular pose is reported, not hidden (STYLE habit 5).
+// checked at every factorisation (pivot ratio, fixed_lu.hpp), so a singular pose is reported, not hidden
+// (STYLE habit 5).
 //
 // `Legs` provides:
 //   int leg_count() const;
 //   const Eigen::Vector3d& platform_joint(int j) const;                 // tool frame, mm
 //   bool leg_value(int j, const Eigen::Vector3d& joint_base, double& q, Eigen::Vector3d& dq_dB) const;
 //        // false when no actuator value reaches that joint position
-// Nothing here allocates.
+// A rotating platform has 6 legs, a translating one (orientation held by parallelograms) 3. All matrices are
+// fixed-size: nothing here allocates.
 #include <Eigen/Core>
-#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/rotation.hpp"
+#include "kinematics/fixed_lu.hpp"
 #include "machine/mechanism.hpp"
 
 namespace pkm {
 
-/// Actuator residuals and twist Jacobian of a leg platform at one pose (rows = legs; columns = δp then δω).
-struct PlatformState {
-  ActuatorVector residual;
-  JacobianMatrix jacobian;  // n × 6 (rotating) or n × 3 (translating platform)
-  bool reachable = true;
+/// What the solver saw on the way, for assembly-mode checks without extra work: det J at the guess (first
+/// factorisation) and at the last factorised iterate (within one converging step of the solution).
+struct FkDiagnostics {
+  double guess_determinant = 0.0;
+  double final_determinant = 0.0;
 };
 
-template <class Legs>
-bool evaluate_platform(const Legs& legs, const Pose& pose, const ActuatorVector& target, bool rotates,
-                       PlatformState& state) {
-  const int n = legs.leg_count();
-  state.residual.resize(n);
-  state.jacobian.resize(n, rotates ? 6 : 3);
-  for (int j = 0; j < n; ++j) {
-    const Eigen::Vector3d arm = pose.rotation * legs.platform_joint(j);
-    const Eigen::Vector3d joint = arm + pose.position_mm;
+/// Preallocated state carried from one FK call to the next along a path (Pinocchio's model/data split): the
+/// last factorisation of the Jacobian. Along a path the solution moves a fraction of a millimetre per call, so
+/// the previous factorisation serves as a chord-Newton matrix and most calls need no factorisation at all.
+/// It also keeps the last two solutions: when the caller's guess is the last solution (it is following a path),
+/// the start is extrapolated linearly from them, which puts it micrometres rather than a path step away.
+template <int N>
+struct PlatformFkWorkspace {
+  FixedLu<N> lu;
+  bool valid = false;
+  Pose last_solution, previous_solution;
+  int solutions_kept = 0;  ///< 0, 1 or 2 (saturates)
+  int last_solution_mode = -1;  ///< the mechanism's assembly-mode label of last_solution (-1: unknown)
+
+  void reset() {
+    valid = false;
+    solutions_kept = 0;
+    last_solution_mode = -1;
+  }
+  bool continues_path(const Pose& guess) const {
+    return solutions_kept > 0 && guess.position_mm == last_solution.position_mm &&
+           guess.rotation == last_solution.rotation;
+  }
+};
+
+/// The start pose: the guess, or its linear extrapolation when the guess continues the workspace's path.
+template <int N>
+Pose predicted_start(const PlatformFkWorkspace<N>& workspace, const Pose& guess) {
+  if (workspace.solutions_kept < 2 || !workspace.continues_path(guess)) return guess;
+  Pose start;
+  start.position_mm = 2.0 * guess.position_mm - workspace.previous_solution.position_mm;
+  // R_last · (R_previous⁻¹ · R_last): the same rotation increment again. Round-off makes the product drift off
+  // SO(3), and Newton steps cannot remove a shear the model does not contain (a deformed platform can still fit
+  // the strut lengths), so the columns are re-orthonormalised (Gram–Schmidt).
+  Eigen::Matrix3d r = guess.rotation * (workspace.previous_solution.rotation.transpose() * guess.rotation);
+  r.col(0).normalize();
+  r.col(1) -= r.col(0).dot(r.col(1)) * r.col(0);
+  r.col(1).normalize();
+  r.col(2) = r.col(0).cross(r.col(1));
+  start.rotation = r;
+  return start;
+}
+
+namespace detail {
+
+/// Residuals f_j = q_j(B_j) − target_j at a pose; false when a leg cannot reach its joint.
+template <int N, class Legs>
+bool evaluate_residual(const Legs& legs, const Pose& pose, const ActuatorVector& target,
+                       Eigen::Matrix<double, N, 1>& residual) {
+  for (int j = 0; j < N; ++j) {
     double q = 0.0;
     Eigen::Vector3d g;
-    if (!legs.leg_value(j, joint, q, g)) {
-      state.reachable = false;
-      return false;
-    }
-    state.residual[j] = q - target[j];
-    state.jacobian.template block<1, 3>(j, 0) = g.transpose();
-    if (rotates) state.jacobian.template block<1, 3>(j, 3) = arm.cross(g).transpose();
+    if (!legs.leg_value(j, pose.rotation * legs.platform_joint(j) + pose.position_mm, q, g)) return false;
+    residual[j] = q - target[j];
   }
-  state.reachable = true;
   return true;
 }
 
-/// Applies a step (δp, δω) to a pose; δω rotates about the base axes through the tool point.
-inline Pose step_pose(const Pose& pose, const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>& step, bool rotates) {
+/// Twist Jacobian rows [g_jᵀ, (R b'_j × g_j)ᵀ] at a reachable pose (only needed when factorising).
+template <int N, class Legs>
+void evaluate_jacobian(const Legs& legs, const Pose& pose, Eigen::Matrix<double, N, N>& jacobian) {
+  for (int j = 0; j < N; ++j) {
+    const Eigen::Vector3d arm = pose.rotation * legs.platform_joint(j);
+    double q = 0.0;
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    legs.leg_value(j, arm + pose.position_mm, q, g);
+    jacobian.template block<1, 3>(j, 0) = g.transpose();
+    if constexpr (N == 6) jacobian.template block<1, 3>(j, 3) = arm.cross(g).transpose();
+  }
+}
+
+template <int N>
+Pose step_pose(const Pose& pose, const Eigen::Matrix<double, N, 1>& step) {
   Pose out;
   out.position_mm = pose.position_mm + step.template head<3>();
-  out.rotation = rotates ? Eigen::Matrix3d(rotation_from_rotation_vector(step.template tail<3>()) * pose.rotation)
-                         : pose.rotation;
+  if constexpr (N == 6) {
+    out.rotation = rotation_from_rotation_vector(step.template tail<3>()) * pose.rotation;
+  } else {
+    out.rotation = pose.rotation;
+  }
   return out;
 }
 
-template <class Legs>
-Result<FkSolution> solve_platform_fk(const Legs& legs, bool rotates, const ActuatorVector& target,
-                                     const Pose& guess, const FkOptions& options) {
-  using Step = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+template <int N, class Legs>
+Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVector& target, const Pose& guess,
+                                           const FkOptions& options, FkDiagnostics* diagnostics,
+                                           PlatformFkWorkspace<N>* workspace = nullptr) {
+  using Vector = Eigen::Matrix<double, N, 1>;
+  using Matrix = Eigen::Matrix<double, N, N>;
   constexpr int kMaxHalvings = 30;
+  // A step made with an older factorisation (chord Newton) is kept while it shrinks the residual at least this
+  // much; along a path the guess is within a fraction of a millimetre, one factorisation then serves every step.
+  constexpr double kChordContraction = 0.1;
+  // A carried-over factorisation is refreshed at the solution when its steps contracted worse than this, so that
+  // it does not go stale along a long path.
+  constexpr double kRefreshContraction = 1e-3;
+  double worst_chord_ratio = 0.0;
 
-  Pose pose = guess;
-  PlatformState state;
-  if (!evaluate_platform(legs, pose, target, rotates, state)) {
+  Pose pose = workspace ? predicted_start(*workspace, guess) : guess;
+  Vector residual;
+  Matrix jacobian;
+  if (!evaluate_residual<N>(legs, pose, target, residual) && workspace) {
+    pose = guess;  // the extrapolation left the reachable space: start from the guess itself
+  }
+  if (!evaluate_residual<N>(legs, pose, target, residual)) {
     return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
   }
-  double norm = state.residual.norm();
-  double last_rcond = -1.0;  // of the Jacobian at the previous iterate; < 0 before the first solve
+  double norm = residual.norm();
+  FixedLu<N> lu;
+  bool factorised = false;       // lu holds some iterate's Jacobian
+  bool lu_is_current = false;    // ... and that iterate is `pose`
+  if (workspace && workspace->valid) {
+    lu = workspace->lu;
+    factorised = true;
+    if (diagnostics) diagnostics->guess_determinant = diagnostics->final_determinant = lu.determinant();
+  }
+  auto keep = [&] {
+    if (!workspace) return;
+    if (!factorised || worst_chord_ratio > kRefreshContraction) {
+      evaluate_jacobian<N>(legs, pose, jacobian);
+      lu.compute(jacobian);
+    }
+    workspace->lu = lu;
+    workspace->valid = lu.pivot_ratio() >= options.min_rcond;
+    workspace->previous_solution = workspace->last_solution;
+    workspace->last_solution = pose;
+    workspace->solutions_kept = std::min(workspace->solutions_kept + 1, 2);
+  };
+  auto factorise = [&](int iteration) -> bool {
+    evaluate_jacobian<N>(legs, pose, jacobian);
+    lu.compute(jacobian);
+    factorised = lu_is_current = true;
+    if (diagnostics) {
+      diagnostics->final_determinant = lu.determinant();
+      if (iteration == 0) diagnostics->guess_determinant = diagnostics->final_determinant;
+    }
+    return lu.pivot_ratio() >= options.min_rcond;
+  };
   for (int iteration = 0; iteration <= options.max_iterations; ++iteration) {
-    const double max_abs = state.residual.cwiseAbs().maxCoeff();
+    const double max_abs = residual.cwiseAbs().maxCoeff();
     if (max_abs <= options.tolerance_mm) {
       // A solution at a singular configuration is reported, not returned: its neighbourhood is not unique.
-      if (last_rcond < 0) last_rcond = Eigen::PartialPivLU<JacobianMatrix>(state.jacobian).rcond();
-      if (!(last_rcond >= options.min_rcond)) {
+      if (!factorised && !factorise(0)) {
         return make_error(ErrorCode::singular,
                           "forward kinematics: these actuator values put the mechanism in a singular configuration");
       }
+      if (!(lu.pivot_ratio() >= options.min_rcond)) {
+        return make_error(ErrorCode::singular,
+                          "forward kinematics: these actuator values put the mechanism in a singular configuration");
+      }
+      keep();
       return FkSolution{pose, iteration, max_abs, 0};
     }
     if (iteration == options.max_iterations) break;
-    const Eigen::PartialPivLU<JacobianMatrix> lu(state.jacobian);
-    last_rcond = lu.rcond();
-    if (!(last_rcond >= options.min_rcond)) {
+    if (!factorised && !factorise(iteration)) {
       return make_error(ErrorCode::singular,
                         "forward kinematics: the Jacobian is singular on the way to a solution "
                         "(the actuator values may lie at a singular configuration)");
     }
-    const Step full_step = lu.solve(-state.residual);
+    Vector trial_residual;
+    // Chord step with the factorisation we have.
+    if (!lu_is_current) {
+      const Pose trial = step_pose<N>(pose, Vector(lu.solve(-residual)));
+      if (evaluate_residual<N>(legs, trial, target, trial_residual)) {
+        const double trial_norm = trial_residual.norm();
+        if (trial_norm <= kChordContraction * norm || trial_norm <= options.tolerance_mm) {
+          if (trial_norm > options.tolerance_mm) worst_chord_ratio = std::max(worst_chord_ratio, trial_norm / norm);
+          pose = trial;
+          residual = trial_residual;
+          norm = trial_norm;
+          continue;
+        }
+      }
+      if (!factorise(iteration)) {
+        return make_error(ErrorCode::singular,
+                          "forward kinematics: the Jacobian is singular on the way to a solution "
+                          "(the actuator values may lie at a singular configuration)");
+      }
+    }
+    // Newton step from a fresh factorisation, with backtracking.
+    const Vector full_step = lu.solve(-residual);
     double fraction = 1.0;
     bool accepted = false;
-    PlatformState trial_state;
     for (int halving = 0; halving < kMaxHalvings; ++halving, fraction *= 0.5) {
-      const Pose trial = step_pose(pose, fraction * full_step, rotates);
-      if (!evaluate_platform(legs, trial, target, rotates, trial_state)) continue;
-      const double trial_norm = trial_state.residual.norm();
+      const Pose trial = step_pose<N>(pose, Vector(fraction * full_step));
+      if (!evaluate_residual<N>(legs, trial, target, trial_residual)) continue;
+      const double trial_norm = trial_residual.norm();
       if (trial_norm < norm || trial_norm <= options.tolerance_mm) {
+        // Keep the factorisation for chord steps only when the full step contracted well.
+        lu_is_current = false;
+        if (halving > 0 || trial_norm > kChordContraction * norm) factorised = false;
         pose = trial;
-        state = trial_state;
+        residual = trial_residual;
         norm = trial_norm;
         accepted = true;
         break;
@@ -113,10 +234,26 @@ Result<FkSolution> solve_platform_fk(const Legs& legs, bool rotates, const Actua
     }
     if (!accepted) break;
   }
+  if (workspace) workspace->reset();
   return make_error(ErrorCode::not_converged,
                     "forward kinematics did not converge within " + std::to_string(options.max_iterations) +
-                        " iterations (residual " + std::to_string(state.residual.cwiseAbs().maxCoeff()) +
+                        " iterations (residual " + std::to_string(residual.cwiseAbs().maxCoeff()) +
                         " mm); give a guess closer to the solution");
+}
+
+}  // namespace detail
+
+/// FK of a platform on 6 legs (rotates = true) or a translating platform on 3 legs (rotates = false).
+template <class Legs>
+Result<FkSolution> solve_platform_fk(const Legs& legs, bool rotates, const ActuatorVector& target, const Pose& guess,
+                                     const FkOptions& options, FkDiagnostics* diagnostics = nullptr) {
+  if (rotates && legs.leg_count() == 6) {
+    return detail::solve_platform_fk_fixed<6>(legs, target, guess, options, diagnostics);
+  }
+  if (!rotates && legs.leg_count() == 3) {
+    return detail::solve_platform_fk_fixed<3>(legs, target, guess, options, diagnostics);
+  }
+  return make_error(ErrorCode::unsupported, "platform forward kinematics needs 6 legs (rotating) or 3 (translating)");
 }
 
 }  // namespace pkm

@@ -44,8 +44,9 @@ Eigen::Matrix<double, 6, 6> Hexapod::twist_jacobian(const Pose& pose) const noex
   return j;
 }
 
-int Hexapod::assembly_mode(const Pose& pose) const {
-  const double det = twist_jacobian(pose).determinant();
+int Hexapod::assembly_mode(const Pose& pose) const { return assembly_mode(pose, twist_jacobian(pose).determinant()); }
+
+int Hexapod::assembly_mode(const Pose& pose, double det) const {
   bool all_above = true;
   bool all_below = true;
   for (const auto& b : geometry_.platform_joints_mm) {
@@ -71,14 +72,28 @@ Result<ActuatorVector> Hexapod::inverse(const Pose& pose) const {
 
 Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose& guess,
                                     const FkOptions& options) const {
+  PlatformFkWorkspace<6> fresh;
+  return forward(actuators, guess, options, fresh);
+}
+
+Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
+                                    PlatformFkWorkspace<6>& workspace) const {
   if (actuators.size() != 6) {
     return make_error(ErrorCode::bad_input, fmt::format("a hexapod needs 6 strut lengths, got {}", actuators.size()));
   }
-  auto solution = solve_platform_fk(*this, true, actuators, guess, options);
+  FkDiagnostics diagnostics;
+  // The guess's mode is known when it is the previous solution on this path.
+  const int known_guess_mode = workspace.continues_path(guess) ? workspace.last_solution_mode : -1;
+  auto solution = detail::solve_platform_fk_fixed<6>(*this, actuators, guess, options, &diagnostics, &workspace);
   if (!solution) return solution;
-  const int mode = assembly_mode(solution->pose);
+  // The determinants come from the solver's own factorisations (at the guess, and one converging step before
+  // the solution), so the check costs only the side-of-base test.
+  const int mode = assembly_mode(solution->pose, diagnostics.final_determinant);
   solution->branch = mode == home_mode_ ? 0 : mode + 1;
-  if (options.require_same_branch && mode != assembly_mode(guess)) {
+  workspace.last_solution_mode = mode;
+  const int guess_mode = known_guess_mode >= 0 ? known_guess_mode : assembly_mode(guess, diagnostics.guess_determinant);
+  if (options.require_same_branch && mode != guess_mode) {
+    workspace.reset();
     const PoseVector c = vector_from_pose(convention_, solution->pose);
     return make_error(ErrorCode::wrong_branch,
                       fmt::format("forward kinematics converged to another assembly mode than the guess's "

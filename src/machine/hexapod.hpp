@@ -5,6 +5,7 @@
 // frame (platform frame shifted to the tool point). Pairwise-merged platform joints (6-3) are equal b'_j.
 #include <array>
 
+#include "kinematics/platform_newton.hpp"
 #include "machine/mechanism.hpp"
 
 namespace pkm {
@@ -29,6 +30,11 @@ class Hexapod final : public Mechanism {
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                               const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+
+  /// FK along a path: as forward(), reusing the factorisation kept in `workspace` by the previous call
+  /// (one workspace per path; the first call factorises). The hot path of a servo loop.
+  Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
+                             PlatformFkWorkspace<6>& workspace) const;
 
   /// Hot path: strut lengths of a pose, no checks, no allocation.
   void strut_lengths(const Pose& pose, double* lengths_mm) const noexcept {
@@ -56,6 +62,7 @@ class Hexapod final : public Mechanism {
  private:
   /// Assembly-mode signature: sign of det J and side of the base-joint plane of the platform joints.
   int assembly_mode(const Pose& pose) const;
+  int assembly_mode(const Pose& pose, double jacobian_determinant) const;
 
   HexapodGeometry geometry_;
   AngleConvention convention_;

@@ -22,6 +22,21 @@ TEST(Rotation, KrylovIsEquation15Literal) {
   EXPECT_LT((r - expected).norm(), 1e-15);
 }
 
+TEST(Rotation, ClosedFormsEqualTheElementaryProducts) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> any(-kPi, kPi);
+  for (AngleConvention c : {AngleConvention::abc, AngleConvention::krylov, AngleConvention::euler_zxz}) {
+    for (int i = 0; i < 1000; ++i) {
+      const Eigen::Vector3d a(any(rng), any(rng), any(rng));
+      EXPECT_LT((rotation_from_angles(c, a) - rotation_from_elementary_product(c, a)).norm(), 1e-14) << to_string(c);
+    }
+  }
+  EXPECT_LT((rotation_from_elementary_product(AngleConvention::krylov, {0.1, 0.2, 0.3}) -
+             rot_z(-0.1) * rot_x(-0.2) * rot_y(-0.3)).norm(), 1e-15);
+  EXPECT_LT((rotation_from_elementary_product(AngleConvention::euler_zxz, {0.1, 0.2, 0.3}) -
+             rot_z(0.1) * rot_x(0.2) * rot_z(0.3)).norm(), 1e-15);
+}
+
 TEST(Rotation, AbcIsFixedAxisXyz) {
   const Eigen::Vector3d abc(0.1, -0.4, 0.7);
   const Eigen::Matrix3d r = rotation_from_angles(AngleConvention::abc, abc);

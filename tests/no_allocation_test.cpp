@@ -1,0 +1,81 @@
+// Hot paths do not allocate (STYLE habit 3): IK, FK (warm, with and without a workspace) and the Jacobian of every
+// shipped machine run under a counting global operator new. This file owns the replacement for pkm_tests.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "machine/hexapod.hpp"
+#include "test_support.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace pkm {
+namespace {
+
+TEST(NoAllocation, CounterSeesAllocations) {
+  const long before = g_allocations.load();
+  auto* v = new std::vector<int>(100);
+  delete v;
+  EXPECT_GE(g_allocations.load() - before, 2);
+}
+
+TEST(NoAllocation, KinematicsOfEveryShippedMachine) {
+  for (const char* file : {"hexapod_ch5.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml", "planar2.yaml",
+                           "planar3.yaml", "tripod.yaml", "tricept.yaml", "hexaglide.yaml", "triglide.yaml",
+                           "rotopod.yaml"}) {
+    const Machine m = test::machine_from_example(std::string("examples/machines/") + file);
+    const Mechanism& mech = *m.mechanism;
+    PoseVector c = vector_from_pose(mech.convention(), mech.home());
+    const AxisMask mask = mech.controlled_axes();
+    for (int axis = 0; axis < 6; ++axis) {
+      if (mask.controlled[axis]) c[axis] += axis < 3 ? 3.0 : 0.02;
+    }
+    const Pose target = *mech.complete_pose(pose_from_vector(mech.convention(), c));
+    const auto q = mech.inverse(target);
+    ASSERT_TRUE(q.ok()) << file;
+    const long before = g_allocations.load();
+    for (int i = 0; i < 10; ++i) {
+      auto ik = mech.inverse(target);
+      auto fk = mech.forward(*q, mech.home());
+      auto j = mech.jacobian(target);
+      ASSERT_TRUE(ik.ok() && fk.ok() && j.ok()) << file;
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << file;
+  }
+}
+
+TEST(NoAllocation, HexapodPathTrackingWithWorkspace) {
+  const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  const auto& h = dynamic_cast<const Hexapod&>(*m.mechanism);
+  std::vector<ActuatorVector> lengths;
+  for (int i = 0; i < 100; ++i) {
+    Pose p = h.home();
+    p.position_mm.x() += 0.1 * i;
+    lengths.push_back(*h.inverse(p));
+  }
+  PlatformFkWorkspace<6> workspace;
+  Pose previous = h.home();
+  const FkOptions options;
+  const long before = g_allocations.load();
+  for (const auto& q : lengths) {
+    auto fk = h.forward(q, previous, options, workspace);
+    ASSERT_TRUE(fk.ok());
+    previous = fk->pose;
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+}  // namespace
+}  // namespace pkm
