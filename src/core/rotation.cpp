@@ -164,20 +164,19 @@ Eigen::Vector3d angles_from_quaternion(AngleConvention convention, const Eigen::
   return angles_from_rotation(convention, q.normalized().toRotationMatrix());
 }
 
-Eigen::Matrix3d rotation_from_rotation_vector(const Eigen::Vector3d& omega) {
-  const double angle = omega.norm();
-  const Eigen::Matrix3d k = skew(omega);
-  double a, b;
+RodriguesCoefficients rodrigues_coefficients(double angle) {
   if (angle < 1e-2) {
-    // Series of sin(θ)/θ and (1 − cos θ)/θ²; the first neglected terms are below 3e-17 (FK steps are small,
-    // and this keeps sin/cos off the hot path).
+    // Series; the first neglected terms are below 3e-17.
     const double t2 = angle * angle;
-    a = 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0));
-    b = 0.5 - t2 / 24.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0));
-  } else {
-    a = std::sin(angle) / angle;
-    b = (1.0 - std::cos(angle)) / (angle * angle);
+    return {1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0)),
+            0.5 - t2 / 24.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0))};
   }
+  return {std::sin(angle) / angle, (1.0 - std::cos(angle)) / (angle * angle)};
+}
+
+Eigen::Matrix3d rotation_from_rotation_vector(const Eigen::Vector3d& omega) {
+  const Eigen::Matrix3d k = skew(omega);
+  const auto [a, b] = rodrigues_coefficients(omega.norm());
   return Eigen::Matrix3d::Identity() + a * k + b * k * k;
 }
 

@@ -49,6 +49,13 @@ double distance_from_angle_singularity(AngleConvention convention, const Eigen::
 Eigen::Quaterniond quaternion_from_angles(AngleConvention convention, const Eigen::Vector3d& angles_rad);
 Eigen::Vector3d angles_from_quaternion(AngleConvention convention, const Eigen::Quaterniond& q);
 
+/// sin(θ)/θ and (1 − cos θ)/θ², by series for small θ (no sin/cos on the solver's hot path).
+struct RodriguesCoefficients {
+  double a;
+  double b;
+};
+RodriguesCoefficients rodrigues_coefficients(double angle_rad);
+
 /// Rotation by |ω| about ω/|ω| (Rodrigues), exact for any size; used for on-manifold solver updates.
 Eigen::Matrix3d rotation_from_rotation_vector(const Eigen::Vector3d& omega_rad);
 /// Inverse of rotation_from_rotation_vector, angle in [0, π].

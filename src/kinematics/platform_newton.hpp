@@ -15,6 +15,8 @@
 //   const Eigen::Vector3d& platform_joint(int j) const;                 // tool frame, mm
 //   bool leg_value(int j, const Eigen::Vector3d& joint_base, double& q, Eigen::Vector3d& dq_dB) const;
 //        // false when no actuator value reaches that joint position
+// and may provide, for residual-only evaluations that need no gradient (saves divisions on the hot path):
+//   bool leg_position(int j, const Eigen::Vector3d& joint_base, double& q) const;
 // A rotating platform has 6 legs, a translating one (orientation held by parallelograms) 3. All matrices are
 // fixed-size: nothing here allocates.
 #include <Eigen/Core>
@@ -38,15 +40,18 @@ struct FkDiagnostics {
 /// Preallocated state carried from one FK call to the next along a path (Pinocchio's model/data split): the
 /// last factorisation of the Jacobian. Along a path the solution moves a fraction of a millimetre per call, so
 /// the previous factorisation serves as a chord-Newton matrix and most calls need no factorisation at all.
-/// It also keeps the last two solutions: when the caller's guess is the last solution (it is following a path),
-/// the start is extrapolated linearly from them, which puts it micrometres rather than a path step away.
+/// It also keeps the last four solutions: when the caller's guess is the last solution (it is following a path),
+/// the start is extrapolated from them (cubic in position, quadratic in the rotation increment), which puts it
+/// within about 1e-9 mm of the solution on a smooth path sampled at a servo rate, so one chord step converges.
 template <int N>
 struct PlatformFkWorkspace {
   FixedLu<N> lu;
   bool valid = false;
-  Pose last_solution, previous_solution;
-  int solutions_kept = 0;  ///< 0, 1 or 2 (saturates)
-  int last_solution_mode = -1;  ///< the mechanism's assembly-mode label of last_solution (-1: unknown)
+  Pose last_solution;
+  Eigen::Vector3d position_history_mm[3];  ///< positions one, two and three solutions before the last
+  Eigen::Vector3d rotation_increments[3];  ///< body-frame rotation vectors between consecutive solutions, newest first
+  int solutions_kept = 0;                  ///< 0 … 4 (saturates)
+  int last_solution_mode = -1;             ///< the mechanism's assembly-mode label of last_solution (-1: unknown)
 
   void reset() {
     valid = false;
@@ -57,18 +62,51 @@ struct PlatformFkWorkspace {
     return solutions_kept > 0 && guess.position_mm == last_solution.position_mm &&
            guess.rotation == last_solution.rotation;
   }
+  /// Records a new solution of the path.
+  void push(const Pose& solution) {
+    if (solutions_kept > 0) {
+      // Small-angle rotation vector of R_lastᵀ·R_new from its skew part: exact to O(θ³), enough for a prediction.
+      const Eigen::Matrix3d d = last_solution.rotation.transpose() * solution.rotation;
+      for (int k = 2; k > 0; --k) {
+        rotation_increments[k] = rotation_increments[k - 1];
+        position_history_mm[k] = position_history_mm[k - 1];
+      }
+      rotation_increments[0] = 0.5 * Eigen::Vector3d(d(2, 1) - d(1, 2), d(0, 2) - d(2, 0), d(1, 0) - d(0, 1));
+      position_history_mm[0] = last_solution.position_mm;
+    }
+    last_solution = solution;
+    solutions_kept = solutions_kept < 4 ? solutions_kept + 1 : 4;
+  }
 };
 
-/// The start pose: the guess, or its linear extrapolation when the guess continues the workspace's path.
+/// The start pose: the guess, or its extrapolation when the guess continues the workspace's path.
 template <int N>
 Pose predicted_start(const PlatformFkWorkspace<N>& workspace, const Pose& guess) {
   if (workspace.solutions_kept < 2 || !workspace.continues_path(guess)) return guess;
+  const Eigen::Vector3d& p0 = guess.position_mm;
+  const Eigen::Vector3d* p = workspace.position_history_mm;
+  const Eigen::Vector3d* v = workspace.rotation_increments;
   Pose start;
-  start.position_mm = 2.0 * guess.position_mm - workspace.previous_solution.position_mm;
-  // R_last · (R_previous⁻¹ · R_last): the same rotation increment again. Round-off makes the product drift off
-  // SO(3), and Newton steps cannot remove a shear the model does not contain (a deformed platform can still fit
-  // the strut lengths), so the columns are re-orthonormalised (Gram–Schmidt).
-  Eigen::Matrix3d r = guess.rotation * (workspace.previous_solution.rotation.transpose() * guess.rotation);
+  Eigen::Vector3d increment;
+  switch (workspace.solutions_kept) {
+    case 2:  // linear
+      start.position_mm = 2.0 * p0 - p[0];
+      increment = v[0];
+      break;
+    case 3:  // quadratic
+      start.position_mm = 3.0 * p0 - 3.0 * p[0] + p[1];
+      increment = 2.0 * v[0] - v[1];
+      break;
+    default:  // cubic in position, quadratic in the increment
+      start.position_mm = 4.0 * p0 - 6.0 * p[0] + 4.0 * p[1] - p[2];
+      increment = 3.0 * v[0] - 3.0 * v[1] + v[2];
+      break;
+  }
+  // R_next = R_last · exp([increment]×); then re-orthonormalised (Gram–Schmidt), because Newton steps cannot remove
+  // a shear the model does not contain (a deformed platform can still fit the strut lengths).
+  const RodriguesCoefficients c = rodrigues_coefficients(increment.norm());
+  const Eigen::Matrix3d k = skew(increment);
+  Eigen::Matrix3d r = guess.rotation * (Eigen::Matrix3d::Identity() + c.a * k + c.b * k * k);
   r.col(0).normalize();
   r.col(1) -= r.col(0).dot(r.col(1)) * r.col(0);
   r.col(1).normalize();
@@ -84,9 +122,14 @@ template <int N, class Legs>
 bool evaluate_residual(const Legs& legs, const Pose& pose, const ActuatorVector& target,
                        Eigen::Matrix<double, N, 1>& residual) {
   for (int j = 0; j < N; ++j) {
+    const Eigen::Vector3d joint = pose.rotation * legs.platform_joint(j) + pose.position_mm;
     double q = 0.0;
-    Eigen::Vector3d g;
-    if (!legs.leg_value(j, pose.rotation * legs.platform_joint(j) + pose.position_mm, q, g)) return false;
+    if constexpr (requires { legs.leg_position(j, joint, q); }) {
+      if (!legs.leg_position(j, joint, q)) return false;
+    } else {
+      Eigen::Vector3d g;
+      if (!legs.leg_value(j, joint, q, g)) return false;
+    }
     residual[j] = q - target[j];
   }
   return true;
@@ -110,7 +153,13 @@ Pose step_pose(const Pose& pose, const Eigen::Matrix<double, N, 1>& step) {
   Pose out;
   out.position_mm = pose.position_mm + step.template head<3>();
   if constexpr (N == 6) {
-    out.rotation = rotation_from_rotation_vector(step.template tail<3>()) * pose.rotation;
+    // exp([ω]×)·R = R + a·(ω × R) + b·(ω × (ω × R)) column by column (Rodrigues), without forming matrices.
+    const Eigen::Vector3d omega = step.template tail<3>();
+    const RodriguesCoefficients c = rodrigues_coefficients(omega.norm());
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d once = omega.cross(pose.rotation.col(k));
+      out.rotation.col(k) = pose.rotation.col(k) + c.a * once + c.b * omega.cross(once);
+    }
   } else {
     out.rotation = pose.rotation;
   }
@@ -135,19 +184,22 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
   Pose pose = workspace ? predicted_start(*workspace, guess) : guess;
   Vector residual;
   Matrix jacobian;
-  if (!evaluate_residual<N>(legs, pose, target, residual) && workspace) {
+  bool reachable = evaluate_residual<N>(legs, pose, target, residual);
+  if (!reachable && workspace) {
     pose = guess;  // the extrapolation left the reachable space: start from the guess itself
+    reachable = evaluate_residual<N>(legs, pose, target, residual);
   }
-  if (!evaluate_residual<N>(legs, pose, target, residual)) {
+  if (!reachable) {
     return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
   }
   double norm = residual.norm();
-  FixedLu<N> lu;
+  FixedLu<N> local_lu;
+  FixedLu<N>& lu = workspace ? workspace->lu : local_lu;  // factorised in place: no copies on the hot path
   bool factorised = false;       // lu holds some iterate's Jacobian
   bool lu_is_current = false;    // ... and that iterate is `pose`
   if (workspace && workspace->valid) {
-    lu = workspace->lu;
     factorised = true;
+    workspace->valid = false;  // until this call succeeds: every error return leaves it invalid
     if (diagnostics) diagnostics->guess_determinant = diagnostics->final_determinant = lu.determinant();
   }
   auto keep = [&] {
@@ -156,11 +208,8 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
       evaluate_jacobian<N>(legs, pose, jacobian);
       lu.compute(jacobian);
     }
-    workspace->lu = lu;
     workspace->valid = lu.pivot_ratio() >= options.min_rcond;
-    workspace->previous_solution = workspace->last_solution;
-    workspace->last_solution = pose;
-    workspace->solutions_kept = std::min(workspace->solutions_kept + 1, 2);
+    workspace->push(pose);
   };
   auto factorise = [&](int iteration) -> bool {
     evaluate_jacobian<N>(legs, pose, jacobian);

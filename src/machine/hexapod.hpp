@@ -51,6 +51,10 @@ class Hexapod final : public Mechanism {
   // Leg interface for solve_platform_fk.
   int leg_count() const { return 6; }
   const Eigen::Vector3d& platform_joint(int j) const { return geometry_.platform_joints_mm[j]; }
+  bool leg_position(int j, const Eigen::Vector3d& joint, double& q) const {
+    q = (joint - geometry_.base_joints_mm[j]).norm();
+    return q > 0.0;
+  }
   bool leg_value(int j, const Eigen::Vector3d& joint, double& q, Eigen::Vector3d& g) const {
     const Eigen::Vector3d d = joint - geometry_.base_joints_mm[j];
     q = d.norm();
