@@ -12,6 +12,7 @@
 #include "core/units.hpp"
 #include "kinematics/platform_newton.hpp"
 #include "machine/hexapod.hpp"
+#include "machine/solution_set.hpp"
 
 namespace pkm {
 namespace {
@@ -136,12 +137,7 @@ Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q, co
             guess.position_mm = t.topRightCorner<3, 1>();
             auto polished = solve_platform_fk(*this, true, q, guess, polish);
             if (polished) {
-              bool duplicate = false;
-              for (const auto& s2 : solutions) {
-                const PoseDistance d = pose_distance(s2.pose, polished->pose);
-                duplicate = duplicate || (d.position_mm < 1e-6 && d.rotation_rad < 1e-8);
-              }
-              if (!duplicate) {
+              if (!contains_solution(solutions, polished->pose)) {
                 const int mode = assembly_mode(polished->pose);
                 polished->branch = mode == home_mode_ ? 0 : mode + 1;
                 solutions.push_back(*polished);
@@ -158,10 +154,7 @@ Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q, co
     return make_error(ErrorCode::unreachable, "no assembly of the platform fits these strut lengths");
   }
   // Nearest to home first, so the first solution is the one a warm-started solver would give.
-  std::sort(solutions.begin(), solutions.end(), [this](const FkSolution& a, const FkSolution& b) {
-    const PoseDistance da = pose_distance(a.pose, home_), db = pose_distance(b.pose, home_);
-    return da.position_mm + 100 * da.rotation_rad < db.position_mm + 100 * db.rotation_rad;
-  });
+  sort_nearest_to(solutions, home_, 100.0);
   return solutions;
 }
 

@@ -11,6 +11,7 @@
 #include "core/units.hpp"
 #include "kinematics/coordinate_jacobian.hpp"
 #include "kinematics/platform_newton.hpp"
+#include "machine/solution_set.hpp"
 
 namespace pkm {
 namespace {
@@ -250,12 +251,7 @@ Result<std::vector<FkSolution>> HexapodRefined::forward_all(const ActuatorVector
   for (const auto& ideal_solution : *ideal_solutions) {
     auto polished = solve_platform_fk(*this, true, actuators, ideal_solution.pose, polish);
     if (!polished) continue;
-    bool duplicate = false;
-    for (const auto& s : solutions) {
-      const PoseDistance d = pose_distance(s.pose, polished->pose);
-      duplicate = duplicate || (d.position_mm < 1e-6 && d.rotation_rad < 1e-8);
-    }
-    if (duplicate) continue;
+    if (contains_solution(solutions, polished->pose)) continue;
     const int mode = assembly_mode(polished->pose);
     polished->branch = mode == home_mode_ ? 0 : mode + 1;
     solutions.push_back(*polished);

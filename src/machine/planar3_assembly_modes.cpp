@@ -28,6 +28,7 @@
 
 #include "core/units.hpp"
 #include "machine/planar3.hpp"
+#include "machine/solution_set.hpp"
 
 namespace pkm {
 namespace {
@@ -40,9 +41,6 @@ constexpr double kIdenticallyZero = 1e-12;
 /// Roots of P(z) with ||z| − 1| up to this are tried as real φ (a double root splits off the circle by about
 /// √ε; a spurious candidate only costs a Newton run that does not converge).
 constexpr double kUnitCircleBand = 0.02;
-/// Two solutions closer than this are the same assembly mode (mm, rad).
-constexpr double kSamePosition_mm = 1e-6;
-constexpr double kSameAngle_rad = 1e-8;
 /// Below this |det M| (scaled units) C is not taken from adj(M) r / det M; the circle pairs cover that case.
 constexpr double kMinEliminationDeterminant = 1e-9;
 
@@ -211,12 +209,7 @@ Result<std::vector<FkSolution>> Planar3::forward_all(const ActuatorVector& q,
         singular_seen = singular_seen || polished.error().code == ErrorCode::singular;
         continue;
       }
-      bool duplicate = false;
-      for (const auto& known : solutions) {
-        const PoseDistance d = pose_distance(known.pose, polished->pose);
-        duplicate = duplicate || (d.position_mm < kSamePosition_mm && d.rotation_rad < kSameAngle_rad);
-      }
-      if (duplicate) continue;
+      if (contains_solution(solutions, polished->pose)) continue;
       polished->branch = branch_of(planar_coordinates(polished->pose));
       solutions.push_back(*polished);
     }
@@ -235,11 +228,7 @@ Result<std::vector<FkSolution>> Planar3::forward_all(const ActuatorVector& q,
                     q[2]));
   }
   // Nearest to home first; a rotation is weighed by the platform radius (about the distance its joints move).
-  std::sort(solutions.begin(), solutions.end(), [this](const FkSolution& a, const FkSolution& b) {
-    const PoseDistance da = pose_distance(a.pose, home_), db = pose_distance(b.pose, home_);
-    return da.position_mm + platform_radius_mm_ * da.rotation_rad <
-           db.position_mm + platform_radius_mm_ * db.rotation_rad;
-  });
+  sort_nearest_to(solutions, home_, platform_radius_mm_);
   return solutions;
 }
 

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "core/units.hpp"
+#include "machine/solution_set.hpp"
 #include "machine/tripod.hpp"
 
 namespace pkm {
@@ -78,12 +79,7 @@ Result<std::vector<FkSolution>> Tripod::forward_all(const ActuatorVector& q, con
           if (residual(0.5 * (lo + hi), b2, b3, joints)) {
             auto polished = forward(q, pose_from_joints(joints), polish);
             if (polished) {
-              bool duplicate = false;
-              for (const auto& other : solutions) {
-                const PoseDistance d = pose_distance(other.pose, polished->pose);
-                duplicate = duplicate || (d.position_mm < 1e-6 && d.rotation_rad < 1e-8);
-              }
-              if (!duplicate) solutions.push_back(*polished);
+              if (!contains_solution(solutions, polished->pose)) solutions.push_back(*polished);
             }
           }
         }
@@ -96,10 +92,7 @@ Result<std::vector<FkSolution>> Tripod::forward_all(const ActuatorVector& q, con
     return make_error(ErrorCode::unreachable, "no assembly of the tripod platform fits these strut lengths");
   }
   // Nearest to home first, so the first solution is the one a warm-started solver would give.
-  std::sort(solutions.begin(), solutions.end(), [this](const FkSolution& a, const FkSolution& b) {
-    const PoseDistance da = pose_distance(a.pose, home_), db = pose_distance(b.pose, home_);
-    return da.position_mm + 100 * da.rotation_rad < db.position_mm + 100 * db.rotation_rad;
-  });
+  sort_nearest_to(solutions, home_, 100.0);
   return solutions;
 }
 
