@@ -1,7 +1,6 @@
 #include "machine/hexapod.hpp"
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
 #include <fmt/format.h>
 
 #include "kinematics/coordinate_jacobian.hpp"
@@ -10,18 +9,10 @@
 namespace pkm {
 
 Hexapod::Hexapod(const HexapodGeometry& geometry, AngleConvention convention, const Pose& home)
-    : geometry_(geometry), convention_(convention) {
+    : geometry_(geometry),
+      convention_(convention),
+      base_plane_(geometry.base_joints_mm, geometry.platform_joints_mm, home) {
   home_ = home;
-  // Base plane: least-squares plane through the six base joints, normal oriented towards the home platform.
-  base_centroid_mm_.setZero();
-  for (const auto& a : geometry_.base_joints_mm) base_centroid_mm_ += a / 6.0;
-  Eigen::Matrix<double, 3, 6> spread;
-  for (int j = 0; j < 6; ++j) spread.col(j) = geometry_.base_joints_mm[j] - base_centroid_mm_;
-  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 6>> svd(spread, Eigen::ComputeFullU);
-  base_normal_ = svd.matrixU().col(2);
-  Eigen::Vector3d platform_centroid = Eigen::Vector3d::Zero();
-  for (const auto& b : geometry_.platform_joints_mm) platform_centroid += home_.to_base(b) / 6.0;
-  if (base_normal_.dot(platform_centroid - base_centroid_mm_) < 0) base_normal_ = -base_normal_;
   home_mode_ = assembly_mode(home_);
 
   int merged_pairs = 0;
@@ -47,15 +38,7 @@ Eigen::Matrix<double, 6, 6> Hexapod::twist_jacobian(const Pose& pose) const noex
 int Hexapod::assembly_mode(const Pose& pose) const { return assembly_mode(pose, twist_jacobian(pose).determinant()); }
 
 int Hexapod::assembly_mode(const Pose& pose, double det) const {
-  bool all_above = true;
-  bool all_below = true;
-  for (const auto& b : geometry_.platform_joints_mm) {
-    const double side = base_normal_.dot(pose.to_base(b) - base_centroid_mm_);
-    all_above = all_above && side > 0;
-    all_below = all_below && side < 0;
-  }
-  const int side_code = all_above ? 0 : (all_below ? 2 : 4);
-  return side_code + (det >= 0 ? 0 : 1);
+  return base_plane_.assembly_mode(pose, geometry_.platform_joints_mm, det);
 }
 
 Result<ActuatorVector> Hexapod::inverse(const Pose& pose) const {

@@ -6,6 +6,7 @@
 #include <array>
 
 #include "kinematics/platform_newton.hpp"
+#include "machine/base_plane.hpp"
 #include "machine/mechanism.hpp"
 
 namespace pkm {
@@ -64,14 +65,13 @@ class Hexapod final : public Mechanism {
   }
 
  private:
-  /// Assembly-mode signature: sign of det J and side of the base-joint plane of the platform joints.
+  /// Assembly-mode label (BasePlane): side of the base-joint plane of the platform joints and sign of det J.
   int assembly_mode(const Pose& pose) const;
   int assembly_mode(const Pose& pose, double jacobian_determinant) const;
 
   HexapodGeometry geometry_;
   AngleConvention convention_;
-  Eigen::Vector3d base_centroid_mm_;
-  Eigen::Vector3d base_normal_;
+  BasePlane base_plane_;
   int home_mode_ = 0;
   bool six_three_ = false;
 };

@@ -131,23 +131,17 @@ CardanLegStatus solve_cardan_leg(const CardanJoint& joint, const Eigen::Vector3d
 
 HexapodRefined::HexapodRefined(const HexapodGeometry& geometry, const std::array<CardanJoint, 6>& joints,
                                AngleConvention convention, const Pose& home)
-    : geometry_(geometry), joints_(joints), convention_(convention), ideal_(geometry, convention, home) {
+    : geometry_(geometry),
+      joints_(joints),
+      convention_(convention),
+      ideal_(geometry, convention, home),
+      base_plane_(geometry.base_joints_mm, geometry.platform_joints_mm, home) {
   home_ = home;
   for (auto& joint : joints_) {
     joint.axis1.normalize();
     joint.axis2.normalize();
     joint.strut_axis.normalize();
   }
-  // Base plane as for the ideal hexapod: least-squares plane of the joint centres, normal towards the
-  // platform.
-  for (const auto& a : geometry_.base_joints_mm) base_centroid_mm_ += a / 6.0;
-  Eigen::Matrix<double, 3, 6> spread;
-  for (int j = 0; j < 6; ++j) spread.col(j) = geometry_.base_joints_mm[j] - base_centroid_mm_;
-  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 6>> svd(spread, Eigen::ComputeFullU);
-  base_normal_ = svd.matrixU().col(2);
-  Eigen::Vector3d platform_centroid = Eigen::Vector3d::Zero();
-  for (const auto& b : geometry_.platform_joints_mm) platform_centroid += home_.to_base(b) / 6.0;
-  if (base_normal_.dot(platform_centroid - base_centroid_mm_) < 0) base_normal_ = -base_normal_;
   home_mode_ = assembly_mode(home_);
 }
 
@@ -206,15 +200,7 @@ Result<Eigen::Matrix<double, 6, 6>> HexapodRefined::twist_jacobian(const Pose& p
 int HexapodRefined::assembly_mode(const Pose& pose) const {
   const auto twist = twist_jacobian(pose);
   if (!twist) return -1;
-  bool all_above = true;
-  bool all_below = true;
-  for (const auto& b : geometry_.platform_joints_mm) {
-    const double side = base_normal_.dot(pose.to_base(b) - base_centroid_mm_);
-    all_above = all_above && side > 0;
-    all_below = all_below && side < 0;
-  }
-  const int side_code = all_above ? 0 : (all_below ? 2 : 4);
-  return side_code + (twist->determinant() >= 0 ? 0 : 1);
+  return base_plane_.assembly_mode(pose, geometry_.platform_joints_mm, twist->determinant());
 }
 
 Result<FkSolution> HexapodRefined::forward(const ActuatorVector& actuators, const Pose& guess,

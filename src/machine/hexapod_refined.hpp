@@ -27,6 +27,7 @@
 // of eq. 28 becomes the usual 6-unknown one.
 #include <array>
 
+#include "machine/base_plane.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/mechanism.hpp"
 
@@ -116,8 +117,7 @@ class HexapodRefined final : public Mechanism {
   std::array<CardanJoint, 6> joints_;
   AngleConvention convention_;
   Hexapod ideal_;
-  Eigen::Vector3d base_centroid_mm_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d base_normal_ = Eigen::Vector3d::UnitZ();
+  BasePlane base_plane_;
   int home_mode_ = 0;
 };
 
