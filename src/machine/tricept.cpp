@@ -1,5 +1,7 @@
 #include "machine/tricept.hpp"
 
+#include "kinematics/damped_newton.hpp"
+
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
@@ -146,71 +148,46 @@ Result<FkSolution> Tricept::forward(const ActuatorVector& q, const Pose& guess,
     }
   }
   // Damped Newton on the tool point (3 unknowns, eq. 38), with a backtracking line search on |L(P) − q|.
-  constexpr int kMaxHalvings = 30;
-  Eigen::Vector3d p = guess.position_mm;
-  Eigen::Vector3d lengths;
-  Eigen::Matrix3d j;
-  if (!evaluate(p, lengths, &j)) {
-    return make_error(ErrorCode::unreachable,
-                      "forward kinematics: the start guess is outside the reachable space");
+  Eigen::Vector3d guess_lengths;
+  Eigen::Matrix3d guess_jacobian;
+  if (!evaluate(guess.position_mm, guess_lengths, &guess_jacobian)) {
+    return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
   }
-  const int guess_sign = j.determinant() >= 0 ? 1 : -1;  // assembly mode of the guess
-  Eigen::Vector3d f = lengths - target;
-  double norm = f.norm();
-  int iteration = 0;
-  bool converged = false;
-  for (; iteration <= options.max_iterations; ++iteration) {
-    if (f.cwiseAbs().maxCoeff() <= options.tolerance_mm) {
-      converged = true;
-      break;
-    }
-    if (iteration == options.max_iterations) break;
-    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(j);
-    if (!(lu.rcond() >= options.min_rcond)) {
+  const int guess_sign = guess_jacobian.determinant() >= 0 ? 1 : -1;  // assembly mode of the guess
+  auto residual = [&](const Eigen::Vector3d& point, Eigen::Vector3d& f, Eigen::Matrix3d& j) {
+    Eigen::Vector3d lengths;
+    if (!evaluate(point, lengths, &j)) return false;
+    f = lengths - target;
+    return true;
+  };
+  NewtonState<3> state;
+  switch (damped_newton<3>(residual, guess.position_mm, Eigen::Vector3d::Ones(), options, state)) {
+    case NewtonStatus::converged: break;
+    case NewtonStatus::start_outside:
+      return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
+    case NewtonStatus::singular_on_the_way:
       return make_error(ErrorCode::singular,
                         "forward kinematics: the Jacobian is singular on the way to a solution "
                         "(the strut lengths may lie at a singular configuration)");
-    }
-    const Eigen::Vector3d step = lu.solve(-f);
-    bool accepted = false;
-    double fraction = 1.0;
-    for (int halving = 0; halving < kMaxHalvings; ++halving, fraction *= 0.5) {
-      const Eigen::Vector3d trial = p + fraction * step;
-      Eigen::Vector3d trial_lengths;
-      Eigen::Matrix3d trial_j;
-      if (!evaluate(trial, trial_lengths, &trial_j)) continue;
-      const Eigen::Vector3d trial_f = trial_lengths - target;
-      const double trial_norm = trial_f.norm();
-      if (trial_norm < norm || trial_norm <= options.tolerance_mm) {
-        p = trial;
-        f = trial_f;
-        j = trial_j;
-        norm = trial_norm;
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) break;
+    case NewtonStatus::singular_at_solution:
+      return make_error(ErrorCode::singular,
+                        "forward kinematics: these strut lengths put the tricept in a singular configuration");
+    case NewtonStatus::not_converged:
+      return make_error(
+          ErrorCode::not_converged,
+          fmt::format("forward kinematics did not converge within {} iterations (residual {:.3g} mm); "
+                      "the strut lengths may be out of reach, or give a guess closer to the solution",
+                      options.max_iterations, state.residual_mm));
   }
-  if (!converged) {
-    return make_error(
-        ErrorCode::not_converged,
-        fmt::format("forward kinematics did not converge within {} iterations (residual {:.3g} mm); "
-                    "the strut lengths may be out of reach, or give a guess closer to the solution",
-                    options.max_iterations, f.cwiseAbs().maxCoeff()));
-  }
-  // A solution at a singular configuration is reported, not returned: its neighbourhood is not unique.
-  if (!(Eigen::PartialPivLU<Eigen::Matrix3d>(j).rcond() >= options.min_rcond)) {
-    return make_error(ErrorCode::singular,
-                      "forward kinematics: these strut lengths put the tricept in a singular configuration");
-  }
+  const Eigen::Vector3d p = state.x;
+  const Eigen::Matrix3d& j = state.jacobian;
   FkSolution solution;
   solution.pose.position_mm = p;
   TriceptAxis axis;
   axis_of(p, axis);
   solution.pose.rotation = rot_x(axis.alpha_rad) * rot_y(axis.beta_rad);
-  solution.iterations = iteration;
-  solution.residual_mm = f.cwiseAbs().maxCoeff();
+  solution.iterations = state.iterations;
+  solution.residual_mm = state.residual_mm;
   const int sign = j.determinant() >= 0 ? 1 : -1;
   solution.branch = sign == home_sign_ ? 0 : 1;
   if (options.require_same_branch && sign != guess_sign) {

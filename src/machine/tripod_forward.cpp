@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "kinematics/damped_newton.hpp"
 #include "machine/tripod.hpp"
 
 namespace pkm {
@@ -81,63 +82,34 @@ Result<FkSolution> Tripod::forward(const ActuatorVector& q, const Pose& guess,
     }
   }
 
-  constexpr int kMaxHalvings = 30;
-  Eigen::Vector3d t;
-  for (int j = 0; j < 3; ++j) t[j] = joint_angle_of(j, guess.to_base(geometry_.platform_joints_mm[j]));
-  Eigen::Vector3d f;
-  Eigen::Matrix3d df;
-  distance_equations(l, t, f, df);
+  Eigen::Vector3d start;
+  for (int j = 0; j < 3; ++j) start[j] = joint_angle_of(j, guess.to_base(geometry_.platform_joints_mm[j]));
   // |f_k| / (2 d_k) is, to first order, the error of the distance |B_i B_k| in mm.
   const Eigen::Vector3d to_mm(0.5 / platform_distance_mm_[0], 0.5 / platform_distance_mm_[1],
                               0.5 / platform_distance_mm_[2]);
-  double norm = f.cwiseProduct(to_mm).norm();
-  int iteration = 0;
-  bool converged = false;
-  for (; iteration <= options.max_iterations; ++iteration) {
-    if (f.cwiseProduct(to_mm).cwiseAbs().maxCoeff() <= options.tolerance_mm) {
-      converged = true;
-      break;
-    }
-    if (iteration == options.max_iterations) break;
-    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(df);
-    if (!(lu.rcond() >= options.min_rcond)) {
+  auto equations = [&](const Eigen::Vector3d& angles, Eigen::Vector3d& f, Eigen::Matrix3d& df) {
+    distance_equations(l, angles, f, df);
+    return true;
+  };
+  NewtonState<3> state;
+  switch (damped_newton<3>(equations, start, to_mm, options, state)) {
+    case NewtonStatus::converged: break;
+    case NewtonStatus::start_outside:  // distance_equations is defined everywhere
+    case NewtonStatus::not_converged:
+      return make_error(ErrorCode::not_converged,
+                        fmt::format("forward kinematics did not converge within {} iterations (residual {:.3g} mm); "
+                                    "give a guess closer to the solution",
+                                    options.max_iterations, state.residual_mm));
+    case NewtonStatus::singular_on_the_way:
       return make_error(ErrorCode::singular,
                         "forward kinematics: the joint-angle Jacobian is singular on the way to a solution "
                         "(the strut lengths may lie at a singular configuration)");
-    }
-    const Eigen::Vector3d step = lu.solve(-f);
-    // Damping by backtracking: halve the step until the residual decreases.
-    bool accepted = false;
-    double fraction = 1.0;
-    for (int halving = 0; halving < kMaxHalvings; ++halving, fraction *= 0.5) {
-      const Eigen::Vector3d trial = t + fraction * step;
-      Eigen::Vector3d trial_f;
-      Eigen::Matrix3d trial_df;
-      distance_equations(l, trial, trial_f, trial_df);
-      const double trial_norm = trial_f.cwiseProduct(to_mm).norm();
-      if (trial_norm < norm || trial_norm <= options.tolerance_mm) {
-        t = trial;
-        f = trial_f;
-        df = trial_df;
-        norm = trial_norm;
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) break;
+    case NewtonStatus::singular_at_solution:
+      return make_error(ErrorCode::singular,
+                        "forward kinematics: these strut lengths put the tripod in a singular configuration");
   }
-  if (!converged) {
-    return make_error(
-        ErrorCode::not_converged,
-        fmt::format("forward kinematics did not converge within {} iterations (residual {:.3g} mm); "
-                    "give a guess closer to the solution",
-                    options.max_iterations, f.cwiseProduct(to_mm).cwiseAbs().maxCoeff()));
-  }
-  // A solution at a singular configuration is reported, not returned: its neighbourhood is not unique.
-  if (!(Eigen::PartialPivLU<Eigen::Matrix3d>(df).rcond() >= options.min_rcond)) {
-    return make_error(ErrorCode::singular,
-                      "forward kinematics: these strut lengths put the tripod in a singular configuration");
-  }
+  const Eigen::Vector3d t = state.x;
+  const int iteration = state.iterations;
   std::array<Eigen::Vector3d, 3> joints;
   for (int j = 0; j < 3; ++j) joints[j] = joint_at(j, l[j], t[j]);
   FkSolution solution;
