@@ -168,6 +168,29 @@ TEST(Cli, SingularActuatorValuesExitWithFour) {
   EXPECT_NE(fk.out.find("singular"), std::string::npos) << fk.out;
 }
 
+TEST(Cli, JacobianGivesErrorAmplificationAndInverse) {
+  const CliRun r = run("jacobian --machine " + example(kCh5) + " --pose 0,0,700,0,0,0 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["error_amplification"].get<double>(), 4.76, 0.005);  // spec ch5 §5.1
+  // J · J⁻¹ = I
+  for (int row = 0; row < 6; ++row) {
+    for (int col = 0; col < 6; ++col) {
+      double sum = 0;
+      for (int k = 0; k < 6; ++k) sum += j["jacobian"][row][k].get<double>() * j["inverse"][k][col].get<double>();
+      EXPECT_NEAR(sum, row == col ? 1.0 : 0.0, 1e-9);
+    }
+  }
+  const CliRun singular = run("jacobian --machine " + example(kCh5) + " --pose 0,0,150,0,0,0");
+  EXPECT_EQ(singular.exit_code, 4) << singular.out;
+}
+
+TEST(Cli, FkThatCannotConvergeSaysSo) {
+  const CliRun r = run("fk --machine " + example(kCh5) + " --actuators 360,890,360,890,360,890");
+  EXPECT_TRUE(r.exit_code == 3 || r.exit_code == 4) << r.out;
+  EXPECT_NE(r.out.find("pkm fk: error:"), std::string::npos) << r.out;
+}
+
 TEST(Cli, CheckReportsMobilityAndRange) {
   const CliRun r = run("check " + example(kCh5) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
