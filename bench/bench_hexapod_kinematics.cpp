@@ -1,7 +1,8 @@
-// Hexapod IK and FK timings for docs/PERFORMANCE.md, on the dissertation's ch5 hexapod and on LinuxCNC's default
-// genhexkins geometry (in mm), with the same pose sets as the genhexkins anchor figures (../shared/anchors.md):
-//   IK per pose: random ±20 mm, ±10° around home (including the angle → matrix conversion, as genhexkins does);
-//   FK warm: along a smooth path in 0.1 mm / 0.01° steps, each solve started from the previous pose;
+// Hexapod IK and FK timings for docs/PERFORMANCE.md, on the dissertation's ch5 hexapod and on LinuxCNC's
+// default genhexkins geometry (in mm), with the same pose sets as the genhexkins anchor figures
+// (../shared/anchors.md):
+//   IK per pose: random ±20 mm, ±10° around home (including the angle → matrix conversion, as genhexkins
+//   does); FK warm: along a smooth path in 0.1 mm / 0.01° steps, each solve started from the previous pose;
 //   FK cold: from home to random poses ±20 mm/±10° and ±50 mm/±20°.
 // Counters: iterations per solve, fraction converged to the right pose (1e-6 mm), worst single call (µs).
 #include <benchmark/benchmark.h>
@@ -25,7 +26,8 @@ const Hexapod& hexapod_of(const char* file) {
   return dynamic_cast<const Hexapod&>(*keep.back()->mechanism);
 }
 
-std::vector<PoseVector> random_poses(const Hexapod& h, double range_mm, double range_deg, int count, unsigned seed) {
+std::vector<PoseVector> random_poses(const Hexapod& h, double range_mm, double range_deg, int count,
+                                     unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   const PoseVector home = vector_from_pose(h.convention(), h.home());
@@ -92,7 +94,8 @@ void BM_FK_warm_path(benchmark::State& state, const char* file, bool keep_worksp
     const auto t0 = std::chrono::steady_clock::now();
     if (!keep_workspace) workspace.reset();
     auto fk = h.forward(lengths[i], previous, options, workspace);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     stats.worst_us = std::max(stats.worst_us, us);
     ++stats.solves;
     if (fk) {
@@ -127,7 +130,8 @@ void BM_FK_cold(benchmark::State& state, const char* file, double range_mm, doub
     const std::size_t k = i++ & 4095;
     const auto t0 = std::chrono::steady_clock::now();
     auto fk = h.forward(lengths[k], h.home());
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     stats.worst_us = std::max(stats.worst_us, us);
     ++stats.solves;
     if (fk) {

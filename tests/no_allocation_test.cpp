@@ -1,5 +1,6 @@
-// Hot paths do not allocate (STYLE habit 3): IK, FK (warm, with and without a workspace) and the Jacobian of every
-// shipped machine run under a counting global operator new. This file owns the replacement for pkm_tests.
+// Hot paths do not allocate (STYLE habit 3): IK, FK (warm, with and without a workspace) and the Jacobian of
+// every shipped machine run under a counting global operator new. This file owns the replacement for
+// pkm_tests.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -18,8 +19,12 @@ void* operator new(std::size_t size) {
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
 
 namespace pkm {
 namespace {
@@ -32,9 +37,9 @@ TEST(NoAllocation, CounterSeesAllocations) {
 }
 
 TEST(NoAllocation, KinematicsOfEveryShippedMachine) {
-  for (const char* file : {"hexapod_ch5.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml", "planar2.yaml",
-                           "planar3.yaml", "tripod.yaml", "tricept.yaml", "hexaglide.yaml", "triglide.yaml",
-                           "rotopod.yaml"}) {
+  for (const char* file :
+       {"hexapod_ch5.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml", "planar2.yaml", "planar3.yaml",
+        "tripod.yaml", "tricept.yaml", "hexaglide.yaml", "triglide.yaml", "rotopod.yaml"}) {
     const Machine m = test::machine_from_example(std::string("examples/machines/") + file);
     const Mechanism& mech = *m.mechanism;
     PoseVector c = vector_from_pose(mech.convention(), mech.home());

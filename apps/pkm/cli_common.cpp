@@ -10,12 +10,15 @@ int exit_code_for(ErrorCode code) {
   switch (code) {
     case ErrorCode::bad_input:
     case ErrorCode::io:
-    case ErrorCode::unsupported: return 2;
+    case ErrorCode::unsupported:
+      return 2;
     case ErrorCode::unreachable:
     case ErrorCode::limit_exceeded:
-    case ErrorCode::wrong_branch: return 3;
+    case ErrorCode::wrong_branch:
+      return 3;
     case ErrorCode::singular:
-    case ErrorCode::not_converged: return 4;
+    case ErrorCode::not_converged:
+      return 4;
   }
   return 1;
 }
@@ -25,10 +28,16 @@ int report_error(const std::string& command, const Error& error) {
   return exit_code_for(error.code);
 }
 
-Result<Machine> load_machine_or_report(const std::string& path) { return load_machine_file(path); }
+Result<Machine> load_machine_or_report(const std::string& path) {
+  return load_machine_file(path);
+}
 
-std::string fixed(double value, int decimals) { return fmt::format("{:.{}f}", value, decimals); }
+std::string fixed(double value, int decimals) {
+  return fmt::format("{:.{}f}", value, decimals);
+}
 
-void print_json(const nlohmann::json& json) { std::cout << json.dump(2) << "\n"; }
+void print_json(const nlohmann::json& json) {
+  std::cout << json.dump(2) << "\n";
+}
 
 }  // namespace pkm::cli

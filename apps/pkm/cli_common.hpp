@@ -1,7 +1,6 @@
 #pragma once
 // Shared pieces of the pkm subcommands: loading the machine, reporting errors, exit codes.
 #include <nlohmann/json.hpp>
-
 #include <string>
 
 #include "machine/machine_file.hpp"

@@ -17,9 +17,12 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   auto json = std::make_shared<bool>(false);
   auto options = std::make_shared<KinematicsTimingOptions>();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
-  cmd->add_option("--ik-poses", options->ik_poses, "random poses for IK (±20 mm, ±10°)")->capture_default_str();
-  cmd->add_option("--path-poses", options->path_poses, "poses along the warm FK path (0.1 mm steps)")->capture_default_str();
-  cmd->add_option("--cold-poses", options->cold_poses, "random poses for cold FK from home (±50 mm, ±20°)")->capture_default_str();
+  cmd->add_option("--ik-poses", options->ik_poses, "random poses for IK (±20 mm, ±10°)")
+      ->capture_default_str();
+  cmd->add_option("--path-poses", options->path_poses, "poses along the warm FK path (0.1 mm steps)")
+      ->capture_default_str();
+  cmd->add_option("--cold-poses", options->cold_poses, "random poses for cold FK from home (±50 mm, ±20°)")
+      ->capture_default_str();
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
     auto machine = load_machine_or_report(*machine_path);

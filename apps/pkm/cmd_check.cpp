@@ -1,5 +1,6 @@
-// pkm check M.yaml [--json]: validates a machine file, prints its structure and mobility, and samples a default
-// workspace box around home (±50 mm, ±10°) for the actuator range, singularities and error amplification δρ.
+// pkm check M.yaml [--json]: validates a machine file, prints its structure and mobility, and samples a
+// default workspace box around home (±50 mm, ±10°) for the actuator range, singularities and error
+// amplification δρ.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -20,8 +21,10 @@ void add_check_command(CLI::App& app, int& exit_code) {
   auto half_range_mm = std::make_shared<double>(50.0);
   auto half_angle_deg = std::make_shared<double>(10.0);
   cmd->add_option("machine", *machine_path, "machine file (YAML)")->required();
-  cmd->add_option("--range-mm", *half_range_mm, "half-range of the translation sample around home, mm")->capture_default_str();
-  cmd->add_option("--range-deg", *half_angle_deg, "half-range of the angle sample around home, deg")->capture_default_str();
+  cmd->add_option("--range-mm", *half_range_mm, "half-range of the translation sample around home, mm")
+      ->capture_default_str();
+  cmd->add_option("--range-deg", *half_angle_deg, "half-range of the angle sample around home, deg")
+      ->capture_default_str();
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
     auto machine = load_machine_or_report(*machine_path);
@@ -48,35 +51,46 @@ void add_check_command(CLI::App& app, int& exit_code) {
                   {"type", std::string(to_string(mech.type()))},
                   {"structure", structure.notation},
                   {"mobility", h - structure.idle_freedoms},
-                  {"mobility_formula", {{"links", structure.links}, {"pairs_by_dof", structure.pairs},
-                                        {"idle", structure.idle_freedoms}, {"planar", structure.planar}}},
+                  {"mobility_formula",
+                   {{"links", structure.links},
+                    {"pairs_by_dof", structure.pairs},
+                    {"idle", structure.idle_freedoms},
+                    {"planar", structure.planar}}},
                   {"controlled", controlled},
                   {"home", user_from_pose(mech, mech.home())},
-                  {"sample", {{"poses", s.poses}, {"unreachable", s.unreachable}, {"out_of_range", s.out_of_range},
-                              {"singular", s.singular}, {"actuator_min", lo}, {"actuator_max", hi},
-                              {"unit", unit}, {"error_amplification_min", s.error_amplification_min},
-                              {"error_amplification_max", s.error_amplification_max},
-                              {"condition_max", s.condition_max},
-                              {"determinant_changes_sign", s.determinant_changes_sign}}}});
+                  {"sample",
+                   {{"poses", s.poses},
+                    {"unreachable", s.unreachable},
+                    {"out_of_range", s.out_of_range},
+                    {"singular", s.singular},
+                    {"actuator_min", lo},
+                    {"actuator_max", hi},
+                    {"unit", unit},
+                    {"error_amplification_min", s.error_amplification_min},
+                    {"error_amplification_max", s.error_amplification_max},
+                    {"condition_max", s.condition_max},
+                    {"determinant_changes_sign", s.determinant_changes_sign}}}});
     } else {
       std::cout << fmt::format("{}: valid ({})\n", *machine_path, machine->name);
       std::cout << fmt::format("  mechanism  {} ({}), {} actuators, controls {}\n", to_string(mech.type()),
                                structure.notation, mech.actuator_count(), fmt::join(controlled, ","));
-      std::cout << fmt::format("  mobility   H = {}{} (Somov–Malyshev, {} links, pairs by DOF {})\n",
-                               h - structure.idle_freedoms,
-                               structure.idle_freedoms ? fmt::format(" ({} − {} idle)", h, structure.idle_freedoms) : "",
-                               structure.links, fmt::join(structure.pairs, "/"));
+      std::cout << fmt::format(
+          "  mobility   H = {}{} (Somov–Malyshev, {} links, pairs by DOF {})\n", h - structure.idle_freedoms,
+          structure.idle_freedoms ? fmt::format(" ({} − {} idle)", h, structure.idle_freedoms) : "",
+          structure.links, fmt::join(structure.pairs, "/"));
       std::cout << fmt::format("  home       {}\n", fmt::join(user_from_pose(mech, mech.home()), ", "));
-      std::cout << fmt::format("  sample     {} poses around home (±{} mm, ±{} deg): {} unreachable, {} out of range, "
-                               "{} singular{}\n",
-                               s.poses, *half_range_mm, *half_angle_deg, s.unreachable, s.out_of_range, s.singular,
-                               s.determinant_changes_sign ? ", det J changes sign (a singularity inside)" : "");
+      std::cout << fmt::format(
+          "  sample     {} poses around home (±{} mm, ±{} deg): {} unreachable, {} out of range, "
+          "{} singular{}\n",
+          s.poses, *half_range_mm, *half_angle_deg, s.unreachable, s.out_of_range, s.singular,
+          s.determinant_changes_sign ? ", det J changes sign (a singularity inside)" : "");
       for (int j = 0; j < mech.actuator_count(); ++j) {
         std::cout << fmt::format("  actuator {}  {:.3f} … {:.3f} {}\n", j + 1, lo[j], hi[j], unit);
       }
-      std::cout << fmt::format("  error amplification δρ {:.3f} … {:.3f} (mm per mm of equal actuator error), "
-                               "max condition number {:.1f}\n",
-                               s.error_amplification_min, s.error_amplification_max, s.condition_max);
+      std::cout << fmt::format(
+          "  error amplification δρ {:.3f} … {:.3f} (mm per mm of equal actuator error), "
+          "max condition number {:.1f}\n",
+          s.error_amplification_min, s.error_amplification_max, s.condition_max);
     }
     exit_code = 0;
   });

@@ -35,10 +35,10 @@ void add_demo_command(CLI::App& app, int& exit_code) {
       }
     }
     const auto names = pose_coordinate_names(mech);
-    std::cout << fmt::format("{} ({}), {} convention, actuators in {}\n\n", machine->name, to_string(mech.type()),
-                             to_string(mech.convention()), actuator_unit_name(mech));
-    std::cout << fmt::format("{:<58} {:<}  {:>12} {:>12} {:>5}\n", "pose (mm, deg)", "actuators",
-                             "FK err mm", "FK err deg", "iter");
+    std::cout << fmt::format("{} ({}), {} convention, actuators in {}\n\n", machine->name,
+                             to_string(mech.type()), to_string(mech.convention()), actuator_unit_name(mech));
+    std::cout << fmt::format("{:<58} {:<}  {:>12} {:>12} {:>5}\n", "pose (mm, deg)", "actuators", "FK err mm",
+                             "FK err deg", "iter");
     int failures = 0;
     for (const PoseVector& c : targets) {
       auto pose = mech.complete_pose(pose_from_vector(mech.convention(), c));
@@ -62,7 +62,8 @@ void add_demo_command(CLI::App& app, int& exit_code) {
       std::cout << fmt::format("{:<58} {}  {:12.3e} {:12.3e} {:5}{}\n", pose_text, q_text, d.position_mm,
                                deg_from_rad(d.rotation_rad), fk->iterations, range_note);
     }
-    std::cout << fmt::format("\n(FK started cold from home for every row; names: {})\n", fmt::join(names, ","));
+    std::cout << fmt::format("\n(FK started cold from home for every row; names: {})\n",
+                             fmt::join(names, ","));
     exit_code = failures == 0 ? 0 : 4;
   });
 }

@@ -1,4 +1,5 @@
-// pkm fk --machine M.yaml --actuators q1,..,qn [--guess pose] [--all] [--json]: pose(s) from actuator positions.
+// pkm fk --machine M.yaml --actuators q1,..,qn [--guess pose] [--all] [--json]: pose(s) from actuator
+// positions.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -40,7 +41,8 @@ void add_fk_command(CLI::App& app, int& exit_code) {
   auto all = std::make_shared<bool>(false);
   auto json = std::make_shared<bool>(false);
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
-  cmd->add_option("--actuators", *actuators_text, "actuator positions q1,..,qn (mm, or deg for angular actuators)")
+  cmd->add_option("--actuators", *actuators_text,
+                  "actuator positions q1,..,qn (mm, or deg for angular actuators)")
       ->required();
   cmd->add_option("--guess", *guess_text, "start pose (default: the machine's home); same form as ik --pose");
   cmd->add_flag("--all", *all, "all assembly modes (where the mechanism can enumerate them)");

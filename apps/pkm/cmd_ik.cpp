@@ -43,8 +43,9 @@ void add_ik_command(CLI::App& app, int& exit_code) {
       return;
     }
     if (auto range = check_actuator_range(*machine, *q); !range) {
-      exit_code = report_error("ik", make_error(ErrorCode::unreachable,
-                                                "pose unreachable within the actuator range: " + range.error().message));
+      exit_code = report_error(
+          "ik", make_error(ErrorCode::unreachable,
+                           "pose unreachable within the actuator range: " + range.error().message));
       return;
     }
     const auto actuators = user_from_actuators(mech, *q);
@@ -52,7 +53,8 @@ void add_ik_command(CLI::App& app, int& exit_code) {
     if (*json) {
       print_json({{"actuators", actuators}, {"unit", actuator_unit_name(mech)}, {"pose", full_pose}});
     } else {
-      std::cout << fmt::format("{:.10f}", fmt::join(actuators, " ")) << "  (" << actuator_unit_name(mech) << ")\n";
+      std::cout << fmt::format("{:.10f}", fmt::join(actuators, " ")) << "  (" << actuator_unit_name(mech)
+                << ")\n";
     }
     exit_code = 0;
   });

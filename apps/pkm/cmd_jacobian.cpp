@@ -1,8 +1,9 @@
-// pkm jacobian --machine M.yaml --pose P [--json]: the Jacobian at a pose (actuator rates from pose-coordinate
-// rates), its inverse, determinant, condition number and error amplification δρ (dissertation eq. 144–146).
-#include <Eigen/LU>
+// pkm jacobian --machine M.yaml --pose P [--json]: the Jacobian at a pose (actuator rates from
+// pose-coordinate rates), its inverse, determinant, condition number and error amplification δρ (dissertation
+// eq. 144–146).
 #include <fmt/format.h>
 
+#include <Eigen/LU>
 #include <iostream>
 
 #include "cli_common.hpp"
@@ -78,7 +79,8 @@ void add_jacobian_command(CLI::App& app, int& exit_code) {
         std::cout << fmt::format("  {:12.6f}\n", fmt::join(inverse.row(i), " "));
       }
       std::cout << fmt::format("det J {:.6g}, condition number {:.3f}, error amplification δρ {:.4f}\n",
-                               measures->determinant, measures->condition_number, measures->error_amplification);
+                               measures->determinant, measures->condition_number,
+                               measures->error_amplification);
     }
     exit_code = 0;
   });

@@ -1,10 +1,12 @@
-// pkm: plans, executes and analyses motion for parallel-kinematic machines. Each subcommand lives in cmd_*.cpp.
+// pkm: plans, executes and analyses motion for parallel-kinematic machines. Each subcommand lives in
+// cmd_*.cpp.
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"pkm: kinematics and motion for parallel-kinematic machines (hexapods, tripods, tricepts, glides)"};
+  CLI::App app{
+      "pkm: kinematics and motion for parallel-kinematic machines (hexapods, tripods, tricepts, glides)"};
   app.require_subcommand(1);
   int exit_code = 0;
   pkm::cli::add_ik_command(app, exit_code);

@@ -9,14 +9,14 @@
 namespace pkm {
 
 enum class ErrorCode {
-  bad_input,      ///< malformed file, argument or value
-  unreachable,    ///< a pose no actuator setting can reach
-  not_converged,  ///< an iterative solver stopped without meeting its tolerance
-  singular,       ///< a singular (or badly conditioned) configuration
-  wrong_branch,   ///< a solution exists but in another assembly mode / branch than asked for
-  limit_exceeded, ///< an actuator or joint limit is violated
-  unsupported,    ///< the mechanism does not offer this operation
-  io,             ///< a file could not be read or written
+  bad_input,       ///< malformed file, argument or value
+  unreachable,     ///< a pose no actuator setting can reach
+  not_converged,   ///< an iterative solver stopped without meeting its tolerance
+  singular,        ///< a singular (or badly conditioned) configuration
+  wrong_branch,    ///< a solution exists but in another assembly mode / branch than asked for
+  limit_exceeded,  ///< an actuator or joint limit is violated
+  unsupported,     ///< the mechanism does not offer this operation
+  io,              ///< a file could not be read or written
 };
 
 const char* to_string(ErrorCode code);
@@ -29,7 +29,7 @@ struct Error {
 template <class T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : state_(std::move(value)) {}  // NOLINT(google-explicit-constructor): ergonomic returns
+  Result(T value) : state_(std::move(value)) {}      // NOLINT(google-explicit-constructor): ergonomic returns
   Result(Error error) : state_(std::move(error)) {}  // NOLINT(google-explicit-constructor)
 
   bool ok() const { return state_.index() == 0; }
@@ -64,8 +64,12 @@ class [[nodiscard]] Result {
 /// Result of an operation that yields nothing on success.
 struct Unit {};
 using Status = Result<Unit>;
-inline Status ok_status() { return Unit{}; }
+inline Status ok_status() {
+  return Unit{};
+}
 
-inline Error make_error(ErrorCode code, std::string message) { return Error{code, std::move(message)}; }
+inline Error make_error(ErrorCode code, std::string message) {
+  return Error{code, std::move(message)};
+}
 
 }  // namespace pkm

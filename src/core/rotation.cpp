@@ -10,9 +10,9 @@ namespace {
 // A convention as a product of three elementary rotations R = E0 · E1 · E2, each about a base axis
 // with a sign applied to one of the angles. This one description gives R and the angular-velocity matrix.
 struct Elementary {
-  int axis;          // 0 = x, 1 = y, 2 = z
-  double sign;       // +1 or -1
-  int angle_index;   // which entry of the angle triple drives it
+  int axis;         // 0 = x, 1 = y, 2 = z
+  double sign;      // +1 or -1
+  int angle_index;  // which entry of the angle triple drives it
 };
 struct Sequence {
   Elementary factors[3];
@@ -20,18 +20,24 @@ struct Sequence {
 
 Sequence sequence_of(AngleConvention convention) {
   switch (convention) {
-    case AngleConvention::abc: return {{{2, 1.0, 2}, {1, 1.0, 1}, {0, 1.0, 0}}};
-    case AngleConvention::krylov: return {{{2, -1.0, 0}, {0, -1.0, 1}, {1, -1.0, 2}}};
-    case AngleConvention::euler_zxz: return {{{2, 1.0, 0}, {0, 1.0, 1}, {2, 1.0, 2}}};
+    case AngleConvention::abc:
+      return {{{2, 1.0, 2}, {1, 1.0, 1}, {0, 1.0, 0}}};
+    case AngleConvention::krylov:
+      return {{{2, -1.0, 0}, {0, -1.0, 1}, {1, -1.0, 2}}};
+    case AngleConvention::euler_zxz:
+      return {{{2, 1.0, 0}, {0, 1.0, 1}, {2, 1.0, 2}}};
   }
   return {};
 }
 
 Eigen::Matrix3d elementary(int axis, double angle_rad) {
   switch (axis) {
-    case 0: return rot_x(angle_rad);
-    case 1: return rot_y(angle_rad);
-    default: return rot_z(angle_rad);
+    case 0:
+      return rot_x(angle_rad);
+    case 1:
+      return rot_y(angle_rad);
+    default:
+      return rot_z(angle_rad);
   }
 }
 
@@ -39,9 +45,12 @@ Eigen::Matrix3d elementary(int axis, double angle_rad) {
 
 std::string_view to_string(AngleConvention convention) {
   switch (convention) {
-    case AngleConvention::abc: return "abc";
-    case AngleConvention::krylov: return "krylov";
-    case AngleConvention::euler_zxz: return "euler_zxz";
+    case AngleConvention::abc:
+      return "abc";
+    case AngleConvention::krylov:
+      return "krylov";
+    case AngleConvention::euler_zxz:
+      return "euler_zxz";
   }
   return "?";
 }
@@ -82,24 +91,25 @@ Eigen::Matrix3d rotation_from_angles(AngleConvention convention, const Eigen::Ve
   switch (convention) {
     case AngleConvention::abc:  // Rz(C)Ry(B)Rx(A), (A, B, C) = angles; eq. 12
       r << c2 * c3, s1 * s2 * c3 - c1 * s3, c1 * s2 * c3 + s1 * s3,  //
-          c2 * s3, s1 * s2 * s3 + c1 * c3, c1 * s2 * s3 - s1 * c3,    //
+          c2 * s3, s1 * s2 * s3 + c1 * c3, c1 * s2 * s3 - s1 * c3,   //
           -s2, s1 * c2, c1 * c2;
       return r;
     case AngleConvention::krylov:  // Rz(-ψ)Rx(-ϑ)Ry(-γ), (ψ, ϑ, γ) = angles; eq. 15 (rows l, m, n)
       r << c1 * c3 + s2 * s1 * s3, s1 * c2, s1 * s2 * c3 - c1 * s3,  //
-          c1 * s2 * s3 - s1 * c3, c1 * c2, s1 * s3 + c1 * s2 * c3,    //
+          c1 * s2 * s3 - s1 * c3, c1 * c2, s1 * s3 + c1 * s2 * c3,   //
           c2 * s3, -s2, c2 * c3;
       return r;
     case AngleConvention::euler_zxz:  // Rz(ψ)Rx(ϑ)Rz(φ), (ψ, ϑ, φ) = angles; eq. 13
       r << c1 * c3 - c2 * s1 * s3, -c1 * s3 - c2 * s1 * c3, s1 * s2,  //
-          s1 * c3 + c2 * c1 * s3, -s1 * s3 + c2 * c1 * c3, -c1 * s2,   //
+          s1 * c3 + c2 * c1 * s3, -s1 * s3 + c2 * c1 * c3, -c1 * s2,  //
           s2 * s3, s2 * c3, c2;
       return r;
   }
   return Eigen::Matrix3d::Identity();
 }
 
-Eigen::Matrix3d rotation_from_elementary_product(AngleConvention convention, const Eigen::Vector3d& angles_rad) {
+Eigen::Matrix3d rotation_from_elementary_product(AngleConvention convention,
+                                                 const Eigen::Vector3d& angles_rad) {
   const Sequence seq = sequence_of(convention);
   Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
   for (const Elementary& f : seq.factors) r = r * elementary(f.axis, f.sign * angles_rad[f.angle_index]);
@@ -119,7 +129,8 @@ Eigen::Vector3d angles_from_rotation(AngleConvention convention, const Eigen::Ma
       return {std::atan2(r(2, 1), r(2, 2)), b, std::atan2(r(1, 0), r(0, 0))};
     }
     case AngleConvention::krylov: {
-      // R = Rz(-ψ)Rx(-ϑ)Ry(-γ): row 2 = (cosϑ sinγ, -sinϑ, cosϑ cosγ); column 1 = (sinψ cosϑ, cosψ cosϑ, -sinϑ).
+      // R = Rz(-ψ)Rx(-ϑ)Ry(-γ): row 2 = (cosϑ sinγ, -sinϑ, cosϑ cosγ); column 1 = (sinψ cosϑ, cosψ cosϑ,
+      // -sinϑ).
       const double theta = std::asin(clamp_unit(-r(2, 1)));
       if (std::abs(r(2, 1)) > 1.0 - 1e-12) {  // singular pitch: set ψ = 0
         return {0.0, theta, std::atan2(-r(0, 2), r(0, 0))};

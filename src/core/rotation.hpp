@@ -6,8 +6,10 @@
 //
 //  abc       R = Rz(C)·Ry(B)·Rx(A)       angles (A, B, C): fixed-axis X, Y, Z rotations, as G-code A B C and
 //                                         LinuxCNC's hexapod kinematics (dissertation eq. 12, verified)
-//  krylov    R = Rz(-ψ)·Rx(-ϑ)·Ry(-γ)    angles (ψ yaw, ϑ pitch, γ roll): the matrix the dissertation actually
-//                                         uses in eq. 15/22 (every angle sign reversed w.r.t. the words; ch2 §3.3)
+//  krylov    R = Rz(-ψ)·Rx(-ϑ)·Ry(-γ)    angles (ψ yaw, ϑ pitch, γ roll): the matrix the dissertation
+//  actually
+//                                         uses in eq. 15/22 (every angle sign reversed w.r.t. the words; ch2
+//                                         §3.3)
 //  euler_zxz R = Rz(ψ)·Rx(ϑ)·Rz(φ)       angles (ψ precession, ϑ nutation, φ proper rotation) (eq. 13)
 //
 // Singularities: abc at B = ±90°, krylov at ϑ = ±90°, euler_zxz at ϑ = 0 or 180°.
@@ -32,7 +34,8 @@ Eigen::Matrix3d rot_z(double angle_rad);
 Eigen::Matrix3d rotation_from_angles(AngleConvention convention, const Eigen::Vector3d& angles_rad);
 
 /// The same R as the literal product of the convention's elementary rotations (slower; the definition).
-Eigen::Matrix3d rotation_from_elementary_product(AngleConvention convention, const Eigen::Vector3d& angles_rad);
+Eigen::Matrix3d rotation_from_elementary_product(AngleConvention convention,
+                                                 const Eigen::Vector3d& angles_rad);
 
 /// The angle triple (radians) of R in the named convention. Of the two triples that give the same R, the one
 /// with the middle angle in [-90°, 90°] (abc, krylov) or [0°, 180°] (euler_zxz) is returned. At the singular

@@ -8,8 +8,8 @@
 namespace pkm {
 
 struct JacobianMeasures {
-  double determinant = 0.0;          ///< of J in the controlled coordinates (angles in rad)
-  double condition_number = 0.0;     ///< σ_max/σ_min of J (angles in rad)
+  double determinant = 0.0;       ///< of J in the controlled coordinates (angles in rad)
+  double condition_number = 0.0;  ///< σ_max/σ_min of J (angles in rad)
   double min_singular_value = 0.0;
   double error_amplification = 0.0;  ///< δρ, mm of tool position per mm of equal actuator error
   Eigen::Vector3d sensitivity_sums = Eigen::Vector3d::Zero();  ///< (S_x, S_y, S_z); 0 for uncontrolled axes
@@ -28,9 +28,9 @@ struct WorkspaceBox {
 
 struct WorkspaceSummary {
   int poses = 0;
-  int unreachable = 0;       ///< poses with no IK solution
-  int out_of_range = 0;      ///< poses whose actuators leave the machine's range
-  int singular = 0;          ///< poses where J is singular
+  int unreachable = 0;   ///< poses with no IK solution
+  int out_of_range = 0;  ///< poses whose actuators leave the machine's range
+  int singular = 0;      ///< poses where J is singular
   ActuatorVector actuator_min, actuator_max;
   double error_amplification_min = 0.0, error_amplification_max = 0.0;
   double condition_max = 0.0;

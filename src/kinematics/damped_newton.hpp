@@ -1,10 +1,10 @@
 #pragma once
-// Damped Newton with backtracking for small square systems F(x) = 0 (the FK of reduced-DOF mechanisms: the tricept
-// in the tool point, the tripod in its three joint angles). Fixed-size, no allocation.
+// Damped Newton with backtracking for small square systems F(x) = 0 (the FK of reduced-DOF mechanisms: the
+// tricept in the tool point, the tripod in its three joint angles). Fixed-size, no allocation.
 //
 // `evaluate(x, f, J)` fills the residual and its Jacobian and returns false when x is outside the domain.
-// `to_mm` converts residual entries into millimetres for the tolerance test and the line search, so the stopping
-// rule is always "max error ≤ options.tolerance_mm".
+// `to_mm` converts residual entries into millimetres for the tolerance test and the line search, so the
+// stopping rule is always "max error ≤ options.tolerance_mm".
 #include <Eigen/Core>
 #include <Eigen/LU>
 
@@ -12,7 +12,13 @@
 
 namespace pkm {
 
-enum class NewtonStatus { converged, start_outside, singular_on_the_way, singular_at_solution, not_converged };
+enum class NewtonStatus {
+  converged,
+  start_outside,
+  singular_on_the_way,
+  singular_at_solution,
+  not_converged
+};
 
 template <int N>
 struct NewtonState {

@@ -67,7 +67,8 @@ KinematicsTiming time_kinematics(const Mechanism& mechanism, const KinematicsTim
     if (mask.controlled[2]) c[2] += 10.0 * std::sin(0.3 * s);
     for (int axis = 3; axis < 6; ++axis) {
       // 0.01° per step, folded back and forth within ±5°
-      if (mask.controlled[axis]) c[axis] += rad_from_deg(5.0) * std::sin(i * rad_from_deg(0.01) / rad_from_deg(5.0));
+      if (mask.controlled[axis])
+        c[axis] += rad_from_deg(5.0) * std::sin(i * rad_from_deg(0.01) / rad_from_deg(5.0));
     }
     auto pose = mechanism.complete_pose(pose_from_vector(mechanism.convention(), c));
     if (!pose) break;

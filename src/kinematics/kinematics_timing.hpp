@@ -11,7 +11,7 @@ namespace pkm {
 struct KinematicsTimingOptions {
   int ik_poses = 100000;
   double ik_range_mm = 20.0, ik_range_deg = 10.0;
-  int path_poses = 20000;         ///< warm FK along a smooth path with 0.1 mm / 0.01° steps
+  int path_poses = 20000;  ///< warm FK along a smooth path with 0.1 mm / 0.01° steps
   int cold_poses = 10000;
   double cold_range_mm = 50.0, cold_range_deg = 20.0;
   std::uint64_t seed = 1;

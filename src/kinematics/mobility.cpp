@@ -32,7 +32,8 @@ MechanismStructure structure_of(const Mechanism& mechanism) {
       return {"6-RUS (rotopod)", false, 14, {6, 6, 6, 0, 0}, 0};
     case MechanismType::glide:
       if (n == 6) return {"6-PUS (hexaglide)", false, 14, {6, 6, 6, 0, 0}, 0};
-      // Triglide: each carriage drives a parallelogram of two S–S struts; each strut can spin idly about its axis.
+      // Triglide: each carriage drives a parallelogram of two S–S struts; each strut can spin idly about its
+      // axis.
       return {"3-P(2S-2S) (triglide)", false, 1 + 3 + 6 + 1, {3, 0, 12, 0, 0}, 6};
   }
   return {};

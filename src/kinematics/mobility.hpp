@@ -12,11 +12,11 @@
 namespace pkm {
 
 struct MechanismStructure {
-  std::string notation;          ///< e.g. "6-UPS", "3-RPR"
+  std::string notation;  ///< e.g. "6-UPS", "3-RPR"
   bool planar = false;
-  int links = 0;                 ///< k, including the base
-  std::array<int, 5> pairs{};    ///< pairs[i] = number of pairs with i + 1 DOF
-  int idle_freedoms = 0;         ///< freedoms that move no output (a strut spinning between two spherical joints)
+  int links = 0;               ///< k, including the base
+  std::array<int, 5> pairs{};  ///< pairs[i] = number of pairs with i + 1 DOF
+  int idle_freedoms = 0;  ///< freedoms that move no output (a strut spinning between two spherical joints)
 };
 
 int spatial_mobility(int links, const std::array<int, 5>& pairs_by_dof);

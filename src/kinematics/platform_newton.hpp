@@ -38,20 +38,22 @@ struct FkDiagnostics {
 };
 
 /// Preallocated state carried from one FK call to the next along a path (Pinocchio's model/data split): the
-/// last factorisation of the Jacobian. Along a path the solution moves a fraction of a millimetre per call, so
-/// the previous factorisation serves as a chord-Newton matrix and most calls need no factorisation at all.
-/// It also keeps the last four solutions: when the caller's guess is the last solution (it is following a path),
-/// the start is extrapolated from them (cubic in position, quadratic in the rotation increment), which puts it
-/// within about 1e-9 mm of the solution on a smooth path sampled at a servo rate, so one chord step converges.
+/// last factorisation of the Jacobian. Along a path the solution moves a fraction of a millimetre per call,
+/// so the previous factorisation serves as a chord-Newton matrix and most calls need no factorisation at all.
+/// It also keeps the last four solutions: when the caller's guess is the last solution (it is following a
+/// path), the start is extrapolated from them (cubic in position, quadratic in the rotation increment), which
+/// puts it within about 1e-9 mm of the solution on a smooth path sampled at a servo rate, so one chord step
+/// converges.
 template <int N>
 struct PlatformFkWorkspace {
   FixedLu<N> lu;
   bool valid = false;
   Pose last_solution;
   Eigen::Vector3d position_history_mm[3];  ///< positions one, two and three solutions before the last
-  Eigen::Vector3d rotation_increments[3];  ///< body-frame rotation vectors between consecutive solutions, newest first
-  int solutions_kept = 0;                  ///< 0 … 4 (saturates)
-  int last_solution_mode = -1;             ///< the mechanism's assembly-mode label of last_solution (-1: unknown)
+  Eigen::Vector3d
+      rotation_increments[3];   ///< body-frame rotation vectors between consecutive solutions, newest first
+  int solutions_kept = 0;       ///< 0 … 4 (saturates)
+  int last_solution_mode = -1;  ///< the mechanism's assembly-mode label of last_solution (-1: unknown)
 
   void reset() {
     valid = false;
@@ -65,7 +67,8 @@ struct PlatformFkWorkspace {
   /// Records a new solution of the path.
   void push(const Pose& solution) {
     if (solutions_kept > 0) {
-      // Small-angle rotation vector of R_lastᵀ·R_new from its skew part: exact to O(θ³), enough for a prediction.
+      // Small-angle rotation vector of R_lastᵀ·R_new from its skew part: exact to O(θ³), enough for a
+      // prediction.
       const Eigen::Matrix3d d = last_solution.rotation.transpose() * solution.rotation;
       for (int k = 2; k > 0; --k) {
         rotation_increments[k] = rotation_increments[k - 1];
@@ -102,8 +105,8 @@ Pose predicted_start(const PlatformFkWorkspace<N>& workspace, const Pose& guess)
       increment = 3.0 * v[0] - 3.0 * v[1] + v[2];
       break;
   }
-  // R_next = R_last · exp([increment]×); then re-orthonormalised (Gram–Schmidt), because Newton steps cannot remove
-  // a shear the model does not contain (a deformed platform can still fit the strut lengths).
+  // R_next = R_last · exp([increment]×); then re-orthonormalised (Gram–Schmidt), because Newton steps cannot
+  // remove a shear the model does not contain (a deformed platform can still fit the strut lengths).
   const RodriguesCoefficients c = rodrigues_coefficients(increment.norm());
   const Eigen::Matrix3d k = skew(increment);
   Eigen::Matrix3d r = guess.rotation * (Eigen::Matrix3d::Identity() + c.a * k + c.b * k * k);
@@ -173,11 +176,12 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
   using Vector = Eigen::Matrix<double, N, 1>;
   using Matrix = Eigen::Matrix<double, N, N>;
   constexpr int kMaxHalvings = 30;
-  // A step made with an older factorisation (chord Newton) is kept while it shrinks the residual at least this
-  // much; along a path the guess is within a fraction of a millimetre, one factorisation then serves every step.
+  // A step made with an older factorisation (chord Newton) is kept while it shrinks the residual at least
+  // this much; along a path the guess is within a fraction of a millimetre, one factorisation then serves
+  // every step.
   constexpr double kChordContraction = 0.1;
-  // A carried-over factorisation is refreshed at the solution when its steps contracted worse than this, so that
-  // it does not go stale along a long path.
+  // A carried-over factorisation is refreshed at the solution when its steps contracted worse than this, so
+  // that it does not go stale along a long path.
   constexpr double kRefreshContraction = 1e-3;
   double worst_chord_ratio = 0.0;
 
@@ -190,13 +194,14 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
     reachable = evaluate_residual<N>(legs, pose, target, residual);
   }
   if (!reachable) {
-    return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
+    return make_error(ErrorCode::unreachable,
+                      "forward kinematics: the start guess is outside the reachable space");
   }
   double norm = residual.norm();
   FixedLu<N> local_lu;
   FixedLu<N>& lu = workspace ? workspace->lu : local_lu;  // factorised in place: no copies on the hot path
-  bool factorised = false;       // lu holds some iterate's Jacobian
-  bool lu_is_current = false;    // ... and that iterate is `pose`
+  bool factorised = false;                                // lu holds some iterate's Jacobian
+  bool lu_is_current = false;                             // ... and that iterate is `pose`
   if (workspace && workspace->valid) {
     factorised = true;
     workspace->valid = false;  // until this call succeeds: every error return leaves it invalid
@@ -226,12 +231,14 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
     if (max_abs <= options.tolerance_mm) {
       // A solution at a singular configuration is reported, not returned: its neighbourhood is not unique.
       if (!factorised && !factorise(0)) {
-        return make_error(ErrorCode::singular,
-                          "forward kinematics: these actuator values put the mechanism in a singular configuration");
+        return make_error(
+            ErrorCode::singular,
+            "forward kinematics: these actuator values put the mechanism in a singular configuration");
       }
       if (!(lu.pivot_ratio() >= options.min_rcond)) {
-        return make_error(ErrorCode::singular,
-                          "forward kinematics: these actuator values put the mechanism in a singular configuration");
+        return make_error(
+            ErrorCode::singular,
+            "forward kinematics: these actuator values put the mechanism in a singular configuration");
       }
       keep();
       return FkSolution{pose, iteration, max_abs, 0};
@@ -249,7 +256,8 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
       if (evaluate_residual<N>(legs, trial, target, trial_residual)) {
         const double trial_norm = trial_residual.norm();
         if (trial_norm <= kChordContraction * norm || trial_norm <= options.tolerance_mm) {
-          if (trial_norm > options.tolerance_mm) worst_chord_ratio = std::max(worst_chord_ratio, trial_norm / norm);
+          if (trial_norm > options.tolerance_mm)
+            worst_chord_ratio = std::max(worst_chord_ratio, trial_norm / norm);
           pose = trial;
           residual = trial_residual;
           norm = trial_norm;
@@ -294,15 +302,17 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
 
 /// FK of a platform on 6 legs (rotates = true) or a translating platform on 3 legs (rotates = false).
 template <class Legs>
-Result<FkSolution> solve_platform_fk(const Legs& legs, bool rotates, const ActuatorVector& target, const Pose& guess,
-                                     const FkOptions& options, FkDiagnostics* diagnostics = nullptr) {
+Result<FkSolution> solve_platform_fk(const Legs& legs, bool rotates, const ActuatorVector& target,
+                                     const Pose& guess, const FkOptions& options,
+                                     FkDiagnostics* diagnostics = nullptr) {
   if (rotates && legs.leg_count() == 6) {
     return detail::solve_platform_fk_fixed<6>(legs, target, guess, options, diagnostics);
   }
   if (!rotates && legs.leg_count() == 3) {
     return detail::solve_platform_fk_fixed<3>(legs, target, guess, options, diagnostics);
   }
-  return make_error(ErrorCode::unsupported, "platform forward kinematics needs 6 legs (rotating) or 3 (translating)");
+  return make_error(ErrorCode::unsupported,
+                    "platform forward kinematics needs 6 legs (rotating) or 3 (translating)");
 }
 
 }  // namespace pkm

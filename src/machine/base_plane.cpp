@@ -16,7 +16,8 @@ BasePlane::BasePlane(const std::array<Eigen::Vector3d, 6>& base_joints_mm,
   if (normal_.dot(platform_centroid - centroid_mm_) < 0) normal_ = -normal_;
 }
 
-int BasePlane::side_code(const Pose& pose, const std::array<Eigen::Vector3d, 6>& platform_joints_tool_mm) const {
+int BasePlane::side_code(const Pose& pose,
+                         const std::array<Eigen::Vector3d, 6>& platform_joints_tool_mm) const {
   bool all_above = true;
   bool all_below = true;
   // n·(R b + p − c) = (Rᵀn)·b + n·(p − c): one 3×3 product for all six joints.

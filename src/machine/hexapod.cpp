@@ -1,7 +1,8 @@
 #include "machine/hexapod.hpp"
 
-#include <Eigen/LU>
 #include <fmt/format.h>
+
+#include <Eigen/LU>
 
 #include "kinematics/coordinate_jacobian.hpp"
 #include "kinematics/platform_newton.hpp"
@@ -35,7 +36,9 @@ Eigen::Matrix<double, 6, 6> Hexapod::twist_jacobian(const Pose& pose) const noex
   return j;
 }
 
-int Hexapod::assembly_mode(const Pose& pose) const { return assembly_mode(pose, twist_jacobian(pose).determinant()); }
+int Hexapod::assembly_mode(const Pose& pose) const {
+  return assembly_mode(pose, twist_jacobian(pose).determinant());
+}
 
 int Hexapod::assembly_mode(const Pose& pose, double det) const {
   return base_plane_.assembly_mode(pose, geometry_.platform_joints_mm, det);
@@ -46,8 +49,9 @@ Result<ActuatorVector> Hexapod::inverse(const Pose& pose) const {
   strut_lengths(pose, lengths.data());
   for (int j = 0; j < 6; ++j) {
     if (!(lengths[j] > 0.0)) {
-      return make_error(ErrorCode::unreachable,
-                        fmt::format("strut {} would have zero length: platform joint on its base joint", j + 1));
+      return make_error(
+          ErrorCode::unreachable,
+          fmt::format("strut {} would have zero length: platform joint on its base joint", j + 1));
     }
   }
   return lengths;
@@ -59,22 +63,25 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
   return forward(actuators, guess, options, fresh);
 }
 
-Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
-                                    PlatformFkWorkspace<6>& workspace) const {
+Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose& guess,
+                                    const FkOptions& options, PlatformFkWorkspace<6>& workspace) const {
   if (actuators.size() != 6) {
-    return make_error(ErrorCode::bad_input, fmt::format("a hexapod needs 6 strut lengths, got {}", actuators.size()));
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("a hexapod needs 6 strut lengths, got {}", actuators.size()));
   }
   FkDiagnostics diagnostics;
   // The guess's mode is known when it is the previous solution on this path.
   const int known_guess_mode = workspace.continues_path(guess) ? workspace.last_solution_mode : -1;
-  auto solution = detail::solve_platform_fk_fixed<6>(*this, actuators, guess, options, &diagnostics, &workspace);
+  auto solution =
+      detail::solve_platform_fk_fixed<6>(*this, actuators, guess, options, &diagnostics, &workspace);
   if (!solution) return solution;
   // The determinants come from the solver's own factorisations (at the guess, and one converging step before
   // the solution), so the check costs only the side-of-base test.
   const int mode = assembly_mode(solution->pose, diagnostics.final_determinant);
   solution->branch = mode == home_mode_ ? 0 : mode + 1;
   workspace.last_solution_mode = mode;
-  const int guess_mode = known_guess_mode >= 0 ? known_guess_mode : assembly_mode(guess, diagnostics.guess_determinant);
+  const int guess_mode =
+      known_guess_mode >= 0 ? known_guess_mode : assembly_mode(guess, diagnostics.guess_determinant);
   if (options.require_same_branch && mode != guess_mode) {
     workspace.reset();
     const PoseVector c = vector_from_pose(convention_, solution->pose);

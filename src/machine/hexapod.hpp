@@ -40,7 +40,9 @@ class Hexapod final : public Mechanism {
   /// Hot path: strut lengths of a pose, no checks, no allocation.
   void strut_lengths(const Pose& pose, double* lengths_mm) const noexcept {
     for (int j = 0; j < 6; ++j) {
-      lengths_mm[j] = (pose.rotation * geometry_.platform_joints_mm[j] + pose.position_mm - geometry_.base_joints_mm[j]).norm();
+      lengths_mm[j] =
+          (pose.rotation * geometry_.platform_joints_mm[j] + pose.position_mm - geometry_.base_joints_mm[j])
+              .norm();
     }
   }
   /// Twist Jacobian (columns v, ω about the tool point), rows = unit strut vectors (Plücker lines).

@@ -1,12 +1,14 @@
 // All assembly modes of a 6-3 hexapod by the dissertation's restructuring idea (ch2 §4.6(d)): nine unknowns
 // reduce to one. Each merged platform point P_k lies on the circle where the spheres of its two struts meet;
-// fixing the angle θ of P_0 on its circle fixes P_1 and P_2 up to two branches each (rigid distances |P_0P_1|,
-// |P_0P_2|), and the remaining distance |P_1P_2| gives one scalar equation in θ. Scanning θ on each of the four
-// branch pairs and bisecting every sign change finds every assembly mode; each is polished by Newton.
+// fixing the angle θ of P_0 on its circle fixes P_1 and P_2 up to two branches each (rigid distances
+// |P_0P_1|, |P_0P_2|), and the remaining distance |P_1P_2| gives one scalar equation in θ. Scanning θ on each
+// of the four branch pairs and bisecting every sign change finds every assembly mode; each is polished by
+// Newton.
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
-#include <fmt/format.h>
 #include <optional>
 
 #include "core/units.hpp"
@@ -20,10 +22,13 @@ namespace {
 struct Circle {
   Eigen::Vector3d centre, u, v;
   double radius;
-  Eigen::Vector3d at(double theta) const { return centre + radius * (std::cos(theta) * u + std::sin(theta) * v); }
+  Eigen::Vector3d at(double theta) const {
+    return centre + radius * (std::cos(theta) * u + std::sin(theta) * v);
+  }
 };
 
-std::optional<Circle> sphere_sphere(const Eigen::Vector3d& a, double ra, const Eigen::Vector3d& b, double rb) {
+std::optional<Circle> sphere_sphere(const Eigen::Vector3d& a, double ra, const Eigen::Vector3d& b,
+                                    double rb) {
   const Eigen::Vector3d ab = b - a;
   const double d = ab.norm();
   if (d < 1e-12) return std::nullopt;
@@ -40,8 +45,8 @@ std::optional<Circle> sphere_sphere(const Eigen::Vector3d& a, double ra, const E
 }
 
 // Point on `circle` at distance `distance` from `from`, branch ±1.
-std::optional<Eigen::Vector3d> point_at_distance(const Circle& circle, const Eigen::Vector3d& from, double distance,
-                                                 int branch) {
+std::optional<Eigen::Vector3d> point_at_distance(const Circle& circle, const Eigen::Vector3d& from,
+                                                 double distance, int branch) {
   const Eigen::Vector3d w = circle.centre - from;
   const double alpha = 2 * circle.radius * w.dot(circle.u);
   const double beta = 2 * circle.radius * w.dot(circle.v);
@@ -54,10 +59,12 @@ std::optional<Eigen::Vector3d> point_at_distance(const Circle& circle, const Eig
 
 }  // namespace
 
-Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q, const FkOptions& options) const {
+Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q,
+                                                     const FkOptions& options) const {
   if (!six_three_) {
-    return make_error(ErrorCode::unsupported,
-                      "--all needs a 6-3 hexapod (platform joints merged in pairs); for a 6-6 layout give --guess");
+    return make_error(
+        ErrorCode::unsupported,
+        "--all needs a 6-3 hexapod (platform joints merged in pairs); for a 6-6 layout give --guess");
   }
   if (q.size() != 6) return make_error(ErrorCode::bad_input, "a hexapod needs 6 strut lengths");
   // Group struts by their shared platform point.
@@ -81,7 +88,8 @@ Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q, co
     auto c = sphere_sphere(geometry_.base_joints_mm[a], q[a], geometry_.base_joints_mm[b], q[b]);
     if (!c) {
       return make_error(ErrorCode::unreachable,
-                        fmt::format("struts {} and {} cannot meet: lengths {:.6f} and {:.6f} mm", a + 1, b + 1, q[a], q[b]));
+                        fmt::format("struts {} and {} cannot meet: lengths {:.6f} and {:.6f} mm", a + 1,
+                                    b + 1, q[a], q[b]));
     }
     circles[k] = *c;
     body[k] = geometry_.platform_joints_mm[a];
@@ -90,7 +98,8 @@ Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q, co
   const double d02 = (body[2] - body[0]).norm();
   const double d12 = (body[2] - body[1]).norm();
 
-  auto residual = [&](double theta, int b1, int b2, std::array<Eigen::Vector3d, 3>& points) -> std::optional<double> {
+  auto residual = [&](double theta, int b1, int b2,
+                      std::array<Eigen::Vector3d, 3>& points) -> std::optional<double> {
     points[0] = circles[0].at(theta);
     auto p1 = point_at_distance(circles[1], points[0], d01, b1);
     auto p2 = point_at_distance(circles[2], points[0], d02, b2);

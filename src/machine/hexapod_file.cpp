@@ -1,12 +1,14 @@
-// Machine-file entry of the hexapod: base_joints (6 points, base frame) and platform_joints (6 points, platform
-// frame); `tool` shifts the pose origin to the tool point.
+// Machine-file entry of the hexapod: base_joints (6 points, base frame) and platform_joints (6 points,
+// platform frame); `tool` shifts the pose origin to the tool point.
 #include "machine/hexapod.hpp"
 #include "machine/mechanism_files.hpp"
 
 namespace pkm {
 
 MechanismFileEntry hexapod_file_entry() {
-  return {MechanismType::hexapod, {"base_joints", "platform_joints"}, 6,
+  return {MechanismType::hexapod,
+          {"base_joints", "platform_joints"},
+          6,
           [](const MechanismSpec& spec) -> Result<std::unique_ptr<Mechanism>> {
             auto base = spec.reader.points(spec.root, "base_joints", 6, 3);
             if (!base) return base.error();
@@ -25,12 +27,14 @@ MechanismFileEntry hexapod_file_entry() {
             } else {
               home[2] = default_home_height_mm(*base, platform_tool, spec.limits);
             }
-            auto hexapod = std::make_unique<Hexapod>(geometry, spec.convention, pose_from_vector(spec.convention, home));
+            auto hexapod =
+                std::make_unique<Hexapod>(geometry, spec.convention, pose_from_vector(spec.convention, home));
             // A singular home would make every FK from it ill-posed.
             const double det = hexapod->twist_jacobian(hexapod->home()).determinant();
             if (!(std::abs(det) > 1e-9)) {
               const YAML::Node where = spec.root["home"] ? spec.root["home"] : spec.root["platform_joints"];
-              return spec.reader.error_at(where, "home", "the hexapod is singular at its home pose (det J = 0)");
+              return spec.reader.error_at(where, "home",
+                                          "the hexapod is singular at its home pose (det J = 0)");
             }
             return std::unique_ptr<Mechanism>(std::move(hexapod));
           }};

@@ -14,14 +14,14 @@ Status check_actuator_range(const Machine& machine, const ActuatorVector& actuat
     if (machine.limits.min && actuators[j] < *machine.limits.min) {
       return make_error(ErrorCode::limit_exceeded,
                         fmt::format("actuator {} at {:.6f} {} is below actuator_min {} {} ({}:{})", j + 1,
-                                    shown(actuators[j]), unit, shown(*machine.limits.min), unit, machine.source,
-                                    machine.limits.min_line));
+                                    shown(actuators[j]), unit, shown(*machine.limits.min), unit,
+                                    machine.source, machine.limits.min_line));
     }
     if (machine.limits.max && actuators[j] > *machine.limits.max) {
       return make_error(ErrorCode::limit_exceeded,
                         fmt::format("actuator {} at {:.6f} {} is above actuator_max {} {} ({}:{})", j + 1,
-                                    shown(actuators[j]), unit, shown(*machine.limits.max), unit, machine.source,
-                                    machine.limits.max_line));
+                                    shown(actuators[j]), unit, shown(*machine.limits.max), unit,
+                                    machine.source, machine.limits.max_line));
     }
   }
   return ok_status();

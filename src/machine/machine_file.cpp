@@ -10,13 +10,16 @@
 namespace pkm {
 namespace {
 
-bool is_planar(MechanismType type) { return type == MechanismType::planar2 || type == MechanismType::planar3; }
+bool is_planar(MechanismType type) {
+  return type == MechanismType::planar2 || type == MechanismType::planar3;
+}
 
 Result<ActuatorLimits> read_limits(const YAML::Node& root, const YamlReader& reader) {
   ActuatorLimits limits;
   const YAML::Node node = root["limits"];
   if (!node) return limits;
-  if (auto keys = reader.check_keys(node, "limits", {"actuator_min", "actuator_max", "actuator_speed", "actuator_accel"});
+  if (auto keys = reader.check_keys(node, "limits",
+                                    {"actuator_min", "actuator_max", "actuator_speed", "actuator_accel"});
       !keys) {
     return keys.error();
   }
@@ -33,8 +36,9 @@ Result<ActuatorLimits> read_limits(const YAML::Node& root, const YamlReader& rea
   if (limits.min) limits.min_line = yaml_line(node["actuator_min"]);
   if (limits.max) limits.max_line = yaml_line(node["actuator_max"]);
   if (limits.min && limits.max && *limits.min >= *limits.max) {
-    return reader.error_at(node["actuator_max"], "limits.actuator_max",
-                           fmt::format("must be greater than actuator_min ({} >= {})", *limits.min, *limits.max));
+    return reader.error_at(
+        node["actuator_max"], "limits.actuator_max",
+        fmt::format("must be greater than actuator_min ({} >= {})", *limits.min, *limits.max));
   }
   for (Field f : {Field{"actuator_speed", &limits.speed}, Field{"actuator_accel", &limits.accel}}) {
     if (*f.value && !(**f.value > 0.0)) {
@@ -62,7 +66,8 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
                       fmt::format("{}:{}: not valid YAML: {}", source_name, e.mark.line + 1, e.msg));
   }
   if (!root || !root.IsMap()) {
-    return make_error(ErrorCode::bad_input, fmt::format("{}:1: expected a mapping with at least 'type:'", source_name));
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}:1: expected a mapping with at least 'type:'", source_name));
   }
 
   auto type_name = reader.required_string(root, "type");
@@ -74,8 +79,10 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
   if (!entry) {
     std::string known;
-    for (const auto& e : mechanism_file_entries()) known += (known.empty() ? "" : " | ") + std::string(to_string(e.type));
-    return reader.error_at(root["type"], "type", fmt::format("unknown mechanism '{}' (known: {})", *type_name, known));
+    for (const auto& e : mechanism_file_entries())
+      known += (known.empty() ? "" : " | ") + std::string(to_string(e.type));
+    return reader.error_at(root["type"], "type",
+                           fmt::format("unknown mechanism '{}' (known: {})", *type_name, known));
   }
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
@@ -86,22 +93,25 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string list;
       for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      return reader.error_at(item.first, key, fmt::format("unknown key for type {} (allowed: {})", *type_name, list));
+      return reader.error_at(item.first, key,
+                             fmt::format("unknown key for type {} (allowed: {})", *type_name, list));
     }
   }
 
   AngleConvention convention = AngleConvention::abc;
   if (is_planar(entry->type)) {
     if (root["angles"]) {
-      return reader.error_at(root["angles"], "angles", "planar mechanisms have one angle, phi; remove this key");
+      return reader.error_at(root["angles"], "angles",
+                             "planar mechanisms have one angle, phi; remove this key");
     }
   } else {
     auto angles = reader.required_string(root, "angles");
     if (!angles) return angles.error();
     const auto parsed = angle_convention_from_string(*angles);
     if (!parsed) {
-      return reader.error_at(root["angles"], "angles",
-                             fmt::format("unknown angle convention '{}' (known: abc | krylov | euler_zxz)", *angles));
+      return reader.error_at(
+          root["angles"], "angles",
+          fmt::format("unknown angle convention '{}' (known: abc | krylov | euler_zxz)", *angles));
     }
     convention = *parsed;
   }
@@ -148,10 +158,12 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   auto home_actuators = machine.mechanism->inverse(machine.mechanism->home());
   const YAML::Node where = root["home"] ? root["home"] : root["type"];
   if (!home_actuators) {
-    return reader.error_at(where, "home", "the home pose is not reachable: " + home_actuators.error().message);
+    return reader.error_at(where, "home",
+                           "the home pose is not reachable: " + home_actuators.error().message);
   }
   if (auto in_range = check_actuator_range(machine, *home_actuators); !in_range) {
-    return reader.error_at(where, "home", "the home pose is outside the actuator range: " + in_range.error().message);
+    return reader.error_at(where, "home",
+                           "the home pose is outside the actuator range: " + in_range.error().message);
   }
   return machine;
 }

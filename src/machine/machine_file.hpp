@@ -17,9 +17,9 @@ struct MechanismSpec {
   const YAML::Node& root;
   const YamlReader& reader;
   AngleConvention convention;
-  Eigen::Vector3d tool_mm;            ///< tool point in the platform frame
-  std::optional<PoseVector> home;     ///< from `home:` (mm, rad), dependent coordinates not yet completed
-  const ActuatorLimits& limits;       ///< to choose a default home in the middle of the actuator range
+  Eigen::Vector3d tool_mm;         ///< tool point in the platform frame
+  std::optional<PoseVector> home;  ///< from `home:` (mm, rad), dependent coordinates not yet completed
+  const ActuatorLimits& limits;    ///< to choose a default home in the middle of the actuator range
 };
 
 using MechanismBuilder = std::function<Result<std::unique_ptr<Mechanism>>(const MechanismSpec&)>;

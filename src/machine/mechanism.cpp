@@ -6,14 +6,22 @@ namespace pkm {
 
 std::string_view to_string(MechanismType type) {
   switch (type) {
-    case MechanismType::planar2: return "planar2";
-    case MechanismType::planar3: return "planar3";
-    case MechanismType::hexapod: return "hexapod";
-    case MechanismType::hexapod_refined: return "hexapod_refined";
-    case MechanismType::tripod: return "tripod";
-    case MechanismType::tricept: return "tricept";
-    case MechanismType::glide: return "glide";
-    case MechanismType::rotopod: return "rotopod";
+    case MechanismType::planar2:
+      return "planar2";
+    case MechanismType::planar3:
+      return "planar3";
+    case MechanismType::hexapod:
+      return "hexapod";
+    case MechanismType::hexapod_refined:
+      return "hexapod_refined";
+    case MechanismType::tripod:
+      return "tripod";
+    case MechanismType::tricept:
+      return "tricept";
+    case MechanismType::glide:
+      return "glide";
+    case MechanismType::rotopod:
+      return "rotopod";
   }
   return "?";
 }
@@ -28,9 +36,10 @@ std::optional<MechanismType> mechanism_type_from_string(std::string_view name) {
 }
 
 Result<std::vector<FkSolution>> Mechanism::forward_all(const ActuatorVector&, const FkOptions&) const {
-  return make_error(ErrorCode::unsupported,
-                    fmt::format("{} mechanisms do not enumerate assembly modes; give --guess instead of --all",
-                                to_string(type())));
+  return make_error(
+      ErrorCode::unsupported,
+      fmt::format("{} mechanisms do not enumerate assembly modes; give --guess instead of --all",
+                  to_string(type())));
 }
 
 std::array<std::string, 6> pose_coordinate_names(const Mechanism& mechanism) {
@@ -38,9 +47,12 @@ std::array<std::string, 6> pose_coordinate_names(const Mechanism& mechanism) {
     return {"x", "y", "z", "-", "-", "phi"};
   }
   switch (mechanism.convention()) {
-    case AngleConvention::abc: return {"x", "y", "z", "A", "B", "C"};
-    case AngleConvention::krylov: return {"x", "y", "z", "psi", "theta", "gamma"};
-    case AngleConvention::euler_zxz: return {"x", "y", "z", "psi", "theta", "phi"};
+    case AngleConvention::abc:
+      return {"x", "y", "z", "A", "B", "C"};
+    case AngleConvention::krylov:
+      return {"x", "y", "z", "psi", "theta", "gamma"};
+    case AngleConvention::euler_zxz:
+      return {"x", "y", "z", "psi", "theta", "phi"};
   }
   return {"x", "y", "z", "a1", "a2", "a3"};
 }

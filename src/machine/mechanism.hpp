@@ -39,9 +39,9 @@ struct AxisMask {
 struct FkOptions {
   double tolerance_mm = 1e-10;  ///< max |actuator residual| at convergence (mm, or rad for angular actuators)
   int max_iterations = 60;      ///< Newton iterations before giving up
-  double min_rcond = 1e-13;     ///< smallest/largest LU pivot of the Jacobian below which it counts as singular
-  /// Reject a solution in another assembly mode than the guess's: along a path the guess is the previous pose,
-  /// so a change of mode means the solver jumped across a singularity or onto a mirrored assembly.
+  double min_rcond = 1e-13;  ///< smallest/largest LU pivot of the Jacobian below which it counts as singular
+  /// Reject a solution in another assembly mode than the guess's: along a path the guess is the previous
+  /// pose, so a change of mode means the solver jumped across a singularity or onto a mirrored assembly.
   bool require_same_branch = true;
 };
 

@@ -13,8 +13,9 @@ MechanismFileEntry tricept_file_entry();
 MechanismFileEntry glide_file_entry();
 MechanismFileEntry rotopod_file_entry();
 
-/// Default home for mechanisms whose platform hangs above a base: x = y = 0, angles 0, and the height at which
-/// the mean actuator length is mid-range (or 1.2 × the mean base radius without limits). Returns z of the tool point.
+/// Default home for mechanisms whose platform hangs above a base: x = y = 0, angles 0, and the height at
+/// which the mean actuator length is mid-range (or 1.2 × the mean base radius without limits). Returns z of
+/// the tool point.
 double default_home_height_mm(const std::vector<Eigen::Vector3d>& base_joints_mm,
                               const std::vector<Eigen::Vector3d>& platform_joints_tool_mm,
                               const ActuatorLimits& limits);

@@ -14,15 +14,16 @@ Result<std::vector<double>> parse_number_list(std::string_view text, std::string
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = text.find(',', start);
-    std::string token(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+    std::string token(
+        text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
     const auto first = token.find_first_not_of(" \t");
     const auto last = token.find_last_not_of(" \t");
     token = first == std::string::npos ? "" : token.substr(first, last - first + 1);
     double value = 0.0;
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (token.empty() || ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("{}: '{}' is not a number (item {} of '{}')", field, token, out.size() + 1, text));
+      return make_error(ErrorCode::bad_input, fmt::format("{}: '{}' is not a number (item {} of '{}')", field,
+                                                          token, out.size() + 1, text));
     }
     out.push_back(value);
     if (comma == std::string_view::npos) break;
@@ -31,7 +32,8 @@ Result<std::vector<double>> parse_number_list(std::string_view text, std::string
   return out;
 }
 
-Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double>& values, std::string_view field) {
+Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double>& values,
+                            std::string_view field) {
   const MechanismType type = mechanism.type();
   PoseVector c = PoseVector::Zero();
   const AxisMask mask = mechanism.controlled_axes();
@@ -39,8 +41,9 @@ Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double
   if (type == MechanismType::planar2 || type == MechanismType::planar3) {
     const std::size_t n = type == MechanismType::planar2 ? 2 : 3;
     if (values.size() != n) {
-      return make_error(ErrorCode::bad_input, fmt::format("{}: a {} pose is {} numbers ({}), got {}", field,
-                                                          to_string(type), n, fmt::join(names, ","), values.size()));
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: a {} pose is {} numbers ({}), got {}", field, to_string(type), n,
+                                    fmt::join(names, ","), values.size()));
     }
     c[0] = values[0];
     c[1] = values[1];
@@ -53,12 +56,13 @@ Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double
       if (mask.controlled[i]) c[i] = i < 3 ? values[k++] : rad_from_deg(values[k++]);
     }
   } else {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("{}: expected 6 numbers x,y,z (mm) and 3 angles (deg, {} convention){}, got {}",
-                                  field, to_string(mechanism.convention()),
-                                  mask.count() < 6 ? fmt::format(", or the controlled {}", fmt::join(names, ","))
-                                                   : std::string(),
-                                  values.size()));
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format(
+            "{}: expected 6 numbers x,y,z (mm) and 3 angles (deg, {} convention){}, got {}", field,
+            to_string(mechanism.convention()),
+            mask.count() < 6 ? fmt::format(", or the controlled {}", fmt::join(names, ",")) : std::string(),
+            values.size()));
   }
   return mechanism.complete_pose(pose_from_vector(mechanism.convention(), c));
 }
@@ -67,9 +71,12 @@ std::vector<double> user_from_pose(const Mechanism& mechanism, const Pose& pose)
   // "+ 0.0" turns a negative zero into zero, so users never see "-0.00".
   const PoseVector c = vector_from_pose(mechanism.convention(), pose).array() + 0.0;
   switch (mechanism.type()) {
-    case MechanismType::planar2: return {c[0], c[1]};
-    case MechanismType::planar3: return {c[0], c[1], deg_from_rad(c[5])};
-    default: break;
+    case MechanismType::planar2:
+      return {c[0], c[1]};
+    case MechanismType::planar3:
+      return {c[0], c[1], deg_from_rad(c[5])};
+    default:
+      break;
   }
   return {c[0], c[1], c[2], deg_from_rad(c[3]), deg_from_rad(c[4]), deg_from_rad(c[5])};
 }
@@ -94,6 +101,8 @@ std::vector<double> user_from_actuators(const Mechanism& mechanism, const Actuat
   return out;
 }
 
-const char* actuator_unit_name(const Mechanism& mechanism) { return mechanism.actuators_are_angles() ? "deg" : "mm"; }
+const char* actuator_unit_name(const Mechanism& mechanism) {
+  return mechanism.actuators_are_angles() ? "deg" : "mm";
+}
 
 }  // namespace pkm

@@ -14,7 +14,8 @@ namespace pkm {
 Result<std::vector<double>> parse_number_list(std::string_view text, std::string_view field);
 
 /// Builds a (completed) pose from user numbers.
-Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double>& values, std::string_view field);
+Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double>& values,
+                            std::string_view field);
 /// The user numbers of a pose (mm, degrees), as many as pose_from_user takes in full.
 std::vector<double> user_from_pose(const Mechanism& mechanism, const Pose& pose);
 /// Actuator numbers as users see them (mm, or degrees for angular actuators) ↔ internal.

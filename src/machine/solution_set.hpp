@@ -1,6 +1,6 @@
 #pragma once
-// Collecting the assembly modes that forward_all() finds: the same solution reached twice counts once, and the
-// list is ordered nearest to home first (the one a warm-started solver would give from home).
+// Collecting the assembly modes that forward_all() finds: the same solution reached twice counts once, and
+// the list is ordered nearest to home first (the one a warm-started solver would give from home).
 #include <vector>
 
 #include "machine/mechanism.hpp"

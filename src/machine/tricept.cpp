@@ -1,12 +1,12 @@
 #include "machine/tricept.hpp"
 
-#include "kinematics/damped_newton.hpp"
-
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
+
+#include "kinematics/damped_newton.hpp"
 
 namespace pkm {
 
@@ -151,7 +151,8 @@ Result<FkSolution> Tricept::forward(const ActuatorVector& q, const Pose& guess,
   Eigen::Vector3d guess_lengths;
   Eigen::Matrix3d guess_jacobian;
   if (!evaluate(guess.position_mm, guess_lengths, &guess_jacobian)) {
-    return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
+    return make_error(ErrorCode::unreachable,
+                      "forward kinematics: the start guess is outside the reachable space");
   }
   const int guess_sign = guess_jacobian.determinant() >= 0 ? 1 : -1;  // assembly mode of the guess
   auto residual = [&](const Eigen::Vector3d& point, Eigen::Vector3d& f, Eigen::Matrix3d& j) {
@@ -162,16 +163,19 @@ Result<FkSolution> Tricept::forward(const ActuatorVector& q, const Pose& guess,
   };
   NewtonState<3> state;
   switch (damped_newton<3>(residual, guess.position_mm, Eigen::Vector3d::Ones(), options, state)) {
-    case NewtonStatus::converged: break;
+    case NewtonStatus::converged:
+      break;
     case NewtonStatus::start_outside:
-      return make_error(ErrorCode::unreachable, "forward kinematics: the start guess is outside the reachable space");
+      return make_error(ErrorCode::unreachable,
+                        "forward kinematics: the start guess is outside the reachable space");
     case NewtonStatus::singular_on_the_way:
       return make_error(ErrorCode::singular,
                         "forward kinematics: the Jacobian is singular on the way to a solution "
                         "(the strut lengths may lie at a singular configuration)");
     case NewtonStatus::singular_at_solution:
-      return make_error(ErrorCode::singular,
-                        "forward kinematics: these strut lengths put the tricept in a singular configuration");
+      return make_error(
+          ErrorCode::singular,
+          "forward kinematics: these strut lengths put the tricept in a singular configuration");
     case NewtonStatus::not_converged:
       return make_error(
           ErrorCode::not_converged,

@@ -93,13 +93,15 @@ Result<FkSolution> Tripod::forward(const ActuatorVector& q, const Pose& guess,
   };
   NewtonState<3> state;
   switch (damped_newton<3>(equations, start, to_mm, options, state)) {
-    case NewtonStatus::converged: break;
+    case NewtonStatus::converged:
+      break;
     case NewtonStatus::start_outside:  // distance_equations is defined everywhere
     case NewtonStatus::not_converged:
-      return make_error(ErrorCode::not_converged,
-                        fmt::format("forward kinematics did not converge within {} iterations (residual {:.3g} mm); "
-                                    "give a guess closer to the solution",
-                                    options.max_iterations, state.residual_mm));
+      return make_error(
+          ErrorCode::not_converged,
+          fmt::format("forward kinematics did not converge within {} iterations (residual {:.3g} mm); "
+                      "give a guess closer to the solution",
+                      options.max_iterations, state.residual_mm));
     case NewtonStatus::singular_on_the_way:
       return make_error(ErrorCode::singular,
                         "forward kinematics: the joint-angle Jacobian is singular on the way to a solution "

@@ -12,7 +12,8 @@ int yaml_line(const YAML::Node& node) {
 }
 
 Error YamlReader::error_at(const YAML::Node& node, std::string_view key, std::string_view message) const {
-  return make_error(ErrorCode::bad_input, fmt::format("{}:{}: {}: {}", source_, yaml_line(node), key, message));
+  return make_error(ErrorCode::bad_input,
+                    fmt::format("{}:{}: {}: {}", source_, yaml_line(node), key, message));
 }
 
 Error YamlReader::error_missing(const YAML::Node& parent, std::string_view key, std::string_view what) const {
@@ -53,7 +54,8 @@ Result<double> YamlReader::required_number(const YAML::Node& parent, std::string
   return number(node, key);
 }
 
-Result<std::optional<double>> YamlReader::optional_number(const YAML::Node& parent, std::string_view key) const {
+Result<std::optional<double>> YamlReader::optional_number(const YAML::Node& parent,
+                                                          std::string_view key) const {
   const YAML::Node node = parent[std::string(key)];
   if (!node) return std::optional<double>{};
   auto value = number(node, key);
@@ -91,14 +93,15 @@ Result<Eigen::Vector3d> YamlReader::point(const YAML::Node& node, std::string_vi
   return p;
 }
 
-Result<Eigen::Vector3d> YamlReader::required_point(const YAML::Node& parent, std::string_view key, int dims) const {
+Result<Eigen::Vector3d> YamlReader::required_point(const YAML::Node& parent, std::string_view key,
+                                                   int dims) const {
   const YAML::Node node = parent[std::string(key)];
   if (!node) return error_missing(parent, key, fmt::format("a list of {} numbers", dims));
   return point(node, key, dims);
 }
 
-Result<std::vector<Eigen::Vector3d>> YamlReader::points(const YAML::Node& parent, std::string_view key, int count,
-                                                        int dims) const {
+Result<std::vector<Eigen::Vector3d>> YamlReader::points(const YAML::Node& parent, std::string_view key,
+                                                        int count, int dims) const {
   const YAML::Node node = parent[std::string(key)];
   const std::string what = count > 0 ? fmt::format("a list of {} points of {} numbers", count, dims)
                                      : fmt::format("a list of points of {} numbers", dims);
@@ -116,7 +119,8 @@ Result<std::vector<Eigen::Vector3d>> YamlReader::points(const YAML::Node& parent
   return out;
 }
 
-Result<std::vector<double>> YamlReader::numbers(const YAML::Node& parent, std::string_view key, int count) const {
+Result<std::vector<double>> YamlReader::numbers(const YAML::Node& parent, std::string_view key,
+                                                int count) const {
   const YAML::Node node = parent[std::string(key)];
   const std::string what = count > 0 ? fmt::format("a list of {} numbers", count) : "a list of numbers";
   if (!node) return error_missing(parent, key, what);

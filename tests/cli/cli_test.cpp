@@ -1,6 +1,7 @@
 // Golden scenarios of the pkm command line, including the ones that must fail: the exit code, the JSON, and a
 // one-line message naming the file, line and key.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
@@ -27,7 +27,9 @@ CliRun run(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-std::string example(const std::string& name) { return std::string(PKM_SOURCE_DIR) + "/examples/machines/" + name; }
+std::string example(const std::string& name) {
+  return std::string(PKM_SOURCE_DIR) + "/examples/machines/" + name;
+}
 
 std::string write_temp(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / ("pkm_cli_test_" + name);
@@ -57,8 +59,9 @@ TEST(Cli, IkReproducesE2) {
 }
 
 TEST(Cli, FkReproducesE3) {
-  const CliRun r = run("fk --machine " + example(kCh5) +
-                    " --actuators 623.791,607.548,603.122,586.307,588.588,621.639 --guess=-50,0,700,0,0,0 --json");
+  const CliRun r =
+      run("fk --machine " + example(kCh5) +
+          " --actuators 623.791,607.548,603.122,586.307,588.588,621.639 --guess=-50,0,700,0,0,0 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["pose"][0].get<double>(), -49.99972591, 1e-7);
@@ -69,9 +72,10 @@ TEST(Cli, FkReproducesE3) {
 }
 
 TEST(Cli, FkAllListsAssemblyModesNearestFirst) {
-  const CliRun r = run("fk --machine " + example(kCh5) +
-                    " --actuators 623.7911728445,607.5487036598,603.1222458757,586.3074649620,588.5880863511,"
-                    "621.6397151039 --all --json");
+  const CliRun r =
+      run("fk --machine " + example(kCh5) +
+          " --actuators 623.7911728445,607.5487036598,603.1222458757,586.3074649620,588.5880863511,"
+          "621.6397151039 --all --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_GE(j["solutions"].size(), 2u);
@@ -81,7 +85,7 @@ TEST(Cli, FkAllListsAssemblyModesNearestFirst) {
 
 TEST(Cli, FkAllOnASixSixHexapodSaysWhy) {
   const CliRun r = run("fk --machine " + example("hexapod_genhexkins.yaml") +
-                    " --actuators 600,600,600,600,600,600 --all");
+                       " --actuators 600,600,600,600,600,600 --all");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find("6-3"), std::string::npos) << r.out;
 }
@@ -92,7 +96,8 @@ TEST(Cli, PlanarPoseTakesPhi) {
   const auto q = nlohmann::json::parse(ik.out)["actuators"];
   std::string actuators;
   for (const auto& v : q) append_number(actuators, v.get<double>());
-  const CliRun all = run("fk --machine " + example("planar3.yaml") + " --actuators " + actuators + " --all --json");
+  const CliRun all =
+      run("fk --machine " + example("planar3.yaml") + " --actuators " + actuators + " --all --json");
   ASSERT_EQ(all.exit_code, 0) << all.out;
   bool found = false;
   const auto parsed = nlohmann::json::parse(all.out);
@@ -151,13 +156,14 @@ TEST(Cli, SingularActuatorValuesExitWithFour) {
   // All platform joints in the base plane (tool point 150 mm above it): every strut horizontal.
   const CliRun ik = run("ik --machine " + example(kCh5) + " --pose 0,0,150,0,0,0 --json");
   ASSERT_EQ(ik.exit_code, 3) << ik.out;  // outside the 350..900 mm range
-  const std::string path = write_temp("no_limits.yaml",
-                                      "type: hexapod\nangles: krylov\n"
-                                      "base_joints: [[400,0,0],[200,346.41016151377545,0],[-200,346.41016151377545,0],"
-                                      "[-400,0,0],[-200,-346.41016151377545,0],[200,-346.41016151377545,0]]\n"
-                                      "platform_joints: [[173.20508075688772,100,0],[173.20508075688772,100,0],"
-                                      "[-173.20508075688772,100,0],[-173.20508075688772,100,0],[0,-200,0],[0,-200,0]]\n"
-                                      "home: [0, 0, 550, 0, 0, 0]\n");
+  const std::string path =
+      write_temp("no_limits.yaml",
+                 "type: hexapod\nangles: krylov\n"
+                 "base_joints: [[400,0,0],[200,346.41016151377545,0],[-200,346.41016151377545,0],"
+                 "[-400,0,0],[-200,-346.41016151377545,0],[200,-346.41016151377545,0]]\n"
+                 "platform_joints: [[173.20508075688772,100,0],[173.20508075688772,100,0],"
+                 "[-173.20508075688772,100,0],[-173.20508075688772,100,0],[0,-200,0],[0,-200,0]]\n"
+                 "home: [0, 0, 550, 0, 0, 0]\n");
   const CliRun flat = run("ik --machine " + path + " --pose 0,0,0,0,0,0 --json");
   ASSERT_EQ(flat.exit_code, 0) << flat.out;
   std::string q;
@@ -177,7 +183,8 @@ TEST(Cli, JacobianGivesErrorAmplificationAndInverse) {
   for (int row = 0; row < 6; ++row) {
     for (int col = 0; col < 6; ++col) {
       double sum = 0;
-      for (int k = 0; k < 6; ++k) sum += j["jacobian"][row][k].get<double>() * j["inverse"][k][col].get<double>();
+      for (int k = 0; k < 6; ++k)
+        sum += j["jacobian"][row][k].get<double>() * j["inverse"][k][col].get<double>();
       EXPECT_NEAR(sum, row == col ? 1.0 : 0.0, 1e-9);
     }
   }
@@ -203,11 +210,11 @@ TEST(Cli, CheckReportsMobilityAndRange) {
 
 TEST(Cli, BenchKinematicsReportsEveryFigure) {
   const CliRun r = run("bench kinematics --machine " + example(kCh5) +
-                    " --ik-poses 2000 --path-poses 500 --cold-poses 500 --json");
+                       " --ik-poses 2000 --path-poses 500 --cold-poses 500 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key : {"ik_ns_per_pose", "fk_us_per_solve_warm", "fk_iterations_warm", "fk_us_per_solve_cold",
-                          "fk_converged_cold"}) {
+  for (const char* key : {"ik_ns_per_pose", "fk_us_per_solve_warm", "fk_iterations_warm",
+                          "fk_us_per_solve_cold", "fk_converged_cold"}) {
     ASSERT_TRUE(j.contains(key)) << key;
     EXPECT_GT(j[key].get<double>(), 0.0) << key;
   }

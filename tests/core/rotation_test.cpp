@@ -16,7 +16,7 @@ TEST(Rotation, KrylovIsEquation15Literal) {
                sg = std::sin(gamma), cg = std::cos(gamma);
   Eigen::Matrix3d expected;
   expected << cp * cg + st * sp * sg, sp * ct, -cp * sg + sp * st * cg,  //
-      -sp * cg + st * cp * sg, cp * ct, sp * sg + cp * st * cg,           //
+      -sp * cg + st * cp * sg, cp * ct, sp * sg + cp * st * cg,          //
       ct * sg, -st, ct * cg;
   const Eigen::Matrix3d r = rotation_from_angles(AngleConvention::krylov, {psi, theta, gamma});
   EXPECT_LT((r - expected).norm(), 1e-15);
@@ -28,13 +28,18 @@ TEST(Rotation, ClosedFormsEqualTheElementaryProducts) {
   for (AngleConvention c : {AngleConvention::abc, AngleConvention::krylov, AngleConvention::euler_zxz}) {
     for (int i = 0; i < 1000; ++i) {
       const Eigen::Vector3d a(any(rng), any(rng), any(rng));
-      EXPECT_LT((rotation_from_angles(c, a) - rotation_from_elementary_product(c, a)).norm(), 1e-14) << to_string(c);
+      EXPECT_LT((rotation_from_angles(c, a) - rotation_from_elementary_product(c, a)).norm(), 1e-14)
+          << to_string(c);
     }
   }
   EXPECT_LT((rotation_from_elementary_product(AngleConvention::krylov, {0.1, 0.2, 0.3}) -
-             rot_z(-0.1) * rot_x(-0.2) * rot_y(-0.3)).norm(), 1e-15);
+             rot_z(-0.1) * rot_x(-0.2) * rot_y(-0.3))
+                .norm(),
+            1e-15);
   EXPECT_LT((rotation_from_elementary_product(AngleConvention::euler_zxz, {0.1, 0.2, 0.3}) -
-             rot_z(0.1) * rot_x(0.2) * rot_z(0.3)).norm(), 1e-15);
+             rot_z(0.1) * rot_x(0.2) * rot_z(0.3))
+                .norm(),
+            1e-15);
 }
 
 TEST(Rotation, AbcIsFixedAxisXyz) {
@@ -48,7 +53,8 @@ TEST(Rotation, AnglesRoundTripInEveryConvention) {
   std::uniform_real_distribution<double> any(-kPi, kPi), middle(-1.5, 1.5), nutation(0.05, 3.09);
   for (AngleConvention c : {AngleConvention::abc, AngleConvention::krylov, AngleConvention::euler_zxz}) {
     for (int i = 0; i < 2000; ++i) {
-      const Eigen::Vector3d a(any(rng), c == AngleConvention::euler_zxz ? nutation(rng) : middle(rng), any(rng));
+      const Eigen::Vector3d a(any(rng), c == AngleConvention::euler_zxz ? nutation(rng) : middle(rng),
+                              any(rng));
       const Eigen::Matrix3d r = rotation_from_angles(c, a);
       EXPECT_NEAR(r.determinant(), 1.0, 1e-14);
       const Eigen::Vector3d back = angles_from_rotation(c, r);
@@ -89,10 +95,13 @@ TEST(Rotation, QuaternionRotatesAsEquation46) {
   const Eigen::Quaterniond q = Eigen::Quaterniond(0.8, 0.1, -0.3, 0.5).normalized();
   const double l0 = q.w(), l1 = q.x(), l2 = q.y(), l3 = q.z();
   const Eigen::Vector3d r(3, -2, 7);
-  const Eigen::Vector3d expected(
-      (l0 * l0 + l1 * l1 - l2 * l2 - l3 * l3) * r.x() + 2 * (l1 * l2 - l0 * l3) * r.y() + 2 * (l1 * l3 + l0 * l2) * r.z(),
-      2 * (l1 * l2 + l0 * l3) * r.x() + (l0 * l0 + l2 * l2 - l1 * l1 - l3 * l3) * r.y() + 2 * (l2 * l3 - l0 * l1) * r.z(),
-      2 * (l1 * l3 - l0 * l2) * r.x() + 2 * (l2 * l3 + l0 * l1) * r.y() + (l0 * l0 + l3 * l3 - l1 * l1 - l2 * l2) * r.z());
+  const Eigen::Vector3d expected((l0 * l0 + l1 * l1 - l2 * l2 - l3 * l3) * r.x() +
+                                     2 * (l1 * l2 - l0 * l3) * r.y() + 2 * (l1 * l3 + l0 * l2) * r.z(),
+                                 2 * (l1 * l2 + l0 * l3) * r.x() +
+                                     (l0 * l0 + l2 * l2 - l1 * l1 - l3 * l3) * r.y() +
+                                     2 * (l2 * l3 - l0 * l1) * r.z(),
+                                 2 * (l1 * l3 - l0 * l2) * r.x() + 2 * (l2 * l3 + l0 * l1) * r.y() +
+                                     (l0 * l0 + l3 * l3 - l1 * l1 - l2 * l2) * r.z());
   EXPECT_LT((q * r - expected).norm(), 1e-13);
 }
 

@@ -23,12 +23,13 @@ TEST(Mobility, SeedTable) {
 }
 
 TEST(Mobility, EveryShippedMachineHasAsManyFreedomsAsItControls) {
-  for (const char* file : {"hexapod_ch5.yaml", "hexapod_ch3.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml",
-                           "planar2.yaml", "planar3.yaml", "tripod.yaml", "tricept.yaml", "hexaglide.yaml",
-                           "triglide.yaml", "rotopod.yaml"}) {
+  for (const char* file : {"hexapod_ch5.yaml", "hexapod_ch3.yaml", "hexapod_genhexkins.yaml",
+                           "hexapod_refined.yaml", "planar2.yaml", "planar3.yaml", "tripod.yaml",
+                           "tricept.yaml", "hexaglide.yaml", "triglide.yaml", "rotopod.yaml"}) {
     const Machine m = test::machine_from_example(std::string("examples/machines/") + file);
     const MechanismStructure s = structure_of(*m.mechanism);
-    EXPECT_EQ(mobility(s) - s.idle_freedoms, m.mechanism->controlled_axes().count()) << file << " " << s.notation;
+    EXPECT_EQ(mobility(s) - s.idle_freedoms, m.mechanism->controlled_axes().count())
+        << file << " " << s.notation;
   }
 }
 

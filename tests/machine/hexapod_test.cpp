@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <Eigen/SVD>
+#include <cmath>
 #include <random>
 
 #include "core/units.hpp"
@@ -67,7 +67,8 @@ TEST(HexapodCh5, E3TruncatedLengthsGiveThePrintedPoseAndContourError) {
   EXPECT_NEAR(deg_from_rad(c[5]), 4.61938e-6, 1e-10);
   // Contour error of the X-directed line: the perpendicular offset sqrt(dy^2 + dz^2), printed 4.9166e-4 mm.
   const double contour_error_mm = std::hypot(c[1] - 0.0, c[2] - 700.0);
-  // We get 4.91676e-4 mm; the printed 4.9166e-4 differs by 1.6e-8 mm (3e-5 relative), as in the spec's own check.
+  // We get 4.91676e-4 mm; the printed 4.9166e-4 differs by 1.6e-8 mm (3e-5 relative), as in the spec's own
+  // check.
   EXPECT_NEAR(contour_error_mm, 4.9166e-4, 2e-8);
   EXPECT_LE(fk->residual_mm, 1e-9);
 }
@@ -97,22 +98,26 @@ std::string random_hexapod_yaml(std::mt19937_64& rng, const char* angles) {
   std::string yaml = std::string("type: hexapod\nangles: ") + angles + "\nbase_joints:\n";
   for (int j = 0; j < 6; ++j) {
     const double a = rad_from_deg(60.0 * j + test::uniform(rng, -5, 5));
-    yaml += "  - [" + std::to_string(base_radius * std::cos(a)) + ", " + std::to_string(base_radius * std::sin(a)) +
-            ", " + std::to_string(test::uniform(rng, -10, 10)) + "]\n";
+    yaml += "  - [" + std::to_string(base_radius * std::cos(a)) + ", " +
+            std::to_string(base_radius * std::sin(a)) + ", " + std::to_string(test::uniform(rng, -10, 10)) +
+            "]\n";
   }
   yaml += "platform_joints:\n";
   for (int j = 0; j < 6; ++j) {
     const int pair = j / 2;
     const double centre = 120.0 * pair + 30.0;
-    const double a = rad_from_deg(centre + (j % 2 == 0 ? -1 : 1) * pair_half_angle + test::uniform(rng, -3, 3));
+    const double a =
+        rad_from_deg(centre + (j % 2 == 0 ? -1 : 1) * pair_half_angle + test::uniform(rng, -3, 3));
     yaml += "  - [" + std::to_string(platform_radius * std::cos(a)) + ", " +
-            std::to_string(platform_radius * std::sin(a)) + ", " + std::to_string(test::uniform(rng, -5, 5)) + "]\n";
+            std::to_string(platform_radius * std::sin(a)) + ", " + std::to_string(test::uniform(rng, -5, 5)) +
+            "]\n";
   }
   const double tool_z = test::uniform(rng, 0, 250);
-  yaml += "tool: [" + std::to_string(test::uniform(rng, -20, 20)) + ", " + std::to_string(test::uniform(rng, -20, 20)) +
-          ", " + std::to_string(tool_z) + "]\n";
+  yaml += "tool: [" + std::to_string(test::uniform(rng, -20, 20)) + ", " +
+          std::to_string(test::uniform(rng, -20, 20)) + ", " + std::to_string(tool_z) + "]\n";
   // Home: the platform-joint plane 0.6..1.1 base radii above the base, the tool point tool_z above that.
-  yaml += "home: [0, 0, " + std::to_string(tool_z + base_radius * test::uniform(rng, 0.6, 1.1)) + ", 0, 0, 0]\n";
+  yaml +=
+      "home: [0, 0, " + std::to_string(tool_z + base_radius * test::uniform(rng, 0.6, 1.1)) + ", 0, 0, 0]\n";
   return yaml;
 }
 
@@ -140,10 +145,10 @@ TEST(HexapodProperty, InverseThenForwardRoundTripsOnRandomGeometries) {
         }
         for (int k = 0; k < 3; ++k) c[k] += test::uniform(rng, -50, 50);
         const Pose truth = pose_from_vector(m.mechanism->convention(), c);
-        // Random geometries and tilts reach singular surfaces; near one, distinct solutions lie millimetres apart
-        // and "the" pose is not defined. Poses across a singularity from home, or within a small singular value
-        // (mm per rad or mm per mm) of one, are skipped and counted.
-        // The angular columns are scaled by the platform radius so that all singular values are dimensionless.
+        // Random geometries and tilts reach singular surfaces; near one, distinct solutions lie millimetres
+        // apart and "the" pose is not defined. Poses across a singularity from home, or within a small
+        // singular value (mm per rad or mm per mm) of one, are skipped and counted. The angular columns are
+        // scaled by the platform radius so that all singular values are dimensionless.
         Eigen::Matrix<double, 6, 6> j_truth = hexapod.twist_jacobian(truth);
         j_truth.rightCols<3>() /= platform_radius;
         if (j_truth.determinant() * home_det <= 0 ||
@@ -156,8 +161,10 @@ TEST(HexapodProperty, InverseThenForwardRoundTripsOnRandomGeometries) {
         ASSERT_TRUE(lengths.ok());
         // Warm start from a guess a few mm and degrees away.
         Pose guess = truth;
-        guess.position_mm += Eigen::Vector3d(test::uniform(rng, -3, 3), test::uniform(rng, -3, 3), test::uniform(rng, -3, 3));
-        guess.rotation = rotation_from_rotation_vector(Eigen::Vector3d::Constant(rad_from_deg(1))) * guess.rotation;
+        guess.position_mm +=
+            Eigen::Vector3d(test::uniform(rng, -3, 3), test::uniform(rng, -3, 3), test::uniform(rng, -3, 3));
+        guess.rotation =
+            rotation_from_rotation_vector(Eigen::Vector3d::Constant(rad_from_deg(1))) * guess.rotation;
         const auto fk = m.mechanism->forward(*lengths, guess);
         ASSERT_TRUE(fk.ok()) << fk.error().message;
         const PoseDistance d = pose_distance(fk->pose, truth);
@@ -200,8 +207,9 @@ TEST(HexapodAssemblyModes, SixThreeEnumerationContainsTheTruePoseAndOnlySolution
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   std::mt19937_64 rng(11);
   for (int i = 0; i < 20; ++i) {
-    const Pose truth = krylov_pose(test::uniform(rng, -60, 60), test::uniform(rng, -60, 60), test::uniform(rng, 620, 760),
-                                   test::uniform(rng, -15, 15), test::uniform(rng, -15, 15), test::uniform(rng, -15, 15));
+    const Pose truth =
+        krylov_pose(test::uniform(rng, -60, 60), test::uniform(rng, -60, 60), test::uniform(rng, 620, 760),
+                    test::uniform(rng, -15, 15), test::uniform(rng, -15, 15), test::uniform(rng, -15, 15));
     const auto lengths = m.mechanism->inverse(truth);
     const auto all = m.mechanism->forward_all(*lengths);
     ASSERT_TRUE(all.ok()) << all.error().message;
