@@ -1,12 +1,13 @@
 # Two commands do all the set-up on a fresh Debian machine:
 #   make run   installs what is missing, builds build/pkm and runs the kinematics demo on the shipped hexapod
 #   make test  installs what is missing, builds and runs the whole test suite
-# Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make bench, make format, make tidy.
+# Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck),
+# make bench, make format, make tidy.
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
 
-.PHONY: deps configure build run test sanitize bench format tidy clean
+.PHONY: deps configure build run test sanitize lint bench format tidy clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -27,6 +28,13 @@ sanitize: deps
 	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DPKM_SANITIZE=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON > /dev/null
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+
+# Formatting must match .clang-format; cppcheck must find nothing.
+lint: deps
+	@find src apps tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
+	@cppcheck --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
+		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps
+	@echo "lint: clean"
 
 bench: build
 	@for b in $(BUILD)/bench/*; do $$b --benchmark_min_time=0.2; done

@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang-format cppcheck
 )
 missing=()
 for p in "${packages[@]}"; do
