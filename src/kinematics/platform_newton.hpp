@@ -37,6 +37,18 @@ struct FkDiagnostics {
   double final_determinant = 0.0;
 };
 
+/// exp([ω]×)·R = R + a·(ω × R) + b·(ω × (ω × R)), column by column (Rodrigues), without forming matrices:
+/// the on-manifold update of the FK hot path.
+inline Eigen::Matrix3d rotate_by(const Eigen::Vector3d& omega_rad, const Eigen::Matrix3d& rotation) {
+  const RodriguesCoefficients c = rodrigues_coefficients(omega_rad.norm());
+  Eigen::Matrix3d out;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d once = omega_rad.cross(rotation.col(k));
+    out.col(k) = rotation.col(k) + c.a * once + c.b * omega_rad.cross(once);
+  }
+  return out;
+}
+
 /// Preallocated state carried from one FK call to the next along a path (Pinocchio's model/data split): the
 /// last factorisation of the Jacobian. Along a path the solution moves a fraction of a millimetre per call,
 /// so the previous factorisation serves as a chord-Newton matrix and most calls need no factorisation at all.
@@ -50,8 +62,8 @@ struct PlatformFkWorkspace {
   bool valid = false;
   Pose last_solution;
   Eigen::Vector3d position_history_mm[3];  ///< positions one, two and three solutions before the last
-  Eigen::Vector3d
-      rotation_increments[3];   ///< body-frame rotation vectors between consecutive solutions, newest first
+  /// Base-frame rotation vectors between consecutive solutions, newest first.
+  Eigen::Vector3d rotation_increments[3];
   int solutions_kept = 0;       ///< 0 … 4 (saturates)
   int last_solution_mode = -1;  ///< the mechanism's assembly-mode label of last_solution (-1: unknown)
 
@@ -67,9 +79,11 @@ struct PlatformFkWorkspace {
   /// Records a new solution of the path.
   void push(const Pose& solution) {
     if (solutions_kept > 0) {
-      // Small-angle rotation vector of R_lastᵀ·R_new from its skew part: exact to O(θ³), enough for a
-      // prediction.
-      const Eigen::Matrix3d d = last_solution.rotation.transpose() * solution.rotation;
+      // Small-angle rotation vector of D = R_new·R_lastᵀ from its skew part (exact to O(θ³), enough for a
+      // prediction); only the six off-diagonal entries are formed.
+      const Eigen::Matrix3d& n = solution.rotation;
+      const Eigen::Matrix3d& l = last_solution.rotation;
+      auto d = [&](int i, int k) { return n.row(i).dot(l.row(k)); };
       for (int k = 2; k > 0; --k) {
         rotation_increments[k] = rotation_increments[k - 1];
         position_history_mm[k] = position_history_mm[k - 1];
@@ -105,11 +119,10 @@ Pose predicted_start(const PlatformFkWorkspace<N>& workspace, const Pose& guess)
       increment = 3.0 * v[0] - 3.0 * v[1] + v[2];
       break;
   }
-  // R_next = R_last · exp([increment]×); then re-orthonormalised (Gram–Schmidt), because Newton steps cannot
-  // remove a shear the model does not contain (a deformed platform can still fit the strut lengths).
-  const RodriguesCoefficients c = rodrigues_coefficients(increment.norm());
-  const Eigen::Matrix3d k = skew(increment);
-  Eigen::Matrix3d r = guess.rotation * (Eigen::Matrix3d::Identity() + c.a * k + c.b * k * k);
+  // R_next = exp([increment]×)·R_last; then re-orthonormalised (Gram–Schmidt), because Newton steps cannot
+  // remove a shear the model does not contain (a deformed platform can still fit the strut lengths), so
+  // round-off must not accumulate along a path.
+  Eigen::Matrix3d r = rotate_by(increment, guess.rotation);
   r.col(0).normalize();
   r.col(1) -= r.col(0).dot(r.col(1)) * r.col(0);
   r.col(1).normalize();
@@ -156,13 +169,7 @@ Pose step_pose(const Pose& pose, const Eigen::Matrix<double, N, 1>& step) {
   Pose out;
   out.position_mm = pose.position_mm + step.template head<3>();
   if constexpr (N == 6) {
-    // exp([ω]×)·R = R + a·(ω × R) + b·(ω × (ω × R)) column by column (Rodrigues), without forming matrices.
-    const Eigen::Vector3d omega = step.template tail<3>();
-    const RodriguesCoefficients c = rodrigues_coefficients(omega.norm());
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d once = omega.cross(pose.rotation.col(k));
-      out.rotation.col(k) = pose.rotation.col(k) + c.a * once + c.b * omega.cross(once);
-    }
+    out.rotation = rotate_by(step.template tail<3>(), pose.rotation);
   } else {
     out.rotation = pose.rotation;
   }

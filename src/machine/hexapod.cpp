@@ -14,6 +14,7 @@ Hexapod::Hexapod(const HexapodGeometry& geometry, AngleConvention convention, co
       convention_(convention),
       base_plane_(geometry.base_joints_mm, geometry.platform_joints_mm, home) {
   home_ = home;
+  home_determinant_ = twist_jacobian(home_).determinant();
   home_mode_ = assembly_mode(home_);
 
   int merged_pairs = 0;
@@ -77,7 +78,14 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
   if (!solution) return solution;
   // The determinants come from the solver's own factorisations (at the guess, and one converging step before
   // the solution), so the check costs only the side-of-base test.
-  const int mode = assembly_mode(solution->pose, diagnostics.final_determinant);
+  // Near a singularity the last factorisation (one step before the solution) may sit on the other side of it:
+  // when its |det J| is below 1 % of the home pose's, the sign is taken at the solution itself.
+  constexpr double kTrustedDeterminantFraction = 1e-2;
+  const double determinant =
+      std::abs(diagnostics.final_determinant) >= kTrustedDeterminantFraction * std::abs(home_determinant_)
+          ? diagnostics.final_determinant
+          : twist_jacobian(solution->pose).determinant();
+  const int mode = assembly_mode(solution->pose, determinant);
   solution->branch = mode == home_mode_ ? 0 : mode + 1;
   workspace.last_solution_mode = mode;
   const int guess_mode =

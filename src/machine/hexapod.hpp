@@ -75,6 +75,7 @@ class Hexapod final : public Mechanism {
   AngleConvention convention_;
   BasePlane base_plane_;
   int home_mode_ = 0;
+  double home_determinant_ = 0.0;
   bool six_three_ = false;
 };
 
