@@ -163,11 +163,7 @@ Result<FkSolution> Glide::forward(const ActuatorVector& actuators, const Pose& g
   // A guess at a singular or unreachable pose has no mode to keep.
   const int guess_mode = options.require_same_branch ? assembly_mode(guess) : 0;
   if (guess_mode != 0 && mode != guess_mode) {
-    const Eigen::Vector3d& c = solution->pose.position_mm;
-    return make_error(ErrorCode::wrong_branch,
-                      fmt::format("forward kinematics converged to another assembly mode than the guess's "
-                                  "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
-                                  c.x(), c.y(), c.z()));
+    return another_assembly_mode_error(solution->pose);
   }
   return solution;
 }

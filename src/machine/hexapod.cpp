@@ -92,11 +92,7 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
       known_guess_mode >= 0 ? known_guess_mode : assembly_mode(guess, diagnostics.guess_determinant);
   if (options.require_same_branch && mode != guess_mode) {
     workspace.reset();
-    const PoseVector c = vector_from_pose(convention_, solution->pose);
-    return make_error(ErrorCode::wrong_branch,
-                      fmt::format("forward kinematics converged to another assembly mode than the guess's "
-                                  "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
-                                  c[0], c[1], c[2]));
+    return another_assembly_mode_error(solution->pose);
   }
   return solution;
 }

@@ -215,11 +215,7 @@ Result<FkSolution> HexapodRefined::forward(const ActuatorVector& actuators, cons
   solution->branch = mode == home_mode_ ? 0 : mode + 1;
   const int guess_mode = options.require_same_branch ? assembly_mode(guess) : -1;
   if (guess_mode >= 0 && mode != guess_mode) {
-    const PoseVector c = vector_from_pose(convention_, solution->pose);
-    return make_error(ErrorCode::wrong_branch,
-                      fmt::format("forward kinematics converged to another assembly mode than the guess's "
-                                  "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
-                                  c[0], c[1], c[2]));
+    return another_assembly_mode_error(solution->pose);
   }
   return solution;
 }

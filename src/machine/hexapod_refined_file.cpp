@@ -70,10 +70,10 @@ MechanismFileEntry hexapod_refined_file_entry() {
           {"base_joints", "platform_joints", "cardan"},
           6,
           [](const MechanismSpec& spec) -> Result<std::unique_ptr<Mechanism>> {
-            auto base = spec.reader.points(spec.root, "base_joints", 6, 3);
-            if (!base) return base.error();
-            auto platform = spec.reader.points(spec.root, "platform_joints", 6, 3);
-            if (!platform) return platform.error();
+            auto read = read_hexapod_geometry(spec);
+            if (!read) return read.error();
+            const HexapodGeometry& geometry = read->geometry;
+            const Pose& home_pose = read->home;
             const YAML::Node cardan = spec.root["cardan"];
             if (!cardan)
               return spec.reader.error_missing(spec.root, "cardan", "a list of 6 joint maps ({} = ideal)");
@@ -90,23 +90,9 @@ MechanismFileEntry hexapod_refined_file_entry() {
               joints[j] = *joint;
             }
 
-            HexapodGeometry geometry;
-            std::vector<Eigen::Vector3d> platform_tool;
-            for (int j = 0; j < 6; ++j) {
-              geometry.base_joints_mm[j] = (*base)[j];
-              geometry.platform_joints_mm[j] = (*platform)[j] - spec.tool_mm;
-              platform_tool.push_back(geometry.platform_joints_mm[j]);
-            }
-            PoseVector home = PoseVector::Zero();
-            if (spec.home) {
-              home = *spec.home;
-            } else {
-              home[2] = default_home_height_mm(*base, platform_tool, spec.limits);
-            }
-            const Pose home_pose = pose_from_vector(spec.convention, home);
             for (int j = 0; j < 6; ++j) {
               const double length_mm =
-                  (home_pose.to_base(geometry.platform_joints_mm[j]) - (*base)[j]).norm();
+                  (home_pose.to_base(geometry.platform_joints_mm[j]) - geometry.base_joints_mm[j]).norm();
               const double offsets_mm = joints[j].offset1_mm.norm() + joints[j].offset2_mm.norm() +
                                         joints[j].strut_offset_mm.norm();
               if (offsets_mm > kMaxOffsetFraction * length_mm) {

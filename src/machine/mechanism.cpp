@@ -42,6 +42,14 @@ Result<std::vector<FkSolution>> Mechanism::forward_all(const ActuatorVector&, co
                   to_string(type())));
 }
 
+Error another_assembly_mode_error(const Pose& solution) {
+  const Eigen::Vector3d& p = solution.position_mm;
+  return make_error(ErrorCode::wrong_branch,
+                    fmt::format("forward kinematics converged to another assembly mode than the guess's "
+                                "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
+                                p.x(), p.y(), p.z()));
+}
+
 std::array<std::string, 6> pose_coordinate_names(const Mechanism& mechanism) {
   if (mechanism.type() == MechanismType::planar2 || mechanism.type() == MechanismType::planar3) {
     return {"x", "y", "z", "-", "-", "phi"};

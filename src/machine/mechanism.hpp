@@ -78,13 +78,16 @@ class Mechanism {
   /// d(actuators)/d(controlled coordinates), angle rates in rad in the mechanism's convention.
   virtual Result<JacobianMatrix> jacobian(const Pose& pose) const = 0;
 
-  /// The pose the machine starts from; FK without a guess starts here and takes its assembly mode.
+  /// The pose the machine starts from; FK without a guess starts here. Set once, at construction: mechanisms
+  /// derive state from it (the home assembly mode, branch choices), so there is deliberately no setter.
   const Pose& home() const { return home_; }
-  void set_home(const Pose& home) { home_ = home; }
 
  protected:
   Pose home_;
 };
+
+/// The error of a forward-kinematics solve that found `solution` in another assembly mode than its guess's.
+Error another_assembly_mode_error(const Pose& solution);
 
 /// Names of the controlled coordinates, e.g. {"x","y","z","A","B","C"} or {"x","y","phi"}.
 std::vector<std::string> controlled_coordinate_names(const Mechanism& mechanism);

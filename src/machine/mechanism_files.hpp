@@ -1,5 +1,6 @@
 #pragma once
 // One machine-file entry per mechanism; each is defined next to its mechanism in `<mechanism>_file.cpp`.
+#include "machine/hexapod.hpp"
 #include "machine/machine_file.hpp"
 
 namespace pkm {
@@ -12,6 +13,14 @@ MechanismFileEntry tripod_file_entry();
 MechanismFileEntry tricept_file_entry();
 MechanismFileEntry glide_file_entry();
 MechanismFileEntry rotopod_file_entry();
+
+/// The keys shared by the ideal and refined hexapods: base_joints, platform_joints (shifted by `tool`), and
+/// home.
+struct HexapodFileGeometry {
+  HexapodGeometry geometry;
+  Pose home;
+};
+Result<HexapodFileGeometry> read_hexapod_geometry(const MechanismSpec& spec);
 
 /// Default home for mechanisms whose platform hangs above a base: x = y = 0, angles 0, and the height at
 /// which the mean actuator length is mid-range (or 1.2 × the mean base radius without limits). Returns z of

@@ -195,10 +195,7 @@ Result<FkSolution> Tricept::forward(const ActuatorVector& q, const Pose& guess,
   const int sign = j.determinant() >= 0 ? 1 : -1;
   solution.branch = sign == home_sign_ ? 0 : 1;
   if (options.require_same_branch && sign != guess_sign) {
-    return make_error(ErrorCode::wrong_branch,
-                      fmt::format("forward kinematics converged to another assembly mode than the guess's "
-                                  "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
-                                  p.x(), p.y(), p.z()));
+    return another_assembly_mode_error(solution.pose);
   }
   return solution;
 }

@@ -122,11 +122,7 @@ Result<FkSolution> Tripod::forward(const ActuatorVector& q, const Pose& guess,
   solution.branch = mode == home_mode_ ? 0 : mode + 1;
   // The guess's mode is judged at the start of the iteration: its joint angles with the target lengths.
   if (options.require_same_branch && mode != assembly_mode(guess, l)) {
-    const Eigen::Vector3d p = solution.pose.position_mm;
-    return make_error(ErrorCode::wrong_branch,
-                      fmt::format("forward kinematics converged to another assembly mode than the guess's "
-                                  "(x={:.3f} y={:.3f} z={:.3f} mm); give a guess nearer the wanted pose",
-                                  p.x(), p.y(), p.z()));
+    return another_assembly_mode_error(solution.pose);
   }
   return solution;
 }
