@@ -13,6 +13,7 @@
 
 #include "core/units.hpp"
 #include "kinematics/platform_newton.hpp"
+#include "kinematics/root_scan.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/solution_set.hpp"
 
@@ -116,47 +117,25 @@ Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q,
   for (int b1 : {-1, 1}) {
     for (int b2 : {-1, 1}) {
       std::array<Eigen::Vector3d, 3> pts;
-      std::optional<double> previous;
-      double previous_theta = 0.0;
-      for (int s = 0; s <= kSamples; ++s) {
-        const double theta = 2 * kPi * s / kSamples;
-        const auto value = residual(theta, b1, b2, pts);
-        if (value && previous && (*value == 0.0 || (*value > 0) != (*previous > 0))) {
-          double lo = previous_theta, hi = theta, flo = *previous;
-          for (int it = 0; it < 80; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            const auto fm = residual(mid, b1, b2, pts);
-            if (!fm) break;
-            if ((*fm > 0) == (flo > 0)) {
-              lo = mid;
-              flo = *fm;
-            } else {
-              hi = mid;
-            }
-          }
-          if (residual(0.5 * (lo + hi), b1, b2, pts)) {
-            Eigen::Matrix3d from, to;
-            for (int k = 0; k < 3; ++k) {
-              from.col(k) = body[k];
-              to.col(k) = pts[k];
-            }
-            const Eigen::Matrix4d t = Eigen::umeyama(from, to, false);
-            Pose guess;
-            guess.rotation = t.topLeftCorner<3, 3>();
-            guess.position_mm = t.topRightCorner<3, 1>();
-            auto polished = solve_platform_fk(*this, true, q, guess, polish);
-            if (polished) {
-              if (!contains_solution(solutions, polished->pose)) {
-                const int mode = assembly_mode(polished->pose);
-                polished->branch = mode == home_mode_ ? 0 : mode + 1;
-                solutions.push_back(*polished);
-              }
-            }
-          }
+      auto branch_residual = [&](double theta) { return residual(theta, b1, b2, pts); };
+      scan_roots(branch_residual, 0.0, 2 * kPi, kSamples, [&](double) {
+        // The platform pose that puts its three merged joints at these points, then Newton's polish.
+        Eigen::Matrix3d from, to;
+        for (int k = 0; k < 3; ++k) {
+          from.col(k) = body[k];
+          to.col(k) = pts[k];
         }
-        previous = value;
-        previous_theta = theta;
-      }
+        const Eigen::Matrix4d t = Eigen::umeyama(from, to, false);
+        Pose guess;
+        guess.rotation = t.topLeftCorner<3, 3>();
+        guess.position_mm = t.topRightCorner<3, 1>();
+        auto polished = solve_platform_fk(*this, true, q, guess, polish);
+        if (polished && !contains_solution(solutions, polished->pose)) {
+          const int mode = assembly_mode(polished->pose);
+          polished->branch = mode == home_mode_ ? 0 : mode + 1;
+          solutions.push_back(*polished);
+        }
+      });
     }
   }
   if (solutions.empty()) {

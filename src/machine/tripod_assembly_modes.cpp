@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "core/units.hpp"
+#include "kinematics/root_scan.hpp"
 #include "machine/solution_set.hpp"
 #include "machine/tripod.hpp"
 
@@ -58,34 +59,11 @@ Result<std::vector<FkSolution>> Tripod::forward_all(const ActuatorVector& q, con
   for (int b2 : {-1, 1}) {
     for (int b3 : {-1, 1}) {
       std::array<Eigen::Vector3d, 3> joints;
-      std::optional<double> previous;
-      double previous_t = 0.0;
-      for (int s = 0; s <= kSamples; ++s) {
-        const double t1 = -kPi + 2 * kPi * s / kSamples;
-        const auto value = residual(t1, b2, b3, joints);
-        if (value && previous && (*value == 0.0 || (*value > 0) != (*previous > 0))) {
-          double lo = previous_t, hi = t1, flo = *previous;
-          for (int it = 0; it < 80; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            const auto fm = residual(mid, b2, b3, joints);
-            if (!fm) break;
-            if ((*fm > 0) == (flo > 0)) {
-              lo = mid;
-              flo = *fm;
-            } else {
-              hi = mid;
-            }
-          }
-          if (residual(0.5 * (lo + hi), b2, b3, joints)) {
-            auto polished = forward(q, pose_from_joints(joints), polish);
-            if (polished) {
-              if (!contains_solution(solutions, polished->pose)) solutions.push_back(*polished);
-            }
-          }
-        }
-        previous = value;
-        previous_t = t1;
-      }
+      auto branch_residual = [&](double t1) { return residual(t1, b2, b3, joints); };
+      scan_roots(branch_residual, -kPi, kPi, kSamples, [&](double) {
+        auto polished = forward(q, pose_from_joints(joints), polish);
+        if (polished && !contains_solution(solutions, polished->pose)) solutions.push_back(*polished);
+      });
     }
   }
   if (solutions.empty()) {
