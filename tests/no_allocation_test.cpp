@@ -1,13 +1,15 @@
-// Hot paths do not allocate (STYLE habit 3): IK, FK (warm, with and without a workspace) and the Jacobian of
-// every shipped machine run under a counting global operator new. This file owns the replacement for
-// pkm_tests.
+// Hot paths do not allocate (STYLE habit 3): IK, FK (warm, with and without a workspace), the Jacobian and
+// the joint-angle and conditioning checks of every shipped machine run under a counting global operator new.
+// This file owns the replacement for pkm_tests.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cstdlib>
 #include <new>
 
+#include "core/units.hpp"
 #include "machine/hexapod.hpp"
+#include "machine/joint_limits.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -87,6 +89,36 @@ TEST(NoAllocation, KinematicsOfEveryShippedMachine) {
       auto fk = mech.forward(*q, mech.home());
       auto j = mech.jacobian(target);
       ASSERT_TRUE(ik.ok() && fk.ok() && j.ok()) << file;
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << file;
+  }
+}
+
+TEST(NoAllocation, JointAndConditioningLimitsOfEveryShippedMachine) {
+  for (const char* file :
+       {"hexapod_ch5.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml", "planar2.yaml", "planar3.yaml",
+        "tripod.yaml", "tricept.yaml", "hexaglide.yaml", "triglide.yaml", "rotopod.yaml"}) {
+    Machine m = test::machine_from_example(std::string("examples/machines/") + file);
+    // Limits every pose here satisfies, so that each check runs through all joints and the SVD.
+    if (m.joint_axes.count > 0) {
+      m.joint_limits.base_joint_max_rad = rad_from_deg(170);
+      m.joint_limits.platform_joint_max_rad = rad_from_deg(170);
+      m.joint_limits.update_cosines();
+    }
+    m.joint_limits.max_condition_number = 1e15;
+    const Mechanism& mech = *m.mechanism;
+    PoseVector c = vector_from_pose(mech.convention(), mech.home());
+    const AxisMask mask = mech.controlled_axes();
+    for (int axis = 0; axis < 6; ++axis) {
+      if (mask.controlled[axis]) c[axis] += axis < 3 ? 3.0 : 0.02;
+    }
+    const Pose target = *mech.complete_pose(pose_from_vector(mech.convention(), c));
+    const long before = g_allocations.load();
+    for (int i = 0; i < 10; ++i) {
+      const PassiveJointAngles angles = passive_joint_angles(m, target);
+      const Status joints = check_joint_limits(m, target);
+      const Status conditioning = check_conditioning_limit(m, target);
+      ASSERT_TRUE(angles.count == m.joint_axes.count && joints.ok() && conditioning.ok()) << file;
     }
     EXPECT_EQ(g_allocations.load() - before, 0) << file;
   }

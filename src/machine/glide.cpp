@@ -79,6 +79,21 @@ Result<ActuatorVector> Glide::inverse(const Pose& pose) const {
   return s;
 }
 
+int Glide::strut_joints(const Pose& pose, StrutJointPoints& out) const {
+  const Pose p = fixed_orientation(pose);
+  for (int j = 0; j < geometry_.count; ++j) {
+    const Eigen::Vector3d b = p.to_base(geometry_.platform_joints_mm[j]);
+    const SphereLine x = sphere_line(b - geometry_.guide_points_mm[j], geometry_.guide_directions[j],
+                                     geometry_.strut_lengths_mm[j]);
+    if (x.discriminant_mm2 < 0.0) return -1;
+    out.base_mm[j] = carriage_mm(j, x.along_mm + geometry_.branches[j] * std::sqrt(x.discriminant_mm2));
+    out.platform_mm[j] = b;
+  }
+  out.platform_rotation = p.rotation;
+  out.mounts_turn = false;  // carriages slide along straight guides without turning
+  return geometry_.count;
+}
+
 Result<JacobianMatrix> Glide::jacobian(const Pose& pose) const {
   const Pose p = fixed_orientation(pose);
   JacobianMatrix twist(geometry_.count, 6);

@@ -42,6 +42,8 @@ class Glide final : public Mechanism {
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// Carriage joints C_j (on the branch's root) and platform joints; −1 when a strut cannot reach its guide.
+  int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
 
   bool rotates() const { return geometry_.count == 6; }
   const GlideGeometry& geometry() const { return geometry_; }

@@ -97,6 +97,16 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
   return solution;
 }
 
+int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
+  for (int j = 0; j < 6; ++j) {
+    out.base_mm[j] = geometry_.base_joints_mm[j];
+    out.platform_mm[j] = pose.to_base(geometry_.platform_joints_mm[j]);
+  }
+  out.platform_rotation = pose.rotation;
+  out.mounts_turn = false;
+  return 6;
+}
+
 Result<JacobianMatrix> Hexapod::jacobian(const Pose& pose) const {
   const JacobianMatrix twist = twist_jacobian(pose);
   return coordinate_jacobian(twist, convention_, angles_from_rotation(convention_, pose.rotation),

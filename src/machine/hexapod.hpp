@@ -31,6 +31,8 @@ class Hexapod final : public Mechanism {
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                               const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// Base joints A_j and platform joints p + R·b'_j.
+  int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
 
   /// FK along a path: as forward(), reusing the factorisation kept in `workspace` by the previous call
   /// (one workspace per path; the first call factorises). The hot path of a servo loop.

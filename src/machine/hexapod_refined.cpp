@@ -245,6 +245,10 @@ Result<std::vector<FkSolution>> HexapodRefined::forward_all(const ActuatorVector
   return solutions;
 }
 
+int HexapodRefined::strut_joints(const Pose& pose, StrutJointPoints& out) const {
+  return ideal_.strut_joints(pose, out);
+}
+
 Result<JacobianMatrix> HexapodRefined::jacobian(const Pose& pose) const {
   auto twist = twist_jacobian(pose);
   if (!twist) return twist.error();

@@ -85,6 +85,9 @@ class HexapodRefined final : public Mechanism {
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                               const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// The ideal joint centres, as Hexapod (the calibrated offsets, a fraction of a mm, move a joint's angle
+  /// by less than offset/length: far below any swing limit's resolution).
+  int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
 
   /// Strut lengths and cardan angles of every leg at a pose.
   Result<std::array<CardanLegState, 6>> leg_states(const Pose& pose) const;

@@ -2,9 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "core/units.hpp"
 
 namespace pkm {
+
+void JointLimits::update_cosines() {
+  base_joint_min_cos = base_joint_max_rad ? std::cos(*base_joint_max_rad) : -2.0;
+  platform_joint_min_cos = platform_joint_max_rad ? std::cos(*platform_joint_max_rad) : -2.0;
+}
 
 Status check_actuator_range(const Machine& machine, const ActuatorVector& actuators) {
   const bool angular = machine.mechanism->actuators_are_angles();

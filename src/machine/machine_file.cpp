@@ -6,46 +6,14 @@
 #include <sstream>
 
 #include "core/units.hpp"
+#include "machine/joint_limits.hpp"
+#include "machine/machine_file_sections.hpp"
 
 namespace pkm {
 namespace {
 
 bool is_planar(MechanismType type) {
   return type == MechanismType::planar2 || type == MechanismType::planar3;
-}
-
-Result<ActuatorLimits> read_limits(const YAML::Node& root, const YamlReader& reader) {
-  ActuatorLimits limits;
-  const YAML::Node node = root["limits"];
-  if (!node) return limits;
-  if (auto keys = reader.check_keys(node, "limits",
-                                    {"actuator_min", "actuator_max", "actuator_speed", "actuator_accel"});
-      !keys) {
-    return keys.error();
-  }
-  struct Field {
-    const char* key;
-    std::optional<double>* value;
-  };
-  for (Field f : {Field{"actuator_min", &limits.min}, Field{"actuator_max", &limits.max},
-                  Field{"actuator_speed", &limits.speed}, Field{"actuator_accel", &limits.accel}}) {
-    auto v = reader.optional_number(node, f.key);
-    if (!v) return v.error();
-    *f.value = *v;
-  }
-  if (limits.min) limits.min_line = yaml_line(node["actuator_min"]);
-  if (limits.max) limits.max_line = yaml_line(node["actuator_max"]);
-  if (limits.min && limits.max && *limits.min >= *limits.max) {
-    return reader.error_at(
-        node["actuator_max"], "limits.actuator_max",
-        fmt::format("must be greater than actuator_min ({} >= {})", *limits.min, *limits.max));
-  }
-  for (Field f : {Field{"actuator_speed", &limits.speed}, Field{"actuator_accel", &limits.accel}}) {
-    if (*f.value && !(**f.value > 0.0)) {
-      return reader.error_at(node[f.key], fmt::format("limits.{}", f.key), "must be positive");
-    }
-  }
-  return limits;
 }
 
 void convert_limits_to_radians(ActuatorLimits& limits) {
@@ -86,7 +54,10 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
-  std::vector<std::string_view> allowed = {"name", "description", "type", "angles", "tool", "limits", "home"};
+  std::vector<std::string_view> allowed = {"name", "description", "type",   "angles",
+                                           "tool", "limits",      "motion", "home"};
+  // Planar pin joints have no neutral axis to give.
+  if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>();
@@ -123,8 +94,10 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
     tool = *t;
   }
 
-  auto limits = read_limits(root, reader);
+  auto limits = read_limits(root, reader, is_planar(entry->type));
   if (!limits) return limits.error();
+  auto motion = read_motion_settings(root, reader, is_planar(entry->type));
+  if (!motion) return motion.error();
 
   std::optional<PoseVector> home;
   if (root["home"]) {
@@ -142,7 +115,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
     home = h;
   }
 
-  const MechanismSpec spec{root, reader, convention, tool, home, *limits};
+  const MechanismSpec spec{root, reader, convention, tool, home, limits->actuators};
   auto mechanism = entry->build(spec);
   if (!mechanism) return mechanism.error();
 
@@ -150,8 +123,10 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   machine.source = source_name;
   machine.name = root["name"] && root["name"].IsScalar() ? root["name"].Scalar() : std::string(*type_name);
   machine.mechanism = std::move(mechanism.value());
-  machine.limits = *limits;
+  machine.limits = limits->actuators;
   if (machine.mechanism->actuators_are_angles()) convert_limits_to_radians(machine.limits);
+  machine.joint_limits = limits->joints;
+  machine.motion = *motion;
   machine.home_given = home.has_value();
 
   // The home pose must itself be a valid configuration of the machine.
@@ -164,6 +139,18 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   if (auto in_range = check_actuator_range(machine, *home_actuators); !in_range) {
     return reader.error_at(where, "home",
                            "the home pose is outside the actuator range: " + in_range.error().message);
+  }
+
+  // Neutral axes default to the strut directions at home, so they follow the (now valid) home pose.
+  auto axes = read_passive_joint_axes(root, reader, *machine.mechanism);
+  if (!axes) return axes.error();
+  machine.joint_axes = *axes;
+  if (auto joints = check_joint_limits(machine, machine.mechanism->home()); !joints) {
+    return reader.error_at(where, "home", "the home pose is beyond a joint limit: " + joints.error().message);
+  }
+  if (auto conditioning = check_conditioning_limit(machine, machine.mechanism->home()); !conditioning) {
+    return reader.error_at(where, "home",
+                           "the home pose is too badly conditioned: " + conditioning.error().message);
   }
   return machine;
 }

@@ -53,6 +53,20 @@ struct FkSolution {
   int branch = 0;            ///< assembly-mode label; 0 = the home pose's mode
 };
 
+/// Where the struts' passive joints are at a pose, for joint-angle limits (machine/joint_limits.hpp).
+/// Strut j runs from its base-side joint base_mm[j] to its platform-side joint platform_mm[j] (base frame).
+struct StrutJointPoints {
+  std::array<Eigen::Vector3d, kMaxActuators> base_mm;
+  std::array<Eigen::Vector3d, kMaxActuators> platform_mm;
+  /// The platform's orientation at the (completed) pose: platform-side joints are mounted on the platform.
+  Eigen::Matrix3d platform_rotation = Eigen::Matrix3d::Identity();
+  /// Base joints on carriages that turn as they move (rotopod: round the circle) are mounted on the carriage:
+  /// mount_yaw_rad[j] is the carriage's turn about the base z axis (its angle on the circle). Otherwise the
+  /// mounts keep their orientation (fixed joints, carriages on straight guides) and mounts_turn is false.
+  std::array<double, kMaxActuators> mount_yaw_rad{};
+  bool mounts_turn = false;
+};
+
 class Mechanism {
  public:
   virtual ~Mechanism() = default;
@@ -77,6 +91,11 @@ class Mechanism {
                                                       const FkOptions& options = {}) const;
   /// d(actuators)/d(controlled coordinates), angle rates in rad in the mechanism's convention.
   virtual Result<JacobianMatrix> jacobian(const Pose& pose) const = 0;
+  /// The passive joints at both ends of every strut at `pose` (reduced-DOF mechanisms complete the pose
+  /// first). Returns the number of struts filled in, 0 for mechanisms without swinging passive joints (planar
+  /// pin joints), −1 when the pose is out of reach (a carriage cannot reach its strut, or the pose cannot be
+  /// completed). Never allocates for a reachable pose: it runs at every planning sample.
+  virtual int strut_joints(const Pose& /*pose*/, StrutJointPoints& /*out*/) const { return 0; }
 
   /// The pose the machine starts from; FK without a guess starts here. Set once, at construction: mechanisms
   /// derive state from it (the home assembly mode, branch choices), so there is deliberately no setter.

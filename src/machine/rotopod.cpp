@@ -112,6 +112,21 @@ Result<ActuatorVector> Rotopod::inverse(const Pose& pose) const {
   return angles(pose, reference_rad_);
 }
 
+int Rotopod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
+  for (int j = 0; j < 6; ++j) {
+    const Eigen::Vector3d b = pose.to_base(geometry_.platform_joints_mm[j]);
+    const CircleReach reach = circle_reach(geometry_, j, b);
+    if (!(reach.radial_mm > 0.0) || !(std::abs(reach.cosine) <= 1.0)) return -1;
+    const double angle = reach.nearest_rad + geometry_.branches[j] * std::acos(reach.cosine);
+    out.base_mm[j] = carriage_mm(j, angle);
+    out.platform_mm[j] = b;
+    out.mount_yaw_rad[j] = angle;  // a carriage on the circle turns with its angle
+  }
+  out.platform_rotation = pose.rotation;
+  out.mounts_turn = true;
+  return 6;
+}
+
 Result<JacobianMatrix> Rotopod::jacobian(const Pose& pose) const {
   JacobianMatrix twist(6, 6);
   for (int j = 0; j < 6; ++j) {

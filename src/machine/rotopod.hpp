@@ -45,6 +45,9 @@ class Rotopod final : public Mechanism {
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// Carriage joints A_j(φ_j) and platform joints; the carriages turn with φ_j (mount_yaw_rad = φ_j); −1 when
+  /// a strut cannot reach the circle.
+  int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
 
   const RotopodGeometry& geometry() const { return geometry_; }
   /// Carriage joint A_j at angle φ (rad).

@@ -123,6 +123,18 @@ Result<ActuatorVector> Tricept::inverse(const Pose& pose) const {
   return out;
 }
 
+int Tricept::strut_joints(const Pose& pose, StrutJointPoints& out) const {
+  auto complete = complete_pose(pose);
+  if (!complete) return -1;
+  for (int j = 0; j < 3; ++j) {
+    out.base_mm[j] = geometry_.base_joints_mm[j];
+    out.platform_mm[j] = complete->to_base(platform_tool_mm_[j]);
+  }
+  out.platform_rotation = complete->rotation;
+  out.mounts_turn = false;
+  return 3;
+}
+
 Result<JacobianMatrix> Tricept::jacobian(const Pose& pose) const {
   auto complete = complete_pose(pose);
   if (!complete) return complete.error();

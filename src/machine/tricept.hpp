@@ -48,6 +48,9 @@ class Tricept final : public Mechanism {
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// The three telescopic struts (universal base joints, spherical flange joints) at the completed pose; the
+  /// central leg's cardan is not a strut joint and is not included.
+  int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
 
   const TriceptGeometry& geometry() const { return geometry_; }
   /// The manipulator axis through a tool point; false when the point is out of reach (see complete_pose).

@@ -257,6 +257,18 @@ Result<ActuatorVector> Tripod::inverse(const Pose& pose) const {
   return out;
 }
 
+int Tripod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
+  auto complete = complete_pose(pose);
+  if (!complete) return -1;
+  for (int j = 0; j < 3; ++j) {
+    out.base_mm[j] = geometry_.base_joints_mm[j];
+    out.platform_mm[j] = complete->to_base(geometry_.platform_joints_mm[j]);
+  }
+  out.platform_rotation = complete->rotation;
+  out.mounts_turn = false;
+  return 3;
+}
+
 Result<JacobianMatrix> Tripod::jacobian(const Pose& pose) const {
   auto complete = complete_pose(pose);
   if (!complete) return complete.error();

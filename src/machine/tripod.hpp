@@ -51,6 +51,8 @@ class Tripod final : public Mechanism {
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                               const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// Revolute base joints A_j and spherical platform joints, at the completed pose.
+  int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
 
   const TripodGeometry& geometry() const { return geometry_; }
   /// Strut lengths of a complete pose, no completion, no checks.

@@ -11,6 +11,14 @@ int yaml_line(const YAML::Node& node) {
   return mark.line >= 0 ? mark.line + 1 : 0;
 }
 
+int yaml_key_line(const YAML::Node& mapping, std::string_view key) {
+  if (!mapping.IsMap()) return 0;
+  for (const auto& item : mapping) {
+    if (item.first.IsScalar() && item.first.Scalar() == key) return yaml_line(item.first);
+  }
+  return 0;
+}
+
 Error YamlReader::error_at(const YAML::Node& node, std::string_view key, std::string_view message) const {
   return make_error(ErrorCode::bad_input,
                     fmt::format("{}:{}: {}: {}", source_, yaml_line(node), key, message));

@@ -49,5 +49,8 @@ class YamlReader {
 
 /// The 1-based line of a node in its file (0 when the node has no mark).
 int yaml_line(const YAML::Node& node);
+/// The 1-based line of `key` itself in a mapping, 0 if absent: a block value (`motion:` with its keys on the
+/// lines below) starts on the line after its key.
+int yaml_key_line(const YAML::Node& mapping, std::string_view key);
 
 }  // namespace pkm

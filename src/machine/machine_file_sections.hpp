@@ -1,0 +1,32 @@
+#pragma once
+// Readers of the machine-file sections every mechanism shares, beside the top-level keys that
+// machine_file.cpp reads itself: `limits:`, `motion:` and the passive-joint neutral axes. Each error names
+// the file, the line and the key (docs/machine-file.md).
+#include <yaml-cpp/yaml.h>
+
+#include "machine/machine.hpp"
+#include "machine/yaml_reader.hpp"
+
+namespace pkm {
+
+/// Everything `limits:` holds. Actuator values as written (mm or deg); joint angles already in rad.
+struct FileLimits {
+  ActuatorLimits actuators;
+  JointLimits joints;
+};
+
+/// `limits:` (optional, every key optional). Planar machines have pin joints without a swing limit: the two
+/// joint-angle keys are rejected there.
+Result<FileLimits> read_limits(const YAML::Node& root, const YamlReader& reader, bool planar);
+
+/// `motion:` (optional, every key optional, defaults as in MotionSettings). Planar machines give
+/// program_origin_mm as [x, y] or [x, y, 0].
+Result<MotionSettings> read_motion_settings(const YAML::Node& root, const YamlReader& reader, bool planar);
+
+/// The neutral axes of the mechanism's passive joints: `base_joint_axes` / `platform_joint_axes` if given,
+/// otherwise the strut directions at the mechanism's home. Errors if a key is given for a mechanism without
+/// swing joints, or a given axis has zero length.
+Result<PassiveJointAxes> read_passive_joint_axes(const YAML::Node& root, const YamlReader& reader,
+                                                 const Mechanism& mechanism);
+
+}  // namespace pkm
