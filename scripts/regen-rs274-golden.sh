@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Regenerates the golden files of the G-code conformance suite: runs LinuxCNC's standalone interpreter
+# `rs274` (Debian package linuxcnc-uspace) on every tests/program/conformance/NN_name.ngc and keeps its raw
+# output as NN_name.rs274 next to it. tests/program/gcode_conformance_test.cpp compares pkm's interpreter
+# with these files (docs/part-programs.md).
+#
+# Options passed to rs274, to match pkm's defaults:
+#   -g          batch mode (run the whole file)
+#   -b          block delete ON (rs274's default is OFF; pkm's InterpretOptions::block_delete is true)
+#   -t tools.tbl  the suite's tool table (rs274 reads it in inches; the test gives pkm the same table in mm)
+# Fails if rs274 is missing or if any program does not run to its end (an rs274 error).
+set -euo pipefail
+cd "$(dirname "$0")/../tests/program/conformance"
+RS274=${RS274:-rs274}
+command -v "$RS274" > /dev/null || { echo "regen-rs274-golden: $RS274 not found (apt-get install linuxcnc-uspace)" >&2; exit 1; }
+status=0
+count=0
+for program in [0-9][0-9]_*.ngc; do
+  golden="${program%.ngc}.rs274"
+  "$RS274" -g -b -t tools.tbl "$program" < /dev/null > "$golden" 2>&1 || true
+  if ! grep -qE 'PROGRAM_END\(\)|FINISH\(\)' "$golden"; then
+    echo "regen-rs274-golden: $program did not run to its end under rs274:" >&2
+    tail -n 3 "$golden" >&2
+    status=1
+  fi
+  count=$((count + 1))
+done
+echo "regen-rs274-golden: $count programs"
+exit $status

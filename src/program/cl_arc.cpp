@@ -1,0 +1,50 @@
+#include "program/cl_arc.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pkm::program {
+namespace {
+
+// Distance of `p` from the circle's axis line.
+double radial_distance(const ClCircle& circle, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d d = p - circle.center_mm;
+  return (d - circle.axis * circle.axis.dot(d)).norm();
+}
+
+// G17/G18/G19 name the plane by its normal; an oblique CL arc gets the one its axis is closest to.
+Plane nearest_plane(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d a = axis.cwiseAbs();
+  if (a.z() >= a.x() && a.z() >= a.y()) return Plane::xy;
+  return a.y() >= a.x() ? Plane::zx : Plane::yz;
+}
+
+}  // namespace
+
+double cl_arc_radius_tolerance(double radius_mm) {
+  return std::max(0.005, 1e-3 * radius_mm);
+}
+
+std::string make_cl_arc(const ClCircle& circle, const Eigen::Vector3d& start_mm, CanonicalMove& move) {
+  const double tolerance = cl_arc_radius_tolerance(circle.radius_mm);
+  const double start_r = radial_distance(circle, start_mm);
+  if (std::abs(start_r - circle.radius_mm) > tolerance) {
+    return fmt::format("CIRCLE: the start point is {:.4f} mm from the axis, the radius is {:.4f} mm", start_r,
+                       circle.radius_mm);
+  }
+  const double end_r = radial_distance(circle, move.end_mm);
+  if (std::abs(end_r - circle.radius_mm) > tolerance) {
+    return fmt::format("CIRCLE: the end point is {:.4f} mm from the axis, the radius is {:.4f} mm", end_r,
+                       circle.radius_mm);
+  }
+  move.kind = MoveKind::arc;
+  move.center_mm = circle.center_mm + circle.axis * circle.axis.dot(start_mm - circle.center_mm);
+  move.normal = circle.axis;
+  move.plane = nearest_plane(circle.axis);
+  move.turns = 1;
+  return {};
+}
+
+}  // namespace pkm::program

@@ -1,0 +1,199 @@
+#include "program/gcode_block.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+namespace pkm::program::gcode {
+
+namespace {
+
+constexpr int kUnsupported = -1;
+constexpr int kUnknown = -2;
+
+struct Classified {
+  int group;           ///< a GGroup / MGroup, or kUnsupported / kUnknown
+  const char* reason;  ///< for unsupported codes: what the code does
+};
+
+bool in(int n, int lo, int hi) {
+  return n >= lo && n <= hi;
+}
+
+// G-codes by modal group; the ones pkm knows but does not carry out name what they do, so the message says
+// why.
+Classified classify_g(int n) {
+  switch (n) {
+    case 0:
+    case 10:
+    case 20:
+    case 30:
+    case 800:
+      return {g_motion, nullptr};
+    case 40:
+      return {g_non_modal, nullptr};
+    case 170:
+    case 180:
+    case 190:
+      return {g_plane, nullptr};
+    case 200:
+    case 210:
+      return {g_units, nullptr};
+    case 400:
+      return {g_cutter, nullptr};
+    case 430:
+    case 490:
+      return {g_tool_length, nullptr};
+    case 540:
+      return {g_coordinates, nullptr};
+    case 610:
+    case 611:
+    case 640:
+      return {g_path_control, nullptr};
+    case 900:
+    case 910:
+      return {g_distance, nullptr};
+    case 901:
+    case 911:
+      return {g_arc_distance, nullptr};
+    case 930:
+    case 940:
+      return {g_feed_mode, nullptr};
+    case 970:
+      return {g_spindle_mode, nullptr};
+    default:
+      break;
+  }
+  if (in(n, 50, 53)) return {kUnsupported, "spline or NURBS motion"};
+  if (n == 70 || n == 80) return {kUnsupported, "lathe diameter/radius mode"};
+  if (n == 100) return {kUnsupported, "setting offsets or tool data"};
+  if (n == 150 || n == 160) return {kUnsupported, "polar coordinates"};
+  if (n == 171 || n == 181 || n == 191) return {kUnsupported, "UVW plane"};
+  if (n == 280 || n == 281 || n == 300 || n == 301) return {kUnsupported, "return to a stored position"};
+  if (n == 330 || n == 331) return {kUnsupported, "spindle-synchronized motion"};
+  if (in(n, 382, 385)) return {kUnsupported, "probing"};
+  if (n == 410 || n == 411 || n == 420 || n == 421) return {kUnsupported, "cutter radius compensation"};
+  if (n == 431 || n == 432) return {kUnsupported, "dynamic tool length offset"};
+  if (n == 500 || n == 510) return {kUnsupported, "scaling"};
+  if (n == 520 || n == 920 || in(n, 921, 923)) return {kUnsupported, "coordinate system offset"};
+  if (n == 530) return {kUnsupported, "motion in machine coordinates"};
+  if (in(n, 550, 593)) return {kUnsupported, "work offset other than G54"};
+  if (n == 680 || n == 690) return {kUnsupported, "coordinate system rotation"};
+  if (n == 700 || n == 710 || n == 720) return {kUnsupported, "lathe cycle"};
+  if (n == 730 || n == 740 || n == 760 || in(n, 810, 890)) return {kUnsupported, "canned cycle"};
+  if (n == 950) return {kUnsupported, "feed per revolution"};
+  if (n == 960) return {kUnsupported, "constant surface speed"};
+  if (n == 980 || n == 990) return {kUnsupported, "canned-cycle return mode"};
+  return {kUnknown, nullptr};
+}
+
+Classified classify_m(int n) {
+  switch (n) {
+    case 20:
+    case 300:
+      return {m_stop, nullptr};
+    case 60:
+      return {m_tool_change, nullptr};
+    case 30:
+    case 40:
+    case 50:
+      return {m_spindle, nullptr};
+    case 70:
+    case 80:
+    case 90:
+      return {m_coolant, nullptr};
+    default:
+      break;
+  }
+  if (n == 0 || n == 10) return {kUnsupported, "program pause"};
+  if (n == 600) return {kUnsupported, "pallet change pause"};
+  if (n == 190) return {kUnsupported, "spindle orientation"};
+  if (in(n, 480, 530)) return {kUnsupported, "override control"};
+  if (n == 610) return {kUnsupported, "set current tool"};
+  if (in(n, 620, 680)) return {kUnsupported, "digital or analog I/O"};
+  if (in(n, 700, 730)) return {kUnsupported, "modal state save and restore"};
+  if (n == 980 || n == 990) return {kUnsupported, "subprogram call"};
+  if (in(n, 1000, 1990)) return {kUnsupported, "user-defined M-code"};
+  return {kUnknown, nullptr};
+}
+
+// What pkm says about letters it does not accept at all.
+const char* unsupported_letter(char letter) {
+  switch (letter) {
+    case 'U':
+    case 'V':
+    case 'W':
+      return "axis is not supported (axes are X Y Z A B C)";
+    case 'D':
+      return "word is not supported (cutter radius compensation)";
+    case 'E':
+      return "word is not supported";
+    case 'L':
+      return "word is not supported (G10 / canned-cycle repeats)";
+    case 'Q':
+      return "word is not supported (no accepted code uses it)";
+    default:
+      return nullptr;
+  }
+}
+
+}  // namespace
+
+std::string code_name(char letter, int number_times_ten) {
+  if (number_times_ten % 10 == 0) return fmt::format("{}{}", letter, number_times_ten / 10);
+  return fmt::format("{}{}.{}", letter, number_times_ten / 10, number_times_ten % 10);
+}
+
+int Block::first_axis_column() const {
+  int column = 0;
+  for (const char axis : {'X', 'Y', 'Z', 'A', 'B', 'C'}) {
+    const int c = (*this)[axis].column;
+    if (c > 0 && (column == 0 || c < column)) column = c;
+  }
+  return column;
+}
+
+Status build_block(const LexedLine& line, const LineRef& where, Block& out) {
+  out.g.fill(Code{});
+  out.m.fill(Code{});
+  out.letters.fill(Value{});
+  for (const Word& word : line.words) {
+    if (word.letter == 'G' || word.letter == 'M') {
+      const bool is_g = word.letter == 'G';
+      // Codes go up to M199 / G99.x; anything larger is a bad number (and would not fit the rounding below).
+      const bool in_range = word.value >= 0.0 && word.value < 1000.0;
+      const double tenths = word.value * 10.0;
+      const long rounded = in_range ? std::lround(tenths) : -1;
+      if (!in_range || std::abs(tenths - static_cast<double>(rounded)) > 1e-6 || (!is_g && rounded % 10 != 0))
+        return error_at(where, word.column,
+                        fmt::format("bad {}-code number {}{}", word.letter, word.letter, word.value));
+      const int number = static_cast<int>(rounded);
+      const Classified kind = is_g ? classify_g(number) : classify_m(number);
+      if (kind.group == kUnknown)
+        return error_at(where, word.column,
+                        fmt::format("unknown {}-code {}", word.letter, code_name(word.letter, number)));
+      if (kind.group == kUnsupported)
+        return error_at(where, word.column,
+                        fmt::format("unsupported {}-code {} ({})", word.letter,
+                                    code_name(word.letter, number), kind.reason));
+      Code& slot =
+          is_g ? out.g[static_cast<std::size_t>(kind.group)] : out.m[static_cast<std::size_t>(kind.group)];
+      if (slot.given())
+        return error_at(where, word.column,
+                        fmt::format("{} and {} in one block belong to the same modal group",
+                                    code_name(word.letter, slot.number), code_name(word.letter, number)));
+      slot = Code{number, word.column};
+      continue;
+    }
+    if (const char* why = unsupported_letter(word.letter))
+      return error_at(where, word.column, fmt::format("{} {}", word.letter, why));
+    Value& slot = out.letters[static_cast<std::size_t>(word.letter - 'A')];
+    if (slot.given())
+      return error_at(where, word.column, fmt::format("two {} words in one block", word.letter));
+    slot = Value{word.value, word.column};
+  }
+  return ok_status();
+}
+
+}  // namespace pkm::program::gcode

@@ -1,0 +1,68 @@
+#pragma once
+// One block (line) of G-code sorted by meaning: its G- and M-codes by modal group, and the value of every
+// other letter. Building it rejects what no block may hold whatever the modal state: unknown or unsupported
+// codes, two codes of one modal group, a letter given twice, letters pkm does not support (U V W D E L Q).
+#include <array>
+
+#include "program/gcode_lexer.hpp"
+
+namespace pkm::program::gcode {
+
+/// A G- or M-code: its number times ten (G90.1 → 901, G1 → 10) and where it was written.
+struct Code {
+  int number = -1;  ///< ×10; -1 = not in this block
+  int column = 0;
+  bool given() const { return number >= 0; }
+  bool is(int g_times_ten) const { return number == g_times_ten; }
+};
+
+/// The value of a letter (X, F, P, ...) in this block.
+struct Value {
+  double value = 0.0;
+  int column = 0;  ///< 0 = not in this block
+  bool given() const { return column > 0; }
+};
+
+/// Modal groups of the G-codes pkm accepts (RS274/NGC numbering in comments).
+enum GGroup : int {
+  g_non_modal,     // 0: G4
+  g_motion,        // 1: G0 G1 G2 G3 G80
+  g_plane,         // 2: G17 G18 G19
+  g_distance,      // 3: G90 G91
+  g_arc_distance,  // 4: G90.1 G91.1
+  g_feed_mode,     // 5: G93 G94
+  g_units,         // 6: G20 G21
+  g_cutter,        // 7: G40
+  g_tool_length,   // 8: G43 G49
+  g_coordinates,   // 12: G54
+  g_path_control,  // 13: G61 G61.1 G64
+  g_spindle_mode,  // 14: G97
+  g_group_count
+};
+
+/// Modal groups of the M-codes pkm accepts.
+enum MGroup : int {
+  m_stop,         // 4: M2 M30
+  m_tool_change,  // 6: M6
+  m_spindle,      // 7: M3 M4 M5
+  m_coolant,      // 8: M7 M8 M9
+  m_group_count
+};
+
+struct Block {
+  std::array<Code, g_group_count> g;
+  std::array<Code, m_group_count> m;
+  std::array<Value, 26> letters;  ///< indexed by letter − 'A'; G and M are not stored here
+
+  const Value& operator[](char letter) const { return letters[static_cast<std::size_t>(letter - 'A')]; }
+  /// Column of the first of X Y Z A B C in this block, or 0.
+  int first_axis_column() const;
+};
+
+/// Sorts the words of a lexed line into `out` (overwritten).
+Status build_block(const LexedLine& line, const LineRef& where, Block& out);
+
+/// "G90.1", "M6": a code's name for messages.
+std::string code_name(char letter, int number_times_ten);
+
+}  // namespace pkm::program::gcode

@@ -1,0 +1,35 @@
+#pragma once
+// Reading part programs into canonical moves: G-code (RS274/NGC) and APT CL data.
+// Every error names the file, line and column: "prog.ngc:12:5: unknown G-code G5.3".
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+
+#include "core/result.hpp"
+#include "program/canonical_program.hpp"
+
+namespace pkm::program {
+
+struct InterpretOptions {
+  /// Where the tool is before the first block (program coordinates); the first incremental move and the
+  /// words a first block leaves out are taken from here. rs274 starts at zero.
+  Eigen::Vector3d start_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d start_abc_deg = Eigen::Vector3d::Zero();
+  /// LinuxCNC-format tool table (`T1 P1 Z25.0 D6 ;comment`) for G43; empty = no table (G43 H>0 is an error).
+  std::string tool_table_path;
+  /// Skip blocks that start with `/` (the block-delete switch on).
+  bool block_delete = true;
+};
+
+/// G-code (RS274/NGC as CAM post-processors write it). `source_name` is used in messages.
+Result<CanonicalProgram> interpret_gcode(std::string_view text, const std::string& source_name,
+                                         const InterpretOptions& options = {});
+
+/// APT CL data (.cl, .cls, .apt): GOTO, FEDRAT, RAPID, TLAXIS, CIRCLE, UNITS, END.
+Result<CanonicalProgram> read_cl_data(std::string_view text, const std::string& source_name,
+                                      const InterpretOptions& options = {});
+
+/// Reads a file and picks the reader by extension: .cl, .cls, .apt → CL data; anything else → G-code.
+Result<CanonicalProgram> load_part_program(const std::string& path, const InterpretOptions& options = {});
+
+}  // namespace pkm::program
