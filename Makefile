@@ -1,11 +1,13 @@
 # Two commands do all the set-up on a fresh Debian machine:
-#   make run   installs what is missing, builds build/pkm and runs the kinematics demo on the shipped hexapod
+#   make run   installs what is missing, builds build/pkm and plans the shipped pocket program on the ch5 hexapod
+#              (servo-rate actuator motion in build/run/: actuators.csv, path.csv, summary.json)
 #   make test  installs what is missing, builds and runs the whole test suite
 # Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck),
 # make bench, make format, make tidy.
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
+PROGRAM ?= examples/programs/pocket.ngc
 
 .PHONY: deps configure build run test sanitize lint bench format tidy clean
 
@@ -19,7 +21,7 @@ build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	$(BUILD)/pkm demo --machine $(EXAMPLE)
+	$(BUILD)/pkm plan $(PROGRAM) --machine $(EXAMPLE) --out $(BUILD)/run
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

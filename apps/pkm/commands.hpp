@@ -10,5 +10,7 @@ void add_check_command(CLI::App& app, int& exit_code);
 void add_jacobian_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_demo_command(CLI::App& app, int& exit_code);
+void add_interpret_command(CLI::App& app, int& exit_code);
+void add_plan_command(CLI::App& app, int& exit_code);
 
 }  // namespace pkm::cli

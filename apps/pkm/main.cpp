@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   pkm::cli::add_jacobian_command(app, exit_code);
   pkm::cli::add_bench_command(app, exit_code);
   pkm::cli::add_demo_command(app, exit_code);
+  pkm::cli::add_interpret_command(app, exit_code);
+  pkm::cli::add_plan_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,116 @@
+// pkm plan PROGRAM --machine M.yaml [--rate HZ] [--override PCT] [--tolerance MM] --out DIR [--json]:
+// interprets a part program, plans it within the feed, path and actuator limits, and writes the servo-rate
+// motion (actuators.csv, path.csv) and summary.json into DIR.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/plan_output.hpp"
+#include "program/part_program.hpp"
+
+namespace pkm::cli {
+
+namespace {
+
+void draw_progress(double fraction) {
+  constexpr int width = 40;
+  const int filled = static_cast<int>(fraction * width);
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.append(static_cast<std::size_t>(width - filled), '.');
+  std::cerr << fmt::format("\r  [{}] {:3.0f} %", bar, fraction * 100.0) << (fraction >= 1.0 ? "\n" : "")
+            << std::flush;
+}
+
+}  // namespace
+
+void add_plan_command(CLI::App& app, int& exit_code) {
+  auto* cmd =
+      app.add_subcommand("plan", "plan a part program on a machine: actuator motion at the servo rate");
+  auto program_path = std::make_shared<std::string>();
+  auto machine_path = std::make_shared<std::string>();
+  auto out_dir = std::make_shared<std::string>();
+  auto tool_table = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  auto no_error = std::make_shared<bool>(false);
+  auto options = std::make_shared<planning::PlanOptions>();
+  auto tolerance = std::make_shared<double>(-1.0);
+  cmd->add_option("program", *program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
+      ->required();
+  cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
+  cmd->add_option("--out", *out_dir, "directory for actuators.csv, path.csv and summary.json")->required();
+  cmd->add_option("--rate", options->rate_hz, "servo rate, Hz")->capture_default_str();
+  cmd->add_option("--override", options->override_pct, "operator feed override, % (0…200)")
+      ->capture_default_str();
+  cmd->add_option("--tolerance", *tolerance,
+                  "corner blending tolerance, mm (0: exact stop at corners; default: the machine file's)");
+  cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
+  cmd->add_flag("--no-path-error", *no_error, "skip the forward-kinematics check of the path error (faster)");
+  cmd->add_flag("--json", *json, "print the summary as JSON");
+  cmd->callback([=, &exit_code] {
+    auto machine = load_machine_or_report(*machine_path);
+    if (!machine) {
+      exit_code = report_error("plan", machine.error());
+      return;
+    }
+    const planning::ProgramStart start = planning::program_start(*machine);
+    program::InterpretOptions interpret;
+    interpret.start_mm = start.start_mm;
+    interpret.start_abc_deg = start.start_abc_deg;
+    interpret.tool_table_path = *tool_table;
+    auto program = program::load_part_program(*program_path, interpret);
+    if (!program) {
+      exit_code = report_error("plan", program.error());
+      return;
+    }
+    planning::PlanOptions plan_options = *options;
+    if (*tolerance >= 0.0) plan_options.path_tolerance_mm = *tolerance;
+    const auto started = std::chrono::steady_clock::now();
+    auto plan = planning::plan_motion(*machine, *program, plan_options);
+    if (!plan) {
+      exit_code = report_error("plan", plan.error());
+      return;
+    }
+    const double planning_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    planning::OutputOptions output;
+    output.override_pct = plan_options.override_pct;
+    output.evaluate_path_error = !*no_error;
+    if (isatty(STDERR_FILENO) && plan->duration_s * plan_options.rate_hz > 200000)
+      output.progress = draw_progress;
+    auto run = planning::write_plan_outputs(*plan, *machine, *out_dir, output);
+    if (!run) {
+      exit_code = report_error("plan", run.error());
+      return;
+    }
+    nlohmann::json summary = planning::summary_json(*plan, *machine, *run);
+    summary["planning_time_s"] = planning_s;
+    if (*json) {
+      print_json(summary);
+      return;
+    }
+    const std::string unit = machine->mechanism->actuators_are_angles() ? "deg" : "mm";
+    std::cout << fmt::format("{}: {} blocks on {} ({}), {} ticks at {} Hz\n", *program_path,
+                             plan->statistics.blocks, machine->name, *machine_path, run->ticks, run->rate_hz);
+    std::cout << fmt::format("  duration          {:.3f} s (path {:.1f} mm, override {} %)\n",
+                             run->duration_s, plan->statistics.length_mm, plan_options.override_pct);
+    std::cout << fmt::format("  actuator speed    max {:.3f} {}/s   accel max {:.3f} {}/s²\n",
+                             summary["max_actuator_speed_" + unit + "_s"].get<double>(), unit,
+                             summary["max_actuator_accel_" + unit + "_s2"].get<double>(), unit);
+    std::cout << fmt::format(
+        "  path speed        max {:.3f} mm/s ({:.1f} % of the programmed feed at most)\n",
+        run->max_path_speed, 100.0 * run->max_feed_ratio);
+    if (output.evaluate_path_error) {
+      std::cout << fmt::format(
+          "  path error        max {:.3g} mm (FK of the actuators at mid-period, line {})\n",
+          run->max_path_error_mm, run->max_path_error_line);
+    }
+    std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json\n", *out_dir);
+  });
+}
+
+}  // namespace pkm::cli

@@ -1,0 +1,147 @@
+// Planning throughput on a 100 000-line generated program (CAM-like: short G1 segments 0.2–2 mm, G2/G3 arcs,
+// feeds 500–3000 mm/min, small A/B tilts) on the ch5 hexapod, for docs/PERFORMANCE.md:
+//   Interpret     G-code text → canonical moves
+//   Plan          interpret + path with corner blends + speed profile (IK and limits at every sample)
+//   ServoOutput   the planned motion at 1 kHz: filter, path evaluation and IK per tick (no files written)
+// Counters: blocks/s, ticks/s, real-time factor (motion seconds per compute second) and peak memory.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+#include <sys/resource.h>
+
+#include <cmath>
+#include <random>
+
+#include "machine/machine_file.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/servo_stream.hpp"
+#include "program/part_program.hpp"
+
+namespace pkm {
+namespace {
+
+constexpr int kLines = 100000;
+
+const Machine& machine() {
+  static const Machine m = [] {
+    auto loaded = load_machine_file(std::string(PKM_SOURCE_DIR) + "/examples/machines/hexapod_ch5.yaml");
+    if (!loaded) throw std::runtime_error(loaded.error().message);
+    return std::move(loaded.value());
+  }();
+  return m;
+}
+
+/// A deterministic CAM-like program: a random walk of short moves inside ±50 mm (XY) and ±10 mm (Z).
+const std::string& long_program() {
+  static const std::string text = [] {
+    std::mt19937_64 rng(20261121);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::string out = "G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F500\n";
+    out.reserve(kLines * 40);
+    double x = 0, y = 0, z = 0, heading = 0;
+    for (int line = 3; line < kLines - 1; ++line) {
+      heading += (u(rng) - 0.5) * 0.3;
+      const double step = 0.2 + 1.8 * u(rng);
+      // Turn back towards the centre near the edge of the box.
+      if (std::hypot(x, y) > 45.0) heading = std::atan2(-y, -x) + (u(rng) - 0.5);
+      const double feed = 500.0 + 2500.0 * u(rng);
+      if (u(rng) < 0.1) {  // a short arc, radius 2–10 mm, turning up to 60°
+        const double r = 2.0 + 8.0 * u(rng), turn = (u(rng) < 0.5 ? 1 : -1) * u(rng) * 1.0;
+        const double side = turn > 0 ? 1.0 : -1.0;
+        const double cx = x - side * r * std::sin(heading), cy = y + side * r * std::cos(heading);
+        const double start = std::atan2(y - cy, x - cx), end = start + turn;
+        const double nx = cx + r * std::cos(end), ny = cy + r * std::sin(end);
+        out += fmt::format("G{} X{:.4f} Y{:.4f} I{:.4f} J{:.4f} F{:.0f}\n", turn > 0 ? 3 : 2, nx, ny, cx - x,
+                           cy - y, feed);
+        x = nx, y = ny, heading += turn;
+      } else {
+        x += step * std::cos(heading);
+        y += step * std::sin(heading);
+        z = std::clamp(z + (u(rng) - 0.5) * 0.2, -10.0, 10.0);
+        const double a = 3.0 * std::sin(line * 1e-3), b = 3.0 * std::cos(line * 1.3e-3);
+        out += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f} A{:.3f} B{:.3f} F{:.0f}\n", x, y, z, a, b, feed);
+      }
+    }
+    out += "M2\n";
+    return out;
+  }();
+  return text;
+}
+
+program::InterpretOptions start_options() {
+  const planning::ProgramStart start = planning::program_start(machine());
+  program::InterpretOptions options;
+  options.start_mm = start.start_mm;
+  options.start_abc_deg = start.start_abc_deg;
+  return options;
+}
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+void BM_Interpret100k(benchmark::State& state) {
+  const std::string& text = long_program();
+  for (auto _ : state) {
+    auto program = program::interpret_gcode(text, "long.ngc", start_options());
+    if (!program) state.SkipWithError(program.error().message.c_str());
+    benchmark::DoNotOptimize(program);
+  }
+  state.counters["blocks_per_s"] = benchmark::Counter(kLines, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Interpret100k)->Unit(benchmark::kMillisecond);
+
+void BM_Plan100k(benchmark::State& state) {
+  const std::string& text = long_program();
+  double duration = 0.0;
+  std::size_t samples = 0;
+  for (auto _ : state) {
+    auto program = program::interpret_gcode(text, "long.ngc", start_options());
+    if (!program) {
+      state.SkipWithError(program.error().message.c_str());
+      break;
+    }
+    auto plan = planning::plan_motion(machine(), *program, {});
+    if (!plan) {
+      state.SkipWithError(plan.error().message.c_str());
+      break;
+    }
+    duration = plan->duration_s;
+    samples = plan->samples.size();
+  }
+  state.counters["blocks_per_s"] = benchmark::Counter(kLines, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["motion_s"] = duration;
+  state.counters["samples"] = static_cast<double>(samples);
+  state.counters["peak_rss_MB"] = peak_rss_mb();
+}
+BENCHMARK(BM_Plan100k)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_ServoOutput(benchmark::State& state) {
+  auto program = program::interpret_gcode(long_program(), "long.ngc", start_options());
+  auto plan = planning::plan_motion(machine(), *program, {});
+  if (!plan) {
+    state.SkipWithError(plan.error().message.c_str());
+    return;
+  }
+  long ticks = 0;
+  for (auto _ : state) {
+    planning::ServoStream stream(*plan, machine());
+    planning::ServoTick tick;
+    ticks = 0;
+    while (stream.next(tick)) ++ticks;
+    benchmark::DoNotOptimize(tick);
+  }
+  state.counters["ticks_per_s"] =
+      benchmark::Counter(static_cast<double>(ticks), benchmark::Counter::kIsIterationInvariantRate);
+  // Motion seconds produced per compute second: ≥ 10 is the goal.
+  state.counters["realtime_factor"] =
+      benchmark::Counter(plan->duration_s, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["motion_s"] = plan->duration_s;
+}
+BENCHMARK(BM_ServoOutput)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+}  // namespace pkm
+
+BENCHMARK_MAIN();

@@ -1,0 +1,20 @@
+#pragma once
+// Corner blending: where two moves meet at an angle, the path leaves the first move a distance d before the
+// corner and joins the second one d after it along the cross-fade
+//   C(u) = A(u) + w(u)·(B(u) − A(u)),   w(u) = 10u³ − 15u⁴ + 6u⁵,
+// where A runs over the last d of the first move and B over the first d of the second. w has zero first and
+// second derivatives at both ends, so position, tangent and curvature are continuous (G2) for lines, arcs and
+// helices alike; d is the largest that keeps C within the path tolerance and within half of either move.
+// The blend is reparametrised by arc length so that the planned speed along it is the tool-point speed.
+#include "path/path.hpp"
+
+namespace pkm::path {
+
+/// Replaces the corners between consecutive plain segments of `path` by blends (in place), where the segments
+/// are not separated by a stop. `tolerance_mm` ≤ 0 leaves every corner as a stop.
+void blend_corners(Path& path, double tolerance_mm);
+
+/// Largest distance of the blend of segment `blend_index` from the two curves it joins (sampled).
+double blend_deviation_mm(const Path& path, int blend_index);
+
+}  // namespace pkm::path

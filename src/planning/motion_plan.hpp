@@ -1,0 +1,65 @@
+#pragma once
+// Planning a part program on a machine: the path (path/path.hpp), the speed profile along it
+// (speed_profile.hpp) within the programmed feeds, the path acceleration and jerk, and the actuators' own
+// speed and acceleration limits, with every limit checked along the whole path (not only at block ends).
+#include <optional>
+#include <string>
+
+#include "core/result.hpp"
+#include "machine/machine.hpp"
+#include "path/path.hpp"
+#include "planning/speed_profile.hpp"
+#include "program/canonical_program.hpp"
+
+namespace pkm::planning {
+
+struct PlanOptions {
+  double rate_hz = 1000.0;                  ///< servo rate of the output
+  double override_pct = 100.0;              ///< operator feed override, 0 < override ≤ 200 %
+  std::optional<double> path_tolerance_mm;  ///< corner blending tolerance; default: the machine file's
+  /// Fraction of the actuator speed and acceleration limits the plan may use: the rest absorbs the
+  /// difference between the planning grid and the servo-rate samples.
+  double actuator_limit_margin = 0.95;
+  double sample_spacing_mm =
+      1.0;  ///< largest distance between planning samples (mm, or deg when only rotating)
+  double condition_check_spacing_mm = 2.0;  ///< conditioning (singularity) checks along the path
+};
+
+/// What the plan used and where it is limited; for the summary.
+struct PlanStatistics {
+  int blocks = 0;    ///< canonical moves (motion and dwell)
+  int segments = 0;  ///< path segments, blends included
+  int blends = 0;
+  std::size_t samples = 0;
+  double length_mm = 0.0;
+  double filter_time_s = 0.0;  ///< moving-average window that limits the jerk
+  double max_condition_number = 0.0;
+  /// Fraction of the path length where the actuators, not the feed, set the speed cap.
+  double actuator_limited_fraction = 0.0;
+};
+
+struct MotionPlan {
+  path::Path path;
+  ProfileSamples samples;
+  std::vector<int> sample_segment;  ///< segment of each sample
+  TimedProfile timed;
+  int filter_ticks = 1;  ///< N: moving average over N servo periods
+  double period_s = 0.001;
+  double duration_s = 0.0;  ///< from the first tick to the last (the filtered motion)
+  PlanStatistics statistics;
+  std::string program_source;
+};
+
+/// Plans `program` on `machine`. Errors name the program line and the limit (file and line of the machine
+/// file where it was set).
+Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalProgram& program,
+                               const PlanOptions& options);
+
+/// The InterpretOptions start for `machine`: its home, in program coordinates, with A B C of its rotation.
+struct ProgramStart {
+  Eigen::Vector3d start_mm;
+  Eigen::Vector3d start_abc_deg;
+};
+ProgramStart program_start(const Machine& machine);
+
+}  // namespace pkm::planning

@@ -1,0 +1,208 @@
+#include "planning/path_sampling.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/rotation.hpp"
+#include "core/units.hpp"
+#include "machine/joint_limits.hpp"
+
+namespace pkm::planning {
+
+std::string program_pose_text(const Machine& machine, const Pose& pose) {
+  const Eigen::Vector3d p = pose.position_mm - machine.motion.program_origin_mm;
+  const Eigen::Vector3d abc = angles_from_rotation(AngleConvention::abc, pose.rotation) * (180.0 / kPi);
+  return fmt::format("X{:.4f} Y{:.4f} Z{:.4f} A{:.4f} B{:.4f} C{:.4f}", p.x(), p.y(), p.z(), abc.x(), abc.y(),
+                     abc.z());
+}
+
+double segment_speed_cap(const path::Segment& segment, const MotionSettings& motion, double override_factor) {
+  const double machine_cap = segment.rotation_only ? motion.angular_feed_deg_min / 60.0
+                             : segment.rapid       ? motion.rapid_mm_min / 60.0
+                                                   : motion.max_feed_mm_min / 60.0;
+  return std::min(segment.speed_limit * override_factor, machine_cap);
+}
+
+namespace {
+
+constexpr double kCurvatureShare = 0.5;  // α: share of the actuator acceleration left for the v²·q'' term
+
+Error at_line(const program::CanonicalProgram& program, int line, const Error& error) {
+  return Error{error.code, fmt::format("{}:{}: {}", program.source, line, error.message)};
+}
+
+/// Sample positions: every segment split into pieces no longer than `spacing` (arcs: at most 5° each,
+/// blends: at least 4 pieces); the segment ends are samples.
+void place_samples(const path::Path& path, double spacing, ProfileSamples& samples,
+                   std::vector<int>& segment) {
+  samples.s.clear();
+  segment.clear();
+  samples.s.reserve(path.segments.size() * 3 + 1);
+  segment.reserve(path.segments.size() * 3 + 1);
+  for (int k = 0; k < static_cast<int>(path.segments.size()); ++k) {
+    const path::Segment& seg = path.segments[k];
+    int pieces = static_cast<int>(std::ceil(seg.length / spacing));
+    const path::Curve& curve = path.curves[seg.curve_a];
+    if (!seg.is_blend() && curve.kind == path::CurveKind::helix) {
+      const double sweep = curve.sweep_rad * (seg.fa1 - seg.fa0);
+      pieces = std::max(pieces, static_cast<int>(std::ceil(sweep / rad_from_deg(5.0))));
+    }
+    // A blend's curvature peaks in its middle, the sharper the corner the higher: enough samples to see it.
+    if (seg.is_blend())
+      pieces = std::max({pieces, 4, static_cast<int>(std::ceil(seg.turn_rad / rad_from_deg(3.0)))});
+    pieces = std::max(pieces, 1);
+    for (int i = 0; i < pieces; ++i) {
+      const double s = seg.s_start + seg.length * i / pieces;
+      if (!samples.s.empty() && s <= samples.s.back()) continue;
+      samples.s.push_back(s);
+      segment.push_back(k);
+    }
+  }
+  const double end = path.length();
+  if (samples.s.empty() || end > samples.s.back()) {
+    samples.s.push_back(end);
+    segment.push_back(std::max(0, static_cast<int>(path.segments.size()) - 1));
+  }
+  samples.resize(samples.s.size());
+}
+
+/// Derivatives of a sampled function at sample i from its neighbours (non-uniform central differences);
+/// at the ends and at stops, one-sided.
+struct Derivatives {
+  double first = 0.0;
+  double second = 0.0;
+};
+Derivatives differentiate(double s0, double s1, double s2, double f0, double f1, double f2) {
+  const double h1 = s1 - s0, h2 = s2 - s1;
+  const double d1 = (f1 - f0) / h1, d2 = (f2 - f1) / h2;
+  return {(h2 * d1 + h1 * d2) / (h1 + h2), 2.0 * (d2 - d1) / (h1 + h2)};
+}
+
+}  // namespace
+
+Result<SamplingResult> sample_path(const Machine& machine, const program::CanonicalProgram& program,
+                                   const path::Path& path, const SamplingSettings& settings,
+                                   ProfileSamples& samples, std::vector<int>& sample_segment) {
+  SamplingResult result;
+  const Mechanism& mechanism = *machine.mechanism;
+  const MotionSettings& motion = machine.motion;
+  place_samples(path, settings.spacing, samples, sample_segment);
+  const std::size_t n = samples.size();
+  const int actuators = mechanism.actuator_count();
+
+  // Stops: the end of a segment that must come to rest (corners without blends, dwells, the program end).
+  std::vector<char>& stop = samples.stop;
+  stop.assign(n, 0);
+  stop[0] = 1;
+  stop[n - 1] = 1;
+  samples.hold_s.assign(n, 0.0);
+  samples.hold_s[0] = path.initial_dwell_s;
+  for (std::size_t i = 1; i < n; ++i) {
+    const path::Segment& previous = path.segments[sample_segment[i - 1]];
+    const bool boundary = i == n - 1 || sample_segment[i] != sample_segment[i - 1];
+    if (boundary && previous.stop_after) {
+      stop[i] = 1;
+      samples.hold_s[i] += previous.dwell_after_s + settings.stop_hold_s;
+    }
+  }
+  if (samples.hold_s[n - 1] < settings.stop_hold_s) samples.hold_s[n - 1] = settings.stop_hold_s;
+
+  // Inverse kinematics and the position limits at every sample.
+  std::vector<ActuatorVector> q(n);
+  std::vector<Eigen::Vector3d> position(n);
+  double next_condition_check = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const path::Segment& seg = path.segments.empty() ? path::Segment{} : path.segments[sample_segment[i]];
+    const path::PathPoint point = path.evaluate(sample_segment[i], samples.s[i]);
+    const Pose pose{point.position_mm, point.rotation.toRotationMatrix()};
+    position[i] = point.position_mm;
+    auto ik = mechanism.inverse(pose);
+    if (!ik) {
+      return at_line(
+          program, seg.line,
+          Error{ErrorCode::unreachable, fmt::format("the path leaves the workspace at {}: {}",
+                                                    program_pose_text(machine, pose), ik.error().message)});
+    }
+    q[i] = *ik;
+    if (Status s = check_actuator_range(machine, q[i]); !s) return at_line(program, seg.line, s.error());
+    if (Status s = check_joint_limits(machine, pose); !s) return at_line(program, seg.line, s.error());
+    if (samples.s[i] >= next_condition_check || i == n - 1) {
+      next_condition_check = samples.s[i] + settings.condition_spacing;
+      auto condition = jacobian_condition_number(mechanism, pose);
+      if (condition) {
+        result.statistics.max_condition_number = std::max(result.statistics.max_condition_number, *condition);
+      }
+      const auto& limit = machine.joint_limits.max_condition_number;
+      if (!condition || (limit && !(*condition <= *limit))) {
+        if (Status s = check_conditioning_limit(machine, pose); !s)
+          return at_line(program, seg.line, s.error());
+      }
+    }
+  }
+
+  // Caps from the feed, the path and the actuators.
+  const double margin = settings.actuator_margin;
+  const double speed_max = machine.limits.speed.value_or(std::numeric_limits<double>::infinity());
+  const double accel_max = machine.limits.accel.value_or(std::numeric_limits<double>::infinity());
+  const double h = settings.period_s;
+  double actuator_limited_length = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const path::Segment& seg = path.segments[sample_segment[i]];
+    double cap_feed = segment_speed_cap(seg, motion, settings.override_factor);
+    if (i > 0 && sample_segment[i - 1] != sample_segment[i]) {  // a boundary sample obeys both segments
+      cap_feed = std::min(cap_feed, segment_speed_cap(path.segments[sample_segment[i - 1]], motion,
+                                                      settings.override_factor));
+    }
+    double cap = cap_feed;
+    double accel_cap = motion.path_accel_mm_s2;
+    if (!stop[i] && i > 0 && i + 1 < n) {
+      // Curvature of the tool path: normal acceleration and chord error between servo periods.
+      Eigen::Vector3d second;
+      for (int c = 0; c < 3; ++c) {
+        second[c] = differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], position[i - 1][c],
+                                  position[i][c], position[i + 1][c])
+                        .second;
+      }
+      const double curvature = seg.rotation_only ? 0.0 : second.norm();
+      if (curvature > 1e-12) {
+        cap = std::min(cap, std::sqrt(motion.path_accel_mm_s2 / curvature));
+        cap = std::min(cap, std::sqrt(8.0 * settings.chord_tolerance_mm / curvature) / h);
+      }
+    }
+    double cap_actuator = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < actuators; ++j) {
+      double first = 0.0, second = 0.0;
+      if (i == 0 || stop[i] || i + 1 == n) {
+        // One-sided slopes; at a stop the larger of the two sides governs the acceleration there.
+        if (i > 0) first = std::abs((q[i][j] - q[i - 1][j]) / (samples.s[i] - samples.s[i - 1]));
+        if (i + 1 < n)
+          first = std::max(first, std::abs((q[i + 1][j] - q[i][j]) / (samples.s[i + 1] - samples.s[i])));
+      } else {
+        const Derivatives d = differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], q[i - 1][j],
+                                            q[i][j], q[i + 1][j]);
+        first = std::abs(d.first);
+        second = std::abs(d.second);
+      }
+      if (first > 0.0) {
+        cap_actuator = std::min(cap_actuator, margin * speed_max / first);
+        accel_cap = std::min(accel_cap, (1.0 - kCurvatureShare) * margin * accel_max / first);
+      }
+      if (second > 0.0) {
+        cap_actuator = std::min(cap_actuator, std::sqrt(kCurvatureShare * margin * accel_max / second));
+        cap_actuator = std::min(cap_actuator, std::sqrt(8.0 * settings.chord_tolerance_mm / second) / h);
+      }
+    }
+    if (cap_actuator < cap && i + 1 < n) actuator_limited_length += samples.s[i + 1] - samples.s[i];
+    cap = std::min(cap, cap_actuator);
+    samples.speed_cap[i] = stop[i] ? 0.0 : cap;
+    samples.accel_cap[i] = accel_cap;
+  }
+  const double total = path.length();
+  result.statistics.actuator_limited_fraction = total > 0 ? actuator_limited_length / total : 0.0;
+  return result;
+}
+
+}  // namespace pkm::planning

@@ -1,0 +1,175 @@
+#include "planning/plan_output.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "core/rotation.hpp"
+#include "core/units.hpp"
+
+namespace pkm::planning {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A buffered file written under a temporary name and renamed into place by commit().
+class StagedFile {
+ public:
+  StagedFile(fs::path final_path) : final_(std::move(final_path)), temporary_(final_) {
+    temporary_ += ".partial";
+    file_ = std::fopen(temporary_.c_str(), "wb");
+    buffer_.reserve(1 << 20);
+  }
+  ~StagedFile() {
+    if (file_) std::fclose(file_);
+    if (!committed_) {
+      std::error_code ignored;
+      fs::remove(temporary_, ignored);
+    }
+  }
+  StagedFile(const StagedFile&) = delete;
+  StagedFile& operator=(const StagedFile&) = delete;
+  bool is_open() const { return file_ != nullptr; }
+  fmt::memory_buffer& buffer() { return buffer_; }
+  void flush_if_large() {
+    if (buffer_.size() > (1u << 20)) flush();
+  }
+  bool commit() {
+    flush();
+    const bool written = std::fclose(file_) == 0 && !failed_;
+    file_ = nullptr;
+    if (!written) return false;
+    std::error_code error;
+    fs::rename(temporary_, final_, error);
+    committed_ = !error;
+    return committed_;
+  }
+  const fs::path& path() const { return final_; }
+
+ private:
+  void flush() {
+    if (buffer_.size() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
+      failed_ = true;
+    buffer_.clear();
+  }
+  fs::path final_, temporary_;
+  std::FILE* file_ = nullptr;
+  fmt::memory_buffer buffer_;
+  bool failed_ = false, committed_ = false;
+};
+
+Error io_error(const fs::path& path) {
+  return Error{ErrorCode::io, fmt::format("cannot write {}", path.string())};
+}
+
+}  // namespace
+
+nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, const RunSummary& run) {
+  const bool angular = machine.mechanism->actuators_are_angles();
+  const double scale = angular ? deg_from_rad(1.0) : 1.0;
+  const int n = machine.mechanism->actuator_count();
+  nlohmann::json actuators = nlohmann::json::array();
+  for (int j = 0; j < n; ++j) {
+    actuators.push_back({{"max_speed", run.max_speed[j] * scale},
+                         {"max_accel", run.max_accel[j] * scale},
+                         {"min_position", run.min_position[j] * scale},
+                         {"max_position", run.max_position[j] * scale},
+                         {"reversals", run.reversals[j]}});
+  }
+  const std::string unit = angular ? "deg" : "mm";
+  nlohmann::json limits = nlohmann::json::object();
+  if (machine.limits.speed) limits["actuator_speed"] = *machine.limits.speed * scale;
+  if (machine.limits.accel) limits["actuator_accel"] = *machine.limits.accel * scale;
+  if (machine.limits.min) limits["actuator_min"] = *machine.limits.min * scale;
+  if (machine.limits.max) limits["actuator_max"] = *machine.limits.max * scale;
+  const PlanStatistics& st = plan.statistics;
+  return {
+      {"program", plan.program_source},
+      {"machine", machine.source},
+      {"duration_s", run.duration_s},
+      {"ticks", run.ticks},
+      {"rate_hz", run.rate_hz},
+      {"override_pct", run.override_pct},
+      {"blocks", st.blocks},
+      {"segments", st.segments},
+      {"blends", st.blends},
+      {"path_length_mm", st.length_mm},
+      {"actuator_unit", unit},
+      {"max_actuator_speed_" + unit + "_s", run.max_actuator_speed * scale},
+      {"max_actuator_accel_" + unit + "_s2", run.max_actuator_accel * scale},
+      {"max_actuator_speed_line", run.max_speed_line},
+      {"max_actuator_accel_line", run.max_accel_line},
+      {"max_path_error_mm", run.max_path_error_mm},
+      {"max_path_error_line", run.max_path_error_line},
+      {"max_orientation_error_deg", run.max_orientation_error_deg},
+      {"max_path_speed_mm_s", run.max_path_speed},
+      {"max_feed_ratio", run.max_feed_ratio},
+      {"max_path_accel_mm_s2", run.max_path_accel},
+      {"max_path_jerk_mm_s3", run.max_path_jerk},
+      {"jerk_filter_s", st.filter_time_s},
+      {"max_condition_number", st.max_condition_number},
+      {"actuator_limited_fraction", st.actuator_limited_fraction},
+      {"planning_samples", st.samples},
+      {"limits", limits},
+      {"actuators", actuators},
+  };
+}
+
+Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
+                                      const std::string& directory, const OutputOptions& options) {
+  const fs::path dir(directory);
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error)
+    return Error{ErrorCode::io, fmt::format("cannot create directory {}: {}", directory, error.message())};
+  StagedFile actuators_csv(dir / "actuators.csv"), path_csv(dir / "path.csv"),
+      summary_file(dir / "summary.json");
+  for (StagedFile* f : {&actuators_csv, &path_csv, &summary_file}) {
+    if (!f->is_open()) return io_error(f->path());
+  }
+  const Mechanism& mechanism = *machine.mechanism;
+  const int n = mechanism.actuator_count();
+  const bool angular = mechanism.actuators_are_angles();
+  const double scale = angular ? deg_from_rad(1.0) : 1.0;
+  auto& a = actuators_csv.buffer();
+  fmt::format_to(std::back_inserter(a), "time_s");
+  for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(a), ",q{}_{}", j, angular ? "deg" : "mm");
+  a.push_back('\n');
+  fmt::format_to(std::back_inserter(path_csv.buffer()),
+                 "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s\n");
+
+  ServoStream stream(plan, machine);
+  RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
+  const long total = stream.tick_count();
+  const long report_every = std::max(1L, total / 200);
+  ServoTick tick;
+  while (stream.next(tick)) {
+    monitor.add(tick);
+    fmt::format_to(std::back_inserter(a), "{:.6f}", tick.time_s);
+    for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(a), ",{:.6f}", tick.actuators[j] * scale);
+    a.push_back('\n');
+    const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
+    const Eigen::Vector3d abc =
+        angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
+    fmt::format_to(std::back_inserter(path_csv.buffer()),
+                   "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", tick.time_s,
+                   tick.line, tick.s, p.x(), p.y(), p.z(), abc.x(), abc.y(), abc.z(), tick.path_speed);
+    actuators_csv.flush_if_large();
+    path_csv.flush_if_large();
+    if (options.progress && tick.index % report_every == 0)
+      options.progress(static_cast<double>(tick.index) / total);
+  }
+  if (stream.error()) return *stream.error();
+  if (options.progress) options.progress(1.0);
+  const RunSummary& run = monitor.summary();
+  fmt::format_to(std::back_inserter(summary_file.buffer()), "{}\n", summary_json(plan, machine, run).dump(2));
+  for (StagedFile* f : {&actuators_csv, &path_csv, &summary_file}) {
+    if (!f->commit()) return io_error(f->path());
+  }
+  return run;
+}
+
+}  // namespace pkm::planning

@@ -1,0 +1,31 @@
+#pragma once
+// Writing a planned run: DIR/actuators.csv (time and every actuator position per servo tick), DIR/path.csv
+// (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json.
+// Files are written to temporaries in DIR and renamed only when the whole run succeeded, so a failed run
+// leaves no half-written output.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/result.hpp"
+#include "machine/machine.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/run_monitor.hpp"
+
+namespace pkm::planning {
+
+struct OutputOptions {
+  double override_pct = 100.0;
+  bool evaluate_path_error = true;
+  /// Called now and then with the fraction done (0…1), e.g. to draw a progress bar.
+  std::function<void(double)> progress;
+};
+
+/// Streams the plan at the servo rate into the three files. Returns the measured summary.
+Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
+                                      const std::string& directory, const OutputOptions& options);
+
+/// The summary as JSON (units in the key names).
+nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, const RunSummary& run);
+
+}  // namespace pkm::planning

@@ -1,0 +1,101 @@
+#include "planning/run_monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/units.hpp"
+#include "planning/path_sampling.hpp"
+
+namespace pkm::planning {
+
+RunMonitor::RunMonitor(const MotionPlan& plan, const Machine& machine, double override_pct,
+                       bool evaluate_path_error)
+    : plan_(plan),
+      machine_(machine),
+      override_factor_(override_pct / 100.0),
+      evaluate_error_(evaluate_path_error) {
+  summary_.rate_hz = 1.0 / plan.period_s;
+  summary_.override_pct = override_pct;
+  summary_.min_position.fill(std::numeric_limits<double>::infinity());
+  summary_.max_position.fill(-std::numeric_limits<double>::infinity());
+  fk_guess_ = machine.mechanism->home();
+}
+
+void RunMonitor::add(const ServoTick& tick) {
+  const double h = plan_.period_s;
+  const int n = static_cast<int>(tick.actuators.size());
+  for (int j = 0; j < n; ++j) {
+    summary_.min_position[j] = std::min(summary_.min_position[j], tick.actuators[j]);
+    summary_.max_position[j] = std::max(summary_.max_position[j], tick.actuators[j]);
+  }
+  if (count_ > 0) {
+    const ActuatorVector velocity = (tick.actuators - previous_.actuators) / h;
+    for (int j = 0; j < n; ++j) {
+      const double speed = std::abs(velocity[j]);
+      if (speed > summary_.max_speed[j]) summary_.max_speed[j] = speed;
+      if (speed > summary_.max_actuator_speed)
+        summary_.max_actuator_speed = speed, summary_.max_speed_line = tick.line;
+      const int direction = velocity[j] > 1e-9 ? 1 : velocity[j] < -1e-9 ? -1 : 0;
+      if (direction != 0) {
+        if (direction_[j] != 0 && direction != direction_[j]) ++summary_.reversals[j];
+        direction_[j] = direction;
+      }
+      if (count_ > 1) {
+        const double accel = std::abs(velocity[j] - previous_velocity_[j]) / h;
+        if (accel > summary_.max_accel[j]) summary_.max_accel[j] = accel;
+        if (accel > summary_.max_actuator_accel)
+          summary_.max_actuator_accel = accel, summary_.max_accel_line = tick.line;
+      }
+    }
+    previous_velocity_ = velocity;
+    // Path speed against the feed of the segment the tick is on (and the one it came from).
+    summary_.max_path_speed = std::max(summary_.max_path_speed, tick.path_speed);
+    double cap = segment_speed_cap(plan_.path.segments[tick.segment], machine_.motion, override_factor_);
+    if (previous_.segment != tick.segment) {
+      cap = std::max(
+          cap, segment_speed_cap(plan_.path.segments[previous_.segment], machine_.motion, override_factor_));
+    }
+    if (cap > 0.0) summary_.max_feed_ratio = std::max(summary_.max_feed_ratio, tick.path_speed / cap);
+    const double path_accel = (tick.path_speed - previous_path_speed_) / h;
+    summary_.max_path_accel = std::max(summary_.max_path_accel, std::abs(path_accel));
+    if (count_ > 1)
+      summary_.max_path_jerk =
+          std::max(summary_.max_path_jerk, std::abs(path_accel - previous_path_accel_) / h);
+    previous_path_accel_ = path_accel;
+    previous_path_speed_ = tick.path_speed;
+
+    if (evaluate_error_) {
+      // The drives move linearly between setpoints: the largest deviation is near mid-period.
+      const ActuatorVector middle = 0.5 * (tick.actuators + previous_.actuators);
+      auto fk = machine_.mechanism->forward(middle, fk_guess_);
+      if (fk) {
+        fk_guess_ = fk->pose;
+        int hint = previous_.segment;
+        const double s_mid = 0.5 * (tick.s + previous_.s);
+        const path::PathPoint on_path = plan_.path.evaluate(s_mid, hint);
+        Eigen::Vector3d error = fk->pose.position_mm - on_path.position_mm;
+        const Eigen::Vector3d chord = tick.pose.position_mm - previous_.pose.position_mm;
+        if (chord.norm() > 1e-12) {  // perpendicular part: lag along the path is not a contour error
+          const Eigen::Vector3d t = chord.normalized();
+          error -= error.dot(t) * t;
+        }
+        if (error.norm() > summary_.max_path_error_mm) {
+          summary_.max_path_error_mm = error.norm();
+          summary_.max_path_error_line = tick.line;
+        }
+        const double angle = Eigen::Quaterniond(fk->pose.rotation).angularDistance(on_path.rotation);
+        summary_.max_orientation_error_deg =
+            std::max(summary_.max_orientation_error_deg, deg_from_rad(angle));
+      } else {
+        ++summary_.fk_failures;
+      }
+    }
+  }
+  previous_ = tick;
+  ++count_;
+  summary_.ticks = count_;
+  summary_.duration_s = tick.time_s;
+  summary_.end_pose = tick.pose;
+}
+
+}  // namespace pkm::planning

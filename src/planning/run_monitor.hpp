@@ -1,0 +1,59 @@
+#pragma once
+// What the planned motion asks of the machine, measured on the servo-rate ticks themselves (not on the plan):
+// actuator speeds and accelerations by finite differences at the servo rate, the path speed against the
+// programmed feed, direction reversals of each actuator, and the path error: the distance of
+// FK(actuators) from the programmed path, evaluated at mid-period, where the drives' straight-line motion
+// between two setpoints deviates most from the curved actuator law (spec ch5 §5.3, E13).
+#include <array>
+#include <optional>
+
+#include "machine/machine.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/servo_stream.hpp"
+
+namespace pkm::planning {
+
+struct RunSummary {
+  double duration_s = 0.0;
+  long ticks = 0;
+  double rate_hz = 0.0;
+  double override_pct = 100.0;
+  std::array<double, kMaxActuators> max_speed{};  ///< per actuator, unit/s (rad/s for angular actuators)
+  std::array<double, kMaxActuators> max_accel{};
+  std::array<int, kMaxActuators> reversals{};  ///< changes of direction of motion
+  std::array<double, kMaxActuators> min_position{}, max_position{};
+  double max_actuator_speed = 0.0;
+  double max_actuator_accel = 0.0;
+  int max_speed_line = 0, max_accel_line = 0;
+  double max_path_error_mm = 0.0;  ///< perpendicular distance of the tool from the path
+  int max_path_error_line = 0;
+  double max_orientation_error_deg = 0.0;
+  double max_path_speed = 0.0;  ///< path units per second
+  double max_feed_ratio = 0.0;  ///< path speed / (programmed feed × override, capped by the machine), ≤ 1
+  double max_path_accel = 0.0;  ///< path units per second², from the ticks
+  double max_path_jerk = 0.0;
+  Pose end_pose;
+  int fk_failures = 0;
+};
+
+class RunMonitor {
+ public:
+  RunMonitor(const MotionPlan& plan, const Machine& machine, double override_pct, bool evaluate_path_error);
+  void add(const ServoTick& tick);
+  const RunSummary& summary() const { return summary_; }
+
+ private:
+  const MotionPlan& plan_;
+  const Machine& machine_;
+  double override_factor_;
+  bool evaluate_error_;
+  RunSummary summary_;
+  long count_ = 0;
+  ServoTick previous_;
+  ActuatorVector previous_velocity_;
+  std::array<int, kMaxActuators> direction_{};
+  double previous_path_speed_ = 0.0, previous_path_accel_ = 0.0;
+  Pose fk_guess_;
+};
+
+}  // namespace pkm::planning

@@ -1,0 +1,60 @@
+#include "planning/servo_stream.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "planning/path_sampling.hpp"
+
+namespace pkm::planning {
+
+ServoStream::ServoStream(const MotionPlan& plan, const Machine& machine)
+    : plan_(plan),
+      machine_(machine),
+      cursor_(plan.samples, plan.timed),
+      ring_(static_cast<std::size_t>(plan.filter_ticks), 0.0) {
+  last_tick_ = std::lround(plan.duration_s / plan.period_s);
+}
+
+bool ServoStream::next(ServoTick& tick) {
+  if (k_ > last_tick_ || error_) return false;
+  const int n = plan_.filter_ticks;
+  const double t = static_cast<double>(k_) * plan_.period_s;
+  const double raw = cursor_.position_at(t);
+  const std::size_t slot = static_cast<std::size_t>(k_ % n);
+  sum_ += raw - ring_[slot];
+  ring_[slot] = raw;
+  if (slot == static_cast<std::size_t>(n - 1)) {  // re-add now and then so rounding cannot drift
+    sum_ = 0.0;
+    for (double v : ring_) sum_ += v;
+  }
+  // The last tick is where every value in the window is the end: exactly the end of the path.
+  double s = k_ == last_tick_ ? plan_.path.length() : sum_ / n;
+  s = std::max(s, previous_s_);  // monotone even under rounding
+  const path::PathPoint point = plan_.path.evaluate(s, hint_);
+  tick.index = k_;
+  tick.time_s = t;
+  tick.path_speed = k_ == 0 ? 0.0 : (s - previous_s_) / plan_.period_s;
+  tick.s = s;
+  tick.segment = hint_;
+  tick.line = plan_.path.segments.empty() ? 0 : plan_.path.segments[hint_].line;
+  tick.pose = Pose{point.position_mm, point.rotation.toRotationMatrix()};
+  auto ik = machine_.mechanism->inverse(tick.pose);
+  if (!ik) {
+    error_ = Error{ErrorCode::unreachable,
+                   fmt::format("{}:{}: the path leaves the workspace at {}: {}", plan_.program_source,
+                               tick.line, program_pose_text(machine_, tick.pose), ik.error().message)};
+    return false;
+  }
+  tick.actuators = *ik;
+  if (Status status = check_actuator_range(machine_, tick.actuators); !status) {
+    error_ = Error{status.error().code,
+                   fmt::format("{}:{}: {}", plan_.program_source, tick.line, status.error().message)};
+    return false;
+  }
+  previous_s_ = s;
+  ++k_;
+  return true;
+}
+
+}  // namespace pkm::planning

@@ -1,0 +1,56 @@
+#pragma once
+// The planned motion at the servo rate: one tick every period h, giving the commanded pose on the path and
+// the actuator positions from inverse kinematics.
+//
+// Jerk limiting: the unfiltered path parameter s(t) of the speed profile (constant acceleration between
+// planning samples) passes through a moving average over the last N ticks,
+//   s_f[k] = (1/N) Σ_{m=0}^{N−1} s[k − m],   T = N·h = 2·a_max / j_max,
+// the classic FIR acceleration/deceleration of CNC interpolators, applied here to the path parameter before
+// the coordinate transform (textbook §2.1.3, [DERIVED]) so the tool never leaves the path. The filtered speed
+// is an average of speeds (≤ the largest), its acceleration (v[k] − v[k−N])/T is within a_max, and its jerk
+// within 2·a_max/T = j_max: an S-curve. At stops the profile rests for T, so the filtered motion arrives at
+// rest.
+//
+// Per tick: no allocation (the ring buffer is sized once).
+#include <vector>
+
+#include "core/result.hpp"
+#include "machine/machine.hpp"
+#include "planning/motion_plan.hpp"
+
+namespace pkm::planning {
+
+struct ServoTick {
+  long index = 0;
+  double time_s = 0.0;
+  double s = 0.0;           ///< path parameter
+  double path_speed = 0.0;  ///< ds/dt over the last period (path units per second)
+  int segment = 0;
+  int line = 0;  ///< source line of the program
+  Pose pose;     ///< commanded pose (controlled point, base frame)
+  ActuatorVector actuators;
+};
+
+class ServoStream {
+ public:
+  ServoStream(const MotionPlan& plan, const Machine& machine);
+  /// The next tick; false after the last. A failing inverse kinematics (which the planning grid should have
+  /// caught) ends the stream with error().
+  bool next(ServoTick& tick);
+  long tick_count() const { return last_tick_ + 1; }
+  const std::optional<Error>& error() const { return error_; }
+
+ private:
+  const MotionPlan& plan_;
+  const Machine& machine_;
+  ProfileCursor cursor_;
+  std::vector<double> ring_;
+  double sum_ = 0.0;
+  long k_ = 0;
+  long last_tick_ = 0;
+  int hint_ = 0;
+  double previous_s_ = 0.0;
+  std::optional<Error> error_;
+};
+
+}  // namespace pkm::planning
