@@ -3,13 +3,14 @@
 #              (servo-rate actuator motion in build/run/: actuators.csv, path.csv, summary.json)
 #   make test  installs what is missing, builds and runs the whole test suite
 # Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck),
+# make conformance (the G-code golden files against LinuxCNC's rs274),
 # make bench, make format, make tidy.
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
 PROGRAM ?= examples/programs/pocket.ngc
 
-.PHONY: deps configure build run test sanitize lint bench format tidy clean
+.PHONY: deps configure build run test sanitize lint conformance bench format tidy clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -37,6 +38,11 @@ lint: deps
 	@cppcheck --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
 		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps
 	@echo "lint: clean"
+
+# The G-code conformance golden files must be what LinuxCNC's rs274 answers today (installs linuxcnc-uspace).
+conformance:
+	@bash scripts/install-deps.sh --with-linuxcnc
+	@bash scripts/regen-rs274-golden.sh --check
 
 bench: build
 	@for b in $(BUILD)/bench/*; do $$b --benchmark_min_time=0.2; done

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs pkm's build and test dependencies from Debian packages (idempotent).
 # Runs apt-get only for packages that are missing; uses sudo when not root.
+#   --with-linuxcnc  also LinuxCNC's standalone G-code interpreter rs274 (package linuxcnc-uspace), the peer the
+#                    conformance suite is checked against (scripts/regen-rs274-golden.sh)
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
@@ -8,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format cppcheck
 )
+if [ "${1:-}" = "--with-linuxcnc" ]; then packages+=(linuxcnc-uspace); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

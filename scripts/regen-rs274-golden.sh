@@ -9,18 +9,29 @@
 #   -b          block delete ON (rs274's default is OFF; pkm's InterpretOptions::block_delete is true)
 #   -t tools.tbl  the suite's tool table (rs274 reads it in inches; the test gives pkm the same table in mm)
 # Fails if rs274 is missing or if any program does not run to its end (an rs274 error).
+# With --check, writes nothing: runs rs274 into a temporary directory and fails if any output differs from the
+# committed golden file (CI runs this, so the golden files are always LinuxCNC's current answers).
 set -euo pipefail
 cd "$(dirname "$0")/../tests/program/conformance"
+check=0
+if [ "${1:-}" = "--check" ]; then check=1; fi
+out_dir=.
+if [ $check -eq 1 ]; then out_dir=$(mktemp -d); trap 'rm -rf "$out_dir"' EXIT; fi
 RS274=${RS274:-rs274}
 command -v "$RS274" > /dev/null || { echo "regen-rs274-golden: $RS274 not found (apt-get install linuxcnc-uspace)" >&2; exit 1; }
 status=0
 count=0
 for program in [0-9][0-9]_*.ngc; do
-  golden="${program%.ngc}.rs274"
+  golden="$out_dir/${program%.ngc}.rs274"
   "$RS274" -g -b -t tools.tbl "$program" < /dev/null > "$golden" 2>&1 || true
   if ! grep -qE 'PROGRAM_END\(\)|FINISH\(\)' "$golden"; then
     echo "regen-rs274-golden: $program did not run to its end under rs274:" >&2
     tail -n 3 "$golden" >&2
+    status=1
+  fi
+  if [ $check -eq 1 ] && ! diff -q "$golden" "${program%.ngc}.rs274" > /dev/null; then
+    echo "regen-rs274-golden: rs274's output for $program differs from the golden file:" >&2
+    diff "${program%.ngc}.rs274" "$golden" | head -n 10 >&2
     status=1
   fi
   count=$((count + 1))

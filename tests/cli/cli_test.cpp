@@ -10,21 +10,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli/cli_support.hpp"
+
 namespace {
 
-struct CliRun {
-  int exit_code;
-  std::string out;  // stdout and stderr together
-};
+using pkm::test::CliRun;
 
 CliRun run(const std::string& args) {
-  const std::string command = std::string(PKM_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return pkm::test::run_pkm(args);
 }
 
 std::string example(const std::string& name) {
@@ -32,9 +25,7 @@ std::string example(const std::string& name) {
 }
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("pkm_cli_test_" + name);
-  std::ofstream(path) << text;
-  return path.string();
+  return pkm::test::write_temp_file(name, text);
 }
 
 const char* kCh5 = "hexapod_ch5.yaml";

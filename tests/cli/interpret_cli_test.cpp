@@ -9,27 +9,18 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli/cli_support.hpp"
+
 namespace {
 
-struct CliRun {
-  int exit_code;
-  std::string out;  // stdout, and stderr when asked
-};
+using pkm::test::CliRun;
 
 CliRun run(const std::string& args, bool with_stderr = true) {
-  const std::string command = std::string(PKM_BINARY) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return pkm::test::run_pkm(args, with_stderr);
 }
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("pkm_interpret_cli_" + name);
-  std::ofstream(path) << text;
-  return path.string();
+  return pkm::test::write_temp_file("interpret_" + name, text);
 }
 
 TEST(InterpretCli, JsonListsEveryMoveWithItsFields) {

@@ -58,11 +58,12 @@ TEST(PlanCli, WritesActuatorsPathAndSummary) {
 
 TEST(PlanCli, ALimitViolationNamesTheLineAndWritesNothing) {
   const std::string out = fresh_dir("violation");
-  const std::string program = test::write_temp_file("climb.ngc", "G21 G90\nG0 X0 Y0 Z0\nG1 Z500 F600\nM2\n");
+  const std::string program =
+      test::write_temp_file("plan_climb.ngc", "G21 G90\nG0 X0 Y0 Z0\nG1 Z500 F600\nM2\n");
   const auto run = test::run_pkm("plan " + program + " --machine " +
                                  test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out);
   EXPECT_EQ(run.exit_code, 3) << run.out;
-  EXPECT_NE(run.out.find("climb.ngc:3:"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("plan_climb.ngc:3:"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("actuator_max"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(fs::path(out) / "actuators.csv"));
   EXPECT_FALSE(fs::exists(fs::path(out) / "summary.json"));
@@ -70,11 +71,11 @@ TEST(PlanCli, ALimitViolationNamesTheLineAndWritesNothing) {
 
 TEST(PlanCli, BadProgramAndBadOptionsExitWithTwo) {
   const std::string out = fresh_dir("bad");
-  const std::string program = test::write_temp_file("bad.ngc", "G1 X1 F100\nG2 X5\n");
+  const std::string program = test::write_temp_file("plan_bad.ngc", "G1 X1 F100\nG2 X5\n");
   const auto run = test::run_pkm("plan " + program + " --machine " +
                                  test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out);
   EXPECT_EQ(run.exit_code, 2) << run.out;
-  EXPECT_NE(run.out.find("bad.ngc:2"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("plan_bad.ngc:2"), std::string::npos) << run.out;
   const auto override_run =
       test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
                     test::source_path("examples/machines/hexapod_ch5.yaml") + " --override 250 --out " + out);
