@@ -74,6 +74,11 @@ void RunMonitor::add(const ServoTick& tick) {
         const double s_mid = 0.5 * (tick.s + previous_.s);
         const path::PathPoint on_path = plan_.path.evaluate(s_mid, hint);
         Eigen::Vector3d error = fk->pose.position_mm - on_path.position_mm;
+        // Reduced-DOF mechanisms: the coordinates they do not control follow, and are no error.
+        const AxisMask axes = machine_.mechanism->controlled_axes();
+        for (int c = 0; c < 3; ++c) {
+          if (!axes.controlled[c]) error[c] = 0.0;
+        }
         const Eigen::Vector3d chord = tick.pose.position_mm - previous_.pose.position_mm;
         if (chord.norm() > 1e-12) {  // perpendicular part: lag along the path is not a contour error
           const Eigen::Vector3d t = chord.normalized();
@@ -83,9 +88,11 @@ void RunMonitor::add(const ServoTick& tick) {
           summary_.max_path_error_mm = error.norm();
           summary_.max_path_error_line = tick.line;
         }
-        const double angle = Eigen::Quaterniond(fk->pose.rotation).angularDistance(on_path.rotation);
-        summary_.max_orientation_error_deg =
-            std::max(summary_.max_orientation_error_deg, deg_from_rad(angle));
+        if (axes.controlled[5] && axes.controlled[3] == axes.controlled[4]) {  // all angles, or planar φ
+          const double angle = Eigen::Quaterniond(fk->pose.rotation).angularDistance(on_path.rotation);
+          summary_.max_orientation_error_deg =
+              std::max(summary_.max_orientation_error_deg, deg_from_rad(angle));
+        }
       } else {
         ++summary_.fk_failures;
       }

@@ -27,7 +27,8 @@ struct RunSummary {
   int max_speed_line = 0, max_accel_line = 0;
   double max_path_error_mm = 0.0;  ///< perpendicular distance of the tool from the path
   int max_path_error_line = 0;
-  double max_orientation_error_deg = 0.0;
+  double max_orientation_error_deg =
+      0.0;                      ///< when the mechanism controls the orientation (all angles, or planar φ)
   double max_path_speed = 0.0;  ///< path units per second
   double max_feed_ratio = 0.0;  ///< path speed / (programmed feed × override, capped by the machine), ≤ 1
   double max_path_accel = 0.0;  ///< path units per second², from the ticks

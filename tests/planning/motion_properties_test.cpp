@@ -76,6 +76,41 @@ TEST(PlanProperties, RandomProgramsStayWithinEveryLimit) {
   }
 }
 
+class PlanOtherMechanisms : public testing::TestWithParam<const char*> {};
+
+TEST_P(PlanOtherMechanisms, PlanWithinTheirOwnLimits) {
+  const Machine machine = test::machine_from_example(std::string("examples/machines/") + GetParam());
+  const std::string text =
+      "G21 G90 G17\nG0 X0 Y0 Z0\nG1 X10 Y5 Z-3 F1200\nG2 X10 Y-5 I0 J-5\nG1 X-10 A2 B-2\n"
+      "G3 X-10 Y5 I0 J5 F2000\nG1 X0 Y0 Z0 A0 B0\nM2\n";
+  const auto program = test::gcode_for(machine, text, GetParam());
+  const auto plan = test::plan_or_fail(machine, program);
+  const auto run = test::run_plan(machine, plan);
+  test::expect_motion_invariants(machine, plan, run, GetParam());
+  EXPECT_EQ(run.summary.fk_failures, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, PlanOtherMechanisms,
+                         testing::Values("tricept.yaml", "tripod.yaml", "hexaglide.yaml", "rotopod.yaml",
+                                         "hexapod_refined.yaml"));
+
+TEST(PlanProperties, APlanarMachineTakesCAsItsPlatformAngle) {
+  Machine machine = test::machine_from_example("examples/machines/planar3.yaml");
+  machine.limits.speed = 100.0;
+  machine.limits.accel = 1000.0;
+  const auto program = test::gcode_for(machine, "G0 X40 Y0 C15\nG2 X40 Y0 I-40 J0 C20 F600\nM2\n", "planar.ngc");
+  const auto plan = test::plan_or_fail(machine, program);
+  const auto run = test::run_plan(machine, plan);
+  test::expect_motion_invariants(machine, plan, run, "planar3");
+  const Pose& end = run.ticks.back().pose;
+  EXPECT_NEAR(std::atan2(end.rotation(1, 0), end.rotation(0, 0)), 20.0 * M_PI / 180.0, 1e-12);
+  EXPECT_NEAR(end.position_mm.x(), 40.0, 1e-9);
+  const auto tilted = test::gcode_for(machine, "G1 X10 A5 F600\n", "tilted.ngc");
+  auto refused = planning::plan_motion(machine, tilted, {});
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("tilted.ngc:1:"), std::string::npos) << refused.error().message;
+}
+
 TEST(PlanProperties, CornerBlendsStayWithinTheTolerance) {
   const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   std::mt19937_64 rng(99);
