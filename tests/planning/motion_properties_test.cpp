@@ -98,7 +98,8 @@ TEST(PlanProperties, APlanarMachineTakesCAsItsPlatformAngle) {
   Machine machine = test::machine_from_example("examples/machines/planar3.yaml");
   machine.limits.speed = 100.0;
   machine.limits.accel = 1000.0;
-  const auto program = test::gcode_for(machine, "G0 X40 Y0 C15\nG2 X40 Y0 I-40 J0 C20 F600\nM2\n", "planar.ngc");
+  const auto program =
+      test::gcode_for(machine, "G0 X40 Y0 C15\nG2 X40 Y0 I-40 J0 C20 F600\nM2\n", "planar.ngc");
   const auto plan = test::plan_or_fail(machine, program);
   const auto run = test::run_plan(machine, plan);
   test::expect_motion_invariants(machine, plan, run, "planar3");
