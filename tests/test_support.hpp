@@ -28,6 +28,28 @@ inline Machine machine_from_example(const std::string& relative_path) {
   return std::move(machine.value());
 }
 
+/// The ch5 test hexapod's geometry (spec ch5 §1.3) without its `type:` line, tool frame 150 mm above the
+/// platform-joint plane, home at z = 700 mm; and the whole machine file of the ideal hexapod.
+inline const char* kCh5HexapodGeometry = R"(angles: krylov
+base_joints:
+  - [400.0, 0.0, 0.0]
+  - [200.0, 346.41016151377545, 0.0]
+  - [-200.0, 346.41016151377545, 0.0]
+  - [-400.0, 0.0, 0.0]
+  - [-200.0, -346.41016151377545, 0.0]
+  - [200.0, -346.41016151377545, 0.0]
+platform_joints:
+  - [173.20508075688772, 100, 0]
+  - [173.20508075688772, 100, 0]
+  - [-173.20508075688772, 100, 0]
+  - [-173.20508075688772, 100, 0]
+  - [0, -200, 0]
+  - [0, -200, 0]
+tool: [0, 0, 150]
+home: [0, 0, 700, 0, 0, 0]
+)";
+inline const std::string kCh5HexapodText = std::string("type: hexapod\n") + kCh5HexapodGeometry;
+
 /// Uniform in [lo, hi].
 inline double uniform(std::mt19937_64& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);

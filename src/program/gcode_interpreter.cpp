@@ -11,6 +11,7 @@
 #include "program/gcode_block.hpp"
 #include "program/gcode_lexer.hpp"
 #include "program/part_program.hpp"
+#include "program/text_lines.hpp"
 #include "program/tool_table.hpp"
 
 namespace pkm::program {
@@ -99,13 +100,9 @@ class Interpreter {
     Block block;
     bool seen_block = false;
     int line_number = 0;
-    std::size_t begin = 0;
-    while (begin < text.size()) {
-      std::size_t end = text.find('\n', begin);
-      if (end == std::string_view::npos) end = text.size();
-      const std::string_view line = text.substr(begin, end - begin);
-      begin = end + 1;
-      ++line_number;
+    std::string_view line;
+    TextLines lines(text);
+    while (lines.next(line, line_number)) {
       if (options_.block_delete && starts_with_slash(line)) continue;
       const LineRef where{source_, line_number};
       if (auto lexing = gcode::lex_line(line, where, lexed); !lexing) return lexing.error();

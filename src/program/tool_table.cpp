@@ -6,6 +6,7 @@
 
 #include "program/gcode_lexer.hpp"
 #include "program/text_file.hpp"
+#include "program/text_lines.hpp"
 
 namespace pkm::program {
 
@@ -28,13 +29,9 @@ Result<ToolTable> parse_tool_table(std::string_view text, const std::string& sou
   std::vector<ToolEntry> entries;
   gcode::LexedLine lexed;
   int line_number = 0;
-  std::size_t begin = 0;
-  while (begin < text.size()) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(begin, end - begin);
-    begin = end + 1;
-    ++line_number;
+  std::string_view line;
+  TextLines lines(text);
+  while (lines.next(line, line_number)) {
     const gcode::LineRef where{source_name, line_number};
     if (auto lexing = gcode::lex_line(line, where, lexed); !lexing) return lexing.error();
     if (lexed.block_delete || lexed.percent) return gcode::error_at(where, 1, "not a tool table line");

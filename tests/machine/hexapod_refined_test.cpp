@@ -16,25 +16,7 @@
 namespace pkm {
 namespace {
 
-// The ch5 test hexapod (spec ch5 §1.3), tool frame 150 mm above the platform-joint plane.
-constexpr const char* kCh5Geometry = R"(angles: krylov
-base_joints:
-  - [400.0, 0.0, 0.0]
-  - [200.0, 346.41016151377545, 0.0]
-  - [-200.0, 346.41016151377545, 0.0]
-  - [-400.0, 0.0, 0.0]
-  - [-200.0, -346.41016151377545, 0.0]
-  - [200.0, -346.41016151377545, 0.0]
-platform_joints:
-  - [173.20508075688772, 100, 0]
-  - [173.20508075688772, 100, 0]
-  - [-173.20508075688772, 100, 0]
-  - [-173.20508075688772, 100, 0]
-  - [0, -200, 0]
-  - [0, -200, 0]
-tool: [0, 0, 150]
-home: [0, 0, 700, 0, 0, 0]
-)";
+using test::kCh5HexapodGeometry;
 
 Pose krylov_pose(double x, double y, double z, double psi_deg, double theta_deg, double gamma_deg) {
   PoseVector c;
@@ -85,9 +67,9 @@ HexapodRefined random_refined(std::mt19937_64& rng) {
 }
 
 TEST(HexapodRefined, IdealDefaultsGiveExactlyTheIdealHexapodLengths) {
-  const Machine ideal = test::machine_from_text(std::string("type: hexapod\n") + kCh5Geometry);
-  const Machine refined = test::machine_from_text(std::string("type: hexapod_refined\n") + kCh5Geometry +
-                                                  "cardan: [{}, {}, {}, {}, {}, {}]\n");
+  const Machine ideal = test::machine_from_text(std::string("type: hexapod\n") + kCh5HexapodGeometry);
+  const Machine refined = test::machine_from_text(std::string("type: hexapod_refined\n") +
+                                                  kCh5HexapodGeometry + "cardan: [{}, {}, {}, {}, {}, {}]\n");
   std::mt19937_64 rng(1);
   for (int i = 0; i < 1000; ++i) {
     const Pose pose = random_pose(rng, refined.mechanism->home(), 80, 10);
@@ -107,7 +89,7 @@ TEST(HexapodRefined, IdealDefaultsGiveExactlyTheIdealHexapodLengths) {
 TEST(HexapodRefined, AxisTiltsAloneKeepTheIdealLengths) {
   // With every offset zero the strut axis passes through A on both joint axes: |B − A| = L whatever the axes.
   std::mt19937_64 rng(2);
-  const Machine ideal = test::machine_from_text(std::string("type: hexapod\n") + kCh5Geometry);
+  const Machine ideal = test::machine_from_text(std::string("type: hexapod\n") + kCh5HexapodGeometry);
   const auto& hexapod = dynamic_cast<const Hexapod&>(*ideal.mechanism);
   std::array<CardanJoint, 6> joints;
   for (auto& joint : joints) {
@@ -124,7 +106,7 @@ TEST(HexapodRefined, AxisTiltsAloneKeepTheIdealLengths) {
 }
 
 TEST(HexapodRefined, SmallJointErrorsChangeLengthsByTheirOwnOrder) {
-  const Machine ideal = test::machine_from_text(std::string("type: hexapod\n") + kCh5Geometry);
+  const Machine ideal = test::machine_from_text(std::string("type: hexapod\n") + kCh5HexapodGeometry);
   const auto& hexapod = dynamic_cast<const Hexapod&>(*ideal.mechanism);
   std::mt19937_64 rng(3);
   // One 0.1 mm offset at a time, in a random direction, at each of the three places of eq. 27.
@@ -266,7 +248,7 @@ std::string error_of(const std::string& yaml, const std::string& name) {
 }
 
 TEST(HexapodRefinedFile, ErrorsNameFileLineAndKey) {
-  const std::string head = std::string("type: hexapod_refined\n") + kCh5Geometry;  // 18 lines
+  const std::string head = std::string("type: hexapod_refined\n") + kCh5HexapodGeometry;  // 18 lines
   // Missing `cardan`.
   std::string message = error_of(head, "refined.yaml");
   EXPECT_NE(message.find("refined.yaml:1: cardan: missing"), std::string::npos) << message;
