@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -110,15 +111,16 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
   }
   if (samples.hold_s[n - 1] < settings.stop_hold_s) samples.hold_s[n - 1] = settings.stop_hold_s;
 
-  // Inverse kinematics and the position limits at every sample.
-  std::vector<ActuatorVector> q(n);
-  std::vector<Eigen::Vector3d> position(n);
+  // Inverse kinematics and the position limits at every sample, one sample ahead of the caps (which need
+  // i − 1, i, i + 1): a ring of three keeps memory independent of the program's length.
+  std::array<ActuatorVector, 3> q_ring;
+  std::array<Eigen::Vector3d, 3> position_ring;
   double next_condition_check = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const path::Segment& seg = path.segments.empty() ? path::Segment{} : path.segments[sample_segment[i]];
+  auto solve = [&](std::size_t i) -> Status {
+    const path::Segment& seg = path.segments[sample_segment[i]];
     const path::PathPoint point = path.evaluate(sample_segment[i], samples.s[i]);
     const Pose pose{point.position_mm, point.rotation.toRotationMatrix()};
-    position[i] = point.position_mm;
+    position_ring[i % 3] = point.position_mm;
     auto ik = mechanism.inverse(pose);
     if (!ik) {
       return at_line(
@@ -126,8 +128,8 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
           Error{ErrorCode::unreachable, fmt::format("the path leaves the workspace at {}: {}",
                                                     program_pose_text(machine, pose), ik.error().message)});
     }
-    q[i] = *ik;
-    if (Status s = check_actuator_range(machine, q[i]); !s) return at_line(program, seg.line, s.error());
+    q_ring[i % 3] = *ik;
+    if (Status s = check_actuator_range(machine, *ik); !s) return at_line(program, seg.line, s.error());
     if (Status s = check_joint_limits(machine, pose); !s) return at_line(program, seg.line, s.error());
     if (samples.s[i] >= next_condition_check || i == n - 1) {
       next_condition_check = samples.s[i] + settings.condition_spacing;
@@ -141,7 +143,9 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
           return at_line(program, seg.line, s.error());
       }
     }
-  }
+    return ok_status();
+  };
+  if (Status s = solve(0); !s) return s.error();
 
   // Caps from the feed, the path and the actuators.
   const double margin = settings.actuator_margin;
@@ -150,6 +154,12 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
   const double h = settings.period_s;
   double actuator_limited_length = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
+    if (i + 1 < n) {
+      if (Status s = solve(i + 1); !s) return s.error();
+    }
+    const ActuatorVector& q0 = q_ring[(i + 2) % 3];  // sample i − 1 (unused at i = 0)
+    const ActuatorVector& q1 = q_ring[i % 3];
+    const ActuatorVector& q2 = q_ring[(i + 1) % 3];  // sample i + 1 (unused at the end)
     const path::Segment& seg = path.segments[sample_segment[i]];
     double cap_feed = segment_speed_cap(seg, motion, settings.override_factor);
     if (i > 0 && sample_segment[i - 1] != sample_segment[i]) {  // a boundary sample obeys both segments
@@ -162,9 +172,10 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
       // Curvature of the tool path: normal acceleration and chord error between servo periods.
       Eigen::Vector3d second;
       for (int c = 0; c < 3; ++c) {
-        second[c] = differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], position[i - 1][c],
-                                  position[i][c], position[i + 1][c])
-                        .second;
+        second[c] =
+            differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], position_ring[(i + 2) % 3][c],
+                          position_ring[i % 3][c], position_ring[(i + 1) % 3][c])
+                .second;
       }
       const double curvature = seg.rotation_only ? 0.0 : second.norm();
       if (curvature > 1e-12) {
@@ -177,12 +188,11 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
       double first = 0.0, second = 0.0;
       if (i == 0 || stop[i] || i + 1 == n) {
         // One-sided slopes; at a stop the larger of the two sides governs the acceleration there.
-        if (i > 0) first = std::abs((q[i][j] - q[i - 1][j]) / (samples.s[i] - samples.s[i - 1]));
-        if (i + 1 < n)
-          first = std::max(first, std::abs((q[i + 1][j] - q[i][j]) / (samples.s[i + 1] - samples.s[i])));
+        if (i > 0) first = std::abs((q1[j] - q0[j]) / (samples.s[i] - samples.s[i - 1]));
+        if (i + 1 < n) first = std::max(first, std::abs((q2[j] - q1[j]) / (samples.s[i + 1] - samples.s[i])));
       } else {
-        const Derivatives d = differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], q[i - 1][j],
-                                            q[i][j], q[i + 1][j]);
+        const Derivatives d =
+            differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], q0[j], q1[j], q2[j]);
         first = std::abs(d.first);
         second = std::abs(d.second);
       }

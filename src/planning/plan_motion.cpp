@@ -61,6 +61,10 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   path_options.path_tolerance_mm = options.path_tolerance_mm.value_or(motion.path_tolerance_mm);
   auto built = path::build_path(program, frame, path_options);
   if (!built) return built.error();
+  if (built->segments.empty()) {
+    return Error{ErrorCode::bad_input, fmt::format("{}: the program moves nothing; there is no motion to plan",
+                                                   program.source)};
+  }
 
   MotionPlan plan;
   plan.program_source = program.source;

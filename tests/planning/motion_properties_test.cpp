@@ -202,6 +202,15 @@ TEST(PlanErrors, UnreachablePosesNameTheLine) {
   EXPECT_NE(plan.error().message.find("far.ngc:2:"), std::string::npos) << plan.error().message;
 }
 
+TEST(PlanErrors, AProgramWithoutMotionIsAnError) {
+  const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  const auto program = test::gcode_for(machine, "G21 G90\nG4 P1\nM2\n", "still.ngc");
+  auto plan = planning::plan_motion(machine, program, {});
+  ASSERT_FALSE(plan.ok());
+  EXPECT_EQ(plan.error().code, ErrorCode::bad_input);
+  EXPECT_NE(plan.error().message.find("still.ngc"), std::string::npos);
+}
+
 TEST(PlanErrors, BadOptionsAreRejected) {
   const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   const auto program = test::gcode_for(machine, "G1 X1 F100\n");
