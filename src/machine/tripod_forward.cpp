@@ -12,20 +12,15 @@
 #include "machine/tripod.hpp"
 
 namespace pkm {
-namespace {
-
-const Eigen::Vector3d kUp = Eigen::Vector3d::UnitZ();
-
-}  // namespace
 
 Eigen::Vector3d Tripod::joint_at(int j, double length_mm, double angle_rad) const noexcept {
   return geometry_.base_joints_mm[j] +
-         length_mm * (std::cos(angle_rad) * kUp + std::sin(angle_rad) * plane_side_[j]);
+         length_mm * (std::cos(angle_rad) * Eigen::Vector3d::UnitZ() + std::sin(angle_rad) * plane_side_[j]);
 }
 
 double Tripod::joint_angle_of(int j, const Eigen::Vector3d& point_mm) const noexcept {
   const Eigen::Vector3d d = point_mm - geometry_.base_joints_mm[j];
-  return std::atan2(plane_side_[j].dot(d), kUp.dot(d));
+  return std::atan2(plane_side_[j].dot(d), Eigen::Vector3d::UnitZ().dot(d));
 }
 
 Pose Tripod::pose_from_joints(const std::array<Eigen::Vector3d, 3>& joints_mm) const noexcept {
@@ -48,7 +43,7 @@ void Tripod::distance_equations(const Eigen::Vector3d& l, const Eigen::Vector3d&
   std::array<Eigen::Vector3d, 3> b, db;
   for (int j = 0; j < 3; ++j) {
     b[j] = joint_at(j, l[j], t[j]);
-    db[j] = l[j] * (-std::sin(t[j]) * kUp + std::cos(t[j]) * plane_side_[j]);
+    db[j] = l[j] * (-std::sin(t[j]) * Eigen::Vector3d::UnitZ() + std::cos(t[j]) * plane_side_[j]);
   }
   df_dt.setZero();
   for (int k = 0; k < 3; ++k) {

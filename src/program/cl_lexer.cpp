@@ -16,10 +16,6 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-char upper(char c) {
-  return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
-}
-
 bool is_word_char(char c) {
   return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
 }
@@ -41,7 +37,7 @@ void normalise_word(std::string_view raw, std::string& out) {
     }
     if (blank && !out.empty()) out.push_back(' ');
     blank = false;
-    out.push_back(upper(c));
+    out.push_back(ascii_upper(c));
   }
 }
 

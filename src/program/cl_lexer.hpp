@@ -15,6 +15,11 @@
 
 namespace pkm::program {
 
+/// 'a'…'z' to upper case, anything else unchanged (CL words are ASCII; no locale).
+inline char ascii_upper(char c) {
+  return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
+}
+
 struct ClPosition {
   int line = 0;    ///< 1-based
   int column = 0;  ///< 1-based, in bytes

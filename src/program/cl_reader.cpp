@@ -62,13 +62,9 @@ Word const* find_word(std::string_view word) {
   return nullptr;
 }
 
-char upper(char c) {
-  return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
-}
-
 bool equals_upper(std::string_view text, std::string_view upper_word) {
   return text.size() == upper_word.size() && std::equal(text.begin(), text.end(), upper_word.begin(),
-                                                        [](char a, char b) { return upper(a) == b; });
+                                                        [](char a, char b) { return ascii_upper(a) == b; });
 }
 
 bool starts_like_word(std::string_view text) {
@@ -441,7 +437,7 @@ class ClReader {
       what += '/';
       for (std::size_t i = 0; i < s.args.size(); ++i) {
         if (i > 0) what += ',';
-        for (const char c : s.args[i].text) what += upper(c);
+        for (const char c : s.args[i].text) what += ascii_upper(c);
       }
     }
     program_.events.push_back({s.at.line, std::move(what)});
