@@ -62,8 +62,8 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   auto built = path::build_path(program, frame, path_options);
   if (!built) return built.error();
   if (built->segments.empty()) {
-    return Error{ErrorCode::bad_input, fmt::format("{}: the program moves nothing; there is no motion to plan",
-                                                   program.source)};
+    return Error{ErrorCode::bad_input,
+                 fmt::format("{}: the program moves nothing; there is no motion to plan", program.source)};
   }
 
   MotionPlan plan;
