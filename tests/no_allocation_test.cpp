@@ -1,5 +1,6 @@
 // Hot paths do not allocate (STYLE habit 3): IK, FK (warm, with and without a workspace), the Jacobian and
-// the joint-angle and conditioning checks of every shipped machine run under a counting global operator new.
+// the joint-angle and conditioning checks of every shipped machine, and the servo-rate stream of a planned
+// program (filter, path evaluation, IK per tick) run under a counting global operator new.
 // This file owns the replacement for pkm_tests.
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 #include "core/units.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
+#include "planning/plan_test_support.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -143,6 +145,21 @@ TEST(NoAllocation, HexapodPathTrackingWithWorkspace) {
     previous = fk->pose;
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+TEST(NoAllocation, ServoStreamTicks) {
+  const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  const auto program = test::gcode_for(m, "G0 X-50 Y0 Z0\nG1 X50 F3000\nG2 X50 Y0 I-20 J0 A3\nM2\n");
+  const auto plan = test::plan_or_fail(m, program);
+  planning::ServoStream stream(plan, m);
+  planning::ServoTick tick;
+  ASSERT_TRUE(stream.next(tick));
+  const long before = g_allocations.load();
+  long ticks = 0;
+  while (stream.next(tick)) ++ticks;
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(ticks, 1000);
+  EXPECT_FALSE(stream.error().has_value());
 }
 
 }  // namespace
