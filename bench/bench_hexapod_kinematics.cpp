@@ -8,6 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <filesystem>
 #include <random>
 #include <vector>
 
@@ -20,7 +21,8 @@ namespace {
 
 const Hexapod& hexapod_of(const char* file) {
   static std::vector<std::unique_ptr<Machine>> keep;
-  auto loaded = load_machine_file(std::string(PKM_SOURCE_DIR) + "/examples/machines/" + file);
+  auto loaded =
+      load_machine_file((std::filesystem::path(PKM_SOURCE_DIR) / "examples/machines" / file).string());
   if (!loaded) throw std::runtime_error(loaded.error().message);
   keep.push_back(std::make_unique<Machine>(std::move(loaded.value())));
   return dynamic_cast<const Hexapod&>(*keep.back()->mechanism);

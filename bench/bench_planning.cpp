@@ -9,6 +9,7 @@
 #include <sys/resource.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "machine/machine_file.hpp"
@@ -23,7 +24,8 @@ constexpr int kLines = 100000;
 
 const Machine& machine() {
   static const Machine m = [] {
-    auto loaded = load_machine_file(std::string(PKM_SOURCE_DIR) + "/examples/machines/hexapod_ch5.yaml");
+    auto loaded = load_machine_file(
+        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/machines/hexapod_ch5.yaml").string());
     if (!loaded) throw std::runtime_error(loaded.error().message);
     return std::move(loaded.value());
   }();

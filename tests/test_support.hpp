@@ -6,6 +6,7 @@
 #include <string>
 
 #include "machine/machine_file.hpp"
+#include "source_paths.hpp"
 
 namespace pkm::test {
 
@@ -20,7 +21,7 @@ inline Machine machine_from_text(const std::string& yaml, const std::string& nam
 }
 
 inline Machine machine_from_example(const std::string& relative_path) {
-  auto machine = load_machine_file(std::string(PKM_SOURCE_DIR) + "/" + relative_path);
+  auto machine = load_machine_file(source_path(relative_path));
   if (!machine) {
     ADD_FAILURE() << machine.error().message;
     throw std::runtime_error(machine.error().message);

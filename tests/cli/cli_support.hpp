@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include "source_paths.hpp"
 
 namespace pkm::test {
 
@@ -16,17 +17,13 @@ struct CliRun {
 };
 
 inline CliRun run_pkm(const std::string& args, bool with_stderr = true) {
-  const std::string command = std::string(PKM_BINARY) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
+  const std::string command = pkm_binary_path() + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = popen(command.c_str(), "r");
   std::string out;
   std::array<char, 4096> buffer{};
   while (pipe && fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
   const int status = pipe ? pclose(pipe) : -1;
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-inline std::string source_path(const std::string& relative) {
-  return std::string(PKM_SOURCE_DIR) + "/" + relative;
 }
 
 /// Writes `text` to a file in the temporary directory and returns its path.

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli/cli_support.hpp"
+#include "source_paths.hpp"
 
 namespace {
 
@@ -21,7 +22,7 @@ CliRun run(const std::string& args) {
 }
 
 std::string example(const std::string& name) {
-  return std::string(PKM_SOURCE_DIR) + "/examples/machines/" + name;
+  return pkm::test::source_path("examples/machines/" + std::string(name));
 }
 
 std::string write_temp(const std::string& name, const std::string& text) {

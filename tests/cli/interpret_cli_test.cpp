@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cli/cli_support.hpp"
+#include "source_paths.hpp"
 
 namespace {
 
@@ -84,7 +85,7 @@ TEST(InterpretCli, MissingProgramExitsTwoNamingIt) {
 TEST(InterpretCli, ToolTableAndMachineOptions) {
   const std::string table = write_temp("tools.tbl", "T1 P1 Z25 D6\n");
   const std::string program = write_temp("tool.ngc", "G21 F100\nG0 Z10\nG43 H1\nG1 X1\nM2\n");
-  const std::string machine = std::string(PKM_SOURCE_DIR) + "/examples/machines/hexapod_ch5.yaml";
+  const std::string machine = pkm::test::source_path("examples/machines/hexapod_ch5.yaml");
   const CliRun r =
       run("interpret " + program + " --tool-table " + table + " --machine " + machine + " --json", false);
   ASSERT_EQ(r.exit_code, 0) << r.out;

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/units.hpp"
+#include "source_paths.hpp"
 #include "test_support.hpp"
 
 namespace pkm {
@@ -19,7 +20,7 @@ Pose level_pose(double x, double y, double z) {
 
 // The ch5 hexapod with the pose at the pole C (no tool) and home at z = 500 mm: the file's lines replaced.
 std::string ch5_without_tool() {
-  std::ifstream in(std::string(PKM_SOURCE_DIR) + "/examples/machines/hexapod_ch5.yaml");
+  std::ifstream in(test::source_path("examples/machines/hexapod_ch5.yaml"));
   std::string yaml, line;
   while (std::getline(in, line)) {
     if (line.rfind("tool:", 0) == 0) line = "tool: [0, 0, 0]";

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/units.hpp"
+#include "source_paths.hpp"
 #include "test_support.hpp"
 
 namespace pkm {
@@ -218,7 +219,7 @@ TEST(Glide, StrutPerpendicularToItsGuideIsSingular) {
 
 // An example machine file without the top-level lines that start with any of `keys`.
 std::string example_without(const char* relative_path, std::initializer_list<const char*> keys) {
-  std::ifstream in(std::string(PKM_SOURCE_DIR) + "/" + relative_path);
+  std::ifstream in(test::source_path(relative_path));
   std::string text, line;
   while (std::getline(in, line)) {
     bool drop = false;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "plan_test_support.hpp"
+#include "source_paths.hpp"
 #include "test_support.hpp"
 
 namespace pkm {
@@ -16,7 +17,7 @@ TEST_P(PlanExamples, PlansWithinEveryLimit) {
   options.start_mm = start.start_mm;
   options.start_abc_deg = start.start_abc_deg;
   auto program =
-      program::load_part_program(std::string(PKM_SOURCE_DIR) + "/examples/programs/" + GetParam(), options);
+      program::load_part_program(test::source_path("examples/programs/" + std::string(GetParam())), options);
   ASSERT_TRUE(program.ok()) << program.error().message;
   for (double rate : {500.0, 2000.0}) {
     planning::PlanOptions plan_options;

@@ -9,6 +9,7 @@
 
 #include "program/cl_number.hpp"
 #include "program/part_program.hpp"
+#include "source_paths.hpp"
 
 namespace pkm::program {
 namespace {
@@ -478,7 +479,7 @@ TEST(ClReaderFile, NxStyleFinishingPath) {
 }
 
 TEST(ClReaderFile, ShippedBallEndExampleStaysInTheBrief) {
-  std::ifstream in(std::string(PKM_SOURCE_DIR) + "/examples/programs/ball_end_5axis.cl");
+  std::ifstream in(test::source_path("examples/programs/ball_end_5axis.cl"));
   ASSERT_TRUE(in) << "examples/programs/ball_end_5axis.cl is missing";
   std::stringstream buffer;
   buffer << in.rdbuf();
