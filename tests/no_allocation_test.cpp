@@ -12,6 +12,7 @@
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
 #include "planning/plan_test_support.hpp"
+#include "statics/actuator_forces.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -160,6 +161,16 @@ TEST(NoAllocation, ServoStreamTicks) {
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_GT(ticks, 1000);
   EXPECT_FALSE(stream.error().has_value());
+}
+
+TEST(NoAllocation, StaticsHexapodStrutForces) {
+  const Machine m = test::machine_from_example("examples/machines/hexapod_ch3.yaml");
+  const auto& h = dynamic_cast<const Hexapod&>(*m.mechanism);
+  const statics::Wrench load{Eigen::Vector3d(100, -50, -600), Eigen::Vector3d(1e3, 2e4, -5e3)};
+  double forces[6];
+  const long before = g_allocations.load();
+  EXPECT_TRUE(statics::hexapod_strut_forces(h, h.home(), load, forces));
+  EXPECT_EQ(g_allocations.load() - before, 0);
 }
 
 }  // namespace

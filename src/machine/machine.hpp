@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "machine/mass_properties.hpp"
 #include "machine/mechanism.hpp"
 
 namespace pkm {
@@ -74,6 +75,7 @@ struct Machine {
   JointLimits joint_limits;
   PassiveJointAxes joint_axes;
   MotionSettings motion;
+  MassProperties masses;  ///< `masses:` (machine/mass_properties.hpp); no masses by default
   bool home_given = false;
 };
 

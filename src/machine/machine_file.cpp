@@ -54,8 +54,8 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
-  std::vector<std::string_view> allowed = {"name", "description", "type",   "angles",
-                                           "tool", "limits",      "motion", "home"};
+  std::vector<std::string_view> allowed = {"name",   "description", "type",   "angles", "tool",
+                                           "limits", "motion",      "masses", "home"};
   // Planar pin joints have no neutral axis to give.
   if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
@@ -98,6 +98,8 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   if (!limits) return limits.error();
   auto motion = read_motion_settings(root, reader, is_planar(entry->type));
   if (!motion) return motion.error();
+  auto masses = read_mass_properties(root, reader, is_planar(entry->type));
+  if (!masses) return masses.error();
 
   std::optional<PoseVector> home;
   if (root["home"]) {
@@ -127,6 +129,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   if (machine.mechanism->actuators_are_angles()) convert_limits_to_radians(machine.limits);
   machine.joint_limits = limits->joints;
   machine.motion = *motion;
+  machine.masses = *masses;
   machine.home_given = home.has_value();
 
   // The home pose must itself be a valid configuration of the machine.

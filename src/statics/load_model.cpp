@@ -1,0 +1,52 @@
+#include "statics/load_model.hpp"
+
+#include <Eigen/Geometry>
+
+namespace pkm::statics {
+
+bool CuttingLoad::is_zero() const {
+  return tangential_N == 0.0 && normal_N == 0.0 && axial_N == 0.0 && force_N.isZero(0.0) &&
+         moment_Nmm.isZero(0.0);
+}
+
+const CuttingLoad& LoadModel::load_for_line(int line) const {
+  for (auto it = blocks.rbegin(); it != blocks.rend(); ++it) {
+    if (it->first_line <= line && line <= it->last_line) return it->load;
+  }
+  return default_load;
+}
+
+Wrench LoadModel::wrench_at(const LoadPoint& point) const {
+  return cutting_wrench(load_for_line(point.line), point);
+}
+
+bool LoadModel::empty() const {
+  if (!default_load.is_zero()) return false;
+  for (const BlockLoad& b : blocks) {
+    if (!b.load.is_zero()) return false;
+  }
+  return true;
+}
+
+Wrench cutting_wrench(const CuttingLoad& load, const LoadPoint& point) {
+  Wrench w{load.force_N, load.moment_Nmm};
+  const double speed = point.tangent.norm();
+  // A point that does not move, or a rapid, cuts nothing: only the constant load acts.
+  if (!point.cutting || !(speed > 0.0)) return w;
+  const Eigen::Vector3d t = point.tangent / speed;
+  const Eigen::Vector3d a = point.tool_axis.normalized();
+  const Eigen::Vector3d tangential = -load.tangential_N * t;  // the seed's P_τ, against the feed (§2.1)
+  w.force_N += tangential + load.axial_N * a;
+  const Eigen::Vector3d side = a.cross(t);
+  const double side_norm = side.norm();
+  // Travel along the tool axis (a plunge): no side to the left or right of it.
+  if (!(side_norm > 1e-12)) return w;
+  const Eigen::Vector3d n = side / side_norm;
+  w.force_N += load.normal_N * n;
+  // V4: the tangential force acts at the cutter edge, R_Ф from the tool point on the contact side.
+  const Eigen::Vector3d contact = load.cutter_radius_mm * load.contact_side * n;
+  w.moment_Nmm += contact.cross(tangential);
+  return w;
+}
+
+}  // namespace pkm::statics
