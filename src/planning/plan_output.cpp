@@ -2,10 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <cstdio>
 #include <filesystem>
-#include <memory>
+#include <string_view>
+#include <utility>
 
+#include "core/atomic_file.hpp"
 #include "core/rotation.hpp"
 #include "core/units.hpp"
 
@@ -15,55 +16,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A buffered file written under a temporary name and renamed into place by commit().
-class StagedFile {
- public:
-  StagedFile(fs::path final_path) : final_(std::move(final_path)), temporary_(final_) {
-    temporary_ += ".partial";
-    file_ = std::fopen(temporary_.c_str(), "wb");
-    buffer_.reserve(1 << 20);
-  }
-  ~StagedFile() {
-    if (file_) std::fclose(file_);
-    if (!committed_) {
-      std::error_code ignored;
-      fs::remove(temporary_, ignored);
-    }
-  }
-  StagedFile(const StagedFile&) = delete;
-  StagedFile& operator=(const StagedFile&) = delete;
-  bool is_open() const { return file_ != nullptr; }
-  fmt::memory_buffer& buffer() { return buffer_; }
-  void flush_if_large() {
-    if (buffer_.size() > (1u << 20)) flush();
-  }
-  bool commit() {
-    flush();
-    const bool written = std::fclose(file_) == 0 && !failed_;
-    file_ = nullptr;
-    if (!written) return false;
-    std::error_code error;
-    fs::rename(temporary_, final_, error);
-    committed_ = !error;
-    return committed_;
-  }
-  const fs::path& path() const { return final_; }
+constexpr std::size_t kPlanOutputChunk = std::size_t{1} << 20;
 
- private:
-  void flush() {
-    if (buffer_.size() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-      failed_ = true;
-    buffer_.clear();
+// One output file of the run: text gathers in a buffer and goes to the staged file a megabyte at a time.
+struct PlanOutputFile {
+  StagedFile file;
+  fmt::memory_buffer buffer;
+
+  Status open(const fs::path& path) {
+    buffer.reserve(kPlanOutputChunk);
+    return file.open(path.string());
   }
-  fs::path final_, temporary_;
-  std::FILE* file_ = nullptr;
-  fmt::memory_buffer buffer_;
-  bool failed_ = false, committed_ = false;
+  Status flush() {
+    const Status written = file.write(std::string_view(buffer.data(), buffer.size()));
+    buffer.clear();
+    return written;
+  }
+  Status flush_if_large() { return buffer.size() > kPlanOutputChunk ? flush() : ok_status(); }
+  Status commit() {
+    if (auto flushed = flush(); !flushed) return flushed;
+    return file.commit();
+  }
 };
-
-Error io_error(const fs::path& path) {
-  return Error{ErrorCode::io, fmt::format("cannot write {}", path.string())};
-}
 
 }  // namespace
 
@@ -125,20 +99,20 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   fs::create_directories(dir, error);
   if (error)
     return Error{ErrorCode::io, fmt::format("cannot create directory {}: {}", directory, error.message())};
-  StagedFile actuators_csv(dir / "actuators.csv"), path_csv(dir / "path.csv"),
-      summary_file(dir / "summary.json");
-  for (StagedFile* f : {&actuators_csv, &path_csv, &summary_file}) {
-    if (!f->is_open()) return io_error(f->path());
+  PlanOutputFile actuators_csv, path_csv, summary_file;
+  for (auto [file, name] : {std::pair{&actuators_csv, "actuators.csv"}, std::pair{&path_csv, "path.csv"},
+                            std::pair{&summary_file, "summary.json"}}) {
+    if (auto opened = file->open(dir / name); !opened) return opened.error();
   }
   const Mechanism& mechanism = *machine.mechanism;
   const int n = mechanism.actuator_count();
   const bool angular = mechanism.actuators_are_angles();
   const double scale = angular ? deg_from_rad(1.0) : 1.0;
-  auto& a = actuators_csv.buffer();
+  auto& a = actuators_csv.buffer;
   fmt::format_to(std::back_inserter(a), "time_s");
   for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(a), ",q{}_{}", j, angular ? "deg" : "mm");
   a.push_back('\n');
-  fmt::format_to(std::back_inserter(path_csv.buffer()),
+  fmt::format_to(std::back_inserter(path_csv.buffer),
                  "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s\n");
 
   ServoStream stream(plan, machine);
@@ -154,20 +128,21 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
     const Eigen::Vector3d abc =
         angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
-    fmt::format_to(std::back_inserter(path_csv.buffer()),
+    fmt::format_to(std::back_inserter(path_csv.buffer),
                    "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", tick.time_s,
                    tick.line, tick.s, p.x(), p.y(), p.z(), abc.x(), abc.y(), abc.z(), tick.path_speed);
-    actuators_csv.flush_if_large();
-    path_csv.flush_if_large();
+    for (PlanOutputFile* f : {&actuators_csv, &path_csv}) {
+      if (auto flushed = f->flush_if_large(); !flushed) return flushed.error();
+    }
     if (options.progress && tick.index % report_every == 0)
       options.progress(static_cast<double>(tick.index) / total);
   }
   if (stream.error()) return *stream.error();
   if (options.progress) options.progress(1.0);
   const RunSummary& run = monitor.summary();
-  fmt::format_to(std::back_inserter(summary_file.buffer()), "{}\n", summary_json(plan, machine, run).dump(2));
-  for (StagedFile* f : {&actuators_csv, &path_csv, &summary_file}) {
-    if (!f->commit()) return io_error(f->path());
+  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", summary_json(plan, machine, run).dump(2));
+  for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
+    if (auto committed = f->commit(); !committed) return committed.error();
   }
   return run;
 }

@@ -22,7 +22,7 @@
 namespace pkm::program {
 namespace {
 
-constexpr double kMmPerInch = 25.4;
+constexpr double kClMmPerInch = 25.4;
 
 enum class Word {
   go_to,
@@ -258,9 +258,9 @@ class ClReader {
         if (equals_upper(arg.text, "MMPM")) {
           scale = 1.0;
         } else if (equals_upper(arg.text, "IPM")) {
-          scale = kMmPerInch;
+          scale = kClMmPerInch;
         } else if (equals_upper(arg.text, "MMPR") || equals_upper(arg.text, "IPR")) {
-          scale = equals_upper(arg.text, "IPR") ? kMmPerInch : 1.0;
+          scale = equals_upper(arg.text, "IPR") ? kClMmPerInch : 1.0;
           per_rev = true;
           per_rev_arg = &arg;
         } else {
@@ -297,7 +297,7 @@ class ClReader {
       scale_ = 1.0;
     } else if (s.args.size() == 1 &&
                (equals_upper(s.args[0].text, "INCHES") || equals_upper(s.args[0].text, "INCH"))) {
-      scale_ = kMmPerInch;
+      scale_ = kClMmPerInch;
     } else {
       return error_at(s.args.empty() ? s.at : s.args[0].at, "UNITS takes MM or INCHES");
     }

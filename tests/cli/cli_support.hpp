@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+
 #include "source_paths.hpp"
 
 namespace pkm::test {
