@@ -1,6 +1,8 @@
-// pkm plan PROGRAM --machine M.yaml [--rate HZ] [--override PCT] [--tolerance MM] --out DIR [--json]:
+// pkm plan PROGRAM --machine M.yaml [--rate HZ] [--override PCT] [--tolerance MM] [--law L --free F ...]
+//   --out DIR [--json]:
 // interprets a part program, plans it within the feed, path and actuator limits, and writes the servo-rate
-// motion (actuators.csv, path.csv) and summary.json into DIR.
+// motion (actuators.csv, path.csv) and summary.json into DIR. With --law, the coordinates the operation
+// leaves free are first chosen by that drive control law (as `pkm optimize` does) and the result is planned.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -12,6 +14,7 @@
 #include "planning/motion_plan.hpp"
 #include "planning/plan_output.hpp"
 #include "program/part_program.hpp"
+#include "redundancy_options.hpp"
 
 namespace pkm::cli {
 
@@ -51,7 +54,18 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
   cmd->add_flag("--no-path-error", *no_error, "skip the forward-kinematics check of the path error (faster)");
   cmd->add_flag("--json", *json, "print the summary as JSON");
+  auto redundancy_arguments = std::make_shared<RedundancyArguments>();
+  add_redundancy_options(*cmd, *redundancy_arguments, false);
   cmd->callback([=, &exit_code] {
+    std::optional<redundancy::OptimizeOptions> law_options;
+    if (!redundancy_arguments->law.empty()) {
+      auto parsed = redundancy_options(*redundancy_arguments);
+      if (!parsed) {
+        exit_code = report_error("plan", parsed.error());
+        return;
+      }
+      law_options = std::move(*parsed);
+    }
     auto machine = load_machine_or_report(*machine_path);
     if (!machine) {
       exit_code = report_error("plan", machine.error());
@@ -66,6 +80,16 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     if (!program) {
       exit_code = report_error("plan", program.error());
       return;
+    }
+    nlohmann::json law_summary;
+    if (law_options) {
+      auto optimized = redundancy::optimize_program(*program, *machine, *law_options);
+      if (!optimized) {
+        exit_code = report_error("plan", optimized.error());
+        return;
+      }
+      law_summary = redundancy::optimize_summary_json(*optimized, *law_options);
+      *program = std::move(optimized->program);
     }
     planning::PlanOptions plan_options = *options;
     if (*tolerance >= 0.0) plan_options.path_tolerance_mm = *tolerance;
@@ -89,6 +113,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     }
     nlohmann::json summary = planning::summary_json(*plan, *machine, *run);
     summary["planning_time_s"] = planning_s;
+    if (law_options) summary["redundancy"] = law_summary;
     if (*json) {
       print_json(summary);
       return;
@@ -108,6 +133,11 @@ void add_plan_command(CLI::App& app, int& exit_code) {
       std::cout << fmt::format(
           "  path error        max {:.3g} mm (FK of the actuators at mid-period, line {})\n",
           run->max_path_error_mm, run->max_path_error_line);
+    }
+    if (law_options) {
+      std::cout << fmt::format("  {} law           Σ max|ΔL| {:.3f} mm (held constant: {:.3f} mm), free {}\n",
+                               redundancy_arguments->law, law_summary["opt_sum_mm"].get<double>(),
+                               law_summary["const_sum_mm"].get<double>(), redundancy_arguments->free);
     }
     std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json\n", *out_dir);
   });

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_demo_command(app, exit_code);
   pkm::cli::add_interpret_command(app, exit_code);
   pkm::cli::add_plan_command(app, exit_code);
+  pkm::cli::add_optimize_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,108 @@
+#include "redundancy_options.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+
+namespace pkm::cli {
+
+void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, bool law_required) {
+  auto* law = command.add_option("--law", arguments.law,
+                                 "drive control law for the free coordinates: increment | force | energy");
+  if (law_required) law->required();
+  command
+      .add_option("--free", arguments.free,
+                  "free coordinates: spin (about the tool axis; planar: phi) | all (every angle)")
+      ->capture_default_str();
+  command.add_option("--bounds", arguments.bounds,
+                     "LO,HI bounds of every free coordinate, degrees (default: start ± 30)");
+  command.add_option("--step-mm", arguments.step_mm, "path step between optimised points, mm")
+      ->capture_default_str();
+  command.add_option(
+      "--load", arguments.load,
+      "cutting load: key=value list (tangential, normal, axial, cutter_radius, contact, force, "
+      "moment) or @FILE.yaml (docs/statics.md)");
+  command
+      .add_option("--solver", arguments.solver, "greedy (the seeds' per-step scheme) | global (whole path)")
+      ->capture_default_str();
+  command
+      .add_option("--energy-accounting", arguments.energy_accounting,
+                  "energy law: no-recovery (seeds) | braking-free | recovery")
+      ->capture_default_str();
+  command.add_option("--force-limit", arguments.force_limit_N,
+                     "drive force limit, N: candidates over it are not admissible (0: none)");
+  command.add_option("--max-rate", arguments.max_rate_deg_per_mm,
+                     "global solver: largest change of a free coordinate per mm of path, deg/mm (0: none)");
+}
+
+namespace {
+
+bool parse_double(std::string_view text, double& value) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+}  // namespace
+
+Result<redundancy::OptimizeOptions> redundancy_options(const RedundancyArguments& arguments) {
+  redundancy::OptimizeOptions options;
+  auto law = redundancy::law_from_string(arguments.law);
+  if (!law) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--law {}: expected increment, force or energy", arguments.law));
+  }
+  options.law.law = *law;
+  auto free = redundancy::free_set_from_string(arguments.free);
+  if (!free)
+    return make_error(ErrorCode::bad_input, fmt::format("--free {}: expected spin or all", arguments.free));
+  options.free = *free;
+  auto solver = redundancy::solver_from_string(arguments.solver);
+  if (!solver) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--solver {}: expected greedy or global", arguments.solver));
+  }
+  options.solver = *solver;
+  auto accounting = redundancy::energy_accounting_from_string(arguments.energy_accounting);
+  if (!accounting) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--energy-accounting {}: expected no-recovery, braking-free or recovery",
+                                  arguments.energy_accounting));
+  }
+  options.law.energy = *accounting;
+  if (!arguments.bounds.empty()) {
+    const auto comma = arguments.bounds.find(',');
+    std::array<double, 2> bounds{};
+    if (comma == std::string::npos ||
+        !parse_double(std::string_view(arguments.bounds).substr(0, comma), bounds[0]) ||
+        !parse_double(std::string_view(arguments.bounds).substr(comma + 1), bounds[1])) {
+      return make_error(
+          ErrorCode::bad_input,
+          fmt::format("--bounds {}: expected LO,HI in degrees, e.g. --bounds 5,30", arguments.bounds));
+    }
+    options.bounds_deg = bounds;
+  }
+  if (!(arguments.step_mm > 0.0)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--step-mm {}: must be a positive length", arguments.step_mm));
+  }
+  options.step_mm = arguments.step_mm;
+  if (arguments.force_limit_N < 0.0) {
+    return make_error(ErrorCode::bad_input, "--force-limit must be a positive force in N (0: none)");
+  }
+  if (arguments.force_limit_N > 0.0) options.law.force_limit_N = arguments.force_limit_N;
+  if (arguments.max_rate_deg_per_mm < 0.0) {
+    return make_error(ErrorCode::bad_input, "--max-rate must be a positive rate in deg/mm (0: none)");
+  }
+  if (arguments.max_rate_deg_per_mm > 0.0)
+    options.whole_path.max_rate_deg_per_mm = arguments.max_rate_deg_per_mm;
+  if (!arguments.load.empty()) {
+    auto loads = statics::parse_load_spec(arguments.load);
+    if (!loads) return make_error(loads.error().code, "--load: " + loads.error().message);
+    options.loads = std::move(*loads);
+  }
+  return options;
+}
+
+}  // namespace pkm::cli

@@ -1,0 +1,186 @@
+#include "redundancy/law.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+
+#include "machine/planar3.hpp"
+#include "statics/actuator_forces.hpp"
+#include "statics/gravity.hpp"
+
+namespace pkm::redundancy {
+
+std::optional<Law> law_from_string(std::string_view name) {
+  if (name == "increment") return Law::increment;
+  if (name == "force") return Law::force;
+  if (name == "energy") return Law::energy;
+  return std::nullopt;
+}
+
+std::string_view to_string(Law law) {
+  switch (law) {
+    case Law::increment:
+      return "increment";
+    case Law::force:
+      return "force";
+    case Law::energy:
+      return "energy";
+  }
+  return "increment";
+}
+
+std::optional<EnergyAccounting> energy_accounting_from_string(std::string_view name) {
+  if (name == "no-recovery") return EnergyAccounting::no_recovery;
+  if (name == "braking-free") return EnergyAccounting::braking_free;
+  if (name == "recovery") return EnergyAccounting::recovery;
+  return std::nullopt;
+}
+
+std::string_view to_string(EnergyAccounting accounting) {
+  switch (accounting) {
+    case EnergyAccounting::no_recovery:
+      return "no-recovery";
+    case EnergyAccounting::braking_free:
+      return "braking-free";
+    case EnergyAccounting::recovery:
+      return "recovery";
+  }
+  return "no-recovery";
+}
+
+LawEvaluator::LawEvaluator(const Machine& machine, const FreeCoordinates& free, const LawOptions& options,
+                           bool need_forces)
+    : machine_(machine),
+      free_(free),
+      options_(options),
+      need_forces_(need_forces || options.law != Law::increment || options.force_limit_N.has_value()),
+      hexapod_(dynamic_cast<const Hexapod*>(machine.mechanism.get())) {
+  // The platform's size: the mean distance of its joints from the tool point.
+  StrutJointPoints joints;
+  const Pose& home = machine.mechanism->home();
+  const int count = machine.mechanism->strut_joints(home, joints);
+  if (const auto* planar = dynamic_cast<const Planar3*>(machine.mechanism.get())) {
+    characteristic_length_mm_ = planar->platform_radius_mm();
+  } else if (count > 0) {
+    double sum = 0.0;
+    for (int j = 0; j < count; ++j) sum += (joints.platform_mm[j] - home.position_mm).norm();
+    if (sum > 0.0) characteristic_length_mm_ = sum / count;
+  }
+}
+
+double LawEvaluator::normalized_determinant(const Pose& pose) const noexcept {
+  JacobianMatrix jacobian;
+  if (hexapod_ != nullptr) {
+    jacobian = hexapod_->twist_jacobian(pose);
+  } else {
+    auto computed = machine_.mechanism->jacobian(pose);
+    if (!computed || computed->rows() != computed->cols()) return std::numeric_limits<double>::quiet_NaN();
+    jacobian = *computed;
+  }
+  // Angle columns (rad) to lengths: a turn by one radian moves the joints by about the characteristic length.
+  const AxisMask axes = machine_.mechanism->controlled_axes();
+  int column = 0;
+  for (int axis = 0; axis < 6; ++axis) {
+    if (hexapod_ == nullptr && !axes.controlled[axis]) continue;
+    if (axis >= 3) jacobian.col(column) /= characteristic_length_mm_;
+    ++column;
+  }
+  double rows = 1.0;
+  for (int r = 0; r < jacobian.rows(); ++r) rows *= jacobian.row(r).norm();
+  if (!(rows > 0.0)) return 0.0;
+  return jacobian.partialPivLu().determinant() / rows;
+}
+
+int LawEvaluator::branch_sign(const Pose& pose) const noexcept {
+  const double value = normalized_determinant(pose);
+  if (!std::isfinite(value) || value == 0.0 || std::abs(value) < min_determinant_) return 0;
+  return value > 0.0 ? 1 : -1;
+}
+
+bool LawEvaluator::set_start(const Pose& start) {
+  const double value = normalized_determinant(start);
+  if (!std::isfinite(value) || std::abs(value) < 1e-9) return false;
+  branch_sign_ = value > 0.0 ? 1 : -1;
+  min_determinant_ = options_.singularity_margin * std::abs(value);
+  return true;
+}
+
+bool LawEvaluator::evaluate(const PathPoint& point, const statics::Wrench& load, const FreeValues& values,
+                            Node& node, bool check_branch) const noexcept {
+  node.valid = false;
+  const Pose pose = free_.pose(point, values);
+  const int n = machine_.mechanism->actuator_count();
+  if (hexapod_ != nullptr) {
+    node.lengths.resize(6);
+    hexapod_->strut_lengths(pose, node.lengths.data());
+  } else {
+    auto lengths = machine_.mechanism->inverse(pose);
+    if (!lengths) return false;
+    node.lengths = *lengths;
+  }
+  const ActuatorLimits& limits = machine_.limits;
+  for (int j = 0; j < n; ++j) {
+    const double q = node.lengths[j];
+    if (!std::isfinite(q) || (limits.min && q < *limits.min) || (limits.max && q > *limits.max)) return false;
+  }
+  if (check_branch && branch_sign_ != 0 && branch_sign(pose) != branch_sign_) return false;
+  node.forces.setZero(n);
+  if (need_forces_) {
+    statics::Wrench wrench = load;
+    if (machine_.masses.has_mass()) {
+      // The weight of the moving parts is a load like the cut (ch3 §2.7).
+      StrutJointPoints struts;
+      const int strut_count = machine_.mechanism->strut_joints(pose, struts);
+      const statics::Wrench weight = statics::gravity_wrench(
+          machine_.masses, pose, strut_count > 0 ? &struts : nullptr, std::max(0, strut_count));
+      wrench.force_N += weight.force_N;
+      wrench.moment_Nmm += weight.moment_Nmm;
+    }
+    if (hexapod_ != nullptr) {
+      if (!statics::hexapod_strut_forces(*hexapod_, pose, wrench, node.forces.data())) return false;
+    } else {
+      auto forces = statics::actuator_forces(*machine_.mechanism, pose, wrench);
+      if (!forces) return false;
+      node.forces = *forces;
+    }
+    if (options_.force_limit_N && node.forces.cwiseAbs().maxCoeff() > *options_.force_limit_N) return false;
+  }
+  node.valid = true;
+  return true;
+}
+
+double LawEvaluator::step_energy_Nmm(const Node& from, const Node& to) const noexcept {
+  // Forces at the end of the step: the law chooses the end pose with the loads known there (ch3 §2.6).
+  const int n = static_cast<int>(to.lengths.size());
+  double total = 0.0;
+  double signed_total = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double work = (to.lengths[j] - from.lengths[j]) * to.forces[j];
+    signed_total += work;
+    switch (options_.energy) {
+      case EnergyAccounting::no_recovery:
+        total += std::abs(work);
+        break;
+      case EnergyAccounting::braking_free:
+        total += std::max(0.0, work);
+        break;
+      case EnergyAccounting::recovery:
+        break;
+    }
+  }
+  return options_.energy == EnergyAccounting::recovery ? std::abs(signed_total) : total;
+}
+
+double LawEvaluator::step_cost(const Node& from, const Node& to) const noexcept {
+  switch (options_.law) {
+    case Law::increment:
+      return (to.lengths - from.lengths).cwiseAbs().maxCoeff();
+    case Law::force:
+      return to.forces.cwiseAbs().maxCoeff();
+    case Law::energy:
+      return step_energy_Nmm(from, to);
+  }
+  return 0.0;
+}
+
+}  // namespace pkm::redundancy

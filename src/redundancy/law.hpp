@@ -1,0 +1,93 @@
+#pragma once
+// The three drive control laws of ch3 §3 and what one path point costs under them.
+//
+//  increment (72)/(89)/(90): per step, max_j |ΔL_j| → min  (strut speed limited: step time ∝ the largest
+//  change) force     (75)/(92):      per point, max_j |P_j| → min  (lower peak drive loads) energy
+//  (76)/(88)/(93): per step, Σ_j |ΔL_j·P_j| → min, bounded below by the required work |A_ext|
+//
+// A node is one candidate pose at one path point: its actuator positions and, when the law needs them, the
+// actuator forces that hold the platform against the load there (statics, J^T P = −w, (73)/(91)).
+#include <optional>
+#include <string_view>
+
+#include "core/result.hpp"
+#include "machine/hexapod.hpp"
+#include "machine/machine.hpp"
+#include "redundancy/free_coordinates.hpp"
+#include "statics/wrench.hpp"
+
+namespace pkm::redundancy {
+
+enum class Law { increment, force, energy };
+std::optional<Law> law_from_string(std::string_view name);
+std::string_view to_string(Law law);
+
+/// How a step's drive energy is counted (spec ch3 §2.6).
+enum class EnergyAccounting {
+  no_recovery,   ///< Σ|ΔL·P|: a braking drive still draws |ΔL·P| (the seeds, (86))
+  braking_free,  ///< Σ max(0, ΔL·P): braking costs nothing but returns nothing
+  recovery,      ///< |Σ ΔL·P|: braking drives feed the others (equals the required work)
+};
+std::optional<EnergyAccounting> energy_accounting_from_string(std::string_view name);
+std::string_view to_string(EnergyAccounting accounting);
+
+struct LawOptions {
+  Law law = Law::increment;
+  EnergyAccounting energy = EnergyAccounting::no_recovery;
+  /// Drive force limit |P_j| ≤ this (N); candidates above it are not admissible (ch3 §3.3 recommendation).
+  std::optional<double> force_limit_N;
+  /// Keep-out margin round singular positions (ch3 §4), as a share of the start pose's normalised Jacobian
+  /// determinant (angle columns scaled by a characteristic length of the platform, divided by the product of
+  /// the row norms: 1 for orthogonal struts, 0 at a singularity). Candidates below it are not admissible, nor
+  /// those of the other sign (the seeds test only the sign). Relative, because well-built machines differ
+  /// by an order of magnitude in the absolute value (planar tripod ≈ 0.1, ch3 hexapods ≈ 0.3).
+  double singularity_margin = 0.1;
+};
+
+struct Node {
+  ActuatorVector lengths;  ///< mm (or rad for angular actuators)
+  ActuatorVector forces;   ///< N; zero when the law needs no forces
+  bool valid = false;
+};
+
+class LawEvaluator {
+ public:
+  /// `need_forces` also when only the report needs them (forces and energy for every law).
+  LawEvaluator(const Machine& machine, const FreeCoordinates& free, const LawOptions& options,
+               bool need_forces);
+
+  const LawOptions& options() const { return options_; }
+  const FreeCoordinates& free() const { return free_; }
+  const Machine& machine() const { return machine_; }
+  bool computes_forces() const { return need_forces_; }
+  /// Sign of the Jacobian determinant at the start: candidates must keep it (no crossing a singular
+  /// position, ch3 §4).
+  /// Fixes the branch and the keep-out threshold from the start pose; false when the start is singular.
+  bool set_start(const Pose& start);
+
+  /// IK (+ statics) of the pose at `point` with `values`. Invalid when out of reach or range, over the force
+  /// limit, or (check_branch) on the other side of a singular position. Never allocates.
+  bool evaluate(const PathPoint& point, const statics::Wrench& load, const FreeValues& values, Node& node,
+                bool check_branch) const noexcept;
+  /// Sign of det J at a pose (0: singular, within the keep-out margin, or unreachable).
+  int branch_sign(const Pose& pose) const noexcept;
+  /// det J normalised as LawOptions::singularity_margin says (NaN when unreachable).
+  double normalized_determinant(const Pose& pose) const noexcept;
+
+  /// The law's cost of the step from → to (force law: the cost of `to` alone).
+  double step_cost(const Node& from, const Node& to) const noexcept;
+  /// Σ_j |ΔL_j P_j| in the chosen accounting, N·mm.
+  double step_energy_Nmm(const Node& from, const Node& to) const noexcept;
+
+ private:
+  const Machine& machine_;
+  const FreeCoordinates& free_;
+  LawOptions options_;
+  bool need_forces_;
+  const Hexapod* hexapod_ = nullptr;         ///< fast path
+  double characteristic_length_mm_ = 100.0;  ///< scales angle columns of J to lengths
+  int branch_sign_ = 0;
+  double min_determinant_ = 0.0;  ///< |normalised det J| below this counts as singular
+};
+
+}  // namespace pkm::redundancy

@@ -1,0 +1,224 @@
+#include "redundancy/optimize_program.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "core/units.hpp"
+
+namespace pkm::redundancy {
+
+using program::CanonicalMove;
+using program::MoveKind;
+
+std::optional<Solver> solver_from_string(std::string_view name) {
+  if (name == "greedy") return Solver::greedy;
+  if (name == "global") return Solver::global;
+  return std::nullopt;
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A B C (degrees) of a rotation, each of A and C turned by whole turns to lie nearest the previous value, so
+// a controller's rotary axes never spin round between two parts of a move.
+Eigen::Vector3d continuous_abc_deg(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& previous_deg,
+                                   bool planar) {
+  Eigen::Vector3d abc = deg_from_rad(1.0) * angles_from_rotation(AngleConvention::abc, rotation);
+  if (planar) abc = {0.0, 0.0, deg_from_rad(std::atan2(rotation(1, 0), rotation(0, 0)))};
+  for (int i : {0, 2}) abc[i] = previous_deg[i] + std::remainder(abc[i] - previous_deg[i], 360.0);
+  return abc;
+}
+
+std::vector<statics::Wrench> point_loads(const ProgramPoints& points, const statics::LoadModel& loads,
+                                         const Eigen::Vector3d& tool_axis_platform) {
+  std::vector<statics::Wrench> wrenches(points.points.size());
+  for (std::size_t k = 0; k < points.points.size(); ++k) {
+    const PathPoint& point = points.points[k];
+    statics::LoadPoint load_point;
+    // The start point takes the direction of the first step: the load that acts as the cut begins.
+    const PathPoint& travel = k == 0 && points.points.size() > 1 ? points.points[1] : point;
+    load_point.tangent = travel.tangent;
+    load_point.tool_axis = point.axis_rotation * tool_axis_platform;
+    load_point.line = travel.line;
+    load_point.cutting = travel.cutting;
+    wrenches[k] = loads.wrench_at(load_point);
+  }
+  return wrenches;
+}
+
+}  // namespace
+
+program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program, const Machine& machine,
+                                          const ProgramPoints& points, const Trajectory& trajectory,
+                                          const FreeCoordinates& free) {
+  program::CanonicalProgram out = program;
+  out.moves.assign(program.moves.begin(), program.moves.begin() + points.first_move);
+  const bool planar = points.frame.planar;
+  const Eigen::Vector3d origin = points.frame.program_origin_mm;
+  Eigen::Vector3d abc = continuous_abc_deg(
+      free.pose(points.points[0], trajectory.values[0]).rotation,
+      points.first_move > 0 ? program.moves[points.first_move - 1].end_abc_deg : program.start_abc_deg,
+      planar);
+  if (points.first_move > 0) {
+    // The leading rapid ends where the optimisation starts: with the start values of the free coordinates.
+    out.moves.back().end_abc_deg = abc;
+    out.moves.back().orientation = program::OrientationSource::abc;
+  }
+  Eigen::Vector3d start_mm = points.points[0].position_mm - origin;
+  std::size_t k = 1;
+  for (int m = points.first_move; m < static_cast<int>(program.moves.size()); ++m) {
+    const CanonicalMove& move = program.moves[m];
+    if (move.kind == MoveKind::dwell) {
+      CanonicalMove dwell = move;
+      dwell.end_mm = start_mm;
+      dwell.end_abc_deg = abc;
+      dwell.orientation = program::OrientationSource::abc;
+      out.moves.push_back(dwell);
+      continue;
+    }
+    const int parts = points.parts[m];
+    if (parts == 0) continue;  // a pure turn: the law owns the orientation now
+    const double axial_total = move.kind == MoveKind::arc ? move.normal.dot(move.end_mm - (start_mm)) : 0.0;
+    for (int i = 1; i <= parts; ++i, ++k) {
+      CanonicalMove part = move;
+      part.end_mm = points.points[k].position_mm - origin;
+      abc = continuous_abc_deg(free.pose(points.points[k], trajectory.values[k]).rotation, abc, planar);
+      part.end_abc_deg = abc;
+      part.orientation = program::OrientationSource::abc;
+      if (move.kind == MoveKind::arc) {
+        // The centre is given at the start's height along the axis: each part starts higher on a helix.
+        part.center_mm = move.center_mm + move.normal * (axial_total * (i - 1) / parts);
+        part.turns = 1;
+      }
+      if (move.inverse_time) part.inverse_time_per_min = move.inverse_time_per_min * parts;
+      out.moves.push_back(part);
+    }
+    start_mm = out.moves.back().end_mm;
+  }
+  (void)machine;
+  return out;
+}
+
+Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program, const Machine& machine,
+                                        const OptimizeOptions& options) {
+  auto sampled = sample_program(program, machine, options.step_mm);
+  if (!sampled) return sampled.error();
+  OptimizeResult result;
+  result.points = std::move(*sampled);
+  const Mechanism& mechanism = *machine.mechanism;
+  auto kind = FreeCoordinates::kind_for(mechanism, options.free);
+  if (!kind) return kind.error();
+  const Eigen::Vector3d tool_axis_platform = mechanism.home().rotation.transpose() * Eigen::Vector3d::UnitZ();
+  const FreeValues start = FreeCoordinates::values_for(*kind, mechanism.convention(), tool_axis_platform,
+                                                       result.points.start_rotation, result.points.points[0]);
+  auto free = FreeCoordinates::create(mechanism, options.free, options.bounds_deg, start);
+  if (!free) return free.error();
+
+  LawEvaluator law(machine, *free, options.law, true);
+  Problem problem;
+  problem.law = &law;
+  problem.points = result.points.points;
+  problem.loads = point_loads(result.points, options.loads, tool_axis_platform);
+  if (!law.set_start(free->pose(problem.points[0], start))) {
+    return make_error(ErrorCode::singular, fmt::format("{}:{}: the program starts in a singular position",
+                                                       program.source, problem.points[0].line));
+  }
+
+  result.free_count = free->count();
+  for (int i = 0; i < free->count(); ++i) {
+    result.free_names.push_back(free->name(i));
+    result.lower_rad[i] = free->lower_rad(i);
+    result.upper_rad[i] = free->upper_rad(i);
+  }
+  result.start_rad = start;
+  result.constant = measure(problem, constant_trajectory(problem));
+
+  auto clock = std::chrono::steady_clock::now();
+  auto greedy = solve_greedy(problem, options.greedy, program.source);
+  if (!greedy) return greedy.error();
+  result.greedy.seconds = seconds_since(clock);
+  result.greedy.trajectory = std::move(*greedy);
+  result.greedy.metrics = measure(problem, result.greedy.trajectory);
+  if (options.solver == Solver::global) {
+    clock = std::chrono::steady_clock::now();
+    auto whole = solve_whole_path(problem, result.greedy.trajectory, options.whole_path);
+    if (!whole) {
+      return make_error(whole.error().code, fmt::format("{}: {}", program.source, whole.error().message));
+    }
+    SolverReport report;
+    report.seconds = seconds_since(clock);
+    report.trajectory = std::move(*whole);
+    report.metrics = measure(problem, report.trajectory);
+    result.whole_path = std::move(report);
+  }
+  result.program = rebuild_program(program, machine, result.points, result.chosen().trajectory, *free);
+  return result;
+}
+
+namespace {
+
+nlohmann::json metrics_json(const TrajectoryMetrics& metrics, int free_count) {
+  nlohmann::json json;
+  json["feasible"] = metrics.feasible;
+  if (!metrics.feasible) json["first_infeasible_line"] = metrics.first_infeasible_line;
+  json["increment_sum_mm"] = metrics.increment_sum_mm;
+  json["peak_force_N"] = metrics.peak_force_N;
+  json["energy_J"] = metrics.energy_J;
+  json["required_work_J"] = metrics.required_work_J;
+  nlohmann::json range = nlohmann::json::array();
+  for (int i = 0; i < free_count; ++i) {
+    range.push_back({deg_from_rad(metrics.min_rad[i]), deg_from_rad(metrics.max_rad[i])});
+  }
+  json["range_deg"] = range;
+  return json;
+}
+
+}  // namespace
+
+nlohmann::json optimize_summary_json(const OptimizeResult& result, const OptimizeOptions& options) {
+  const TrajectoryMetrics& opt = result.chosen().metrics;
+  const TrajectoryMetrics& constant = result.constant;
+  nlohmann::json json;
+  json["program"] = result.program.source;
+  json["law"] = to_string(options.law.law);
+  if (options.law.law == Law::energy) json["energy_accounting"] = to_string(options.law.energy);
+  json["solver"] = options.solver == Solver::global ? "global" : "greedy";
+  json["free"] = to_string(options.free);
+  json["free_coordinates"] = result.free_names;
+  nlohmann::json start = nlohmann::json::array();
+  nlohmann::json bounds = nlohmann::json::array();
+  for (int i = 0; i < result.free_count; ++i) {
+    start.push_back(deg_from_rad(result.start_rad[i]));
+    bounds.push_back({deg_from_rad(result.lower_rad[i]), deg_from_rad(result.upper_rad[i])});
+  }
+  json["start_deg"] = start;
+  json["bounds_deg"] = bounds;
+  json["points"] = result.points.points.size();
+  json["step_mm"] = options.step_mm;
+  json["const_feasible"] = constant.feasible;
+  json["const_sum_mm"] = constant.increment_sum_mm;
+  json["opt_sum_mm"] = opt.increment_sum_mm;
+  json["increment_ratio"] =
+      opt.increment_sum_mm > 0.0 ? constant.increment_sum_mm / opt.increment_sum_mm : 1.0;
+  json["peak_force_const_N"] = constant.peak_force_N;
+  json["peak_force_opt_N"] = opt.peak_force_N;
+  json["energy_const_J"] = constant.energy_J;
+  json["energy_opt_J"] = opt.energy_J;
+  json["required_work_J"] = opt.required_work_J;
+  json["free_range_deg"] = metrics_json(opt, result.free_count)["range_deg"];
+  json["const"] = metrics_json(constant, result.free_count);
+  json["greedy"] = metrics_json(result.greedy.metrics, result.free_count);
+  json["greedy"]["seconds"] = result.greedy.seconds;
+  if (result.whole_path) {
+    json["whole_path"] = metrics_json(result.whole_path->metrics, result.free_count);
+    json["whole_path"]["seconds"] = result.whole_path->seconds;
+  }
+  return json;
+}
+
+}  // namespace pkm::redundancy

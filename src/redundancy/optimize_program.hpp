@@ -1,0 +1,64 @@
+#pragma once
+// The post-processor of ch3 §3.6: a part program whose operation leaves coordinates free (X Y Z only, or CL
+// tool point + axis) in, the same program with the free coordinates chosen by a law out — blocks cut into
+// equal parts of the same kind, the feed of every part the feed of its block (the contour speed is kept).
+#include <array>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "machine/machine.hpp"
+#include "program/canonical_program.hpp"
+#include "redundancy/greedy_solver.hpp"
+#include "redundancy/program_points.hpp"
+#include "redundancy/trajectory_metrics.hpp"
+#include "redundancy/whole_path_solver.hpp"
+#include "statics/load_model.hpp"
+
+namespace pkm::redundancy {
+
+enum class Solver { greedy, global };
+std::optional<Solver> solver_from_string(std::string_view name);
+
+struct OptimizeOptions {
+  LawOptions law;
+  FreeSet free = FreeSet::spin;
+  std::optional<std::array<double, 2>> bounds_deg;
+  double step_mm = 1.0;
+  Solver solver = Solver::greedy;
+  statics::LoadModel loads;
+  GreedySettings greedy;
+  WholePathSettings whole_path;
+};
+
+struct SolverReport {
+  Trajectory trajectory;
+  TrajectoryMetrics metrics;
+  double seconds = 0.0;
+};
+
+struct OptimizeResult {
+  program::CanonicalProgram program;  ///< the post-processed program (A B C on every move)
+  ProgramPoints points;
+  std::vector<std::string> free_names;
+  FreeValues lower_rad = FreeValues::Zero();
+  FreeValues upper_rad = FreeValues::Zero();
+  FreeValues start_rad = FreeValues::Zero();
+  int free_count = 0;
+  TrajectoryMetrics constant;
+  SolverReport greedy;
+  std::optional<SolverReport> whole_path;
+  const SolverReport& chosen() const { return whole_path ? *whole_path : greedy; }
+};
+
+Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program, const Machine& machine,
+                                        const OptimizeOptions& options);
+
+/// The program with the free coordinates of `trajectory` written as A B C (planar: C = φ).
+program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program, const Machine& machine,
+                                          const ProgramPoints& points, const Trajectory& trajectory,
+                                          const FreeCoordinates& free);
+
+/// Summary with const_sum_mm, opt_sum_mm, peak_force_const_N, peak_force_opt_N, energy_const_J, energy_opt_J…
+nlohmann::json optimize_summary_json(const OptimizeResult& result, const OptimizeOptions& options);
+
+}  // namespace pkm::redundancy

@@ -1,0 +1,133 @@
+#include "redundancy/program_points.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "path/curve.hpp"
+
+namespace pkm::redundancy {
+
+using program::CanonicalMove;
+using program::MoveKind;
+
+path::PathFrame program_frame(const Machine& machine) {
+  path::PathFrame frame;
+  frame.program_origin_mm = machine.motion.program_origin_mm;
+  frame.reference_rotation = Eigen::Quaterniond(machine.mechanism->home().rotation);
+  const MechanismType type = machine.mechanism->type();
+  frame.planar = type == MechanismType::planar2 || type == MechanismType::planar3;
+  return frame;
+}
+
+namespace {
+
+Error points_line_error(const program::CanonicalProgram& program, int line, const std::string& what) {
+  return make_error(ErrorCode::bad_input, fmt::format("{}:{}: {}", program.source, line, what));
+}
+
+path::Curve points_curve(const CanonicalMove& move, const Eigen::Vector3d& start_mm,
+                         const Eigen::Quaterniond& q0, const Eigen::Quaterniond& q1,
+                         const path::PathFrame& frame) {
+  const Eigen::Vector3d end = move.end_mm + frame.program_origin_mm;
+  if (move.kind == MoveKind::arc) {
+    return path::make_helix(start_mm, end, move.center_mm + frame.program_origin_mm, move.normal,
+                            std::max(1, move.turns), q0, q1);
+  }
+  return path::make_line(start_mm, end, q0, q1);
+}
+
+// R_axis: the shortest swing of the reference rotation that turns the tool axis onto `axis` (path_builder).
+Eigen::Matrix3d axis_rotation_for(const Eigen::Vector3d& axis, const path::PathFrame& frame) {
+  const Eigen::Quaterniond swing = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis);
+  return (swing * frame.reference_rotation).normalized().toRotationMatrix();
+}
+
+}  // namespace
+
+Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, const Machine& machine,
+                                     double step_mm) {
+  if (!(step_mm > 0.0)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--step-mm {} must be a positive length in mm", step_mm));
+  }
+  ProgramPoints out;
+  out.frame = program_frame(machine);
+  const path::PathFrame& frame = out.frame;
+  const int move_count = static_cast<int>(program.moves.size());
+  out.parts.assign(move_count, 0);
+  const Eigen::Vector3d tool_axis_platform = frame.reference_rotation.conjugate() * Eigen::Vector3d::UnitZ();
+
+  int first_feed = -1;
+  for (int m = 0; m < move_count; ++m) {
+    const CanonicalMove& move = program.moves[m];
+    if (move.tool_length_mm != 0.0) {
+      return points_line_error(
+          program, move.line,
+          "tool-length offsets (G43) are not supported by the redundancy laws; program the "
+          "tool point (G49) instead");
+    }
+    if (frame.planar && (std::abs(move.end_abc_deg.x()) > 1e-9 || std::abs(move.end_abc_deg.y()) > 1e-9)) {
+      return points_line_error(program, move.line,
+                               "A and B must be 0 on a planar machine (C is the platform angle phi)");
+    }
+    if (first_feed < 0 && (move.kind == MoveKind::line || move.kind == MoveKind::arc)) first_feed = m;
+  }
+  if (first_feed < 0) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}: the program has no feed move (G1, G2, G3 or GOTO); there is nothing "
+                                  "whose free coordinates could be chosen",
+                                  program.source));
+  }
+  out.first_move = first_feed;
+
+  // Where the tool is when the leading moves are done.
+  program::CanonicalMove start_move;
+  start_move.end_abc_deg = program.start_abc_deg;
+  Eigen::Quaterniond rotation = path::program_rotation(start_move, frame);
+  Eigen::Vector3d position = program.start_mm + frame.program_origin_mm;
+  for (int m = 0; m < first_feed; ++m) {
+    const CanonicalMove& move = program.moves[m];
+    if (move.kind == MoveKind::dwell) continue;
+    rotation = path::program_rotation(move, frame);
+    position = move.end_mm + frame.program_origin_mm;
+  }
+  PathPoint start;
+  start.position_mm = position;
+  start.axis_rotation = axis_rotation_for(rotation * tool_axis_platform, frame);
+  start.line = program.moves[first_feed].line;
+  out.points.push_back(start);
+  out.start_rotation = rotation.toRotationMatrix();
+
+  for (int m = first_feed; m < move_count; ++m) {
+    const CanonicalMove& move = program.moves[m];
+    if (move.kind == MoveKind::dwell) continue;
+    const Eigen::Quaterniond end_rotation = path::program_rotation(move, frame);
+    const path::Curve curve = points_curve(move, position, rotation, end_rotation, frame);
+    rotation = end_rotation;
+    if (curve.rotation_only()) continue;  // the laws choose the orientation; a pure turn has no place here
+    int parts = std::max(1, static_cast<int>(std::ceil(curve.translation_mm / step_mm * (1.0 - 1e-9))));
+    if (move.kind == MoveKind::arc)
+      parts = std::max(parts, 2 * std::max(1, move.turns));  // sub-arcs < 1 turn
+    out.parts[m] = parts;
+    Eigen::Vector3d previous = position;
+    for (int i = 1; i <= parts; ++i) {
+      const double f = static_cast<double>(i) / parts;
+      PathPoint point;
+      point.position_mm = curve.tip(f);
+      const Eigen::Vector3d step = point.position_mm - previous;
+      point.step_mm = step.norm();
+      if (point.step_mm > 0.0) point.tangent = step / point.step_mm;
+      point.axis_rotation = axis_rotation_for(curve.rotation(f) * tool_axis_platform, frame);
+      point.line = move.line;
+      point.move_index = m;
+      point.cutting = move.kind != MoveKind::rapid;
+      out.points.push_back(point);
+      previous = point.position_mm;
+    }
+    position = curve.tip(1.0);
+  }
+  return out;
+}
+
+}  // namespace pkm::redundancy

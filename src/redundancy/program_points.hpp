@@ -1,0 +1,37 @@
+#pragma once
+// The points at which the redundancy laws choose the free coordinates: every motion block of the program cut
+// into equal parts of the same kind (lines into lines, arcs into arcs of the same radius), no longer than the
+// step (ch3 §3.6 step 3: "split the block into N equal parts"; the seeds' circle uses 1° steps).
+//
+// Moves before the first feed move (the rapids that bring the tool to the part) are kept as programmed: the
+// optimisation starts where they end, with the free coordinates the program has there (`G0 X40 Y0 C15` starts
+// a planar machine at φ = 15°).
+#include <vector>
+
+#include "core/result.hpp"
+#include "machine/machine.hpp"
+#include "path/path_builder.hpp"
+#include "program/canonical_program.hpp"
+#include "redundancy/free_coordinates.hpp"
+
+namespace pkm::redundancy {
+
+struct ProgramPoints {
+  std::vector<PathPoint> points;  ///< points[0]: where the optimisation starts
+  /// Per move: into how many equal parts it is cut (one point at the end of each); 0 for moves kept as
+  /// programmed (leading moves, dwells, moves that only rotate).
+  std::vector<int> parts;
+  int first_move = 0;                                            ///< moves before it are kept as programmed
+  Eigen::Matrix3d start_rotation = Eigen::Matrix3d::Identity();  ///< programmed rotation at points[0]
+  path::PathFrame frame;
+};
+
+/// The machine's frame for program coordinates (origin, home rotation, planar), as the planner uses it.
+path::PathFrame program_frame(const Machine& machine);
+
+/// Cuts the program's motion into parts no longer than `step_mm`. Errors name the source line: tool-length
+/// offsets (G43) are not supported here, and a program without feed moves has nothing to optimise.
+Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, const Machine& machine,
+                                     double step_mm);
+
+}  // namespace pkm::redundancy

@@ -1,0 +1,98 @@
+// pkm optimize and pkm plan --law from the command line: the summary, the written program, and bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/cli_support.hpp"
+
+namespace pkm {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fresh_path(const std::string& name) {
+  const fs::path path = fs::temp_directory_path() / ("pkm_optimize_cli_" + name);
+  fs::remove_all(path);
+  return path.string();
+}
+
+std::string planar_args() {
+  return test::source_path("examples/programs/planar_circle.ngc") + " --machine " +
+         test::source_path("examples/machines/planar3.yaml") + " --step-mm 0.6981317";
+}
+
+TEST(OptimizeCli, PlanarCircleSummaryAndProgram) {
+  const std::string out = fresh_path("planar.ngc");
+  const auto run =
+      test::run_pkm("optimize " + planar_args() + " --law increment --out " + out + " --json", false);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const auto summary = nlohmann::json::parse(run.out);
+  for (const char* key : {"const_sum_mm", "opt_sum_mm", "peak_force_const_N", "peak_force_opt_N",
+                          "energy_const_J", "energy_opt_J", "free_range_deg"}) {
+    EXPECT_TRUE(summary.contains(key)) << key;
+  }
+  EXPECT_NEAR(summary["const_sum_mm"].get<double>(), 227.89, 1.0);
+  EXPECT_NEAR(summary["opt_sum_mm"].get<double>(), 207.84, 1.0);
+  EXPECT_EQ(summary["free_coordinates"][0], "phi");
+  // The program: every feed line carries the chosen phi as C, and it runs through pkm interpret.
+  std::ifstream in(out);
+  ASSERT_TRUE(in.good());
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("G3"), std::string::npos);
+  EXPECT_NE(text.str().find(" C1"), std::string::npos);
+  const auto interpreted = test::run_pkm("interpret " + out + " --json", false);
+  ASSERT_EQ(interpreted.exit_code, 0) << interpreted.out;
+  const auto moves = nlohmann::json::parse(interpreted.out);
+  EXPECT_GE(moves.size(), 361u);
+}
+
+TEST(OptimizeCli, BadArgumentsFailWithoutOutput) {
+  const std::string out = fresh_path("bad.ngc");
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {" --law fastest", "--law fastest"},
+      {" --law increment --free some", "--free some"},
+      {" --law increment --bounds 30", "--bounds 30"},
+      {" --law increment --bounds 20,30", "outside --bounds 20,30"},
+      {" --law force --load tangential=abc", "tangential"},
+      {" --law increment --solver quantum", "--solver quantum"},
+  };
+  for (const Case& c : cases) {
+    const auto run = test::run_pkm("optimize " + planar_args() + c.args + " --out " + out);
+    EXPECT_EQ(run.exit_code, 2) << c.args << ": " << run.out;
+    EXPECT_NE(run.out.find(c.message), std::string::npos) << c.args << ": " << run.out;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+TEST(OptimizeCli, MachinesWithoutFreeCoordinatesAreRefused) {
+  const std::string out = fresh_path("tripod.ngc");
+  const auto run =
+      test::run_pkm("optimize " + test::source_path("examples/programs/circle.ngc") + " --machine " +
+                    test::source_path("examples/machines/tripod.yaml") + " --law increment --out " + out);
+  EXPECT_EQ(run.exit_code, 2) << run.out;
+  EXPECT_NE(run.out.find("controls no orientation"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(OptimizeCli, PlanWithLawReportsTheLaw) {
+  const std::string dir = fresh_path("plan_law");
+  const auto run = test::run_pkm(
+      "plan " + planar_args() + " --law increment --bounds 5,30 --out " + dir + " --json", false);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const auto summary = nlohmann::json::parse(run.out);
+  ASSERT_TRUE(summary.contains("redundancy"));
+  EXPECT_LT(summary["redundancy"]["opt_sum_mm"].get<double>(),
+            summary["redundancy"]["const_sum_mm"].get<double>());
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "actuators.csv"));
+}
+
+}  // namespace
+}  // namespace pkm
