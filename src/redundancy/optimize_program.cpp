@@ -34,6 +34,15 @@ Eigen::Vector3d continuous_abc_deg(const Eigen::Matrix3d& rotation, const Eigen:
   return abc;
 }
 
+// The trajectory's nodes evaluated again with forces, for the report.
+Trajectory with_forces(const Problem& report, const Trajectory& trajectory) {
+  Trajectory out = trajectory;
+  for (std::size_t k = 0; k < out.nodes.size(); ++k) {
+    report.law->evaluate(report.points[k], report.loads[k], out.values[k], out.nodes[k], false);
+  }
+  return out;
+}
+
 std::vector<statics::Wrench> point_loads(const ProgramPoints& points, const statics::LoadModel& loads,
                                          const Eigen::Vector3d& tool_axis_platform) {
   std::vector<statics::Wrench> wrenches(points.points.size());
@@ -119,16 +128,21 @@ Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program
   auto free = FreeCoordinates::create(mechanism, options.free, options.bounds_deg, start);
   if (!free) return free.error();
 
-  LawEvaluator law(machine, *free, options.law, true);
+  // Two evaluators: the solvers' computes only what the law needs (the increment law needs no statics, which
+  // is most of a hexapod candidate's cost); the report's adds forces and energy for every law.
+  LawEvaluator law(machine, *free, options.law, false);
+  LawEvaluator report_law(machine, *free, options.law, true);
   Problem problem;
   problem.law = &law;
   problem.points = result.points.points;
   problem.loads = point_loads(result.points, options.loads, tool_axis_platform);
-  if (!law.set_start(free->pose(problem.points[0], start))) {
+  const Pose start_pose = free->pose(problem.points[0], start);
+  if (!law.set_start(start_pose) || !report_law.set_start(start_pose)) {
     return make_error(ErrorCode::singular, fmt::format("{}:{}: the program starts in a singular position",
                                                        program.source, problem.points[0].line));
   }
-
+  Problem report_problem = problem;
+  report_problem.law = &report_law;
   result.free_count = free->count();
   for (int i = 0; i < free->count(); ++i) {
     result.free_names.push_back(free->name(i));
@@ -136,14 +150,14 @@ Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program
     result.upper_rad[i] = free->upper_rad(i);
   }
   result.start_rad = start;
-  result.constant = measure(problem, constant_trajectory(problem));
+  result.constant = measure(report_problem, constant_trajectory(report_problem));
 
   auto clock = std::chrono::steady_clock::now();
   auto greedy = solve_greedy(problem, options.greedy, program.source);
   if (!greedy) return greedy.error();
   result.greedy.seconds = seconds_since(clock);
   result.greedy.trajectory = std::move(*greedy);
-  result.greedy.metrics = measure(problem, result.greedy.trajectory);
+  result.greedy.metrics = measure(report_problem, with_forces(report_problem, result.greedy.trajectory));
   if (options.solver == Solver::global) {
     clock = std::chrono::steady_clock::now();
     auto whole = solve_whole_path(problem, result.greedy.trajectory, options.whole_path);
@@ -153,7 +167,7 @@ Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program
     SolverReport report;
     report.seconds = seconds_since(clock);
     report.trajectory = std::move(*whole);
-    report.metrics = measure(problem, report.trajectory);
+    report.metrics = measure(report_problem, with_forces(report_problem, report.trajectory));
     result.whole_path = std::move(report);
   }
   result.program = rebuild_program(program, machine, result.points, result.chosen().trajectory, *free);
