@@ -62,7 +62,7 @@ std::vector<statics::Wrench> point_loads(const ProgramPoints& points, const stat
 
 }  // namespace
 
-program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program, const Machine& machine,
+program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program,
                                           const ProgramPoints& points, const Trajectory& trajectory,
                                           const FreeCoordinates& free) {
   program::CanonicalProgram out = program;
@@ -109,7 +109,6 @@ program::CanonicalProgram rebuild_program(const program::CanonicalProgram& progr
     }
     start_mm = out.moves.back().end_mm;
   }
-  (void)machine;
   return out;
 }
 
@@ -170,7 +169,7 @@ Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program
     report.metrics = measure(report_problem, with_forces(report_problem, report.trajectory));
     result.whole_path = std::move(report);
   }
-  result.program = rebuild_program(program, machine, result.points, result.chosen().trajectory, *free);
+  result.program = rebuild_program(program, result.points, result.chosen().trajectory, *free);
   return result;
 }
 

@@ -54,7 +54,7 @@ Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program
                                         const OptimizeOptions& options);
 
 /// The program with the free coordinates of `trajectory` written as A B C (planar: C = φ).
-program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program, const Machine& machine,
+program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program,
                                           const ProgramPoints& points, const Trajectory& trajectory,
                                           const FreeCoordinates& free);
 
