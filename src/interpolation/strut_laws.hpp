@@ -1,0 +1,98 @@
+#pragma once
+// Analytic strut laws L_j(s) along a planned tool path (spec ch5 §5.2, Method B): every actuator's value as a
+// cheap closed function of the path parameter s (mm of tool travel; degrees along moves that only rotate),
+// so that an interpolator running at the carrier frequency composes it with its own timing law s(τ) and
+// never solves inverse kinematics in its period. The laws are fitted per path segment to inverse-kinematics
+// samples, with the model chosen by the segment's kind:
+//   - a straight line at constant orientation: L² is exactly quadratic in s for a strut machine
+//     (L = |C(s) + R·b'_j − A_j|, C linear in s): sqrt-quadratic, eq. 149;
+//   - a circular arc at constant orientation: L² = a0 + a1 cos θ + b1 sin θ with θ linear in s:
+//     sqrt-Fourier, eqs. 148/150;
+//   - anything else (changing orientation, blends, helices, and every segment of a mechanism that is not a
+//     hexapod, whose actuators are no such distances): a polynomial of degree 6, eq. 151.
+// The fit error is then measured against exact IK at check points inside the piece (not the fit nodes).
+// A closed model that misses the tolerance falls back to the polynomial; a polynomial that misses it is
+// split in halves, recursively, down to a minimum piece length, where a remaining error is kept and reported
+// (LawReport), not refused. The tolerance defaults to 10 % of the strut budget of eq. 155 (ch5 §5.1, E8).
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/result.hpp"
+#include "interpolation/strut_law_piece.hpp"
+#include "machine/machine.hpp"
+#include "path/path.hpp"
+
+namespace pkm {
+class Hexapod;
+}
+
+namespace pkm::interpolation {
+
+struct LawFitSettings {
+  double tolerance = 9e-6;  ///< largest |fitted − IK| actuator value (mm; rad for angular actuators): 10 % of
+                            ///< ΔL_allowed = 0.9·ρ_max/δρ_max for ρ_max = 1 µm, δρ_max = 10 (ch5 §5.1, E8)
+  int polynomial_degree = 6;  ///< eq. 151
+  int check_points = 32;      ///< per piece, where the fit error is measured against IK (not the fit nodes)
+  double min_piece_length = 1e-3;  ///< path units; pieces are not split below this
+};
+
+struct LawReport {
+  int pieces = 0;
+  int exact = 0, sqrt_quadratic = 0, sqrt_fourier = 0, polynomial = 0;  ///< pieces per model
+  double max_fit_error = 0.0;  ///< largest measured |fitted − IK| over all check points
+  int max_fit_error_line = 0;  ///< program line of the piece where it occurs
+};
+
+/// The laws keep pointers to the machine and the path they were made for: the caller keeps both alive (and
+/// in place) for as long as the laws are used.
+class StrutLaws {
+ public:
+  /// No fit: every evaluation solves IK (the reference). Pieces = path segments.
+  static Result<StrutLaws> exact(const Machine& machine, const path::Path& path, const std::string& source);
+  /// Fitted per path segment (§5.2). Errors (IK failing at a sample) name `source`:line of the segment.
+  static Result<StrutLaws> fit(const Machine& machine, const path::Path& path, const LawFitSettings& settings,
+                               const std::string& source);
+
+  int actuator_count() const { return actuators_; }
+  double length() const { return length_; }  ///< the path's length
+  /// Actuator values at path parameter s (clamped to [0, length()]); `hint` is a piece index, updated
+  /// (monotone use is O(1), any s works). False only when IK fails (exact model). No allocation.
+  bool evaluate(double s, int& hint, double* actuators) const noexcept;
+  int piece_count() const { return static_cast<int>(pieces_.size()); }
+  LawModel model(int piece) const { return pieces_[piece].model; }
+  int line(int piece) const { return pieces_[piece].line; }  ///< source line of the piece's segment
+  const LawReport& report() const { return report_; }
+
+  /// The whole piece: its span of s, segment, local variable and measured fit error.
+  const LawPiece& piece(int index) const { return pieces_[index]; }
+  /// Actuator `actuator`'s coefficients on `piece` in the piece's basis (strut_law_piece.hpp); empty for
+  /// exact pieces.
+  std::span<const double> coefficients(int piece, int actuator) const {
+    const LawPiece& p = pieces_[piece];
+    return {coefficients_.data() + p.offset + static_cast<std::size_t>(p.stride) * actuator,
+            static_cast<std::size_t>(p.stride)};
+  }
+  /// The piece containing s, searching from `hint` (forward steps for monotone use, else a binary search).
+  int find_piece(double s, int hint) const noexcept;
+
+ private:
+  friend class StrutLawBuilder;
+  StrutLaws(const Machine& machine, const path::Path& path);
+  bool solve_inverse(const path::PathPoint& point, double* actuators) const noexcept;
+
+  const Machine* machine_ = nullptr;
+  const Hexapod* hexapod_ = nullptr;  ///< the no-allocation IK of a hexapod, when the machine is one
+  const path::Path* path_ = nullptr;
+  int actuators_ = 0;
+  double length_ = 0.0;
+  bool exact_ = true;
+  std::vector<LawPiece> pieces_;
+  std::vector<double> coefficients_;
+  std::array<double, kMaxActuators> start_values_{};  ///< fitted laws of a path without segments
+  LawReport report_;
+};
+
+}  // namespace pkm::interpolation
