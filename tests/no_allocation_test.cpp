@@ -9,6 +9,9 @@
 #include <new>
 
 #include "core/units.hpp"
+#include "interpolation/carrier_interpolator.hpp"
+#include "interpolation/discreteness_corrector.hpp"
+#include "interpolation/remainder_quantizer.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
 #include "planning/plan_test_support.hpp"
@@ -171,6 +174,43 @@ TEST(NoAllocation, StaticsHexapodStrutForces) {
   const long before = g_allocations.load();
   EXPECT_TRUE(statics::hexapod_strut_forces(h, h.home(), load, forces));
   EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+// The real-time part of the interpolation (spec ch5 §5.6): per period the carrier step (strut laws, chord
+// check) and the quantisation, naive or corrected (two FK solves, two Jacobians, 64 combinations).
+TEST(NoAllocation, InterpolationPeriods) {
+  const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  const auto program = test::gcode_for(m, "G0 X-50 Y0 Z0\nG1 X50 F3000\nG2 X50 Y0 I-20 J0 A3\nM2\n");
+  const auto plan = test::plan_or_fail(m, program);
+  auto timing = interpolation::IdealTiming::from_plan(plan, m);
+  ASSERT_TRUE(timing.ok());
+  for (bool fitted : {true, false}) {
+    auto laws = fitted ? interpolation::StrutLaws::fit(m, plan.path, {}, "t.ngc")
+                       : interpolation::StrutLaws::exact(m, plan.path, "t.ngc");
+    ASSERT_TRUE(laws.ok());
+    interpolation::CarrierSettings settings;
+    interpolation::CarrierInterpolator carrier(*laws, *timing, settings);
+    std::array<double, kMaxActuators> start{};
+    ASSERT_TRUE(carrier.start(start).ok());
+    const interpolation::ContourGauge gauge(m, plan.path);
+    interpolation::CorrectorSettings corrector_settings;
+    interpolation::DiscretenessCorrector corrector(m, plan.path, gauge, corrector_settings);
+    ASSERT_TRUE(corrector.start(start).ok());
+    interpolation::RemainderQuantizer remainder(6, 0.001);
+    remainder.start(start);
+    interpolation::CarrierPeriod period;
+    interpolation::StepPeriod out;
+    long periods = 0;
+    const long before = g_allocations.load();
+    while (carrier.next(period)) {
+      ASSERT_TRUE(corrector.quantize(period, out).ok());
+      remainder.quantize(period, out);
+      ++periods;
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0) << (fitted ? "fitted laws" : "exact laws");
+    EXPECT_GT(periods, 1000);
+    EXPECT_FALSE(carrier.error().has_value());
+  }
 }
 
 }  // namespace

@@ -13,5 +13,7 @@ void add_demo_command(CLI::App& app, int& exit_code);
 void add_interpret_command(CLI::App& app, int& exit_code);
 void add_plan_command(CLI::App& app, int& exit_code);
 void add_optimize_command(CLI::App& app, int& exit_code);
+void add_play_command(CLI::App& app, int& exit_code);
+void add_interpolate_command(CLI::App& app, int& exit_code);
 
 }  // namespace pkm::cli

@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   pkm::cli::add_interpret_command(app, exit_code);
   pkm::cli::add_plan_command(app, exit_code);
   pkm::cli::add_optimize_command(app, exit_code);
+  pkm::cli::add_interpolate_command(app, exit_code);
+  pkm::cli::add_play_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,47 @@
+#pragma once
+// Contour error (spec ch5 §10, E3): the perpendicular distance of the tool from the programmed path, not the
+// lag along it. The seeds' start-point value 4.9166e-4 mm is sqrt(Δy² + Δz²) on an X-directed line: the
+// distance to the nearest path point, which is what this measures, for any path (lines, arcs, blends).
+//
+// The nearest point is found by Newton steps on the path parameter from a guess (the ideal point of the
+// moment), so a point near the path costs a few path evaluations. Coordinates a reduced-DOF mechanism does
+// not control follow from the others and are no error (Mechanism::controlled_axes).
+#include <Eigen/Core>
+
+#include "machine/machine.hpp"
+#include "path/path.hpp"
+
+namespace pkm::interpolation {
+
+struct ContourDeviation {
+  double distance_mm = 0.0;                  ///< perpendicular distance of the controlled point from the path
+  double rotation_rad = 0.0;                 ///< angle between the pose's and the path's orientation there
+  double s = 0.0;                            ///< path parameter of the nearest point
+  Eigen::Vector3d offset_mm{0.0, 0.0, 0.0};  ///< point − nearest path point (controlled axes only)
+};
+
+class ContourGauge {
+ public:
+  ContourGauge(const Machine& machine, const path::Path& path);
+
+  /// Nearest path point to `pose`'s controlled point, searching from `s_guess`; `hint` is a segment index.
+  /// No allocation.
+  ContourDeviation measure(const Pose& pose, double s_guess, int& hint) const noexcept;
+  /// The tangent-line distance: the perpendicular part of `point − at` with respect to the unit `tangent`
+  /// (the cheap form for many candidates near one path point, ch5 §8). The path ends `behind` before and
+  /// `ahead` after `at` (path units): a point beyond an end is that much farther from the path.
+  double line_distance(const Eigen::Vector3d& point_mm, const Eigen::Vector3d& at_mm,
+                       const Eigen::Vector3d& tangent, double behind, double ahead) const noexcept;
+  /// The unit tangent of the tool point's path at s (zero where only the orientation moves).
+  Eigen::Vector3d tangent(double s, int& hint) const noexcept;
+  /// Zeroes the coordinates the mechanism does not control.
+  Eigen::Vector3d mask(Eigen::Vector3d offset_mm) const noexcept;
+  bool controls_orientation() const { return controls_orientation_; }
+
+ private:
+  const path::Path& path_;
+  std::array<bool, 3> controlled_{true, true, true};
+  bool controls_orientation_ = true;
+};
+
+}  // namespace pkm::interpolation

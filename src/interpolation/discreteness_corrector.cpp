@@ -1,0 +1,208 @@
+#include "interpolation/discreteness_corrector.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "interpolation/remainder_quantizer.hpp"
+
+namespace pkm::interpolation {
+
+DiscretenessCorrector::DiscretenessCorrector(const Machine& machine, const path::Path& path,
+                                             const ContourGauge& gauge, const CorrectorSettings& settings)
+    : machine_(machine),
+      path_(path),
+      gauge_(gauge),
+      settings_(settings),
+      count_(machine.mechanism->actuator_count()),
+      end_tracker_(machine, machine.mechanism->home()),
+      middle_tracker_(machine, machine.mechanism->home()),
+      probe_tracker_(machine, machine.mechanism->home()) {
+  const AxisMask axes = machine.mechanism->controlled_axes();
+  for (int axis = 0; axis < 6; ++axis) {
+    if (axes.controlled[axis]) coordinate_axis_[coordinates_++] = axis;
+  }
+}
+
+Status DiscretenessCorrector::fail(const CarrierPeriod& period, const char* where) const {
+  return Error{ErrorCode::not_converged,
+               fmt::format("period {} (t = {:.4f} s): forward kinematics failed at the {} of the period",
+                           period.index, period.time_s, where)};
+}
+
+Status DiscretenessCorrector::start(const std::array<double, kMaxActuators>& ideal_start) {
+  position_ = truncated_steps(ideal_start, count_, settings_.step);
+  std::array<double, kMaxActuators> values{};
+  for (int j = 0; j < count_; ++j) values[j] = static_cast<double>(position_[j]) * settings_.step;
+  Pose pose;
+  PoseTracker first(machine_, machine_.mechanism->home());
+  if (!first.solve(values.data(), pose)) {
+    return Error{ErrorCode::not_converged, "forward kinematics failed at the start positions"};
+  }
+  end_tracker_.reset(pose);
+  middle_tracker_.reset(pose);
+  probe_tracker_.reset(pose);
+  return ok_status();
+}
+
+bool DiscretenessCorrector::linearise(PoseTracker& tracker, const std::array<double, kMaxActuators>& values,
+                                      double step_share, Linearisation& out) {
+  Pose pose;
+  ++statistics_.fk_solves;
+  if (!tracker.solve(values.data(), pose)) return false;
+  auto jacobian = machine_.mechanism->jacobian(pose);
+  ++statistics_.jacobians;
+  if (!jacobian || jacobian->rows() != count_ || jacobian->cols() != coordinates_) return false;
+  // ∂(coordinates)/∂(actuators): the FK sensitivities of §5.1 (eq. 144) and §8.3.
+  const Eigen::PartialPivLU<JacobianMatrix> lu(*jacobian);
+  JacobianMatrix identity = JacobianMatrix::Identity(count_, count_);
+  const JacobianMatrix sensitivity = lu.solve(identity);
+  out.point_mm = pose.position_mm;
+  out.angles = angles_from_rotation(machine_.mechanism->convention(), pose.rotation);
+  const double share = settings_.step * step_share;
+  for (int j = 0; j < count_; ++j) {
+    out.point_per_step[j].setZero();
+    out.angles_per_step[j].setZero();
+    for (int c = 0; c < coordinates_; ++c) {
+      const int axis = coordinate_axis_[c];
+      if (axis < 3) {
+        out.point_per_step[j][axis] = sensitivity(c, j) * share;
+      } else {
+        out.angles_per_step[j][axis - 3] = sensitivity(c, j) * share;
+      }
+    }
+  }
+  return true;
+}
+
+Status DiscretenessCorrector::quantize(const CarrierPeriod& period, StepPeriod& out) {
+  const double step = settings_.step;
+  std::array<std::int64_t, kMaxActuators> floor_position{};
+  std::array<double, kMaxActuators> end_values{};
+  std::array<double, kMaxActuators> middle_values{};
+  for (int j = 0; j < count_; ++j) {
+    floor_position[j] = static_cast<std::int64_t>(std::floor(period.target[j] / step));
+    end_values[j] = static_cast<double>(floor_position[j]) * step;
+    middle_values[j] = 0.5 * static_cast<double>(position_[j] + floor_position[j]) * step;
+  }
+  // The programmed path near the period's end and middle: points and tangents of the contour measure.
+  int hint = 0;
+  const path::PathPoint end_point = path_.evaluate(period.s_end, hint);
+  // At rest and at the path's end the tool must be at the point, not anywhere on its tangent: there the
+  // distance to the point is the error (a zero tangent makes line_distance the full distance).
+  const double length = path_.length();
+  const double end_ahead = length - period.s_end;
+  const bool at_point = period.s_end - period.s_start <= 1e-12 || period.s_end >= length;
+  const Eigen::Vector3d end_tangent = at_point ? Eigen::Vector3d::Zero() : gauge_.tangent(period.s_end, hint);
+  const double s_middle = 0.5 * (period.s_start + period.s_end);
+  int middle_hint = 0;
+  const path::PathPoint middle_point = path_.evaluate(s_middle, middle_hint);
+  const Eigen::Vector3d middle_tangent = period.s_end - period.s_start <= 1e-12
+                                             ? Eigen::Vector3d::Zero()
+                                             : gauge_.tangent(s_middle, middle_hint);
+  const Eigen::Vector3d required_angles =
+      angles_from_rotation(machine_.mechanism->convention(), end_point.rotation.toRotationMatrix());
+
+  const unsigned combinations = 1u << count_;
+  unsigned best_feasible = combinations;
+  unsigned best_oriented = combinations;
+  unsigned best_any = 0;
+  double best_feasible_error = std::numeric_limits<double>::infinity();
+  double best_oriented_deviation = std::numeric_limits<double>::infinity();
+  double best_any_error = std::numeric_limits<double>::infinity();
+  double chosen_end_error = 0.0;
+  double chosen_middle_error = 0.0;
+  double any_end_error = 0.0;
+  double any_middle_error = 0.0;
+  const auto consider = [&](unsigned bits, double end_error, double middle_error, double angle_deviation) {
+    const double worse = std::max(end_error, middle_error);
+    if (worse < best_any_error) {
+      best_any_error = worse, best_any = bits, any_end_error = end_error, any_middle_error = middle_error;
+    }
+    if (middle_error <= settings_.rho_max_mm && end_error < best_feasible_error) {
+      best_feasible_error = end_error, best_feasible = bits;
+      if (!settings_.orientation_criterion) chosen_end_error = end_error, chosen_middle_error = middle_error;
+    }
+    if (settings_.orientation_criterion &&
+        worse <= settings_.orientation_contour_share * settings_.rho_max_mm &&
+        angle_deviation < best_oriented_deviation) {
+      best_oriented_deviation = angle_deviation, best_oriented = bits;
+      chosen_end_error = end_error, chosen_middle_error = middle_error;
+    }
+  };
+
+  if (settings_.linearise) {
+    Linearisation end;
+    Linearisation middle;
+    if (!linearise(end_tracker_, end_values, 1.0, end)) return fail(period, "end");
+    if (!linearise(middle_tracker_, middle_values, 0.5, middle)) return fail(period, "middle");
+    // Gray-code walk: each combination differs from the previous one in one actuator's extra step.
+    Eigen::Vector3d end_p = end.point_mm;
+    Eigen::Vector3d middle_p = middle.point_mm;
+    Eigen::Vector3d angles = end.angles;
+    unsigned gray = 0;
+    for (unsigned k = 0; k < combinations; ++k) {
+      if (k > 0) {
+        const int j = std::countr_zero(k);
+        const double sign = (gray >> j) & 1u ? -1.0 : 1.0;
+        gray ^= 1u << j;
+        end_p += sign * end.point_per_step[j];
+        middle_p += sign * middle.point_per_step[j];
+        angles += sign * end.angles_per_step[j];
+      }
+      consider(gray, gauge_.line_distance(end_p, end_point.position_mm, end_tangent, period.s_end, end_ahead),
+               gauge_.line_distance(middle_p, middle_point.position_mm, middle_tangent, s_middle,
+                                    length - s_middle),
+               (angles - required_angles).squaredNorm());
+    }
+  } else {
+    // Reference: FK of every combination, the exact nearest path point.
+    const Pose anchor = end_tracker_.last();
+    for (unsigned bits = 0; bits < combinations; ++bits) {
+      std::array<double, kMaxActuators> end_try = end_values;
+      std::array<double, kMaxActuators> middle_try = middle_values;
+      for (int j = 0; j < count_; ++j) {
+        if ((bits >> j) & 1u) end_try[j] += step, middle_try[j] += 0.5 * step;
+      }
+      Pose end_pose;
+      Pose middle_pose;
+      probe_tracker_.reset(anchor);
+      statistics_.fk_solves += 2;
+      if (!probe_tracker_.solve(end_try.data(), end_pose)) return fail(period, "end");
+      probe_tracker_.reset(anchor);
+      if (!probe_tracker_.solve(middle_try.data(), middle_pose)) return fail(period, "middle");
+      int end_hint = hint;
+      int mid_hint = middle_hint;
+      const double end_error = gauge_.measure(end_pose, period.s_end, end_hint).distance_mm;
+      const double middle_error = gauge_.measure(middle_pose, s_middle, mid_hint).distance_mm;
+      const Eigen::Vector3d try_angles =
+          angles_from_rotation(machine_.mechanism->convention(), end_pose.rotation);
+      consider(bits, end_error, middle_error, (try_angles - required_angles).squaredNorm());
+      if (bits == 0) end_tracker_.reset(end_pose);
+    }
+  }
+
+  unsigned chosen = best_oriented < combinations ? best_oriented : best_feasible;
+  if (chosen >= combinations) {
+    chosen = best_any, chosen_end_error = any_end_error, chosen_middle_error = any_middle_error;
+    ++statistics_.fallbacks;
+  }
+  statistics_.max_predicted_error_mm =
+      std::max({statistics_.max_predicted_error_mm, chosen_end_error, chosen_middle_error});
+  out.index = period.index;
+  out.time_s = period.time_s;
+  for (int j = 0; j < count_; ++j) {
+    const std::int64_t next = floor_position[j] + ((chosen >> j) & 1u);
+    out.steps[j] = static_cast<std::int32_t>(next - position_[j]);
+    position_[j] = next;
+    out.position[j] = next;
+  }
+  ++statistics_.periods;
+  return ok_status();
+}
+
+}  // namespace pkm::interpolation

@@ -1,0 +1,459 @@
+#include "interpolation/interpolate_run.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/units.hpp"
+#include "interpolation/remainder_quantizer.hpp"
+#include "kinematics/conditioning.hpp"
+
+namespace pkm::interpolation {
+
+std::optional<Method> method_from_string(std::string_view name) {
+  if (name == "exact") return Method::exact;
+  if (name == "carrier") return Method::carrier;
+  if (name == "carrier-corrected") return Method::carrier_corrected;
+  if (name == "estimating") return Method::estimating;
+  return std::nullopt;
+}
+
+std::string_view to_string(Method method) {
+  switch (method) {
+    case Method::exact:
+      return "exact";
+    case Method::carrier:
+      return "carrier";
+    case Method::carrier_corrected:
+      return "carrier-corrected";
+    case Method::estimating:
+      return "estimating";
+  }
+  return "exact";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Status check_interpolate_options(const InterpolateOptions& options, bool has_sinks) {
+  // The seeds' carrier frequencies are 100 Hz … 10 kHz (§2, E20); their simulations also ran h = 20 ms (E13).
+  if (!(options.period_s >= 1e-4 - 1e-12 && options.period_s <= 2e-2 + 1e-12)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--period-ms {} is outside 0.1…20 ms (carrier frequencies 50 Hz…10 kHz)",
+                                  options.period_s * 1e3));
+  }
+  if (!(options.step_mm >= 0.0) || (options.step_mm == 0.0 && has_sinks)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--step-mm {} must be a positive drive resolution", options.step_mm));
+  }
+  if (options.step_mm == 0.0 && options.method != Method::exact && options.method != Method::carrier) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("the {} method needs whole drive steps (--step-mm > 0)", to_string(options.method)));
+  }
+  if (!(options.rho_max_mm > 0.0)) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("--rho-max {} mm must be a positive contour tolerance", options.rho_max_mm));
+  }
+  if (options.delta_rho_max && !(*options.delta_rho_max > 0.0)) {
+    return make_error(ErrorCode::bad_input, "--delta-rho-max must be positive");
+  }
+  if (options.max_step_rate_hz && !(*options.max_step_rate_hz * options.period_s >= 2.0)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--max-step-rate {} Hz allows fewer than 2 steps per {} ms period",
+                                  *options.max_step_rate_hz, options.period_s * 1e3));
+  }
+  return ok_status();
+}
+
+// δρ_max of eq. 146 along this path: the error amplification at samples of the path (the seeds take the
+// maximum over a working space; the path's own maximum is the tighter, sufficient bound for this run).
+Result<std::pair<double, int>> path_error_amplification(const Machine& machine, const path::Path& path,
+                                                        double spacing, const std::string& source) {
+  double largest = 0.0;
+  int line = 0;
+  int hint = 0;
+  for (const path::Segment& segment : path.segments) {
+    const int samples = std::max(1, static_cast<int>(std::ceil(segment.length / spacing)));
+    for (int k = 0; k <= samples; ++k) {
+      const double s = segment.s_start + segment.length * k / samples;
+      const path::PathPoint point = path.evaluate(s, hint);
+      auto measures =
+          jacobian_measures(*machine.mechanism, Pose{point.position_mm, point.rotation.toRotationMatrix()});
+      if (!measures) {
+        return Error{measures.error().code, fmt::format("{}:{}: {} (δρ along the path)", source, segment.line,
+                                                        measures.error().message)};
+      }
+      if (measures->error_amplification > largest)
+        largest = measures->error_amplification, line = segment.line;
+    }
+  }
+  if (path.segments.empty()) {
+    auto measures = jacobian_measures(*machine.mechanism,
+                                      Pose{path.start.position_mm, path.start.rotation.toRotationMatrix()});
+    if (!measures)
+      return Error{measures.error().code, fmt::format("{}: {}", source, measures.error().message)};
+    largest = measures->error_amplification;
+  }
+  return std::make_pair(largest, line);
+}
+
+int line_at(const path::Path& path, double s, int& hint) {
+  if (path.segments.empty()) return 0;
+  hint = path.find_segment(s, hint);
+  return path.segments[hint].line;
+}
+
+// Per-period bookkeeping shared by the methods: sinks, step counts, compute time, progress.
+class RunRecorder {
+ public:
+  RunRecorder(const std::vector<StepSink*>& sinks, InterpolateSummary& summary,
+              const InterpolateOptions& options, double duration_s)
+      : sinks_(sinks), summary_(summary), options_(options), duration_s_(duration_s) {}
+
+  Status emit(const StepPeriod& period) {
+    for (int j = 0; j < summary_.actuators; ++j) {
+      const int steps = std::abs(period.steps[j]);
+      if (steps > summary_.max_steps_per_period) {
+        summary_.max_steps_per_period = steps;
+        summary_.max_steps_line = period.line;
+      }
+    }
+    for (StepSink* sink : sinks_) {
+      if (Status written = sink->write(period); !written) return written;
+    }
+    if (options_.progress && period.index % 4096 == 0 && duration_s_ > 0.0) {
+      options_.progress(std::min(1.0, period.time_s / duration_s_));
+    }
+    return ok_status();
+  }
+  void compute_time(Clock::time_point started) {
+    const double us = std::chrono::duration<double, std::micro>(Clock::now() - started).count();
+    summary_.max_compute_us_per_period = std::max(summary_.max_compute_us_per_period, us);
+    total_us_ += us;
+    ++timed_;
+  }
+  Status finish() {
+    summary_.mean_compute_us_per_period = timed_ > 0 ? total_us_ / static_cast<double>(timed_) : 0.0;
+    for (StepSink* sink : sinks_) {
+      if (Status done = sink->finish(); !done) return done;
+    }
+    if (options_.progress) options_.progress(1.0);
+    return ok_status();
+  }
+
+ private:
+  const std::vector<StepSink*>& sinks_;
+  InterpolateSummary& summary_;
+  const InterpolateOptions& options_;
+  double duration_s_;
+  double total_us_ = 0.0;
+  long timed_ = 0;
+};
+
+std::array<double, kMaxActuators> values_of(const std::array<std::int64_t, kMaxActuators>& steps, int count,
+                                            double step) {
+  std::array<double, kMaxActuators> values{};
+  for (int j = 0; j < count; ++j) values[j] = static_cast<double>(steps[j]) * step;
+  return values;
+}
+
+Status run_carrier(const Machine& machine, const path::Path& path, const IdealTiming& timing,
+                   const InterpolateOptions& options, double step, InterpolateSummary& summary,
+                   RunRecorder& recorder, const std::string& source) {
+  const int n = summary.actuators;
+  auto laws =
+      options.method == Method::exact
+          ? StrutLaws::exact(machine, path, source)
+          : StrutLaws::fit(machine, path, LawFitSettings{.tolerance = 0.1 * summary.strut_tolerance}, source);
+  if (!laws) return laws.error();
+  summary.laws = laws->report();
+
+  CarrierSettings carrier_settings;
+  carrier_settings.period_s = options.period_s;
+  carrier_settings.chord_check = options.chord_check;
+  carrier_settings.strut_tolerance = summary.strut_tolerance;
+  carrier_settings.feed_override = options.feed_override;
+  for (int j = 0; j < n; ++j) {
+    double allowed = 0.0;
+    if (machine.limits.speed) allowed = *machine.limits.speed * options.period_s;
+    if (options.max_step_rate_hz && step > 0.0) {
+      // One step of the period's allowance is kept for the rounding of the quantiser.
+      const double by_rate = (std::floor(*options.max_step_rate_hz * options.period_s) - 1.0) * step;
+      allowed = allowed > 0.0 ? std::min(allowed, by_rate) : by_rate;
+    }
+    carrier_settings.max_increment[j] = allowed;
+  }
+  CarrierInterpolator carrier(*laws, timing, carrier_settings);
+  std::array<double, kMaxActuators> ideal_start{};
+  if (Status started = carrier.start(ideal_start); !started) {
+    return Error{started.error().code, fmt::format("{}: {}", source, started.error().message)};
+  }
+  summary.ideal_start = ideal_start;
+
+  const ContourGauge gauge(machine, path);
+  ContourMonitor monitor(machine, path, gauge, options.error_samples);
+  const bool corrected = options.method == Method::carrier_corrected;
+  RemainderQuantizer remainder(n, step > 0.0 ? step : 1.0);
+  CorrectorSettings corrector_settings;
+  corrector_settings.step = step;
+  corrector_settings.rho_max_mm = options.rho_max_mm;
+  corrector_settings.orientation_criterion = options.orientation_criterion;
+  corrector_settings.linearise = options.linearise;
+  DiscretenessCorrector corrector(machine, path, gauge, corrector_settings);
+  std::array<double, kMaxActuators> actual{};
+  if (step > 0.0) {
+    if (corrected) {
+      if (Status started = corrector.start(ideal_start); !started) return started;
+      summary.start_position = corrector.position();
+    } else {
+      remainder.start(ideal_start);
+      summary.start_position = remainder.position();
+    }
+    actual = values_of(summary.start_position, n, step);
+  } else {
+    actual = ideal_start;
+  }
+  monitor.start(actual, timing.s_at(0.0));
+
+  CarrierPeriod period;
+  StepPeriod out;
+  int hint = 0;
+  for (;;) {
+    const auto started = Clock::now();
+    if (!carrier.next(period)) break;
+    if (step > 0.0) {
+      if (corrected) {
+        if (Status chosen = corrector.quantize(period, out); !chosen) {
+          return Error{chosen.error().code,
+                       fmt::format("{}:{}: {}", source, laws->line(period.hint), chosen.error().message)};
+        }
+      } else {
+        remainder.quantize(period, out);
+      }
+      actual = values_of(out.position, n, step);
+    } else {
+      actual = period.target;
+    }
+    recorder.compute_time(started);
+    out.index = period.index;
+    out.time_s = period.time_s;
+    out.line = line_at(path, period.s_end, hint);
+    monitor.add(actual, period.s_start, period.s_end, period.time_s, options.period_s, out.line, period.last);
+    if (step > 0.0) {
+      if (Status emitted = recorder.emit(out); !emitted) return emitted;
+    }
+    summary.ideal_end = period.target;
+  }
+  if (carrier.error()) {
+    return Error{carrier.error()->code, fmt::format("{}:{}", source, carrier.error()->message)};
+  }
+  summary.carrier = carrier.statistics();
+  summary.periods = summary.carrier.periods;
+  summary.ideal_time_s = summary.carrier.ideal_time_s;
+  summary.real_time_s = summary.carrier.real_time_s;
+  summary.contour = monitor.statistics();
+  summary.corrector = corrector.statistics();
+  summary.max_remainder_steps = remainder.max_remainder_steps();
+  summary.end_position = corrected ? corrector.position() : remainder.position();
+  if (summary.periods > 0) {
+    const double periods = static_cast<double>(summary.periods);
+    if (corrected) {
+      summary.fk_solves_per_period = static_cast<double>(summary.corrector.fk_solves) / periods;
+      summary.jacobians_per_period = static_cast<double>(summary.corrector.jacobians) / periods;
+    }
+  }
+  return ok_status();
+}
+
+Status run_estimating(const Machine& machine, const path::Path& path, const IdealTiming& timing,
+                      const InterpolateOptions& options, double step, InterpolateSummary& summary,
+                      RunRecorder& recorder, const std::string& source) {
+  const int n = summary.actuators;
+  EstimatingSettings settings = options.estimating;
+  settings.step_mm = step;
+  EstimatingInterpolator estimator(machine, path, settings, source);
+  if (Status started = estimator.start(); !started) return started;
+  summary.start_position = estimator.position_steps();
+  const ContourGauge gauge(machine, path);
+  ContourMonitor monitor(machine, path, gauge, options.error_samples);
+  monitor.start(values_of(summary.start_position, n, step), timing.s_at(0.0));
+  FeedOverride feed(options.feed_override, options.period_s);
+  double tau = 0.0;
+  double s_reached = timing.s_at(0.0);
+  bool more = true;
+  Tact tact;
+  StepPeriod out;
+  int hint = 0;
+  for (long index = 0; more; ++index) {
+    const auto started = Clock::now();
+    tau = std::min(timing.duration_s(), tau + feed.factor(index) * options.period_s);
+    const bool final_period = tau >= timing.duration_s();
+    const double s_target = timing.s_at(tau);
+    const std::array<std::int64_t, kMaxActuators> before = estimator.position_steps();
+    const double s_before = s_reached;
+    // The tacts that bring the tool up to this period's ideal point (all of them in the last period).
+    while (final_period || s_reached < s_target) {
+      if (!estimator.next(tact)) {
+        more = false;
+        break;
+      }
+      s_reached = tact.s;
+    }
+    if (estimator.error()) return *estimator.error();
+    recorder.compute_time(started);
+    out.index = index;
+    out.time_s = static_cast<double>(index + 1) * options.period_s;
+    out.line = line_at(path, s_reached, hint);
+    for (int j = 0; j < n; ++j) {
+      out.position[j] = estimator.position_steps()[j];
+      out.steps[j] = static_cast<std::int32_t>(out.position[j] - before[j]);
+    }
+    monitor.add(values_of(out.position, n, step), s_before, s_reached, out.time_s, options.period_s, out.line,
+                !more);
+    if (Status emitted = recorder.emit(out); !emitted) return emitted;
+    summary.periods = index + 1;
+    if (index > 100'000'000)
+      return make_error(ErrorCode::limit_exceeded, "the estimating method does not end");
+  }
+  summary.estimating = estimator.statistics();
+  summary.end_position = estimator.position_steps();
+  summary.ideal_time_s = timing.duration_s();
+  summary.real_time_s = static_cast<double>(summary.periods) * options.period_s;
+  summary.contour = monitor.statistics();
+  if (summary.periods > 0) {
+    summary.fk_solves_per_period =
+        static_cast<double>(summary.estimating.fk_solves) / static_cast<double>(summary.periods);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path& path,
+                                       const IdealTiming& timing, const InterpolateOptions& options,
+                                       const std::vector<StepSink*>& sinks, const std::string& source) {
+  if (Status valid = check_interpolate_options(options, !sinks.empty()); !valid) return valid.error();
+  InterpolateSummary summary;
+  summary.method = options.method;
+  summary.period_s = options.period_s;
+  summary.step_mm = options.step_mm;
+  summary.rho_max_mm = options.rho_max_mm;
+  summary.actuators = machine.mechanism->actuator_count();
+  if (options.delta_rho_max) {
+    summary.delta_rho_max = *options.delta_rho_max;
+  } else {
+    auto amplification = path_error_amplification(machine, path, options.amplification_spacing, source);
+    if (!amplification) return amplification.error();
+    summary.delta_rho_max = amplification->first;
+    summary.delta_rho_max_line = amplification->second;
+  }
+  // eq. 155: 10 % of the budget is kept for the strut laws' own approximation error.
+  summary.strut_tolerance = 0.9 * options.rho_max_mm / summary.delta_rho_max;
+  // Angular actuators take their step in degrees on the command line; inside, radians.
+  const double step =
+      machine.mechanism->actuators_are_angles() ? rad_from_deg(options.step_mm) : options.step_mm;
+  RunRecorder recorder(sinks, summary, options, timing.duration_s());
+  const Status ran = options.method == Method::estimating
+                         ? run_estimating(machine, path, timing, options, step, summary, recorder, source)
+                         : run_carrier(machine, path, timing, options, step, summary, recorder, source);
+  if (!ran) return ran.error();
+  if (Status finished = recorder.finish(); !finished) return finished.error();
+  return summary;
+}
+
+Result<std::array<std::int64_t, kMaxActuators>> start_positions(const Machine& machine,
+                                                                const path::Path& path, double step_mm) {
+  auto ik = machine.mechanism->inverse(Pose{path.start.position_mm, path.start.rotation.toRotationMatrix()});
+  if (!ik) return ik.error();
+  const int n = machine.mechanism->actuator_count();
+  const double step = machine.mechanism->actuators_are_angles() ? rad_from_deg(step_mm) : step_mm;
+  std::array<double, kMaxActuators> values{};
+  for (int j = 0; j < n; ++j) values[j] = (*ik)[j];
+  return truncated_steps(values, n, step);
+}
+
+nlohmann::json interpolation_summary_json(const InterpolateSummary& summary, const Machine& machine) {
+  const int n = summary.actuators;
+  const bool angular = machine.mechanism->actuators_are_angles();
+  const double scale = angular ? deg_from_rad(1.0) : 1.0;
+  const double step = angular ? rad_from_deg(summary.step_mm) : summary.step_mm;
+  nlohmann::json actuators = nlohmann::json::array();
+  for (int j = 0; j < n; ++j) {
+    const double net_steps = static_cast<double>(summary.end_position[j] - summary.start_position[j]);
+    const double ideal_net = step > 0.0 ? (summary.ideal_end[j] - summary.ideal_start[j]) / step : 0.0;
+    actuators.push_back({{"start_position_steps", summary.start_position[j]},
+                         {"end_position_steps", summary.end_position[j]},
+                         {"net_steps", net_steps},
+                         {"ideal_net_steps", ideal_net},
+                         {"ideal_start", summary.ideal_start[j] * scale},
+                         {"ideal_end", summary.ideal_end[j] * scale}});
+  }
+  const ContourStatistics& c = summary.contour;
+  nlohmann::json json = {
+      {"machine", machine.source},
+      {"method", std::string(to_string(summary.method))},
+      {"period_ms", summary.period_s * 1e3},
+      {"step_" + std::string(angular ? "deg" : "mm"), summary.step_mm},
+      {"rho_max_mm", summary.rho_max_mm},
+      {"delta_rho_max", summary.delta_rho_max},
+      {"delta_rho_max_line", summary.delta_rho_max_line},
+      {"strut_tolerance_" + std::string(angular ? "deg" : "mm"), summary.strut_tolerance * scale},
+      {"periods", summary.periods},
+      {"ideal_time_s", summary.ideal_time_s},
+      {"real_time_s", summary.real_time_s},
+      {"max_contour_error_mm", c.max_error_mm},
+      {"max_contour_error_line", c.max_error_line},
+      {"max_contour_error_time_s", c.max_error_time_s},
+      {"max_contour_error_after_first_period_mm", c.max_error_after_first_mm},
+      {"max_period_end_contour_error_mm", c.max_period_end_error_mm},
+      {"rms_contour_error_mm", c.rms_error_mm},
+      {"start_error_mm", c.start_error_mm},
+      {"end_error_mm", c.end_error_mm},
+      {"max_orientation_error_deg", c.max_rotation_deg},
+      {"contour_evaluations", c.evaluations},
+      {"fk_failures", c.fk_failures},
+      {"fk_solves_per_period", summary.fk_solves_per_period},
+      {"jacobians_per_period", summary.jacobians_per_period},
+      {"max_compute_us_per_period", summary.max_compute_us_per_period},
+      {"mean_compute_us_per_period", summary.mean_compute_us_per_period},
+      {"max_steps_per_period", summary.max_steps_per_period},
+      {"max_steps_line", summary.max_steps_line},
+      {"max_remainder_steps", summary.max_remainder_steps},
+      {"chord_reduced_periods", summary.carrier.chord_reduced_periods},
+      {"drive_reduced_periods", summary.carrier.drive_reduced_periods},
+      {"max_chord_error", summary.carrier.max_chord_error * scale},
+      {"actuators", actuators},
+  };
+  if (summary.method != Method::estimating) {
+    json["strut_laws"] = {{"pieces", summary.laws.pieces},
+                          {"exact", summary.laws.exact},
+                          {"sqrt_quadratic", summary.laws.sqrt_quadratic},
+                          {"sqrt_fourier", summary.laws.sqrt_fourier},
+                          {"polynomial", summary.laws.polynomial},
+                          {"max_fit_error", summary.laws.max_fit_error * scale},
+                          {"max_fit_error_line", summary.laws.max_fit_error_line}};
+  }
+  if (summary.method == Method::carrier_corrected) {
+    json["correction"] = {{"fallbacks", summary.corrector.fallbacks},
+                          {"max_predicted_error_mm", summary.corrector.max_predicted_error_mm}};
+  }
+  if (summary.method == Method::estimating) {
+    const EstimatingStatistics& e = summary.estimating;
+    json["estimating"] = {
+        {"tacts", e.tacts},
+        {"candidates", e.candidates},
+        {"fk_solves", e.fk_solves},
+        {"fallbacks", e.fallbacks},
+        {"max_deviation_mm", e.max_deviation_mm},
+        {"max_deviation_line", e.max_deviation_line},
+        {"tacts_per_period", summary.periods > 0 ? static_cast<double>(e.tacts) / summary.periods : 0.0}};
+  }
+  return json;
+}
+
+}  // namespace pkm::interpolation

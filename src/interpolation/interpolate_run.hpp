@@ -1,0 +1,92 @@
+#pragma once
+// A whole interpolation run (spec ch5): the path and its ideal timing in, whole drive steps per servo period
+// out (to any number of StepSinks: CSV, binary stream, the real-time player), with the contour error of the
+// tool measured as the drives would produce it. Methods:
+//   exact              strut values by inverse kinematics at every period end, remainder registers (§5.4);
+//   carrier            the seeds' carrier-frequency method: fitted strut laws (§5.2), chord check (§5.3),
+//                      remainder registers (§5.4);
+//   carrier-corrected  as carrier, with the floor/ceil choice of every actuator that keeps the tool nearest
+//                      the path (§8, the discreteness correction);
+//   estimating         the estimating-function method (§4): tact by tact, every strut ±1 step, the candidate
+//                      that best follows the path; a reference/offline mode.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/result.hpp"
+#include "interpolation/carrier_interpolator.hpp"
+#include "interpolation/contour_monitor.hpp"
+#include "interpolation/discreteness_corrector.hpp"
+#include "interpolation/estimating_function.hpp"
+#include "interpolation/ideal_timing.hpp"
+#include "interpolation/step_period.hpp"
+#include "interpolation/strut_laws.hpp"
+
+namespace pkm::interpolation {
+
+enum class Method { exact, carrier, carrier_corrected, estimating };
+std::optional<Method> method_from_string(std::string_view name);
+std::string_view to_string(Method method);
+
+struct InterpolateOptions {
+  Method method = Method::carrier_corrected;
+  double period_s = 0.001;
+  double step_mm = 0.001;  ///< Δ: mm (deg for angular actuators) per step; 0 = continuous drives (no steps)
+  double rho_max_mm = 1e-3;             ///< ρ_max: the contour tolerance
+  std::optional<double> delta_rho_max;  ///< δρ_max; default: the largest along the path (eq. 146)
+  bool chord_check = true;
+  OverrideSettings feed_override;
+  int error_samples = 5;  ///< contour-error instants inside each period (plus its end)
+  bool orientation_criterion = false;
+  bool linearise = true;
+  std::optional<double> max_step_rate_hz;  ///< per drive; limits the steps per period
+  EstimatingSettings estimating;           ///< deviation and candidates (its step is step_mm)
+  double amplification_spacing = 1.0;      ///< path units between the δρ samples
+  std::function<void(double)> progress;    ///< fraction done, now and then
+};
+
+struct InterpolateSummary {
+  Method method = Method::carrier_corrected;
+  double period_s = 0.0, step_mm = 0.0, rho_max_mm = 0.0;
+  double delta_rho_max = 0.0;
+  int delta_rho_max_line = 0;
+  double strut_tolerance = 0.0;  ///< ΔL_allowed = 0.9·ρ_max/δρ_max (eq. 155)
+  long periods = 0;
+  double ideal_time_s = 0.0, real_time_s = 0.0;
+  ContourStatistics contour;
+  CarrierStatistics carrier;
+  LawReport laws;
+  CorrectorStatistics corrector;
+  EstimatingStatistics estimating;
+  double max_remainder_steps = 0.0;  ///< remainder registers (§5.4 methods), in steps
+  int max_steps_per_period = 0;
+  int max_steps_line = 0;
+  double fk_solves_per_period = 0.0;  ///< of the method itself (the error measurement not counted)
+  double jacobians_per_period = 0.0;
+  double max_compute_us_per_period = 0.0;
+  double mean_compute_us_per_period = 0.0;
+  int actuators = 0;
+  std::array<std::int64_t, kMaxActuators> start_position{};
+  std::array<std::int64_t, kMaxActuators> end_position{};
+  std::array<double, kMaxActuators> ideal_start{};
+  std::array<double, kMaxActuators> ideal_end{};
+};
+
+/// Runs the interpolation. `sinks` receive every period (none for a measurement only); a failing run
+/// finishes none of them, so staged files are discarded. Errors name `source` and the line.
+Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path& path,
+                                       const IdealTiming& timing, const InterpolateOptions& options,
+                                       const std::vector<StepSink*>& sinks, const std::string& source);
+
+/// The drives' positions before the first period, in steps: the path start's actuator values truncated to
+/// whole steps, as every method starts (E3). For the header of step files, written before the run.
+Result<std::array<std::int64_t, kMaxActuators>> start_positions(const Machine& machine,
+                                                                const path::Path& path, double step_mm);
+
+/// The summary as JSON; the keys carry their units.
+nlohmann::json interpolation_summary_json(const InterpolateSummary& summary, const Machine& machine);
+
+}  // namespace pkm::interpolation
