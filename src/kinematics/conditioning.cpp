@@ -12,8 +12,10 @@ Result<JacobianMeasures> jacobian_measures(const Mechanism& mechanism, const Pos
   JacobianMeasures m;
   const Eigen::JacobiSVD<JacobianMatrix> svd(*j);
   const auto& sv = svd.singularValues();
-  m.min_singular_value = sv[sv.size() - 1];
-  m.condition_number = m.min_singular_value > 0 ? sv[0] / m.min_singular_value : INFINITY;
+  // Singular values come sorted, largest first; an empty Jacobian has none (and GCC must see that case).
+  if (sv.size() == 0) return make_error(ErrorCode::singular, "the Jacobian is empty at this pose");
+  m.min_singular_value = sv.minCoeff();
+  m.condition_number = m.min_singular_value > 0 ? sv.maxCoeff() / m.min_singular_value : INFINITY;
   if (j->rows() != j->cols()) return m;
   m.determinant = j->determinant();
   const Eigen::FullPivLU<JacobianMatrix> lu(*j);
