@@ -67,6 +67,15 @@ struct MotionSettings {
 };
 // clang-format on
 
+/// What the actuators' drives can do, from the machine file's `drives:` section (docs/machine-file.md).
+/// Every value is optional; `pkm interpolate` options override them.
+struct DriveSettings {
+  std::optional<double> step;              ///< drive resolution Δ: mm per step (deg for angular actuators)
+  std::optional<double> max_step_rate_hz;  ///< largest step rate of one drive
+  std::optional<double> period_ms;         ///< servo (carrier) period h
+  int line = 0;                            ///< line of `drives:` in the file, for messages (0 = not given)
+};
+
 struct Machine {
   std::string source;  ///< file the machine came from
   std::string name;
@@ -76,6 +85,7 @@ struct Machine {
   PassiveJointAxes joint_axes;
   MotionSettings motion;
   MassProperties masses;  ///< `masses:` (machine/mass_properties.hpp); no masses by default
+  DriveSettings drives;
   bool home_given = false;
 };
 

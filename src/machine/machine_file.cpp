@@ -55,7 +55,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
   std::vector<std::string_view> allowed = {"name",   "description", "type",   "angles", "tool",
-                                           "limits", "motion",      "masses", "home"};
+                                           "limits", "motion",      "masses", "drives", "home"};
   // Planar pin joints have no neutral axis to give.
   if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
@@ -130,6 +130,9 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   machine.joint_limits = limits->joints;
   machine.motion = *motion;
   machine.masses = *masses;
+  auto drives = read_drive_settings(root, reader, machine.mechanism->actuators_are_angles());
+  if (!drives) return drives.error();
+  machine.drives = *drives;
   machine.home_given = home.has_value();
 
   // The home pose must itself be a valid configuration of the machine.

@@ -1,7 +1,7 @@
 #pragma once
 // Readers of the machine-file sections every mechanism shares, beside the top-level keys that
-// machine_file.cpp reads itself: `limits:`, `motion:`, `masses:` and the passive-joint neutral axes. Each
-// error names the file, the line and the key (docs/machine-file.md).
+// machine_file.cpp reads itself: `limits:`, `motion:`, `masses:`, `drives:` and the passive-joint neutral
+// axes. Each error names the file, the line and the key (docs/machine-file.md).
 #include <yaml-cpp/yaml.h>
 
 #include "machine/machine.hpp"
@@ -22,6 +22,11 @@ Result<FileLimits> read_limits(const YAML::Node& root, const YamlReader& reader,
 /// `motion:` (optional, every key optional, defaults as in MotionSettings). Planar machines give
 /// program_origin_mm as [x, y] or [x, y, 0].
 Result<MotionSettings> read_motion_settings(const YAML::Node& root, const YamlReader& reader, bool planar);
+
+/// `drives:` (optional, every key optional): the resolution (`step_mm`, or `step_deg` when the actuators are
+/// angles), the largest step rate and the servo period, all positive, the period within 0.1…20 ms.
+Result<DriveSettings> read_drive_settings(const YAML::Node& root, const YamlReader& reader,
+                                          bool angular_actuators);
 
 /// `masses:` (optional, every key optional, defaults as in MassProperties): masses must not be negative,
 /// vectors have three numbers (planar machines may give platform_com_mm as [x, y]).
