@@ -1,29 +1,32 @@
 # Two commands do all the set-up on a fresh Debian machine:
 #   make run   installs what is missing, builds build/pkm and plans the shipped pocket program on the ch5 hexapod
-#              (servo-rate actuator motion in build/run/: actuators.csv, path.csv, summary.json)
+#              (servo-rate actuator motion in build/run/: actuators.csv, path.csv, summary.json, and the HTML
+#              report build/run/report.html)
 #   make test  installs what is missing, builds and runs the whole test suite
 # Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck),
-# make conformance (the G-code golden files against LinuxCNC's rs274),
+# make conformance (the G-code golden files against LinuxCNC's rs274), make browser-test (the HTML report in
+# headless Chromium), make screenshots (the same, saving docs/images/report-*.png),
 # make bench, make format, make tidy.
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
 PROGRAM ?= examples/programs/pocket.ngc
 
-.PHONY: deps configure build run test sanitize lint conformance bench format tidy clean
+.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots bench format tidy clean
 
 deps:
 	@bash scripts/install-deps.sh
 
-# The library compiles as a unity build (batches of 8 files): on CI's 2 cores it halves the build time.
+# The library compiles as a unity build (batches of 8 files): on CI's 2 cores it halves the build time. The
+# benchmarks build in their own directory (make bench), so that make test does not wait for them.
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON > /dev/null
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_BUILD_BENCH=OFF > /dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	$(BUILD)/pkm plan $(PROGRAM) --machine $(EXAMPLE) --out $(BUILD)/run
+	$(BUILD)/pkm plan $(PROGRAM) --machine $(EXAMPLE) --out $(BUILD)/run --report $(BUILD)/run/report.html
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -45,8 +48,20 @@ conformance:
 	@bash scripts/install-deps.sh --with-linuxcnc
 	@bash scripts/regen-rs274-golden.sh --check
 
-bench: build
-	@for b in $(BUILD)/bench/*; do $$b --benchmark_min_time=0.2; done
+# The HTML report in headless Chromium (installs Debian's chromium): tests/browser/report_browser_test.mjs.
+browser-test: build
+	@bash scripts/install-deps.sh --with-browser
+	node tests/browser/report_browser_test.mjs --pkm $(BUILD)/pkm --out $(BUILD)/browser-test
+
+# The same, keeping screenshots of the reports for docs/images.
+screenshots: build
+	@bash scripts/install-deps.sh --with-browser
+	node tests/browser/report_browser_test.mjs --pkm $(BUILD)/pkm --out $(BUILD)/browser-test --screenshots docs/images
+
+bench: deps
+	@cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DPKM_UNITY_LIB=ON -DPKM_BUILD_BENCH=ON > /dev/null
+	@cmake --build build-bench -j $(JOBS)
+	@for b in build-bench/bench/*; do $$b --benchmark_min_time=0.2; done
 
 format:
 	@find src apps tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
@@ -55,4 +70,4 @@ tidy: build
 	@find src apps -name '*.cpp' | xargs clang-tidy -p $(BUILD) --quiet
 
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan build-bench

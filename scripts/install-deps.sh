@@ -3,6 +3,8 @@
 # Runs apt-get only for packages that are missing; uses sudo when not root.
 #   --with-linuxcnc  also LinuxCNC's standalone G-code interpreter rs274 (package linuxcnc-uspace), the peer the
 #                    conformance suite is checked against (scripts/regen-rs274-golden.sh)
+#   --with-browser   also Debian's Chromium, for the report's browser test (tests/browser/)
+# Node.js and npm build the HTML report's page (web/); a machine that has them already (any source) keeps its own.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
@@ -11,6 +13,8 @@ packages=(
   clang-format cppcheck
 )
 if [ "${1:-}" = "--with-linuxcnc" ]; then packages+=(linuxcnc-uspace); fi
+if [ "${1:-}" = "--with-browser" ]; then packages+=(chromium); fi
+if ! command -v node > /dev/null || ! command -v npm > /dev/null; then packages+=(nodejs npm); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -14,11 +14,13 @@
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/units.hpp"
+#include "interpolation/contour_trace.hpp"
 #include "interpolation/interpolate_run.hpp"
 #include "interpolation/step_stream.hpp"
 #include "interpolation/steps_csv.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/part_program.hpp"
+#include "report/report_data.hpp"
 
 namespace pkm::cli {
 
@@ -45,7 +47,20 @@ struct InterpolateArguments {
   bool orientation = false;
   bool no_linearise = false;
   bool json = false;
+  std::string report;
+  // Which of the drive options were given: the others come from the machine file's `drives:`.
+  bool period_given = false;
+  bool step_given = false;
+  bool step_rate_given = false;
 };
+
+/// Fills the options the command line left out from the machine file's `drives:` section.
+void take_drive_defaults(InterpolateArguments& args, const Machine& machine) {
+  if (!args.period_given && machine.drives.period_ms) args.period_ms = *machine.drives.period_ms;
+  if (!args.step_given && machine.drives.step) args.step_mm = *machine.drives.step;
+  if (!args.step_rate_given && machine.drives.max_step_rate_hz)
+    args.max_step_rate_hz = *machine.drives.max_step_rate_hz;
+}
 
 void draw_interpolation_progress(double fraction) {
   constexpr int width = 40;
@@ -137,7 +152,7 @@ void print_interpolation_table(const nlohmann::json& s, const std::string& progr
       "  per period        {:.1f} FK solves, compute max {:.2f} µs, mean {:.2f} µs, max {} steps\n",
       s["fk_solves_per_period"].get<double>(), s["max_compute_us_per_period"].get<double>(),
       s["mean_compute_us_per_period"].get<double>(), s["max_steps_per_period"].get<int>());
-  std::cout << fmt::format("  written           {}/steps.csv, steps.bin, summary.json\n", out);
+  std::cout << fmt::format("  written           {}/steps.csv, steps.bin, contour.csv, summary.json\n", out);
 }
 
 }  // namespace
@@ -150,10 +165,12 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--machine", args->machine, "machine file (YAML)")->required();
   cmd->add_option("--out", args->out, "directory for steps.csv, steps.bin and summary.json")->required();
-  cmd->add_option("--period-ms", args->period_ms, "servo (carrier) period h, ms (0.1…20)")
-      ->capture_default_str();
-  cmd->add_option("--step-mm", args->step_mm, "drive resolution Δ, mm per step (deg for angular actuators)")
-      ->capture_default_str();
+  auto* period_option =
+      cmd->add_option("--period-ms", args->period_ms,
+                      "servo (carrier) period h, ms (0.1…20; default drives.period_ms, else 1)");
+  auto* step_option = cmd->add_option(
+      "--step-mm", args->step_mm,
+      "drive resolution Δ, mm per step (deg for angular actuators; default drives.step_mm, else 0.001)");
   cmd->add_option("--method", args->method, "exact, carrier, carrier-corrected or estimating")
       ->capture_default_str();
   cmd->add_option("--rho-max", args->rho_max_mm, "contour tolerance ρ_max, mm")->capture_default_str();
@@ -164,7 +181,9 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--override-at", args->override_at,
                   "override changes during the run, TIME_S:PERCENT,… (take effect from period i+2)");
   cmd->add_option("--accel", args->accel, "acceleration law: linear or s-curve")->capture_default_str();
-  cmd->add_option("--max-step-rate", args->max_step_rate_hz, "largest step rate of a drive, Hz");
+  auto* step_rate_option =
+      cmd->add_option("--max-step-rate", args->max_step_rate_hz,
+                      "largest step rate of a drive, Hz (default drives.max_step_rate_hz)");
   cmd->add_option("--error-samples", args->error_samples, "contour-error points inside each period")
       ->capture_default_str();
   cmd->add_option("--deviation-mm", args->deviation_mm, "estimating: allowed deviation δ (default ρ_max)");
@@ -177,12 +196,17 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-linearise", args->no_linearise,
                 "carrier-corrected: forward kinematics for every combination (the reference)");
   cmd->add_flag("--json", args->json, "print the summary as JSON");
-  cmd->callback([args, &exit_code] {
+  cmd->add_option("--report", args->report, "also write the HTML report of the run to this file");
+  cmd->callback([args, period_option, step_option, step_rate_option, &exit_code] {
     auto machine = load_machine_or_report(args->machine);
     if (!machine) {
       exit_code = report_error("interpolate", machine.error());
       return;
     }
+    args->period_given = period_option->count() > 0;
+    args->step_given = step_option->count() > 0;
+    args->step_rate_given = step_rate_option->count() > 0;
+    take_drive_defaults(*args, *machine);
     auto options = interpolate_options(*args, *machine);
     if (!options) {
       exit_code = report_error("interpolate", options.error());
@@ -257,10 +281,25 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("interpolate", opened_bin.error());
       return;
     }
+    interpolation::ContourTraceWriter trace;
+    if (auto opened_trace = trace.open((dir / "contour.csv").string()); !opened_trace) {
+      exit_code = report_error("interpolate", opened_trace.error());
+      return;
+    }
+    Status trace_status = ok_status();
+    options->on_period = [&](const interpolation::StepPeriod& period,
+                             const interpolation::PeriodContour& contour, const Eigen::Vector3d& path_mm) {
+      if (trace_status) trace_status = trace.add(period, contour, path_mm);
+    };
     auto summary =
         interpolation::interpolate(*machine, plan->path, *timing, *options, {&csv, &binary}, program->source);
     if (!summary) {
       exit_code = report_error("interpolate", summary.error());
+      return;
+    }
+    if (trace_status) trace_status = trace.finish();
+    if (!trace_status) {
+      exit_code = report_error("interpolate", trace_status.error());
       return;
     }
     nlohmann::json json = interpolation::interpolation_summary_json(*summary, *machine);
@@ -268,10 +307,17 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
     json["blocks"] = plan->statistics.blocks;
     json["override_pct"] = args->override_pct;
     json["accel"] = args->accel;
+    if (options->max_step_rate_hz) json["max_step_rate_hz"] = *options->max_step_rate_hz;
     if (Status written = write_file_atomically((dir / "summary.json").string(), json.dump(2) + "\n");
         !written) {
       exit_code = report_error("interpolate", written.error());
       return;
+    }
+    if (!args->report.empty()) {
+      if (Status written = report::write_directory_report(args->out, args->report); !written) {
+        exit_code = report_error("interpolate", written.error());
+        return;
+      }
     }
     if (args->json) {
       print_json(json);

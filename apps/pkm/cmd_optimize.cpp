@@ -13,6 +13,8 @@
 #include "program/gcode_writer.hpp"
 #include "program/part_program.hpp"
 #include "redundancy_options.hpp"
+#include "report/optimize_report.hpp"
+#include "report/report_html.hpp"
 
 namespace pkm::cli {
 
@@ -62,12 +64,15 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
   auto machine_path = std::make_shared<std::string>();
   auto out_path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
+  auto report_file = std::make_shared<std::string>();
   auto arguments = std::make_shared<RedundancyArguments>();
   cmd->add_option("program", *program_path, "part program: G-code (X Y Z) or APT CL data (.cl, .cls, .apt)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
   cmd->add_option("--out", *out_path, "the post-processed G-code program (.ngc)")->required();
   cmd->add_flag("--json", *json, "print the summary as JSON");
+  cmd->add_option("--report", *report_file,
+                  "also write the HTML report (chosen vs constant, forces, 3-D view)");
   add_redundancy_options(*cmd, *arguments, true);
   cmd->callback([=, &exit_code] {
     auto options = redundancy_options(*arguments);
@@ -113,6 +118,14 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
       return;
     }
     summary["out"] = *out_path;
+    if (!report_file->empty()) {
+      auto data = report::optimize_report(*machine, *program, *result, *options, summary, *out_path);
+      Status written = data ? report::write_report_html(*report_file, *data) : Status(data.error());
+      if (!written) {
+        exit_code = report_error("optimize", written.error());
+        return;
+      }
+    }
     if (*json) {
       print_json(summary);
       return;

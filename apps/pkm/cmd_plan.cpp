@@ -15,6 +15,7 @@
 #include "planning/plan_output.hpp"
 #include "program/part_program.hpp"
 #include "redundancy_options.hpp"
+#include "report/report_data.hpp"
 
 namespace pkm::cli {
 
@@ -42,6 +43,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto no_error = std::make_shared<bool>(false);
   auto options = std::make_shared<planning::PlanOptions>();
   auto tolerance = std::make_shared<double>(-1.0);
+  auto report_file = std::make_shared<std::string>();
   cmd->add_option("program", *program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
@@ -54,6 +56,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
   cmd->add_flag("--no-path-error", *no_error, "skip the forward-kinematics check of the path error (faster)");
   cmd->add_flag("--json", *json, "print the summary as JSON");
+  cmd->add_option("--report", *report_file, "also write the HTML report of the run to this file");
   auto redundancy_arguments = std::make_shared<RedundancyArguments>();
   add_redundancy_options(*cmd, *redundancy_arguments, false);
   cmd->callback([=, &exit_code] {
@@ -110,6 +113,12 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     if (!run) {
       exit_code = report_error("plan", run.error());
       return;
+    }
+    if (!report_file->empty()) {
+      if (Status written = report::write_directory_report(*out_dir, *report_file); !written) {
+        exit_code = report_error("plan", written.error());
+        return;
+      }
     }
     nlohmann::json summary = planning::summary_json(*plan, *machine, *run);
     summary["planning_time_s"] = planning_s;

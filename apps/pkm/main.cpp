@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_optimize_command(app, exit_code);
   pkm::cli::add_interpolate_command(app, exit_code);
   pkm::cli::add_play_command(app, exit_code);
+  pkm::cli::add_report_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

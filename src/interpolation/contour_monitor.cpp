@@ -49,6 +49,7 @@ void ContourMonitor::start(const std::array<double, kMaxActuators>& values, doub
 void ContourMonitor::add(const std::array<double, kMaxActuators>& values, double s_start, double s_end,
                          double time_s, double period_s, int line, bool last) {
   ++periods_;
+  last_period_ = PeriodContour{};
   std::array<double, kMaxActuators> now{};
   const int points = samples_inside_ + 1;
   for (int k = 1; k <= points; ++k) {
@@ -61,6 +62,11 @@ void ContourMonitor::add(const std::array<double, kMaxActuators>& values, double
     }
     const ContourDeviation deviation = gauge_.measure(pose, s_start + f * (s_end - s_start), hint_);
     record(deviation.distance_mm, deviation.rotation_rad, time_s - (1.0 - f) * period_s, line, k == points);
+    last_period_.max_error_mm = std::max(last_period_.max_error_mm, deviation.distance_mm);
+    if (k == points) {
+      last_period_.tool_mm = pose.position_mm;
+      last_period_.solved = true;
+    }
     if (last && k == points) {
       statistics_.end_error_mm = gauge_.mask(pose.position_mm - path_.end_point().position_mm).norm();
     }

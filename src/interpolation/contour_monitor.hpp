@@ -26,6 +26,13 @@ struct ContourStatistics {
   long fk_failures = 0;
 };
 
+/// What the last period did (for traces and reports): its largest error and where the tool ended.
+struct PeriodContour {
+  double max_error_mm = 0.0;                          ///< over the period's evaluated instants
+  Eigen::Vector3d tool_mm = Eigen::Vector3d::Zero();  ///< FK of the positions at the period's end, base frame
+  bool solved = false;                                ///< false if FK failed at the period's end
+};
+
 class ContourMonitor {
  public:
   ContourMonitor(const Machine& machine, const path::Path& path, const ContourGauge& gauge,
@@ -37,6 +44,7 @@ class ContourMonitor {
            double period_s, int line, bool last);
   const ContourStatistics& statistics() const { return statistics_; }
   long fk_solves() const { return tracker_.solves(); }
+  const PeriodContour& last_period() const { return last_period_; }
 
  private:
   void record(double error_mm, double rotation_rad, double time_s, int line, bool period_end);
@@ -52,6 +60,7 @@ class ContourMonitor {
   long periods_ = 0;
   int hint_ = 0;
   ContourStatistics statistics_;
+  PeriodContour last_period_;
 };
 
 }  // namespace pkm::interpolation

@@ -223,6 +223,7 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
   CarrierPeriod period;
   StepPeriod out;
   int hint = 0;
+  int trace_hint = 0;
   for (;;) {
     const auto started = Clock::now();
     if (!carrier.next(period)) break;
@@ -244,6 +245,9 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
     out.time_s = period.time_s;
     out.line = line_at(path, period.s_end, hint);
     monitor.add(actual, period.s_start, period.s_end, period.time_s, options.period_s, out.line, period.last);
+    if (options.on_period) {
+      options.on_period(out, monitor.last_period(), path.evaluate(period.s_end, trace_hint).position_mm);
+    }
     if (step > 0.0) {
       if (Status emitted = recorder.emit(out); !emitted) return emitted;
     }
@@ -289,6 +293,7 @@ Status run_estimating(const Machine& machine, const path::Path& path, const Idea
   Tact tact;
   StepPeriod out;
   int hint = 0;
+  int trace_hint = 0;
   for (long index = 0; more; ++index) {
     const auto started = Clock::now();
     tau = std::min(timing.duration_s(), tau + feed.factor(index) * options.period_s);
@@ -315,6 +320,9 @@ Status run_estimating(const Machine& machine, const path::Path& path, const Idea
     }
     monitor.add(values_of(out.position, n, step), s_before, s_reached, out.time_s, options.period_s, out.line,
                 !more);
+    if (options.on_period) {
+      options.on_period(out, monitor.last_period(), path.evaluate(s_reached, trace_hint).position_mm);
+    }
     if (Status emitted = recorder.emit(out); !emitted) return emitted;
     summary.periods = index + 1;
     if (index > 100'000'000)

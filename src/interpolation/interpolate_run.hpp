@@ -46,6 +46,9 @@ struct InterpolateOptions {
   EstimatingSettings estimating;           ///< deviation and candidates (its step is step_mm)
   double amplification_spacing = 1.0;      ///< path units between the δρ samples
   std::function<void(double)> progress;    ///< fraction done, now and then
+  /// Called after every period with what the drives did to the tool then, and the programmed point at the
+  /// period's end (base frame): traces and reports (contour_trace.hpp).
+  std::function<void(const StepPeriod&, const PeriodContour&, const Eigen::Vector3d& path_mm)> on_period;
 };
 
 struct InterpolateSummary {

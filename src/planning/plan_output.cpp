@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string_view>
 #include <utility>
@@ -113,7 +114,7 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(a), ",q{}_{}", j, angular ? "deg" : "mm");
   a.push_back('\n');
   fmt::format_to(std::back_inserter(path_csv.buffer),
-                 "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s\n");
+                 "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s,feed_mm_s,path_error_mm\n");
 
   ServoStream stream(plan, machine);
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
@@ -129,8 +130,13 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     const Eigen::Vector3d abc =
         angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
     fmt::format_to(std::back_inserter(path_csv.buffer),
-                   "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", tick.time_s,
-                   tick.line, tick.s, p.x(), p.y(), p.z(), abc.x(), abc.y(), abc.z(), tick.path_speed);
+                   "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},{:.4f},", tick.time_s,
+                   tick.line, tick.s, p.x(), p.y(), p.z(), abc.x(), abc.y(), abc.z(), tick.path_speed,
+                   monitor.last_feed_cap());
+    // An empty field where the error was not evaluated (first tick, --no-path-error, FK failure).
+    if (const double e = monitor.last_path_error_mm(); std::isfinite(e))
+      fmt::format_to(std::back_inserter(path_csv.buffer), "{:.3e}", e);
+    path_csv.buffer.push_back('\n');
     for (PlanOutputFile* f : {&actuators_csv, &path_csv}) {
       if (auto flushed = f->flush_if_large(); !flushed) return flushed.error();
     }

@@ -24,6 +24,8 @@ RunMonitor::RunMonitor(const MotionPlan& plan, const Machine& machine, double ov
 void RunMonitor::add(const ServoTick& tick) {
   const double h = plan_.period_s;
   const int n = static_cast<int>(tick.actuators.size());
+  last_path_error_mm_ = std::numeric_limits<double>::quiet_NaN();
+  last_feed_cap_ = segment_speed_cap(plan_.path.segments[tick.segment], machine_.motion, override_factor_);
   for (int j = 0; j < n; ++j) {
     summary_.min_position[j] = std::min(summary_.min_position[j], tick.actuators[j]);
     summary_.max_position[j] = std::max(summary_.max_position[j], tick.actuators[j]);
@@ -84,6 +86,7 @@ void RunMonitor::add(const ServoTick& tick) {
           const Eigen::Vector3d t = chord.normalized();
           error -= error.dot(t) * t;
         }
+        last_path_error_mm_ = error.norm();
         if (error.norm() > summary_.max_path_error_mm) {
           summary_.max_path_error_mm = error.norm();
           summary_.max_path_error_line = tick.line;

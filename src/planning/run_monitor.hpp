@@ -5,6 +5,7 @@
 // FK(actuators) from the programmed path, evaluated at mid-period, where the drives' straight-line motion
 // between two setpoints deviates most from the curved actuator law (spec ch5 §5.3, E13).
 #include <array>
+#include <limits>
 #include <optional>
 
 #include "machine/machine.hpp"
@@ -42,6 +43,10 @@ class RunMonitor {
   RunMonitor(const MotionPlan& plan, const Machine& machine, double override_pct, bool evaluate_path_error);
   void add(const ServoTick& tick);
   const RunSummary& summary() const { return summary_; }
+  /// Of the tick added last: the path-speed cap from the programmed feed (path units/s) and the path error
+  /// at its mid-period (mm; NaN for the first tick, when the error is not evaluated, or FK failed).
+  double last_feed_cap() const { return last_feed_cap_; }
+  double last_path_error_mm() const { return last_path_error_mm_; }
 
  private:
   const MotionPlan& plan_;
@@ -55,6 +60,8 @@ class RunMonitor {
   std::array<int, kMaxActuators> direction_{};
   double previous_path_speed_ = 0.0, previous_path_accel_ = 0.0;
   Pose fk_guess_;
+  double last_feed_cap_ = 0.0;
+  double last_path_error_mm_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace pkm::planning

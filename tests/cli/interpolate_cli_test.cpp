@@ -109,6 +109,39 @@ TEST(InterpolateCli, BadOptionsExitWithTwoAndWriteNothing) {
   EXPECT_FALSE(fs::exists(fs::path(out) / "summary.json"));
 }
 
+TEST(InterpolateCli, DriveOptionsDefaultToTheMachineFilesDrivesSection) {
+  std::ifstream in(test::source_path("examples/machines/hexapod_ch5.yaml"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string shipped = "drives: {step_mm: 0.001, max_step_rate_hz: 200000, period_ms: 1}";
+  const auto at = text.find(shipped);
+  ASSERT_NE(at, std::string::npos) << "the ch5 example's drives: line changed";
+  // 20 kHz at 2 ms is at most 40 steps per period; the test line at 50 mm/s asks up to 50 of 0.002 mm.
+  text.replace(at, shipped.size(), "drives: {step_mm: 0.002, max_step_rate_hz: 20000, period_ms: 2}");
+  const std::string machine = test::write_temp_file("drives_hexapod.yaml", text);
+  const std::string program = test::source_path("examples/programs/ch5_line.ngc");
+  const std::string out = fresh_interpolate_dir("drives");
+
+  const auto from_file =
+      test::run_pkm("interpolate " + program + " --machine " + machine + " --json --out " + out, false);
+  ASSERT_EQ(from_file.exit_code, 0) << from_file.out;
+  const auto summary = nlohmann::json::parse(from_file.out);
+  EXPECT_DOUBLE_EQ(summary["period_ms"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(summary["step_mm"].get<double>(), 0.002);
+  EXPECT_LE(summary["max_steps_per_period"].get<int>(), 40);
+  EXPECT_GT(summary["real_time_s"].get<double>(), summary["ideal_time_s"].get<double>());
+
+  // The command line wins over the file.
+  const auto given =
+      test::run_pkm("interpolate " + program + " --machine " + machine +
+                        " --period-ms 1 --step-mm 0.001 --max-step-rate 1e6 --json --out " + out,
+                    false);
+  ASSERT_EQ(given.exit_code, 0) << given.out;
+  const auto overridden = nlohmann::json::parse(given.out);
+  EXPECT_DOUBLE_EQ(overridden["period_ms"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(overridden["step_mm"].get<double>(), 0.001);
+  EXPECT_GT(overridden["max_steps_per_period"].get<int>(), 40);
+}
+
 TEST(InterpolateCli, AStalledOverrideFailsWithoutHalfWrittenFiles) {
   const std::string out = fresh_interpolate_dir("stalled");
   const auto run = test::run_pkm(ch5_command("examples/programs/ch5_line.ngc", "--override-at 0.5:0", out));

@@ -1,0 +1,36 @@
+// pkm report DIR [--out FILE] [--machine M] [--program P]: the HTML report of a `pkm plan` or `pkm
+// interpolate` run from its output directory (docs/report.md): summary, plots and a 3-D animation in one file
+// that opens offline in a browser.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "report/report_data.hpp"
+
+namespace pkm::cli {
+
+void add_report_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("report", "write the HTML report of a pkm plan or pkm interpolate run");
+  auto directory = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto options = std::make_shared<report::ReportOptions>();
+  cmd->add_option("directory", *directory, "the run's --out directory")->required();
+  cmd->add_option("--out", *out, "the HTML file (default DIR/report.html)");
+  cmd->add_option("--machine", options->machine_file,
+                  "machine file (default: the one the run's summary names)");
+  cmd->add_option("--program", options->program_file, "part program (default: the one the summary names)");
+  cmd->callback([=, &exit_code] {
+    const std::string file =
+        out->empty() ? (std::filesystem::path(*directory) / "report.html").string() : *out;
+    if (Status written = report::write_directory_report(*directory, file, *options); !written) {
+      exit_code = report_error("report", written.error());
+      return;
+    }
+    std::cout << fmt::format("report: {}\n", file);
+  });
+}
+
+}  // namespace pkm::cli

@@ -1,0 +1,30 @@
+#pragma once
+// DIR/contour.csv of `pkm interpolate`: per servo period, what the drives' whole steps did to the tool — the
+// largest contour error in the period, where FK puts the tool at its end and where the programmed path is
+// then (base frame, mm). The report (report/run_report.hpp) draws the executed path and its error from it;
+// steps.csv stays the drives' own record. Staged like the other outputs: no file unless the run succeeds.
+#include <Eigen/Core>
+#include <string>
+
+#include "core/atomic_file.hpp"
+#include "interpolation/contour_monitor.hpp"
+#include "interpolation/step_period.hpp"
+
+namespace pkm::interpolation {
+
+class ContourTraceWriter {
+ public:
+  Status open(const std::string& path);
+  /// One row; buffered, no allocation per period once the buffer has grown.
+  Status add(const StepPeriod& period, const PeriodContour& contour, const Eigen::Vector3d& path_mm);
+  Status finish();
+
+ private:
+  Status flush();
+
+  StagedFile file_;
+  std::string buffer_;
+  bool open_ = false;
+};
+
+}  // namespace pkm::interpolation

@@ -1,0 +1,95 @@
+#include "report/csv_table.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <limits>
+
+namespace pkm::report {
+
+Status CsvReader::open(const std::string& path) {
+  path_ = path;
+  in_.open(path, std::ios::binary);
+  if (!in_)
+    return make_error(ErrorCode::io, fmt::format("{}: cannot open (is this a pkm run directory?)", path));
+  if (!std::getline(in_, text_)) return make_error(ErrorCode::bad_input, fmt::format("{}: empty file", path));
+  line_ = 1;
+  if (!text_.empty() && text_.back() == '\r') text_.pop_back();
+  std::string_view header(text_);
+  while (true) {
+    const auto comma = header.find(',');
+    columns_.emplace_back(header.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    header.remove_prefix(comma + 1);
+  }
+  return ok_status();
+}
+
+int CsvReader::column(std::string_view name) const {
+  const auto it = std::find(columns_.begin(), columns_.end(), name);
+  return it == columns_.end() ? -1 : static_cast<int>(it - columns_.begin());
+}
+
+Result<int> CsvReader::require(std::string_view name) const {
+  const int index = column(name);
+  if (index < 0) {
+    return make_error(ErrorCode::bad_input, fmt::format("{}:1: no column '{}'", path_, name));
+  }
+  return index;
+}
+
+bool CsvReader::next(std::vector<double>& row) {
+  if (error_ || !std::getline(in_, text_)) return false;
+  ++line_;
+  if (!text_.empty() && text_.back() == '\r') text_.pop_back();
+  if (text_.empty()) return next(row);  // a trailing empty line
+  row.assign(columns_.size(), std::numeric_limits<double>::quiet_NaN());
+  const char* p = text_.data();
+  const char* const end = p + text_.size();
+  for (std::size_t k = 0; k < columns_.size(); ++k) {
+    const char* field_end = std::find(p, end, ',');
+    if (field_end != p) {
+      double value = 0.0;
+      const auto [stop, ec] = std::from_chars(p, field_end, value);
+      if (ec != std::errc() || stop != field_end) {
+        error_ = Error{ErrorCode::bad_input,
+                       fmt::format("{}:{}: {}: '{}' is not a number", path_, line_, columns_[k],
+                                   std::string_view(p, static_cast<std::size_t>(field_end - p)))};
+        return false;
+      }
+      row[k] = value;
+    }
+    const bool last = k + 1 == columns_.size();
+    if (field_end == end && !last) {
+      error_ = Error{ErrorCode::bad_input,
+                     fmt::format("{}:{}: {} of {} columns", path_, line_, k + 1, columns_.size())};
+      return false;
+    }
+    if (last && field_end != end) {
+      error_ = Error{ErrorCode::bad_input,
+                     fmt::format("{}:{}: more than the header's {} columns", path_, line_, columns_.size())};
+      return false;
+    }
+    p = field_end + 1;
+  }
+  return true;
+}
+
+Result<long> count_csv_rows(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return make_error(ErrorCode::io, fmt::format("{}: cannot open", path));
+  std::vector<char> buffer(std::size_t{1} << 20);
+  long lines = 0;
+  char last = '\n';
+  while (const std::size_t got = std::fread(buffer.data(), 1, buffer.size(), file)) {
+    lines += std::count(buffer.data(), buffer.data() + got, '\n');
+    last = buffer[got - 1];
+  }
+  std::fclose(file);
+  if (last != '\n') ++lines;  // a last line without its newline
+  return std::max(0L, lines - 1);
+}
+
+}  // namespace pkm::report

@@ -1,0 +1,233 @@
+// The report of a `pkm interpolate` run: actuator positions from the drives' position codes, steps per period
+// against the step rate, the contour error per period against ρ_max, and the 3-D animation with the executed
+// path coloured by its error, from steps.csv and contour.csv.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "core/units.hpp"
+#include "report/csv_table.hpp"
+#include "report/run_reports.hpp"
+#include "report/scene.hpp"
+
+namespace pkm::report {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+double summary_number(const nlohmann::json& summary, const std::string& key) {
+  return summary.contains(key) && summary[key].is_number() ? summary[key].get<double>()
+                                                           : std::numeric_limits<double>::quiet_NaN();
+}
+
+int summary_line(const nlohmann::json& summary, const std::string& key) {
+  return summary.contains(key) && summary[key].is_number_integer() ? summary[key].get<int>() : 0;
+}
+
+}  // namespace
+
+Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles& files,
+                                          const ReportOptions& options) {
+  const fs::path dir(files.directory);
+  const std::string steps_file = (dir / "steps.csv").string();
+  const std::string contour_file = (dir / "contour.csv").string();
+  const nlohmann::json& sm = files.summary;
+  const std::string unit = actuator_unit(machine);
+  const double step = summary_number(sm, "step_" + unit);
+  const double period_s = summary_number(sm, "period_ms") * 1e-3;
+  if (!(step > 0.0) || !(period_s > 0.0)) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("{}/summary.json: step_{} and period_ms must be positive numbers (the summary "
+                    "of another machine?)",
+                    files.directory, unit));
+  }
+  auto rows = count_csv_rows(steps_file);
+  if (!rows) return rows.error();
+  CsvReader steps, contour;
+  if (Status opened = steps.open(steps_file); !opened) return opened.error();
+  if (Status opened = contour.open(contour_file); !opened) return opened.error();
+  const int n = machine.mechanism->actuator_count();
+  std::vector<int> step_columns, position_columns;
+  for (int j = 1; j <= n; ++j) {
+    auto steps_column = steps.require(fmt::format("steps_{}", j));
+    auto position_column = steps.require(fmt::format("position_{}", j));
+    if (!steps_column) return steps_column.error();
+    if (!position_column) return position_column.error();
+    step_columns.push_back(*steps_column);
+    position_columns.push_back(*position_column);
+  }
+  int c[9];
+  const char* contour_names[] = {"time_s", "line",      "max_error_mm", "x_mm",     "y_mm",
+                                 "z_mm",   "path_x_mm", "path_y_mm",    "path_z_mm"};
+  for (int k = 0; k < 9; ++k) {
+    auto index = contour.require(contour_names[k]);
+    if (!index) return index.error();
+    c[k] = *index;
+  }
+
+  const ActuatorLimits limits = limits_in_file_units(machine);
+  const double max_step_rate = summary_number(sm, "max_step_rate_hz");
+  const long expected = *rows;
+  MinMaxDecimator positions(n, expected, options.chart_buckets),
+      step_counts(n, expected, options.chart_buckets), errors(1, expected, options.chart_buckets);
+  const double duration = summary_number(sm, "real_time_s");
+  SceneBuilder scene(machine, std::isfinite(duration) ? duration : 0.0, expected, options.frames,
+                     options.path_points);
+  const double rho_max = summary_number(sm, "rho_max_mm");
+  if (rho_max > 0.0) scene.set_error_scale(rho_max);
+
+  // Angular actuators: positions in deg in the file units, rad for the kinematics.
+  const double to_internal = machine.mechanism->actuators_are_angles() ? rad_from_deg(1.0) : 1.0;
+  std::vector<double> srow, crow, q(static_cast<std::size_t>(n)), counts(q.size()), closeness(q.size());
+  ActuatorVector actuators(n);
+  Pose guess = machine.mechanism->home();
+  Pose pose = guess;
+  long count = 0;
+  double t = 0.0, last_frame_time = -1.0;
+  int line = 0;
+  for (;;) {
+    const bool more_steps = steps.next(srow);
+    const bool more_contour = contour.next(crow);
+    if (steps.error()) return *steps.error();
+    if (contour.error()) return *contour.error();
+    if (more_steps != more_contour) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{} and {} have different numbers of rows (from line {})", steps_file,
+                                    contour_file, steps.line()));
+    }
+    if (!more_steps) break;
+    t = crow[static_cast<std::size_t>(c[0])];
+    line = static_cast<int>(crow[static_cast<std::size_t>(c[1])]);
+    for (int j = 0; j < n; ++j) {
+      const auto J = static_cast<std::size_t>(j);
+      q[J] = srow[static_cast<std::size_t>(position_columns[J])] * step;
+      counts[J] = srow[static_cast<std::size_t>(step_columns[J])];
+      const double rate = counts[J] / period_s;
+      double near = limit_closeness(limits, q[J], counts[J] * step / period_s,
+                                    std::numeric_limits<double>::quiet_NaN());
+      if (max_step_rate > 0.0) near = std::max(near, std::min(1.0, std::abs(rate) / max_step_rate));
+      closeness[J] = near;
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    positions.add(t, nan, q.data());
+    step_counts.add(t, nan, counts.data());
+    const double error = crow[static_cast<std::size_t>(c[2])];
+    errors.add(t, nan, &error);
+    const Eigen::Vector3d executed(crow[static_cast<std::size_t>(c[3])], crow[static_cast<std::size_t>(c[4])],
+                                   crow[static_cast<std::size_t>(c[5])]);
+    const Eigen::Vector3d programmed(crow[static_cast<std::size_t>(c[6])],
+                                     crow[static_cast<std::size_t>(c[7])],
+                                     crow[static_cast<std::size_t>(c[8])]);
+    scene.add_path_point(programmed, executed.allFinite() ? executed : programmed, error);
+    if (scene.frame_due(t)) {
+      for (int j = 0; j < n; ++j) actuators[j] = q[static_cast<std::size_t>(j)] * to_internal;
+      // The frame shows where the drives' steps put the platform: FK from the previous frame.
+      if (auto fk = machine.mechanism->forward(actuators, guess)) {
+        pose = fk->pose;
+        guess = pose;
+      }
+      scene.add_frame(t, line, pose, closeness);
+      last_frame_time = t;
+    }
+    ++count;
+  }
+  if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no periods", steps_file));
+  if (t > last_frame_time) {
+    for (int j = 0; j < n; ++j) actuators[j] = q[static_cast<std::size_t>(j)] * to_internal;
+    if (auto fk = machine.mechanism->forward(actuators, guess)) pose = fk->pose;
+    scene.add_frame(t, line, pose, closeness);
+  }
+  for (auto* d : {&positions, &step_counts, &errors}) d->finish();
+
+  std::vector<std::string> names;
+  for (int j = 1; j <= n; ++j) names.push_back(fmt::format("q{}", j));
+  nlohmann::json position_limits = nlohmann::json::array(), step_limits = nlohmann::json::array(),
+                 error_limits = nlohmann::json::array();
+  if (limits.max)
+    position_limits.push_back(limit_line(fmt::format("max {:g} {}", *limits.max, unit), *limits.max));
+  if (limits.min)
+    position_limits.push_back(limit_line(fmt::format("min {:g} {}", *limits.min, unit), *limits.min));
+  if (max_step_rate > 0.0) {
+    const double per_period = std::floor(max_step_rate * period_s);
+    step_limits.push_back(
+        limit_line(fmt::format("+{:g} steps ({:g} Hz)", per_period, max_step_rate), per_period));
+    step_limits.push_back(limit_line(fmt::format("−{:g} steps", per_period), -per_period));
+  }
+  if (rho_max > 0.0) error_limits.push_back(limit_line(fmt::format("ρ_max {:g} mm", rho_max), rho_max));
+  nlohmann::json charts = nlohmann::json::array();
+  charts.push_back(chart_json("actuator_positions", "Actuator positions (drive position codes × step)",
+                              "position", unit, positions, names, false, position_limits));
+  charts.push_back(chart_json("steps_per_period", "Steps per period (sign: direction)", "steps", "steps",
+                              step_counts, names, false, step_limits));
+  charts.push_back(chart_json("contour_error", "Contour error (largest in each period)", "error", "mm",
+                              errors, {"contour error"}, false, error_limits));
+
+  nlohmann::json table = nlohmann::json::array();
+  table.push_back(table_row("Method", sm.value("method", std::string("?"))));
+  table.push_back(table_row("Periods / period", fmt::format("{} / {} ms", sm.value("periods", 0L),
+                                                            summary_number(sm, "period_ms"))));
+  table.push_back(table_row("Drive step", with_unit(step, unit)));
+  table.push_back(
+      table_row("Real / ideal time", fmt::format("{} / {}", with_unit(summary_number(sm, "real_time_s"), "s"),
+                                                 with_unit(summary_number(sm, "ideal_time_s"), "s"))));
+  table.push_back(table_row("Max contour error", with_unit(summary_number(sm, "max_contour_error_mm"), "mm"),
+                            summary_line(sm, "max_contour_error_line")));
+  table.push_back(
+      table_row("RMS contour error", with_unit(summary_number(sm, "rms_contour_error_mm"), "mm")));
+  table.push_back(table_row("Start / end error",
+                            fmt::format("{} / {}", with_unit(summary_number(sm, "start_error_mm"), "mm"),
+                                        with_unit(summary_number(sm, "end_error_mm"), "mm"))));
+  table.push_back(table_row("Max error after the first period",
+                            with_unit(summary_number(sm, "max_contour_error_after_first_period_mm"), "mm")));
+  table.push_back(table_row("Contour tolerance ρ_max", with_unit(rho_max, "mm")));
+  table.push_back(table_row("Max steps per period", with_unit(summary_number(sm, "max_steps_per_period"), ""),
+                            summary_line(sm, "max_steps_line")));
+  table.push_back(
+      table_row("Compute per period (max / mean)",
+                fmt::format("{} / {}", with_unit(summary_number(sm, "max_compute_us_per_period"), "µs"),
+                            with_unit(summary_number(sm, "mean_compute_us_per_period"), "µs"))));
+  table.push_back(table_row("Program", files.program));
+  table.push_back(table_row("Machine file", machine.source));
+
+  nlohmann::json reached = nlohmann::json::array();
+  const double max_error = summary_number(sm, "max_contour_error_mm");
+  if (rho_max > 0.0 && max_error > rho_max) {
+    reached.push_back(
+        {{"what", fmt::format("contour error {:.3g} mm beyond ρ_max = {:g} mm", max_error, rho_max)},
+         {"line", summary_line(sm, "max_contour_error_line")},
+         {"time_s", summary_number(sm, "max_contour_error_time_s")},
+         {"severity", "exceeded"}});
+  }
+  const double max_steps = summary_number(sm, "max_steps_per_period");
+  if (max_step_rate > 0.0 && max_steps >= 0.99 * std::floor(max_step_rate * period_s) - 1.0) {
+    reached.push_back({{"what", fmt::format("{:g} steps in a period: the drives' step rate {:g} Hz",
+                                            max_steps, max_step_rate)},
+                       {"line", summary_line(sm, "max_steps_line")},
+                       {"severity", "reached"}});
+  }
+
+  std::set<int> lines = scene.lines();
+  for (const auto& row : table)
+    if (row.contains("line")) lines.insert(row["line"].get<int>());
+  for (const auto& entry : reached) lines.insert(entry["line"].get<int>());
+  nlohmann::json scene_json = scene.json();
+  return nlohmann::json{
+      {"format", "pkm-report-1"},
+      {"kind", "interpolate"},
+      {"title", fmt::format("{} on {}: {} interpolation", fs::path(files.program).filename().string(),
+                            machine.name, sm.value("method", std::string("?")))},
+      {"generated_by", "pkm interpolate"},
+      {"machine", machine_json(machine)},
+      {"program", {{"file", files.program}, {"lines", program_lines(files.program, lines)}}},
+      {"table", table},
+      {"limits_reached", reached},
+      {"summary", files.summary},
+      {"charts", charts},
+      {"scene", scene_json}};
+}
+
+}  // namespace pkm::report

@@ -1,0 +1,260 @@
+// The report of a `pkm plan` run: actuator positions, speeds and accelerations against their limits, path
+// speed against the programmed feed, the path error, and the 3-D animation, from actuators.csv and path.csv.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "core/rotation.hpp"
+#include "core/units.hpp"
+#include "report/csv_table.hpp"
+#include "report/run_reports.hpp"
+#include "report/scene.hpp"
+
+namespace pkm::report {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The largest ratio of something to its limit over the run, and where it happened.
+struct LimitPeak {
+  double ratio = 0.0;
+  double value = 0.0;
+  double limit = 0.0;
+  int actuator = 0;
+  int line = 0;
+  double time_s = 0.0;
+  void offer(double r, double v, double lim, int j, int at_line, double t) {
+    if (r > ratio) *this = LimitPeak{r, v, lim, j, at_line, t};
+  }
+};
+
+double value_or_nan(const nlohmann::json& summary, const char* key) {
+  return summary.contains(key) && summary[key].is_number() ? summary[key].get<double>()
+                                                           : std::numeric_limits<double>::quiet_NaN();
+}
+
+int line_of(const nlohmann::json& summary, const char* key) {
+  return summary.contains(key) && summary[key].is_number_integer() ? summary[key].get<int>() : 0;
+}
+
+/// A limit the run comes within 1 % of is "reached"; beyond it (more than rounding) "exceeded".
+void add_limit_entry(nlohmann::json& reached, const LimitPeak& peak, const std::string& what,
+                     const std::string& unit) {
+  if (peak.ratio < 0.99) return;
+  const std::string how = what == "position" ? fmt::format("at its limit {:.6g} {}", peak.limit, unit)
+                                             : fmt::format("{:.1f} % of the limit {:.6g} {}",
+                                                           100.0 * peak.ratio, peak.limit, unit);
+  reached.push_back(
+      {{"what", fmt::format("actuator {} {} {:.6g} {} ({})", peak.actuator + 1, what, peak.value, unit, how)},
+       {"line", peak.line},
+       {"time_s", peak.time_s},
+       {"severity", peak.ratio > 1.0 + 1e-3 ? "exceeded" : "reached"}});
+}
+
+}  // namespace
+
+std::string with_unit(double value, const std::string& unit) {
+  if (!std::isfinite(value)) return "—";
+  return unit.empty() ? fmt::format("{:.6g}", value) : fmt::format("{:.6g} {}", value, unit);
+}
+
+Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files,
+                                   const ReportOptions& options) {
+  const fs::path dir(files.directory);
+  const std::string path_file = (dir / "path.csv").string();
+  const std::string actuator_file = (dir / "actuators.csv").string();
+  auto rows = count_csv_rows(path_file);
+  if (!rows) return rows.error();
+  CsvReader path, actuators;
+  if (Status opened = path.open(path_file); !opened) return opened.error();
+  if (Status opened = actuators.open(actuator_file); !opened) return opened.error();
+  const int n = machine.mechanism->actuator_count();
+  if (static_cast<int>(actuators.columns().size()) != n + 1) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}:1: {} actuator columns, but {} has {} actuators", actuator_file,
+                                  actuators.columns().size() - 1, machine.source, n));
+  }
+  int column[12];
+  const char* names[] = {"time_s", "line",  "s",     "x_mm",  "y_mm",
+                         "z_mm",   "a_deg", "b_deg", "c_deg", "path_speed_mm_s"};
+  for (int k = 0; k < 10; ++k) {
+    auto index = path.require(names[k]);
+    if (!index) return index.error();
+    column[k] = *index;
+  }
+  column[10] = path.column("feed_mm_s");  // written since the report issue; older runs lack them
+  column[11] = path.column("path_error_mm");
+
+  const std::string unit = actuator_unit(machine);
+  const ActuatorLimits limits = limits_in_file_units(machine);
+  const long expected = *rows;
+  MinMaxDecimator positions(n, expected, options.chart_buckets), speeds(n, expected, options.chart_buckets),
+      accels(n, expected, options.chart_buckets), path_speed(2, expected, options.chart_buckets),
+      path_error(1, expected, options.chart_buckets);
+  const double duration = value_or_nan(files.summary, "duration_s");
+  SceneBuilder scene(machine, std::isfinite(duration) ? duration : 0.0, expected, options.frames,
+                     options.path_points);
+
+  std::vector<double> prow, arow;
+  std::vector<double> q(static_cast<std::size_t>(n)), q_prev(q.size()), v(q.size()), v_prev(q.size()),
+      a(q.size()), closeness(q.size());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  LimitPeak speed_peak, accel_peak, position_peak;
+  long count = 0;
+  double t_prev = 0.0, last_frame_time = -1.0;
+  Pose pose;
+  int line = 0;
+  double t = 0.0;
+  for (;;) {
+    const bool more_path = path.next(prow);
+    const bool more_actuators = actuators.next(arow);
+    if (path.error()) return *path.error();
+    if (actuators.error()) return *actuators.error();
+    if (more_path != more_actuators) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{} and {} have different numbers of rows (from line {})", path_file,
+                                    actuator_file, path.line()));
+    }
+    if (!more_path) break;
+    t = prow[static_cast<std::size_t>(column[0])];
+    line = static_cast<int>(prow[static_cast<std::size_t>(column[1])]);
+    const double s = prow[static_cast<std::size_t>(column[2])];
+    const double dt = t - t_prev;
+    for (int j = 0; j < n; ++j) {
+      const auto J = static_cast<std::size_t>(j);
+      q[J] = arow[J + 1];
+      v[J] = count > 0 && dt > 0.0 ? (q[J] - q_prev[J]) / dt : nan;
+      a[J] = count > 1 && dt > 0.0 ? (v[J] - v_prev[J]) / dt : nan;
+      if (limits.speed && std::isfinite(v[J]))
+        speed_peak.offer(std::abs(v[J]) / *limits.speed, std::abs(v[J]), *limits.speed, j, line, t);
+      if (limits.accel && std::isfinite(a[J]))
+        accel_peak.offer(std::abs(a[J]) / *limits.accel, std::abs(a[J]), *limits.accel, j, line, t);
+      if (limits.min && limits.max && *limits.max > *limits.min) {
+        // 1 at either end of the range, 0.99 within 1 % of the range from it.
+        const double range = *limits.max - *limits.min;
+        position_peak.offer(1.0 + (q[J] - *limits.max) / range, q[J], *limits.max, j, line, t);
+        position_peak.offer(1.0 + (*limits.min - q[J]) / range, q[J], *limits.min, j, line, t);
+      }
+      closeness[J] = limit_closeness(limits, q[J], v[J], a[J]);
+    }
+    positions.add(t, s, q.data());
+    speeds.add(t, s, v.data());
+    accels.add(t, s, a.data());
+    const double feed = column[10] >= 0 ? prow[static_cast<std::size_t>(column[10])] : nan;
+    const double speed_feed[2] = {prow[static_cast<std::size_t>(column[9])], feed};
+    path_speed.add(t, s, speed_feed);
+    const double error = column[11] >= 0 ? prow[static_cast<std::size_t>(column[11])] : nan;
+    path_error.add(t, s, &error);
+
+    pose.position_mm =
+        Eigen::Vector3d(prow[static_cast<std::size_t>(column[3])], prow[static_cast<std::size_t>(column[4])],
+                        prow[static_cast<std::size_t>(column[5])]) +
+        machine.motion.program_origin_mm;
+    pose.rotation = rotation_from_angles(
+        AngleConvention::abc, Eigen::Vector3d(rad_from_deg(prow[static_cast<std::size_t>(column[6])]),
+                                              rad_from_deg(prow[static_cast<std::size_t>(column[7])]),
+                                              rad_from_deg(prow[static_cast<std::size_t>(column[8])])));
+    // The tool is where the drives put it at every tick; between ticks it deviates by the path error.
+    scene.add_path_point(pose.position_mm, pose.position_mm, error);
+    if (scene.frame_due(t)) {
+      scene.add_frame(t, line, pose, closeness);
+      last_frame_time = t;
+    }
+    q_prev = q;
+    v_prev = v;
+    t_prev = t;
+    ++count;
+  }
+  if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no rows", path_file));
+  if (t > last_frame_time) scene.add_frame(t, line, pose, closeness);  // the end of the run is a frame
+  for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
+
+  std::vector<std::string> actuator_names;
+  for (int j = 1; j <= n; ++j) actuator_names.push_back(fmt::format("q{}", j));
+  nlohmann::json position_limits = nlohmann::json::array(), speed_limits = nlohmann::json::array(),
+                 accel_limits = nlohmann::json::array();
+  if (limits.max)
+    position_limits.push_back(limit_line(fmt::format("max {:g} {}", *limits.max, unit), *limits.max));
+  if (limits.min)
+    position_limits.push_back(limit_line(fmt::format("min {:g} {}", *limits.min, unit), *limits.min));
+  if (limits.speed) {
+    speed_limits.push_back(limit_line(fmt::format("+{:g} {}/s", *limits.speed, unit), *limits.speed));
+    speed_limits.push_back(limit_line(fmt::format("−{:g} {}/s", *limits.speed, unit), -*limits.speed));
+  }
+  if (limits.accel) {
+    accel_limits.push_back(limit_line(fmt::format("+{:g} {}/s²", *limits.accel, unit), *limits.accel));
+    accel_limits.push_back(limit_line(fmt::format("−{:g} {}/s²", *limits.accel, unit), -*limits.accel));
+  }
+  nlohmann::json charts = nlohmann::json::array();
+  charts.push_back(chart_json("actuator_positions", "Actuator positions", "position", unit, positions,
+                              actuator_names, true, position_limits));
+  charts.push_back(chart_json("actuator_speeds", "Actuator speeds", "speed", unit + "/s", speeds,
+                              actuator_names, true, speed_limits));
+  charts.push_back(chart_json("actuator_accels", "Actuator accelerations", "acceleration", unit + "/s²",
+                              accels, actuator_names, true, accel_limits));
+  charts.push_back(chart_json("path_speed", "Path speed and programmed feed", "speed", "mm/s", path_speed,
+                              {"path speed", "programmed feed × override"}, true));
+  if (column[11] >= 0) {
+    charts.push_back(chart_json("contour_error", "Path error (tool from the programmed path, mid-period)",
+                                "error", "mm", path_error, {"path error"}, true));
+  }
+
+  const nlohmann::json& sm = files.summary;
+  const std::string u = unit;
+  nlohmann::json table = nlohmann::json::array();
+  table.push_back(table_row("Duration", with_unit(value_or_nan(sm, "duration_s"), "s")));
+  table.push_back(table_row(
+      "Blocks / path length",
+      fmt::format("{} / {}", sm.value("blocks", 0), with_unit(value_or_nan(sm, "path_length_mm"), "mm"))));
+  table.push_back(table_row("Servo rate / override",
+                            fmt::format("{} / {} %", with_unit(value_or_nan(sm, "rate_hz"), "Hz"),
+                                        value_or_nan(sm, "override_pct"))));
+  const std::string speed_key = "max_actuator_speed_" + u + "_s",
+                    accel_key = "max_actuator_accel_" + u + "_s2";
+  table.push_back(table_row("Max actuator speed", with_unit(value_or_nan(sm, speed_key.c_str()), u + "/s"),
+                            line_of(sm, "max_actuator_speed_line")));
+  table.push_back(table_row("Max actuator acceleration",
+                            with_unit(value_or_nan(sm, accel_key.c_str()), u + "/s²"),
+                            line_of(sm, "max_actuator_accel_line")));
+  table.push_back(table_row("Max path error", with_unit(value_or_nan(sm, "max_path_error_mm"), "mm"),
+                            line_of(sm, "max_path_error_line")));
+  table.push_back(
+      table_row("Max orientation error", with_unit(value_or_nan(sm, "max_orientation_error_deg"), "°")));
+  table.push_back(
+      table_row("Max path speed / of the feed",
+                fmt::format("{} / {:.1f} %", with_unit(value_or_nan(sm, "max_path_speed_mm_s"), "mm/s"),
+                            100.0 * value_or_nan(sm, "max_feed_ratio"))));
+  table.push_back(table_row("Max condition number", with_unit(value_or_nan(sm, "max_condition_number"), "")));
+  table.push_back(table_row("Time limited by the actuators",
+                            fmt::format("{:.1f} %", 100.0 * value_or_nan(sm, "actuator_limited_fraction"))));
+  table.push_back(table_row("Program", files.program));
+  table.push_back(table_row("Machine file", machine.source));
+
+  nlohmann::json reached = nlohmann::json::array();
+  add_limit_entry(reached, speed_peak, "speed", u + "/s");
+  add_limit_entry(reached, accel_peak, "acceleration", u + "/s²");
+  add_limit_entry(reached, position_peak, "position", u);
+
+  std::set<int> lines = scene.lines();
+  for (const auto& row : table)
+    if (row.contains("line")) lines.insert(row["line"].get<int>());
+  for (const auto& entry : reached) lines.insert(entry["line"].get<int>());
+  nlohmann::json scene_json = scene.json();
+  return nlohmann::json{
+      {"format", "pkm-report-1"},
+      {"kind", "plan"},
+      {"title", fmt::format("{} on {}", fs::path(files.program).filename().string(), machine.name)},
+      {"generated_by", "pkm plan"},
+      {"machine", machine_json(machine)},
+      {"program", {{"file", files.program}, {"lines", program_lines(files.program, lines)}}},
+      {"table", table},
+      {"limits_reached", reached},
+      {"summary", files.summary},
+      {"charts", charts},
+      {"scene", scene_json}};
+}
+
+}  // namespace pkm::report

@@ -1,0 +1,148 @@
+#include "report/report_data.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "machine/machine_file.hpp"
+#include "report/report_html.hpp"
+#include "report/run_reports.hpp"
+#include "report/scene.hpp"
+
+namespace pkm::report {
+
+namespace fs = std::filesystem;
+
+nlohmann::json chart_json(const std::string& id, const std::string& title, const std::string& y_label,
+                          const std::string& y_unit, const MinMaxDecimator& data,
+                          const std::vector<std::string>& names, bool with_path_length,
+                          nlohmann::json limits) {
+  nlohmann::json x = {{"time_s", json_numbers(data.time_s(), 9)}};
+  if (with_path_length) x["s_mm"] = json_numbers(data.s_mm(), 9);
+  nlohmann::json series = nlohmann::json::array();
+  for (int k = 0; k < data.series(); ++k) {
+    series.push_back(
+        {{"name", names[static_cast<std::size_t>(k)]}, {"values", json_numbers(data.values(k))}});
+  }
+  return {{"id", id},          {"title", title},   {"y_label", y_label},         {"y_unit", y_unit},
+          {"x", std::move(x)}, {"series", series}, {"limits", std::move(limits)}};
+}
+
+nlohmann::json limit_line(const std::string& label, double value) {
+  return {{"label", label}, {"value", json_number(value)}};
+}
+
+nlohmann::json table_row(const std::string& label, const std::string& value, int line) {
+  nlohmann::json row = {{"label", label}, {"value", value}};
+  if (line > 0) row["line"] = line;
+  return row;
+}
+
+nlohmann::json program_lines(const std::string& file, const std::set<int>& lines) {
+  nlohmann::json out = nlohmann::json::object();
+  std::ifstream in(file);
+  if (!in || lines.empty()) return out;
+  std::string text;
+  int number = 0;
+  auto wanted = lines.begin();
+  while (wanted != lines.end() && std::getline(in, text)) {
+    ++number;
+    while (wanted != lines.end() && *wanted < number) ++wanted;
+    if (wanted != lines.end() && *wanted == number) {
+      if (!text.empty() && text.back() == '\r') text.pop_back();
+      out[std::to_string(number)] = text.size() > 200 ? text.substr(0, 200) + "…" : text;
+    }
+  }
+  return out;
+}
+
+std::string actuator_unit(const Machine& machine) {
+  return machine.mechanism->actuators_are_angles() ? "deg" : "mm";
+}
+
+nlohmann::json machine_json(const Machine& machine) {
+  const ActuatorLimits limits = limits_in_file_units(machine);
+  nlohmann::json limit_json = nlohmann::json::object();
+  if (limits.min) limit_json["min"] = *limits.min;
+  if (limits.max) limit_json["max"] = *limits.max;
+  if (limits.speed) limit_json["speed"] = *limits.speed;
+  if (limits.accel) limit_json["accel"] = *limits.accel;
+  nlohmann::json names = nlohmann::json::array();
+  for (int j = 1; j <= machine.mechanism->actuator_count(); ++j) names.push_back(fmt::format("q{}", j));
+  return {{"file", machine.source},
+          {"name", machine.name},
+          {"type", std::string(to_string(machine.mechanism->type()))},
+          {"actuator_unit", actuator_unit(machine)},
+          {"actuator_names", names},
+          {"limits", limit_json}};
+}
+
+Result<nlohmann::json> report_from_directory(const std::string& directory, const ReportOptions& options) {
+  const fs::path dir(directory);
+  const fs::path summary_path = dir / "summary.json";
+  std::ifstream summary_file(summary_path);
+  if (!summary_file) {
+    return make_error(ErrorCode::io,
+                      fmt::format("{}: no summary.json: not the output directory of pkm plan or "
+                                  "pkm interpolate",
+                                  directory));
+  }
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(summary_file);
+  } catch (const nlohmann::json::exception& e) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}: not valid JSON: {}", summary_path.string(), e.what()));
+  }
+  const bool planned = fs::exists(dir / "actuators.csv") && fs::exists(dir / "path.csv");
+  const bool interpolated = fs::exists(dir / "steps.csv") && fs::exists(dir / "contour.csv");
+  if (!planned && !interpolated) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("{}: neither actuators.csv + path.csv (pkm plan) nor steps.csv + contour.csv "
+                    "(pkm interpolate)",
+                    directory));
+  }
+  std::string machine_file = options.machine_file;
+  if (machine_file.empty()) {
+    if (!summary.contains("machine") || !summary["machine"].is_string()) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: machine: missing; give --machine", summary_path.string()));
+    }
+    machine_file = summary["machine"].get<std::string>();
+  }
+  auto machine = load_machine_file(machine_file);
+  if (!machine) {
+    return make_error(machine.error().code, fmt::format("{} (the machine of {}; give --machine)",
+                                                        machine.error().message, summary_path.string()));
+  }
+  RunFiles files{directory, summary,
+                 options.program_file.empty() && summary.contains("program")
+                     ? summary["program"].get<std::string>()
+                     : options.program_file};
+  // Both runs may share a directory; the summary says which came last.
+  const bool interpolation_summary = summary.contains("method");
+  if (interpolation_summary && !interpolated) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("{}: the summary is pkm interpolate's, but steps.csv or contour.csv is missing",
+                    directory));
+  }
+  if (!interpolation_summary && !planned) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("{}: the summary is pkm plan's, but actuators.csv or path.csv is missing", directory));
+  }
+  return interpolation_summary ? interpolate_report(*machine, files, options)
+                               : plan_report(*machine, files, options);
+}
+
+Status write_directory_report(const std::string& directory, const std::string& file,
+                              const ReportOptions& options) {
+  auto data = report_from_directory(directory, options);
+  if (!data) return data.error();
+  return write_report_html(file, *data);
+}
+
+}  // namespace pkm::report

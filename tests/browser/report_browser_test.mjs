@@ -1,0 +1,139 @@
+// The HTML report in a real browser (issue: "see what the machine will do"). For shipped examples it runs pkm
+// with --report, opens each page in Debian's headless Chromium (playwright-core from web/), and checks:
+//   - no console error or warning, no page error, no network request (the page is self-contained);
+//   - pkmReport.ready comes, the 3-D canvas and every plot canvas have drawn pixels;
+//   - scrubbing (the range input, as a user drags it) moves the animation, and #current-line shows the program
+//     line that the run's own file (path.csv / contour.csv) gives for that moment, with its source text;
+//   - play advances the animation and pause stops it.
+// Usage: node tests/browser/report_browser_test.mjs --pkm build/pkm --out build/browser-test
+//                                                   [--screenshots docs/images] [--chromium /usr/bin/chromium]
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const require = createRequire(join(root, 'web/package.json'));
+const { chromium } = require('playwright-core');
+const { CHROMIUM_ARGS } = await import(pathToFileURL(join(root, 'web/dev/chromium.mjs')).href);
+
+function parseArgs(argv) {
+  const a = { pkm: join(root, 'build/pkm'), out: join(root, 'build/browser-test'), screenshots: null,
+              chromium: process.env.CHROMIUM || '/usr/bin/chromium' };
+  for (let i = 0; i < argv.length; i++) {
+    const key = argv[i].replace(/^--/, '');
+    if (!(key in a)) throw new Error(`unknown argument ${argv[i]}`);
+    a[key] = resolve(argv[++i]);
+  }
+  return a;
+}
+
+/** Rows of a CSV file as objects of numbers (empty fields: NaN). */
+function readCsv(file) {
+  const [header, ...rows] = readFileSync(file, 'utf8').trim().split('\n');
+  const names = header.split(',');
+  return rows.map((row) => Object.fromEntries(row.split(',').map((v, k) => [names[k], v === '' ? NaN : Number(v)])));
+}
+
+/** The program line the run's file gives at time t: the row with that time (frames are rows of the file). */
+function lineAt(rows, t) {
+  let best = rows[0];
+  for (const r of rows) if (Math.abs(r.time_s - t) < Math.abs(best.time_s - t)) best = r;
+  if (Math.abs(best.time_s - t) > 1e-6) throw new Error(`no row at t = ${t} (nearest ${best.time_s})`);
+  return best.line;
+}
+
+const args = parseArgs(process.argv.slice(2));
+if (!existsSync(args.pkm)) throw new Error(`no pkm binary at ${args.pkm}: build it first (make build)`);
+if (!existsSync(args.chromium)) throw new Error(`no Chromium at ${args.chromium}: scripts/install-deps.sh --with-browser`);
+rmSync(args.out, { recursive: true, force: true });
+mkdirSync(args.out, { recursive: true });
+
+const cases = [
+  { name: 'plan-pocket', command: 'plan', program: 'examples/programs/pocket.ngc', machine: 'examples/machines/hexapod_ch5.yaml',
+    rows: 'path.csv', extra: [] },
+  { name: 'interpolate-ch5-line', command: 'interpolate', program: 'examples/programs/ch5_line.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier-corrected'] },
+  { name: 'plan-planar-circle', command: 'plan', program: 'examples/programs/planar_circle.ngc',
+    machine: 'examples/machines/planar3.yaml', rows: 'path.csv', extra: [] },
+];
+
+const failures = [];
+const browser = await chromium.launch({ executablePath: args.chromium, headless: true, args: CHROMIUM_ARGS });
+try {
+  for (const c of cases) {
+    const dir = join(args.out, c.name);
+    const page_file = join(dir, 'report.html');
+    execFileSync(args.pkm, [c.command, join(root, c.program), '--machine', join(root, c.machine), '--out', dir,
+                            '--report', page_file, ...c.extra], { stdio: 'pipe' });
+    const rows = readCsv(join(dir, c.rows));
+    const fail = (what) => failures.push(`${c.name}: ${what}`);
+
+    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+    page.on('console', (m) => { if (m.type() === 'error' || m.type() === 'warning') fail(`console ${m.type()}: ${m.text()}`); });
+    page.on('pageerror', (e) => fail(`page error: ${e.message}`));
+    page.on('request', (r) => { if (!/^(file|data|blob):/.test(r.url())) fail(`network request ${r.url()}`); });
+    await page.goto(pathToFileURL(page_file).href, { waitUntil: 'load' });
+    await page.waitForFunction(() => window.pkmReport && window.pkmReport.ready === true, null, { timeout: 30000 });
+    await page.waitForFunction(() => window.pkmReport.builtCharts() === window.pkmReport.chartCount, null, { timeout: 30000 });
+
+    const data = await page.evaluate(() => JSON.parse(document.getElementById('pkm-report-data').textContent));
+    if (!(await page.evaluate(() => window.pkmReport.canvasHasPixels()))) fail('the 3-D canvas is empty');
+    // Every plot drew something besides its background: some pixel of its canvas is not transparent/white.
+    const plots = await page.evaluate(() => [...document.querySelectorAll('#charts canvas')].map((canvas) => {
+      const { width, height } = canvas;
+      const pixels = canvas.getContext('2d').getImageData(0, 0, width, height).data;
+      let inked = 0;
+      for (let i = 0; i < pixels.length; i += 4) {
+        if (pixels[i + 3] > 0 && (pixels[i] < 240 || pixels[i + 1] < 240 || pixels[i + 2] < 240)) inked++;
+      }
+      return inked;
+    }));
+    if (plots.length < data.charts.length) fail(`${plots.length} plot canvases for ${data.charts.length} charts`);
+    plots.forEach((inked, k) => { if (inked < 50) fail(`plot ${k} has only ${inked} drawn pixels`); });
+
+    // Scrub as a user does: move the range input and let it fire its input event.
+    const frames = data.scene.frames;
+    for (const fraction of [0.3, 0.75]) {
+      const k = Math.floor(fraction * (frames.time_s.length - 1));
+      const shown = await page.evaluate((i) => {
+        const scrub = document.getElementById('scrub');
+        scrub.value = String(i);
+        scrub.dispatchEvent(new Event('input', { bubbles: true }));
+        return { frame: window.pkmReport.currentFrame(), text: document.getElementById('current-line').textContent };
+      }, k);
+      const expected = lineAt(rows, frames.time_s[k]);
+      if (shown.frame !== k) fail(`scrubbed to ${k}, the animation is at frame ${shown.frame}`);
+      if (!shown.text.startsWith(`line ${expected}`)) fail(`at frame ${k} #current-line says "${shown.text}", ${c.rows} says line ${expected}`);
+      const source = data.program.lines[String(expected)];
+      if (source && !shown.text.includes(source.trim().slice(0, 20))) fail(`#current-line "${shown.text}" lacks the source text "${source}"`);
+      if (!(await page.evaluate(() => window.pkmReport.canvasHasPixels()))) fail(`the 3-D canvas is empty at frame ${k}`);
+    }
+    // Play moves the animation on; pause holds it.
+    await page.evaluate(() => window.pkmReport.setFrame(0));
+    await page.click('#play');
+    await page.waitForTimeout(700);
+    await page.click('#play');
+    const played = await page.evaluate(() => window.pkmReport.currentFrame());
+    await page.waitForTimeout(300);
+    const held = await page.evaluate(() => window.pkmReport.currentFrame());
+    if (!(played > 0)) fail('play did not advance the animation');
+    if (held !== played) fail(`pause did not hold the animation (${played} → ${held})`);
+
+    if (args.screenshots) {
+      mkdirSync(args.screenshots, { recursive: true });
+      await page.evaluate((i) => window.pkmReport.setFrame(i), Math.floor(frames.time_s.length / 3));
+      await page.screenshot({ path: join(args.screenshots, `report-${c.name}.png`), fullPage: true });
+    }
+    await page.close();
+    console.log(`${c.name}: ${frames.time_s.length} frames, ${plots.length} plots checked`);
+  }
+} finally {
+  await browser.close();
+}
+if (failures.length) {
+  for (const f of failures) console.error(`FAIL: ${f}`);
+  process.exit(1);
+}
+console.log('report browser test: OK');

@@ -1,0 +1,92 @@
+// Reads the report's JSON (docs/report-data.md) from the page and fills in what is optional, so the rest of the
+// page can rely on every field being there with the right type.
+
+const arr = (v) => (Array.isArray(v) ? v : []);
+const obj = (v) => (v && typeof v === 'object' && !Array.isArray(v) ? v : {});
+
+export function readData(doc = document) {
+  const el = doc.getElementById('pkm-report-data');
+  if (!el) throw new Error('no report data in this page (script#pkm-report-data is missing)');
+  return normalize(JSON.parse(el.textContent || '{}'));
+}
+
+export function normalize(raw) {
+  const d = obj(raw);
+  const machine = obj(d.machine);
+  const program = obj(d.program);
+  const scene = obj(d.scene);
+  const frames = obj(scene.frames);
+  const time = arr(frames.time_s).map(Number);
+  const n = time.length;
+  const perFrame = (v, fill) => {
+    const a = arr(v);
+    return a.length >= n ? a : a.concat(Array.from({ length: n - a.length }, () => fill));
+  };
+  const charts = arr(d.charts)
+    .map((c, i) => {
+      c = obj(c);
+      const x = obj(c.x);
+      const t = arr(x.time_s);
+      const s = Array.isArray(x.s_mm) && x.s_mm.length === t.length && t.length > 0 ? x.s_mm : null;
+      return {
+        id: String(c.id ?? `chart${i}`),
+        title: String(c.title ?? c.id ?? `Chart ${i + 1}`),
+        y_label: c.y_label == null ? '' : String(c.y_label),
+        y_unit: c.y_unit == null ? '' : String(c.y_unit),
+        x: { time_s: t, s_mm: s },
+        series: arr(c.series)
+          .map((sr, k) => ({
+            name: String(obj(sr).name ?? `series ${k + 1}`),
+            values: arr(obj(sr).values),
+            dash: !!obj(sr).dash,
+          }))
+          .filter((sr) => sr.values.length === t.length),
+        limits: arr(c.limits)
+          .map(obj)
+          .filter((l) => Number.isFinite(l.value))
+          .map((l) => ({ label: String(l.label ?? l.value), value: l.value })),
+      };
+    })
+    .filter((c) => c.x.time_s.length > 0);
+  return {
+    format: d.format,
+    kind: d.kind ?? '',
+    title: String(d.title ?? 'pkm report'),
+    generated_by: d.generated_by ?? '',
+    machine: {
+      file: machine.file ?? '',
+      name: machine.name ?? '',
+      type: machine.type ?? '',
+      actuator_unit: machine.actuator_unit ?? '',
+      actuator_names: arr(machine.actuator_names),
+      limits: obj(machine.limits),
+    },
+    program: { file: program.file ?? '', lines: obj(program.lines) },
+    table: arr(d.table).map(obj),
+    limits_reached: arr(d.limits_reached).map(obj),
+    summary: d.summary,
+    charts,
+    scene: {
+      base_polygon: arr(scene.base_polygon),
+      programmed_path: arr(scene.programmed_path),
+      executed_path: arr(scene.executed_path),
+      executed_error_mm: arr(scene.executed_error_mm),
+      error_scale_mm: Number(scene.error_scale_mm) > 0 ? Number(scene.error_scale_mm) : 0,
+      frames: {
+        count: n,
+        time_s: time,
+        line: perFrame(frames.line, 0).map((v) => Number(v) || 0),
+        tool: perFrame(frames.tool, null),
+        tool_axis: perFrame(frames.tool_axis, null),
+        struts: perFrame(frames.struts, []).map(arr),
+        strut_closeness: perFrame(frames.strut_closeness, []).map(arr),
+      },
+    },
+  };
+}
+
+/** Source text of a program line ("" when unknown). */
+export function lineText(data, line) {
+  const t = data.program.lines[String(line)];
+  return t == null ? '' : String(t).trim();
+}

@@ -1,0 +1,30 @@
+// window.pkmReport: the hooks the browser test uses.
+
+export function installHooks({ player, sceneView, charts, transport }) {
+  const hooks = {
+    ready: false,
+    frameCount: player.count,
+    chartCount: charts.count,
+    /** Moves the animation to frame i and updates slider, 3-D view and #current-line synchronously. */
+    setFrame(i) {
+      player.setFrame(i);
+      transport.showFrame(player.frame);
+      const v = sceneView();
+      if (v) {
+        v.setFrame(player.frame);
+        v.render();
+      }
+      return player.frame;
+    },
+    currentFrame: () => player.frame,
+    currentLine: () => player.line(),
+    canvasHasPixels: () => {
+      const v = sceneView();
+      return v ? v.hasPixels() : false;
+    },
+    builtCharts: () => charts.builtCount,
+    chartScales: () => charts.debugScales(),
+  };
+  window.pkmReport = hooks;
+  return hooks;
+}

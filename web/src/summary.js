@@ -1,0 +1,103 @@
+// The page header (title, machine, program) and the summary: pkm's table, the limits reached and the raw
+// summary JSON (collapsed).
+import { h } from './dom.js';
+import { fmtTime } from './format.js';
+
+export function renderHeader(data) {
+  const m = data.machine;
+  const p = data.program;
+  const meta = [];
+  if (m.name || m.file) {
+    meta.push(
+      h('span', { class: 'meta-item' }, h('span', { class: 'meta-key' }, 'machine'), ' ',
+        h('strong', null, m.name || m.file), m.type ? h('span', { class: 'tag' }, m.type) : null,
+        m.name && m.file ? h('code', { class: 'file' }, m.file) : null),
+    );
+  }
+  if (p.file) meta.push(h('span', { class: 'meta-item' }, h('span', { class: 'meta-key' }, 'program'), ' ', h('code', { class: 'file' }, p.file)));
+  if (data.kind) meta.push(h('span', { class: 'meta-item' }, h('span', { class: 'meta-key' }, 'run'), ' ', h('span', { class: 'tag kind' }, data.kind)));
+  return h(
+    'header',
+    { class: 'page-header' },
+    h('div', { class: 'brand' }, 'pkm report'),
+    h('h1', null, data.title),
+    h('div', { class: 'meta' }, meta),
+  );
+}
+
+/** Text with line-break opportunities after path separators (long file names wrap at a "/"). */
+function breakable(text) {
+  const parts = text.split(/(?<=[/\\])/);
+  return parts.flatMap((p, i) => (i < parts.length - 1 ? [p, h('wbr')] : [p]));
+}
+
+/** A "line N" link (disabled when no frame shows that line). */
+export function lineLink(line, frameOf, onLine) {
+  const f = frameOf(line);
+  if (f < 0) return h('span', { class: 'line-ref off', title: 'no animation frame on this line' }, `line ${line}`);
+  return h(
+    'a',
+    {
+      href: `#line-${line}`,
+      class: 'line-ref',
+      title: 'show this line in the 3-D view',
+      dataset: { line: String(line) },
+      onclick: (e) => {
+        e.preventDefault();
+        onLine(line);
+      },
+    },
+    `line ${line}`,
+  );
+}
+
+export function renderSummary(data, { frameOf, onLine, onTime }) {
+  const rows = data.table.map((r) =>
+    h(
+      'tr',
+      null,
+      h('th', { scope: 'row' }, r.label ?? ''),
+      h('td', { class: 'val' }, breakable(String(r.value ?? ''))),
+      h('td', { class: 'ref' }, Number(r.line) > 0 ? lineLink(Number(r.line), frameOf, onLine) : null),
+    ),
+  );
+  const table = h('table', { id: 'summary-table', class: 'summary-table' }, h('tbody', null, rows));
+
+  const lim = data.limits_reached;
+  const limits = lim.length
+    ? h(
+        'div',
+        { class: 'limits', id: 'limits-reached' },
+        h('h2', null, 'Limits reached', h('span', { class: 'count' }, String(lim.length))),
+        h(
+          'ul',
+          null,
+          lim.map((l) => {
+            const sev = l.severity === 'exceeded' ? 'exceeded' : 'reached';
+            const t = Number(l.time_s);
+            return h(
+              'li',
+              { class: `limit ${sev}` },
+              h('span', { class: `badge ${sev}` }, sev),
+              h('span', { class: 'what' }, l.what ?? ''),
+              h(
+                'span',
+                { class: 'where' },
+                Number(l.line) > 0 ? lineLink(Number(l.line), frameOf, onLine) : null,
+                Number.isFinite(t)
+                  ? h('a', { href: '#', class: 'time-ref', title: 'show this moment', onclick: (e) => { e.preventDefault(); onTime(t); } }, `${fmtTime(t)} s`)
+                  : null,
+              ),
+            );
+          }),
+        ),
+      )
+    : h('div', { class: 'limits none', id: 'limits-reached' }, 'No limit reached.');
+
+  const details =
+    data.summary !== undefined && data.summary !== null
+      ? h('details', { class: 'raw-summary' }, h('summary', null, 'summary.json'), h('pre', null, JSON.stringify(data.summary, null, 2)))
+      : null;
+
+  return h('div', { class: 'summary' }, table, limits, details);
+}
