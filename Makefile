@@ -17,10 +17,10 @@ PROGRAM ?= examples/programs/pocket.ngc
 deps:
 	@bash scripts/install-deps.sh
 
-# The library compiles as a unity build (batches of 8 files): on CI's 2 cores it halves the build time. The
-# benchmarks build in their own directory (make bench), so that make test does not wait for them.
+# The library and the tests compile as unity builds (batches of 8 files): on CI's 2 cores that halves the build
+# time. The benchmarks build in their own directory (make bench), so that make test does not wait for them.
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_BUILD_BENCH=OFF > /dev/null
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_BUILD_BENCH=OFF > /dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
@@ -32,7 +32,7 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 sanitize: deps
-	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DPKM_SANITIZE=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON > /dev/null
+	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DPKM_SANITIZE=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON > /dev/null
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 

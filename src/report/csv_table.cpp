@@ -77,6 +77,20 @@ bool CsvReader::next(std::vector<double>& row) {
   return true;
 }
 
+Result<bool> next_in_step(CsvReader& a, std::vector<double>& row_a, CsvReader& b,
+                          std::vector<double>& row_b) {
+  const bool more_a = a.next(row_a);
+  const bool more_b = b.next(row_b);
+  if (a.error()) return *a.error();
+  if (b.error()) return *b.error();
+  if (more_a != more_b) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{} and {} have different numbers of rows (from line {})", a.path(),
+                                  b.path(), std::min(a.line(), b.line()) + 1));
+  }
+  return more_a;
+}
+
 Result<long> count_csv_rows(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) return make_error(ErrorCode::io, fmt::format("{}: cannot open", path));

@@ -25,6 +25,7 @@ class CsvReader {
   bool next(std::vector<double>& row);
   const std::optional<Error>& error() const { return error_; }
   long line() const { return line_; }
+  const std::string& path() const { return path_; }
 
  private:
   std::string path_;
@@ -34,6 +35,10 @@ class CsvReader {
   long line_ = 0;
   std::optional<Error> error_;
 };
+
+/// The next rows of two files written side by side (one row per tick or period each): true with both rows,
+/// false when both have ended; an error if either file has one or they end at different rows.
+Result<bool> next_in_step(CsvReader& a, std::vector<double>& row_a, CsvReader& b, std::vector<double>& row_b);
 
 /// Counts the lines of a file after the first (the rows of a CSV with a header), fast.
 Result<long> count_csv_rows(const std::string& path);

@@ -90,16 +90,9 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
   double t = 0.0, last_frame_time = -1.0;
   int line = 0;
   for (;;) {
-    const bool more_steps = steps.next(srow);
-    const bool more_contour = contour.next(crow);
-    if (steps.error()) return *steps.error();
-    if (contour.error()) return *contour.error();
-    if (more_steps != more_contour) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("{} and {} have different numbers of rows (from line {})", steps_file,
-                                    contour_file, steps.line()));
-    }
-    if (!more_steps) break;
+    auto more = next_in_step(steps, srow, contour, crow);
+    if (!more) return more.error();
+    if (!*more) break;
     t = crow[static_cast<std::size_t>(c[0])];
     line = static_cast<int>(crow[static_cast<std::size_t>(c[1])]);
     for (int j = 0; j < n; ++j) {
@@ -143,14 +136,8 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
   }
   for (auto* d : {&positions, &step_counts, &errors}) d->finish();
 
-  std::vector<std::string> names;
-  for (int j = 1; j <= n; ++j) names.push_back(fmt::format("q{}", j));
-  nlohmann::json position_limits = nlohmann::json::array(), step_limits = nlohmann::json::array(),
-                 error_limits = nlohmann::json::array();
-  if (limits.max)
-    position_limits.push_back(limit_line(fmt::format("max {:g} {}", *limits.max, unit), *limits.max));
-  if (limits.min)
-    position_limits.push_back(limit_line(fmt::format("min {:g} {}", *limits.min, unit), *limits.min));
+  const std::vector<std::string> names = actuator_names(n);
+  nlohmann::json step_limits = nlohmann::json::array(), error_limits = nlohmann::json::array();
   if (max_step_rate > 0.0) {
     const double per_period = std::floor(max_step_rate * period_s);
     step_limits.push_back(
@@ -160,7 +147,7 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
   if (rho_max > 0.0) error_limits.push_back(limit_line(fmt::format("ρ_max {:g} mm", rho_max), rho_max));
   nlohmann::json charts = nlohmann::json::array();
   charts.push_back(chart_json("actuator_positions", "Actuator positions (drive position codes × step)",
-                              "position", unit, positions, names, false, position_limits));
+                              "position", unit, positions, names, false, travel_limit_lines(limits, unit)));
   charts.push_back(chart_json("steps_per_period", "Steps per period (sign: direction)", "steps", "steps",
                               step_counts, names, false, step_limits));
   charts.push_back(chart_json("contour_error", "Contour error (largest in each period)", "error", "mm",
@@ -210,24 +197,16 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
                        {"severity", "reached"}});
   }
 
-  std::set<int> lines = scene.lines();
-  for (const auto& row : table)
-    if (row.contains("line")) lines.insert(row["line"].get<int>());
-  for (const auto& entry : reached) lines.insert(entry["line"].get<int>());
-  nlohmann::json scene_json = scene.json();
-  return nlohmann::json{
-      {"format", "pkm-report-1"},
-      {"kind", "interpolate"},
-      {"title", fmt::format("{} on {}: {} interpolation", fs::path(files.program).filename().string(),
-                            machine.name, sm.value("method", std::string("?")))},
-      {"generated_by", "pkm interpolate"},
-      {"machine", machine_json(machine)},
-      {"program", {{"file", files.program}, {"lines", program_lines(files.program, lines)}}},
-      {"table", table},
-      {"limits_reached", reached},
-      {"summary", files.summary},
-      {"charts", charts},
-      {"scene", scene_json}};
+  ReportParts parts;
+  parts.kind = "interpolate";
+  parts.title = fmt::format("{} on {}: {} interpolation", fs::path(files.program).filename().string(),
+                            machine.name, sm.value("method", std::string("?")));
+  parts.program_file = files.program;
+  parts.table = std::move(table);
+  parts.limits_reached = std::move(reached);
+  parts.summary = files.summary;
+  parts.charts = std::move(charts);
+  return report_document(machine, std::move(parts), scene);
 }
 
 }  // namespace pkm::report

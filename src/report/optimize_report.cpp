@@ -143,22 +143,16 @@ Result<nlohmann::json> optimize_report(const Machine& machine, const program::Ca
                        {"line", chosen.metrics.first_infeasible_line},
                        {"severity", "exceeded"}});
   }
-  std::set<int> lines = scene.lines();
-  for (const auto& entry : reached) lines.insert(entry["line"].get<int>());
-  nlohmann::json scene_json = scene.json();
-  return nlohmann::json{
-      {"format", "pkm-report-1"},
-      {"kind", "optimize"},
-      {"title", fmt::format("{} on {}: {} law", std::filesystem::path(program.source).filename().string(),
-                            machine.name, law)},
-      {"generated_by", "pkm optimize"},
-      {"machine", machine_json(machine)},
-      {"program", {{"file", program.source}, {"lines", program_lines(program.source, lines)}}},
-      {"table", table},
-      {"limits_reached", reached},
-      {"summary", summary},
-      {"charts", charts},
-      {"scene", scene_json}};
+  ReportParts parts;
+  parts.kind = "optimize";
+  parts.title = fmt::format("{} on {}: {} law", std::filesystem::path(program.source).filename().string(),
+                            machine.name, law);
+  parts.program_file = program.source;
+  parts.table = std::move(table);
+  parts.limits_reached = std::move(reached);
+  parts.summary = summary;
+  parts.charts = std::move(charts);
+  return report_document(machine, std::move(parts), scene);
 }
 
 }  // namespace pkm::report

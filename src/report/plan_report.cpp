@@ -78,10 +78,10 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
                                   actuators.columns().size() - 1, machine.source, n));
   }
   int column[12];
-  const char* names[] = {"time_s", "line",  "s",     "x_mm",  "y_mm",
-                         "z_mm",   "a_deg", "b_deg", "c_deg", "path_speed_mm_s"};
+  const char* path_columns[] = {"time_s", "line",  "s",     "x_mm",  "y_mm",
+                                "z_mm",   "a_deg", "b_deg", "c_deg", "path_speed_mm_s"};
   for (int k = 0; k < 10; ++k) {
-    auto index = path.require(names[k]);
+    auto index = path.require(path_columns[k]);
     if (!index) return index.error();
     column[k] = *index;
   }
@@ -109,16 +109,9 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   int line = 0;
   double t = 0.0;
   for (;;) {
-    const bool more_path = path.next(prow);
-    const bool more_actuators = actuators.next(arow);
-    if (path.error()) return *path.error();
-    if (actuators.error()) return *actuators.error();
-    if (more_path != more_actuators) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("{} and {} have different numbers of rows (from line {})", path_file,
-                                    actuator_file, path.line()));
-    }
-    if (!more_path) break;
+    auto more = next_in_step(path, prow, actuators, arow);
+    if (!more) return more.error();
+    if (!*more) break;
     t = prow[static_cast<std::size_t>(column[0])];
     line = static_cast<int>(prow[static_cast<std::size_t>(column[1])]);
     const double s = prow[static_cast<std::size_t>(column[2])];
@@ -172,29 +165,14 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   if (t > last_frame_time) scene.add_frame(t, line, pose, closeness);  // the end of the run is a frame
   for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
 
-  std::vector<std::string> actuator_names;
-  for (int j = 1; j <= n; ++j) actuator_names.push_back(fmt::format("q{}", j));
-  nlohmann::json position_limits = nlohmann::json::array(), speed_limits = nlohmann::json::array(),
-                 accel_limits = nlohmann::json::array();
-  if (limits.max)
-    position_limits.push_back(limit_line(fmt::format("max {:g} {}", *limits.max, unit), *limits.max));
-  if (limits.min)
-    position_limits.push_back(limit_line(fmt::format("min {:g} {}", *limits.min, unit), *limits.min));
-  if (limits.speed) {
-    speed_limits.push_back(limit_line(fmt::format("+{:g} {}/s", *limits.speed, unit), *limits.speed));
-    speed_limits.push_back(limit_line(fmt::format("−{:g} {}/s", *limits.speed, unit), -*limits.speed));
-  }
-  if (limits.accel) {
-    accel_limits.push_back(limit_line(fmt::format("+{:g} {}/s²", *limits.accel, unit), *limits.accel));
-    accel_limits.push_back(limit_line(fmt::format("−{:g} {}/s²", *limits.accel, unit), -*limits.accel));
-  }
+  const std::vector<std::string> names = actuator_names(n);
   nlohmann::json charts = nlohmann::json::array();
-  charts.push_back(chart_json("actuator_positions", "Actuator positions", "position", unit, positions,
-                              actuator_names, true, position_limits));
-  charts.push_back(chart_json("actuator_speeds", "Actuator speeds", "speed", unit + "/s", speeds,
-                              actuator_names, true, speed_limits));
+  charts.push_back(chart_json("actuator_positions", "Actuator positions", "position", unit, positions, names,
+                              true, travel_limit_lines(limits, unit)));
+  charts.push_back(chart_json("actuator_speeds", "Actuator speeds", "speed", unit + "/s", speeds, names, true,
+                              plus_minus_lines(limits.speed, unit + "/s")));
   charts.push_back(chart_json("actuator_accels", "Actuator accelerations", "acceleration", unit + "/s²",
-                              accels, actuator_names, true, accel_limits));
+                              accels, names, true, plus_minus_lines(limits.accel, unit + "/s²")));
   charts.push_back(chart_json("path_speed", "Path speed and programmed feed", "speed", "mm/s", path_speed,
                               {"path speed", "programmed feed × override"}, true));
   if (column[11] >= 0) {
@@ -238,23 +216,15 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   add_limit_entry(reached, accel_peak, "acceleration", u + "/s²");
   add_limit_entry(reached, position_peak, "position", u);
 
-  std::set<int> lines = scene.lines();
-  for (const auto& row : table)
-    if (row.contains("line")) lines.insert(row["line"].get<int>());
-  for (const auto& entry : reached) lines.insert(entry["line"].get<int>());
-  nlohmann::json scene_json = scene.json();
-  return nlohmann::json{
-      {"format", "pkm-report-1"},
-      {"kind", "plan"},
-      {"title", fmt::format("{} on {}", fs::path(files.program).filename().string(), machine.name)},
-      {"generated_by", "pkm plan"},
-      {"machine", machine_json(machine)},
-      {"program", {{"file", files.program}, {"lines", program_lines(files.program, lines)}}},
-      {"table", table},
-      {"limits_reached", reached},
-      {"summary", files.summary},
-      {"charts", charts},
-      {"scene", scene_json}};
+  ReportParts parts;
+  parts.kind = "plan";
+  parts.title = fmt::format("{} on {}", fs::path(files.program).filename().string(), machine.name);
+  parts.program_file = files.program;
+  parts.table = std::move(table);
+  parts.limits_reached = std::move(reached);
+  parts.summary = files.summary;
+  parts.charts = std::move(charts);
+  return report_document(machine, std::move(parts), scene);
 }
 
 }  // namespace pkm::report

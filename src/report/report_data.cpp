@@ -33,6 +33,30 @@ nlohmann::json limit_line(const std::string& label, double value) {
   return {{"label", label}, {"value", json_number(value)}};
 }
 
+nlohmann::json travel_limit_lines(const ActuatorLimits& file_limits, const std::string& unit) {
+  nlohmann::json lines = nlohmann::json::array();
+  if (file_limits.max)
+    lines.push_back(limit_line(fmt::format("max {:g} {}", *file_limits.max, unit), *file_limits.max));
+  if (file_limits.min)
+    lines.push_back(limit_line(fmt::format("min {:g} {}", *file_limits.min, unit), *file_limits.min));
+  return lines;
+}
+
+nlohmann::json plus_minus_lines(const std::optional<double>& limit, const std::string& unit) {
+  nlohmann::json lines = nlohmann::json::array();
+  if (limit) {
+    lines.push_back(limit_line(fmt::format("+{:g} {}", *limit, unit), *limit));
+    lines.push_back(limit_line(fmt::format("−{:g} {}", *limit, unit), -*limit));
+  }
+  return lines;
+}
+
+std::vector<std::string> actuator_names(int count) {
+  std::vector<std::string> names;
+  for (int j = 1; j <= count; ++j) names.push_back(fmt::format("q{}", j));
+  return names;
+}
+
 nlohmann::json table_row(const std::string& label, const std::string& value, int line) {
   nlohmann::json row = {{"label", label}, {"value", value}};
   if (line > 0) row["line"] = line;
@@ -68,14 +92,33 @@ nlohmann::json machine_json(const Machine& machine) {
   if (limits.max) limit_json["max"] = *limits.max;
   if (limits.speed) limit_json["speed"] = *limits.speed;
   if (limits.accel) limit_json["accel"] = *limits.accel;
-  nlohmann::json names = nlohmann::json::array();
-  for (int j = 1; j <= machine.mechanism->actuator_count(); ++j) names.push_back(fmt::format("q{}", j));
   return {{"file", machine.source},
           {"name", machine.name},
           {"type", std::string(to_string(machine.mechanism->type()))},
           {"actuator_unit", actuator_unit(machine)},
-          {"actuator_names", names},
+          {"actuator_names", actuator_names(machine.mechanism->actuator_count())},
           {"limits", limit_json}};
+}
+
+nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneBuilder& scene) {
+  std::set<int> lines = scene.lines();
+  for (const auto& row : parts.table)
+    if (row.contains("line")) lines.insert(row["line"].get<int>());
+  for (const auto& entry : parts.limits_reached)
+    if (entry.contains("line")) lines.insert(entry["line"].get<int>());
+  nlohmann::json program = {{"file", parts.program_file},
+                            {"lines", program_lines(parts.program_file, lines)}};
+  return {{"format", "pkm-report-1"},
+          {"kind", parts.kind},
+          {"title", parts.title},
+          {"generated_by", "pkm " + parts.kind},
+          {"machine", machine_json(machine)},
+          {"program", std::move(program)},
+          {"table", std::move(parts.table)},
+          {"limits_reached", std::move(parts.limits_reached)},
+          {"summary", std::move(parts.summary)},
+          {"charts", std::move(parts.charts)},
+          {"scene", scene.json()}};
 }
 
 Result<nlohmann::json> report_from_directory(const std::string& directory, const ReportOptions& options) {

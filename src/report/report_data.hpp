@@ -12,6 +12,7 @@
 #include "core/result.hpp"
 #include "machine/machine.hpp"
 #include "report/decimator.hpp"
+#include "report/scene.hpp"
 
 namespace pkm::report {
 
@@ -39,8 +40,27 @@ nlohmann::json chart_json(const std::string& id, const std::string& title, const
                           nlohmann::json limits = nlohmann::json::array());
 /// A horizontal line on a chart.
 nlohmann::json limit_line(const std::string& label, double value);
+/// Lines at the ends of the actuators' travel ("max 900 mm", "min 350 mm"), where the machine gives them.
+nlohmann::json travel_limit_lines(const ActuatorLimits& file_limits, const std::string& unit);
+/// Symmetric lines at ±limit ("+100 mm/s", "−100 mm/s"); none without a limit.
+nlohmann::json plus_minus_lines(const std::optional<double>& limit, const std::string& unit);
+/// "q1" … "qn".
+std::vector<std::string> actuator_names(int count);
 /// A row of the summary table; `line` 0 means none.
 nlohmann::json table_row(const std::string& label, const std::string& value, int line = 0);
+/// The parts of a report that every kind of run fills in.
+struct ReportParts {
+  std::string kind;  ///< "plan", "interpolate", "optimize"
+  std::string title;
+  std::string program_file;  ///< for the source text of the lines the report refers to
+  nlohmann::json table = nlohmann::json::array();
+  nlohmann::json limits_reached = nlohmann::json::array();
+  nlohmann::json summary = nlohmann::json::object();
+  nlohmann::json charts = nlohmann::json::array();
+};
+/// The whole report object (docs/report-data.md), with the source text of every program line that the scene's
+/// frames, the table and the limits refer to.
+nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneBuilder& scene);
 /// The source text of `lines` of a program file (missing file: empty).
 nlohmann::json program_lines(const std::string& file, const std::set<int>& lines);
 /// "mm" or "deg".

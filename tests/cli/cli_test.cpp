@@ -17,7 +17,7 @@ namespace {
 
 using pkm::test::CliRun;
 
-CliRun run(const std::string& args) {
+CliRun cli_run(const std::string& args) {
   return pkm::test::run_pkm(args);
 }
 
@@ -25,7 +25,7 @@ std::string example(const std::string& name) {
   return pkm::test::source_path("examples/machines/" + std::string(name));
 }
 
-std::string write_temp(const std::string& name, const std::string& text) {
+std::string cli_write_temp(const std::string& name, const std::string& text) {
   return pkm::test::write_temp_file(name, text);
 }
 
@@ -40,7 +40,7 @@ void append_number(std::string& list, double value) {
 }
 
 TEST(Cli, IkReproducesE2) {
-  const CliRun r = run("ik --machine " + example(kCh5) + " --pose=-50,0,700,0,0,0 --json");
+  const CliRun r = cli_run("ik --machine " + example(kCh5) + " --pose=-50,0,700,0,0,0 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   const double expected[6] = {623.7911728445, 607.5487036598, 603.1222458757,
@@ -52,8 +52,8 @@ TEST(Cli, IkReproducesE2) {
 
 TEST(Cli, FkReproducesE3) {
   const CliRun r =
-      run("fk --machine " + example(kCh5) +
-          " --actuators 623.791,607.548,603.122,586.307,588.588,621.639 --guess=-50,0,700,0,0,0 --json");
+      cli_run("fk --machine " + example(kCh5) +
+              " --actuators 623.791,607.548,603.122,586.307,588.588,621.639 --guess=-50,0,700,0,0,0 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["pose"][0].get<double>(), -49.99972591, 1e-7);
@@ -65,9 +65,9 @@ TEST(Cli, FkReproducesE3) {
 
 TEST(Cli, FkAllListsAssemblyModesNearestFirst) {
   const CliRun r =
-      run("fk --machine " + example(kCh5) +
-          " --actuators 623.7911728445,607.5487036598,603.1222458757,586.3074649620,588.5880863511,"
-          "621.6397151039 --all --json");
+      cli_run("fk --machine " + example(kCh5) +
+              " --actuators 623.7911728445,607.5487036598,603.1222458757,586.3074649620,588.5880863511,"
+              "621.6397151039 --all --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_GE(j["solutions"].size(), 2u);
@@ -76,20 +76,20 @@ TEST(Cli, FkAllListsAssemblyModesNearestFirst) {
 }
 
 TEST(Cli, FkAllOnASixSixHexapodSaysWhy) {
-  const CliRun r = run("fk --machine " + example("hexapod_genhexkins.yaml") +
-                       " --actuators 600,600,600,600,600,600 --all");
+  const CliRun r = cli_run("fk --machine " + example("hexapod_genhexkins.yaml") +
+                           " --actuators 600,600,600,600,600,600 --all");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find("6-3"), std::string::npos) << r.out;
 }
 
 TEST(Cli, PlanarPoseTakesPhi) {
-  const CliRun ik = run("ik --machine " + example("planar3.yaml") + " --pose 10,-5,20 --json");
+  const CliRun ik = cli_run("ik --machine " + example("planar3.yaml") + " --pose 10,-5,20 --json");
   ASSERT_EQ(ik.exit_code, 0) << ik.out;
   const auto q = nlohmann::json::parse(ik.out)["actuators"];
   std::string actuators;
   for (const auto& v : q) append_number(actuators, v.get<double>());
   const CliRun all =
-      run("fk --machine " + example("planar3.yaml") + " --actuators " + actuators + " --all --json");
+      cli_run("fk --machine " + example("planar3.yaml") + " --actuators " + actuators + " --all --json");
   ASSERT_EQ(all.exit_code, 0) << all.out;
   bool found = false;
   const auto parsed = nlohmann::json::parse(all.out);
@@ -101,73 +101,74 @@ TEST(Cli, PlanarPoseTakesPhi) {
 }
 
 TEST(Cli, UnreachablePoseNamesTheLimitAndItsLine) {
-  const CliRun r = run("ik --machine " + example(kCh5) + " --pose 0,0,1200,0,0,0");
+  const CliRun r = cli_run("ik --machine " + example(kCh5) + " --pose 0,0,1200,0,0,0");
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.out.find("actuator_max"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("hexapod_ch5.yaml:"), std::string::npos) << r.out;
 }
 
 TEST(Cli, BadNumberNamesTheField) {
-  const CliRun r = run("ik --machine " + example(kCh5) + " --pose 0,0,x,0,0,0");
+  const CliRun r = cli_run("ik --machine " + example(kCh5) + " --pose 0,0,x,0,0,0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find("--pose"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("'x'"), std::string::npos) << r.out;
 }
 
 TEST(Cli, WrongPointCountNamesFileLineAndKey) {
-  const std::string path = write_temp("short.yaml",
-                                      "type: hexapod\n"
-                                      "angles: abc\n"
-                                      "base_joints:\n"
-                                      "  - [400, 0, 0]\n"
-                                      "  - [200, 346, 0]\n"
-                                      "platform_joints: [[1,2,3],[1,2,3],[1,2,3],[1,2,3],[1,2,3],[1,2,3]]\n");
-  const CliRun r = run("check " + path);
+  const std::string path =
+      cli_write_temp("short.yaml",
+                     "type: hexapod\n"
+                     "angles: abc\n"
+                     "base_joints:\n"
+                     "  - [400, 0, 0]\n"
+                     "  - [200, 346, 0]\n"
+                     "platform_joints: [[1,2,3],[1,2,3],[1,2,3],[1,2,3],[1,2,3],[1,2,3]]\n");
+  const CliRun r = cli_run("check " + path);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find("pkm_cli_test_short.yaml:4: base_joints"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("got 2 points"), std::string::npos) << r.out;
 }
 
 TEST(Cli, MisspeltKeyIsAnError) {
-  const std::string path = write_temp("typo.yaml",
-                                      "type: hexapod\n"
-                                      "angles: abc\n"
-                                      "base_joint: []\n");
-  const CliRun r = run("check " + path);
+  const std::string path = cli_write_temp("typo.yaml",
+                                          "type: hexapod\n"
+                                          "angles: abc\n"
+                                          "base_joint: []\n");
+  const CliRun r = cli_run("check " + path);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find("pkm_cli_test_typo.yaml:3: base_joint: unknown key"), std::string::npos) << r.out;
 }
 
 TEST(Cli, MissingFileIsAnError) {
-  const CliRun r = run("check /nonexistent/machine.yaml");
+  const CliRun r = cli_run("check /nonexistent/machine.yaml");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.out.find("/nonexistent/machine.yaml: cannot open"), std::string::npos) << r.out;
 }
 
 TEST(Cli, SingularActuatorValuesExitWithFour) {
   // All platform joints in the base plane (tool point 150 mm above it): every strut horizontal.
-  const CliRun ik = run("ik --machine " + example(kCh5) + " --pose 0,0,150,0,0,0 --json");
+  const CliRun ik = cli_run("ik --machine " + example(kCh5) + " --pose 0,0,150,0,0,0 --json");
   ASSERT_EQ(ik.exit_code, 3) << ik.out;  // outside the 350..900 mm range
   const std::string path =
-      write_temp("no_limits.yaml",
-                 "type: hexapod\nangles: krylov\n"
-                 "base_joints: [[400,0,0],[200,346.41016151377545,0],[-200,346.41016151377545,0],"
-                 "[-400,0,0],[-200,-346.41016151377545,0],[200,-346.41016151377545,0]]\n"
-                 "platform_joints: [[173.20508075688772,100,0],[173.20508075688772,100,0],"
-                 "[-173.20508075688772,100,0],[-173.20508075688772,100,0],[0,-200,0],[0,-200,0]]\n"
-                 "home: [0, 0, 550, 0, 0, 0]\n");
-  const CliRun flat = run("ik --machine " + path + " --pose 0,0,0,0,0,0 --json");
+      cli_write_temp("no_limits.yaml",
+                     "type: hexapod\nangles: krylov\n"
+                     "base_joints: [[400,0,0],[200,346.41016151377545,0],[-200,346.41016151377545,0],"
+                     "[-400,0,0],[-200,-346.41016151377545,0],[200,-346.41016151377545,0]]\n"
+                     "platform_joints: [[173.20508075688772,100,0],[173.20508075688772,100,0],"
+                     "[-173.20508075688772,100,0],[-173.20508075688772,100,0],[0,-200,0],[0,-200,0]]\n"
+                     "home: [0, 0, 550, 0, 0, 0]\n");
+  const CliRun flat = cli_run("ik --machine " + path + " --pose 0,0,0,0,0,0 --json");
   ASSERT_EQ(flat.exit_code, 0) << flat.out;
   std::string q;
   const auto flat_json = nlohmann::json::parse(flat.out);
   for (const auto& v : flat_json["actuators"]) append_number(q, v.get<double>());
-  const CliRun fk = run("fk --machine " + path + " --actuators " + q + " --guess 0,0,0,0,0,0");
+  const CliRun fk = cli_run("fk --machine " + path + " --actuators " + q + " --guess 0,0,0,0,0,0");
   EXPECT_EQ(fk.exit_code, 4) << fk.out;
   EXPECT_NE(fk.out.find("singular"), std::string::npos) << fk.out;
 }
 
 TEST(Cli, JacobianGivesErrorAmplificationAndInverse) {
-  const CliRun r = run("jacobian --machine " + example(kCh5) + " --pose 0,0,700,0,0,0 --json");
+  const CliRun r = cli_run("jacobian --machine " + example(kCh5) + " --pose 0,0,700,0,0,0 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["error_amplification"].get<double>(), 4.76, 0.005);  // spec ch5 §5.1
@@ -180,18 +181,18 @@ TEST(Cli, JacobianGivesErrorAmplificationAndInverse) {
       EXPECT_NEAR(sum, row == col ? 1.0 : 0.0, 1e-9);
     }
   }
-  const CliRun singular = run("jacobian --machine " + example(kCh5) + " --pose 0,0,150,0,0,0");
+  const CliRun singular = cli_run("jacobian --machine " + example(kCh5) + " --pose 0,0,150,0,0,0");
   EXPECT_EQ(singular.exit_code, 4) << singular.out;
 }
 
 TEST(Cli, FkThatCannotConvergeSaysSo) {
-  const CliRun r = run("fk --machine " + example(kCh5) + " --actuators 360,890,360,890,360,890");
+  const CliRun r = cli_run("fk --machine " + example(kCh5) + " --actuators 360,890,360,890,360,890");
   EXPECT_TRUE(r.exit_code == 3 || r.exit_code == 4) << r.out;
   EXPECT_NE(r.out.find("pkm fk: error:"), std::string::npos) << r.out;
 }
 
 TEST(Cli, CheckReportsMobilityAndRange) {
-  const CliRun r = run("check " + example(kCh5) + " --json");
+  const CliRun r = cli_run("check " + example(kCh5) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["mobility"], 6);
@@ -201,8 +202,8 @@ TEST(Cli, CheckReportsMobilityAndRange) {
 }
 
 TEST(Cli, BenchKinematicsReportsEveryFigure) {
-  const CliRun r = run("bench kinematics --machine " + example(kCh5) +
-                       " --ik-poses 2000 --path-poses 500 --cold-poses 500 --json");
+  const CliRun r = cli_run("bench kinematics --machine " + example(kCh5) +
+                           " --ik-poses 2000 --path-poses 500 --cold-poses 500 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* key : {"ik_ns_per_pose", "fk_us_per_solve_warm", "fk_iterations_warm",
@@ -217,7 +218,7 @@ TEST(Cli, BenchKinematicsReportsEveryFigure) {
 TEST(Cli, DemoRunsOnEveryShippedMachine) {
   for (const char* file : {"hexapod_ch5.yaml", "planar2.yaml", "planar3.yaml", "tripod.yaml", "tricept.yaml",
                            "hexaglide.yaml", "triglide.yaml", "rotopod.yaml", "hexapod_refined.yaml"}) {
-    const CliRun r = run(std::string("demo --machine ") + example(file));
+    const CliRun r = cli_run(std::string("demo --machine ") + example(file));
     EXPECT_EQ(r.exit_code, 0) << file << "\n" << r.out;
   }
 }

@@ -35,7 +35,7 @@ std::vector<StepPeriod> read_stream(StepStreamReader& reader) {
   return periods;
 }
 
-std::string error_of(const std::string& path) {
+std::string step_stream_error_of(const std::string& path) {
   StepStreamReader reader;
   auto opened = reader.open(path);
   if (!opened) return opened.error().message;
@@ -150,7 +150,7 @@ TEST(StepStream, TruncatedFileNamesTheFileAndTheOffset) {
                            whole.size() / 2, whole.size() - 24, whole.size() - 1}) {
     SCOPED_TRACE("cut to " + std::to_string(size) + " bytes");
     test::write_bytes(path, whole.substr(0, size));
-    const std::string message = error_of(path);
+    const std::string message = step_stream_error_of(path);
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find("truncated at byte " + std::to_string(size)), std::string::npos) << message;
   }
@@ -190,7 +190,7 @@ TEST(StepStream, DecodingErrorsNameTheByteOffset) {
   overlong[data_begin + 4] = static_cast<char>(overlong[data_begin + 4] | 0x80);
   reseal(overlong);
   test::write_bytes(path, overlong);
-  std::string message = error_of(path);
+  std::string message = step_stream_error_of(path);
   EXPECT_NE(message.find(path + ": corrupt at byte " + std::to_string(data_begin) + ": period 0"),
             std::string::npos)
       << message;
@@ -198,7 +198,7 @@ TEST(StepStream, DecodingErrorsNameTheByteOffset) {
   std::string one_more = good;  // claims two periods where the data hold one
   put_u64(one_more, good.size() - 16, 2);
   test::write_bytes(path, one_more);
-  message = error_of(path);
+  message = step_stream_error_of(path);
   EXPECT_NE(
       message.find("corrupt at byte " + std::to_string(data_begin + 6) + ": period 1 runs into the end"),
       std::string::npos)
@@ -207,7 +207,7 @@ TEST(StepStream, DecodingErrorsNameTheByteOffset) {
   std::string one_less = good;  // claims none: six bytes left over
   put_u64(one_less, good.size() - 16, 0);
   test::write_bytes(path, one_less);
-  message = error_of(path);
+  message = step_stream_error_of(path);
   EXPECT_NE(message.find("corrupt at byte " + std::to_string(data_begin) + ": 6 bytes after the last"),
             std::string::npos)
       << message;

@@ -14,16 +14,6 @@ namespace {
 using test::appended_line;
 using test::kCh5HexapodText;
 
-std::string drives_load_error(const std::string& base, const std::string& extra) {
-  auto m = parse_machine_text(base + extra, "test.yaml");
-  if (m) {
-    ADD_FAILURE() << "expected an error for:\n" << extra;
-    return {};
-  }
-  EXPECT_EQ(m.error().code, ErrorCode::bad_input);
-  return m.error().message;
-}
-
 std::string example_text(const std::string& relative_path) {
   std::ifstream in(test::source_path(relative_path));
   std::stringstream text;
@@ -72,7 +62,7 @@ TEST(DriveSettings, BadValuesNameTheKeyAndLine) {
                          {"drives: {step: 0.001}\n", "step"},
                          // A hexapod's drives move struts: a resolution in degrees is a unit mix-up.
                          {"drives: {step_deg: 0.001}\n", "step_deg"}}) {
-    const std::string message = drives_load_error(kCh5HexapodText, c.extra);
+    const std::string message = test::appended_section_error(kCh5HexapodText, c.extra);
     EXPECT_NE(message.find(c.expected), std::string::npos) << message;
     EXPECT_NE(message.find("test.yaml:" + std::to_string(line)), std::string::npos) << message;
   }
@@ -82,7 +72,7 @@ TEST(DriveSettings, AngularActuatorsTakeTheirResolutionInDegrees) {
   const std::string rotopod = example_text("examples/machines/rotopod.yaml");
   const Machine m = test::machine_from_text(rotopod + "drives: {step_deg: 0.01}\n");
   EXPECT_EQ(m.drives.step, 0.01);
-  const std::string message = drives_load_error(rotopod, "drives: {step_mm: 0.01}\n");
+  const std::string message = test::appended_section_error(rotopod, "drives: {step_mm: 0.01}\n");
   EXPECT_NE(message.find("step_mm"), std::string::npos) << message;
 }
 

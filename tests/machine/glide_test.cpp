@@ -25,14 +25,14 @@ Pose abc_pose(double x, double y, double z, double a_deg, double b_deg, double c
   return pose_from_vector(AngleConvention::abc, c);
 }
 
-Pose random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
+Pose glide_random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
   PoseVector c = vector_from_pose(AngleConvention::abc, around);
   for (int k = 0; k < 3; ++k) c[k] += test::uniform(rng, -mm, mm);
   for (int k = 3; k < 6; ++k) c[k] += rad_from_deg(test::uniform(rng, -deg, deg));
   return pose_from_vector(AngleConvention::abc, c);
 }
 
-Eigen::Vector3d random_vector(std::mt19937_64& rng, double size) {
+Eigen::Vector3d glide_random_vector(std::mt19937_64& rng, double size) {
   return {test::uniform(rng, -size, size), test::uniform(rng, -size, size), test::uniform(rng, -size, size)};
 }
 
@@ -40,10 +40,10 @@ Eigen::Vector3d random_vector(std::mt19937_64& rng, double size) {
 Glide jittered(const Glide& example, std::mt19937_64& rng) {
   GlideGeometry g = example.geometry();
   for (int j = 0; j < g.count; ++j) {
-    g.guide_points_mm[j] += random_vector(rng, 20);
-    g.guide_directions[j] = (g.guide_directions[j] + random_vector(rng, 0.05)).normalized();
+    g.guide_points_mm[j] += glide_random_vector(rng, 20);
+    g.guide_directions[j] = (g.guide_directions[j] + glide_random_vector(rng, 0.05)).normalized();
     g.strut_lengths_mm[j] += test::uniform(rng, -15, 15);
-    g.platform_joints_mm[j] += random_vector(rng, 10);
+    g.platform_joints_mm[j] += glide_random_vector(rng, 10);
   }
   return Glide(g, AngleConvention::abc, example.home());
 }
@@ -70,7 +70,7 @@ TEST(Glide, CarriagesSitOnTheirStrutSpheresAndBranchesOrderTheRoots) {
   const Glide other(flipped, AngleConvention::abc, glide.home());
   std::mt19937_64 rng(1);
   for (int i = 0; i < 500; ++i) {
-    const Pose pose = random_pose(rng, glide.home(), 40, 4);
+    const Pose pose = glide_random_pose(rng, glide.home(), 40, 4);
     const auto s = glide.inverse(pose);
     const auto t = other.inverse(pose);
     ASSERT_TRUE(s.ok() && t.ok());
@@ -98,7 +98,7 @@ void round_trips(const char* example_file, std::uint64_t seed, double mm, double
     const double home_det = glide.strut_line_determinant(glide.home());
     int accepted = 0, skipped = 0;
     while (accepted < 1000) {
-      const Pose truth = *glide.complete_pose(random_pose(rng, glide.home(), mm, deg));
+      const Pose truth = *glide.complete_pose(glide_random_pose(rng, glide.home(), mm, deg));
       // Near a singularity "the" pose is not defined: skip (and count) poses near one or across one from
       // home.
       const double det = glide.strut_line_determinant(truth);
@@ -110,7 +110,7 @@ void round_trips(const char* example_file, std::uint64_t seed, double mm, double
       ++accepted;
       const auto s = glide.inverse(truth);
       ASSERT_TRUE(s.ok()) << s.error().message;
-      const auto fk = glide.forward(*s, random_pose(rng, truth, 1, 0.5), options);
+      const auto fk = glide.forward(*s, glide_random_pose(rng, truth, 1, 0.5), options);
       ASSERT_TRUE(fk.ok()) << fk.error().message;
       const PoseDistance d = pose_distance(fk->pose, truth);
       EXPECT_LT(d.position_mm, 1e-9);
@@ -171,7 +171,7 @@ TEST(Glide, JacobianMatchesFiniteDifferencesOfInverse) {
     const Machine m = test::machine_from_example(file);
     for (int g = 0; g < 5; ++g) {
       const Glide glide = jittered(as_glide(m), rng);
-      const Pose pose = *glide.complete_pose(random_pose(rng, glide.home(), 30, 3));
+      const Pose pose = *glide.complete_pose(glide_random_pose(rng, glide.home(), 30, 3));
       expect_jacobian_matches_finite_differences(glide, pose);
     }
   }
@@ -257,7 +257,7 @@ TEST(GlideFile, DefaultHomeIsLevelAndNonSingular) {
   }
 }
 
-std::string error_of(const std::string& yaml, const std::string& name) {
+std::string glide_error_of(const std::string& yaml, const std::string& name) {
   auto machine = parse_machine_text(yaml, name);
   EXPECT_FALSE(machine.ok());
   return machine.ok() ? std::string() : machine.error().message;
@@ -275,17 +275,18 @@ guides:
 TEST(GlideFile, ErrorsNameFileLineAndKey) {
   const std::string joints = "platform_joints: [[0, 80, 0], [-69.282, -40, 0], [69.282, -40, 0]]\n";
   // Missing strut_lengths.
-  std::string message = error_of(std::string(kTriglideGuides) + joints, "tri.yaml");
+  std::string message = glide_error_of(std::string(kTriglideGuides) + joints, "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:1: strut_lengths: missing"), std::string::npos) << message;
   // Misspelt top-level key (line 7).
-  message = error_of(std::string(kTriglideGuides) + "strut_length: [600, 600, 600]\n" + joints, "tri.yaml");
+  message =
+      glide_error_of(std::string(kTriglideGuides) + "strut_length: [600, 600, 600]\n" + joints, "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:7: strut_length: unknown key"), std::string::npos) << message;
   // Wrong count (line 7): 2 lengths for 3 guides.
-  message = error_of(std::string(kTriglideGuides) + "strut_lengths: [600, 600]\n" + joints, "tri.yaml");
+  message = glide_error_of(std::string(kTriglideGuides) + "strut_lengths: [600, 600]\n" + joints, "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:7: strut_lengths: expected a list of 3 numbers, got 2"), std::string::npos)
       << message;
   // Wrong count of platform joints (line 8).
-  message = error_of(
+  message = glide_error_of(
       std::string(kTriglideGuides) + "strut_lengths: [600, 600, 600]\nplatform_joints: [[0, 0, 0]]\n",
       "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:8: platform_joints: expected a list of 3 points"), std::string::npos)
@@ -293,10 +294,10 @@ TEST(GlideFile, ErrorsNameFileLineAndKey) {
   // Misspelt guide key (line 5).
   std::string yaml = kTriglideGuides;
   yaml.replace(yaml.find("direction: [0.4330127"), 9, "dirction");
-  message = error_of(yaml + "strut_lengths: [600, 600, 600]\n" + joints, "tri.yaml");
+  message = glide_error_of(yaml + "strut_lengths: [600, 600, 600]\n" + joints, "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:5: guides[1].dirction: unknown key"), std::string::npos) << message;
   // Four guides (line 4: the list starts there).
-  message = error_of(
+  message = glide_error_of(
       "type: glide\nangles: abc\nguides:\n  - {point: [0, 0, 0], direction: [1, 0, 0]}\n"
       "  - {point: [0, 0, 0], direction: [1, 0, 0]}\n  - {point: [0, 0, 0], direction: [1, 0, 0]}\n"
       "  - {point: [0, 0, 0], direction: [1, 0, 0]}\n",
@@ -306,17 +307,17 @@ TEST(GlideFile, ErrorsNameFileLineAndKey) {
   // Zero direction, bad branch value, angles on a three-guide home.
   yaml = kTriglideGuides;
   yaml.replace(yaml.find("[0, -0.5, 0.8660254037844386]"), 29, "[0, 0, 0]");
-  message = error_of(yaml + "strut_lengths: [600, 600, 600]\n" + joints, "tri.yaml");
+  message = glide_error_of(yaml + "strut_lengths: [600, 600, 600]\n" + joints, "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:4: guides[0].direction: a guide direction must not be zero"),
             std::string::npos)
       << message;
-  message = error_of(
+  message = glide_error_of(
       std::string(kTriglideGuides) + "strut_lengths: [600, 600, 600]\n" + joints + "branch: [1, 2, 1]\n",
       "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:9: branch[1]: expected +1 or -1, got 2"), std::string::npos) << message;
-  message = error_of(std::string(kTriglideGuides) + "strut_lengths: [600, 600, 600]\n" + joints +
-                         "home: [0, 0, 300, 0, 5, 0]\n",
-                     "tri.yaml");
+  message = glide_error_of(std::string(kTriglideGuides) + "strut_lengths: [600, 600, 600]\n" + joints +
+                               "home: [0, 0, 300, 0, 5, 0]\n",
+                           "tri.yaml");
   EXPECT_NE(message.find("tri.yaml:9: home: a three-guide glide keeps its platform orientation fixed"),
             std::string::npos)
       << message;

@@ -18,20 +18,21 @@ namespace {
 
 using test::kCh5HexapodGeometry;
 
-Pose krylov_pose(double x, double y, double z, double psi_deg, double theta_deg, double gamma_deg) {
+Pose hexapod_refined_krylov_pose(double x, double y, double z, double psi_deg, double theta_deg,
+                                 double gamma_deg) {
   PoseVector c;
   c << x, y, z, rad_from_deg(psi_deg), rad_from_deg(theta_deg), rad_from_deg(gamma_deg);
   return pose_from_vector(AngleConvention::krylov, c);
 }
 
-Pose random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
+Pose hexapod_refined_random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
   PoseVector c = vector_from_pose(AngleConvention::krylov, around);
   for (int k = 0; k < 3; ++k) c[k] += test::uniform(rng, -mm, mm);
   for (int k = 3; k < 6; ++k) c[k] += rad_from_deg(test::uniform(rng, -deg, deg));
   return pose_from_vector(AngleConvention::krylov, c);
 }
 
-Eigen::Vector3d random_vector(std::mt19937_64& rng, double size) {
+Eigen::Vector3d hexapod_refined_random_vector(std::mt19937_64& rng, double size) {
   return {test::uniform(rng, -size, size), test::uniform(rng, -size, size), test::uniform(rng, -size, size)};
 }
 
@@ -39,12 +40,12 @@ Eigen::Vector3d random_vector(std::mt19937_64& rng, double size) {
 // component.
 CardanJoint random_joint(std::mt19937_64& rng, double offset_mm, double tilt_rad) {
   CardanJoint joint;
-  joint.axis1 = (Eigen::Vector3d::UnitY() + random_vector(rng, tilt_rad)).normalized();
-  joint.axis2 = (Eigen::Vector3d::UnitX() + random_vector(rng, tilt_rad)).normalized();
-  joint.strut_axis = (Eigen::Vector3d::UnitZ() + random_vector(rng, tilt_rad)).normalized();
-  joint.offset1_mm = random_vector(rng, offset_mm);
-  joint.offset2_mm = random_vector(rng, offset_mm);
-  joint.strut_offset_mm = random_vector(rng, offset_mm);
+  joint.axis1 = (Eigen::Vector3d::UnitY() + hexapod_refined_random_vector(rng, tilt_rad)).normalized();
+  joint.axis2 = (Eigen::Vector3d::UnitX() + hexapod_refined_random_vector(rng, tilt_rad)).normalized();
+  joint.strut_axis = (Eigen::Vector3d::UnitZ() + hexapod_refined_random_vector(rng, tilt_rad)).normalized();
+  joint.offset1_mm = hexapod_refined_random_vector(rng, offset_mm);
+  joint.offset2_mm = hexapod_refined_random_vector(rng, offset_mm);
+  joint.strut_offset_mm = hexapod_refined_random_vector(rng, offset_mm);
   return joint;
 }
 
@@ -63,7 +64,8 @@ HexapodRefined random_refined(std::mt19937_64& rng) {
   }
   std::array<CardanJoint, 6> joints;
   for (auto& joint : joints) joint = random_joint(rng, 0.3, rad_from_deg(0.5));
-  return HexapodRefined(geometry, joints, AngleConvention::krylov, krylov_pose(0, 0, 700, 0, 0, 0));
+  return HexapodRefined(geometry, joints, AngleConvention::krylov,
+                        hexapod_refined_krylov_pose(0, 0, 700, 0, 0, 0));
 }
 
 TEST(HexapodRefined, IdealDefaultsGiveExactlyTheIdealHexapodLengths) {
@@ -72,14 +74,14 @@ TEST(HexapodRefined, IdealDefaultsGiveExactlyTheIdealHexapodLengths) {
                                                   kCh5HexapodGeometry + "cardan: [{}, {}, {}, {}, {}, {}]\n");
   std::mt19937_64 rng(1);
   for (int i = 0; i < 1000; ++i) {
-    const Pose pose = random_pose(rng, refined.mechanism->home(), 80, 10);
+    const Pose pose = hexapod_refined_random_pose(rng, refined.mechanism->home(), 80, 10);
     const auto l_ideal = ideal.mechanism->inverse(pose);
     const auto l_refined = refined.mechanism->inverse(pose);
     ASSERT_TRUE(l_ideal.ok() && l_refined.ok());
     EXPECT_LE((*l_ideal - *l_refined).cwiseAbs().maxCoeff(), 1e-12);
   }
   // The spec's validation vector (ch5 §1.3, [SRC]).
-  const auto lengths = refined.mechanism->inverse(krylov_pose(-50, 0, 700, 0, 0, 0));
+  const auto lengths = refined.mechanism->inverse(hexapod_refined_krylov_pose(-50, 0, 700, 0, 0, 0));
   ASSERT_TRUE(lengths.ok());
   const double expected[6] = {623.7911728445, 607.5487036598, 603.1222458757,
                               586.3074649620, 588.5880863511, 621.6397151039};
@@ -97,7 +99,7 @@ TEST(HexapodRefined, AxisTiltsAloneKeepTheIdealLengths) {
   }
   const HexapodRefined refined(hexapod.geometry(), joints, AngleConvention::krylov, hexapod.home());
   for (int i = 0; i < 200; ++i) {
-    const Pose pose = random_pose(rng, hexapod.home(), 80, 10);
+    const Pose pose = hexapod_refined_random_pose(rng, hexapod.home(), 80, 10);
     const auto a = hexapod.inverse(pose);
     const auto b = refined.inverse(pose);
     ASSERT_TRUE(b.ok()) << b.error().message;
@@ -113,12 +115,12 @@ TEST(HexapodRefined, SmallJointErrorsChangeLengthsByTheirOwnOrder) {
   for (int place = 0; place < 3; ++place) {
     for (int i = 0; i < 100; ++i) {
       std::array<CardanJoint, 6> joints;
-      const Eigen::Vector3d offset = 0.1 * random_vector(rng, 1.0).normalized();
+      const Eigen::Vector3d offset = 0.1 * hexapod_refined_random_vector(rng, 1.0).normalized();
       for (auto& joint : joints) {
         (place == 0 ? joint.offset1_mm : place == 1 ? joint.offset2_mm : joint.strut_offset_mm) = offset;
       }
       const HexapodRefined refined(hexapod.geometry(), joints, AngleConvention::krylov, hexapod.home());
-      const Pose pose = random_pose(rng, hexapod.home(), 60, 8);
+      const Pose pose = hexapod_refined_random_pose(rng, hexapod.home(), 60, 8);
       const auto a = hexapod.inverse(pose);
       const auto b = refined.inverse(pose);
       ASSERT_TRUE(b.ok()) << b.error().message;
@@ -142,7 +144,7 @@ TEST(HexapodRefined, LegStatesSatisfyEquation28) {
   const auto& refined = dynamic_cast<const HexapodRefined&>(*example.mechanism);
   std::mt19937_64 rng(4);
   for (int i = 0; i < 200; ++i) {
-    const Pose pose = random_pose(rng, refined.home(), 80, 10);
+    const Pose pose = hexapod_refined_random_pose(rng, refined.home(), 80, 10);
     const auto states = refined.leg_states(pose);
     ASSERT_TRUE(states.ok());
     for (int j = 0; j < 6; ++j) {
@@ -167,7 +169,7 @@ TEST(HexapodRefinedProperty, InverseThenForwardRoundTripsOnRandomGeometries) {
     const double home_det = home_twist->determinant();
     int accepted = 0, skipped = 0;
     while (accepted < 1000) {
-      const Pose truth = random_pose(rng, refined.home(), 60, 8);
+      const Pose truth = hexapod_refined_random_pose(rng, refined.home(), 60, 8);
       const auto twist = refined.twist_jacobian(truth);
       ASSERT_TRUE(twist.ok());
       // Skip poses across or near a singularity from home, where "the" pose is not defined (counted below).
@@ -179,7 +181,7 @@ TEST(HexapodRefinedProperty, InverseThenForwardRoundTripsOnRandomGeometries) {
       ++accepted;
       const auto lengths = refined.inverse(truth);
       ASSERT_TRUE(lengths.ok()) << lengths.error().message;
-      const Pose guess = random_pose(rng, truth, 2, 1);
+      const Pose guess = hexapod_refined_random_pose(rng, truth, 2, 1);
       const auto fk = refined.forward(*lengths, guess, options);
       ASSERT_TRUE(fk.ok()) << fk.error().message;
       const PoseDistance d = pose_distance(fk->pose, truth);
@@ -197,7 +199,8 @@ TEST(HexapodRefined, JacobianMatchesFiniteDifferencesOfInverse) {
   std::mt19937_64 rng(6);
   for (int g = 0; g < 5; ++g) {
     const HexapodRefined refined = random_refined(rng);
-    const PoseVector c = vector_from_pose(AngleConvention::krylov, random_pose(rng, refined.home(), 50, 8));
+    const PoseVector c =
+        vector_from_pose(AngleConvention::krylov, hexapod_refined_random_pose(rng, refined.home(), 50, 8));
     const auto j = refined.jacobian(pose_from_vector(AngleConvention::krylov, c));
     ASSERT_TRUE(j.ok());
     for (int k = 0; k < 6; ++k) {
@@ -217,7 +220,7 @@ TEST(HexapodRefined, JacobianMatchesFiniteDifferencesOfInverse) {
 
 TEST(HexapodRefined, AllAssemblyModesContainTheTruePose) {
   const Machine example = test::machine_from_example("examples/machines/hexapod_refined.yaml");
-  const Pose truth = krylov_pose(20, -30, 680, 4, -3, 6);
+  const Pose truth = hexapod_refined_krylov_pose(20, -30, 680, 4, -3, 6);
   const auto lengths = example.mechanism->inverse(truth);
   ASSERT_TRUE(lengths.ok());
   const auto all = example.mechanism->forward_all(*lengths);
@@ -235,13 +238,13 @@ TEST(HexapodRefined, AllAssemblyModesContainTheTruePose) {
 
 TEST(HexapodRefined, PlatformUnderTheBaseIsUnreachable) {
   const Machine example = test::machine_from_example("examples/machines/hexapod_refined.yaml");
-  const auto lengths = example.mechanism->inverse(krylov_pose(0, 0, -400, 0, 0, 0));
+  const auto lengths = example.mechanism->inverse(hexapod_refined_krylov_pose(0, 0, -400, 0, 0, 0));
   ASSERT_FALSE(lengths.ok());
   EXPECT_EQ(lengths.error().code, ErrorCode::unreachable);
   EXPECT_NE(lengths.error().message.find("strut 1"), std::string::npos) << lengths.error().message;
 }
 
-std::string error_of(const std::string& yaml, const std::string& name) {
+std::string hexapod_refined_error_of(const std::string& yaml, const std::string& name) {
   auto machine = parse_machine_text(yaml, name);
   EXPECT_FALSE(machine.ok());
   return machine.ok() ? std::string() : machine.error().message;
@@ -250,31 +253,34 @@ std::string error_of(const std::string& yaml, const std::string& name) {
 TEST(HexapodRefinedFile, ErrorsNameFileLineAndKey) {
   const std::string head = std::string("type: hexapod_refined\n") + kCh5HexapodGeometry;  // 18 lines
   // Missing `cardan`.
-  std::string message = error_of(head, "refined.yaml");
+  std::string message = hexapod_refined_error_of(head, "refined.yaml");
   EXPECT_NE(message.find("refined.yaml:1: cardan: missing"), std::string::npos) << message;
   // Misspelt key inside the third joint map (line 22).
-  message = error_of(head + "cardan:\n  - {}\n  - {}\n  - {axsi1: [0, 1, 0]}\n  - {}\n  - {}\n  - {}\n",
-                     "refined.yaml");
+  message = hexapod_refined_error_of(
+      head + "cardan:\n  - {}\n  - {}\n  - {axsi1: [0, 1, 0]}\n  - {}\n  - {}\n  - {}\n", "refined.yaml");
   EXPECT_NE(message.find("refined.yaml:22: cardan[2].axsi1: unknown key"), std::string::npos) << message;
   // Wrong count (line 19).
-  message = error_of(head + "cardan: [{}, {}, {}, {}, {}]\n", "refined.yaml");
+  message = hexapod_refined_error_of(head + "cardan: [{}, {}, {}, {}, {}]\n", "refined.yaml");
   EXPECT_NE(message.find("refined.yaml:19: cardan: expected a list of 6 joint maps, got 5"),
             std::string::npos)
       << message;
   // Wrong vector size (line 20).
-  message = error_of(head + "cardan:\n  - {offset1: [0.1, 0.2]}\n  - {}\n  - {}\n  - {}\n  - {}\n  - {}\n",
-                     "refined.yaml");
+  message = hexapod_refined_error_of(
+      head + "cardan:\n  - {offset1: [0.1, 0.2]}\n  - {}\n  - {}\n  - {}\n  - {}\n  - {}\n", "refined.yaml");
   EXPECT_NE(message.find("refined.yaml:20: cardan[0].offset1: expected 3 numbers, got 2"), std::string::npos)
       << message;
   // Zero axis, parallel axes, offsets that are not calibration errors.
-  message = error_of(head + "cardan: [{axis1: [0, 0, 0]}, {}, {}, {}, {}, {}]\n", "refined.yaml");
+  message =
+      hexapod_refined_error_of(head + "cardan: [{axis1: [0, 0, 0]}, {}, {}, {}, {}, {}]\n", "refined.yaml");
   EXPECT_NE(message.find("cardan[0].axis1: a direction must not be zero"), std::string::npos) << message;
-  message = error_of(head + "cardan: [{}, {axis2: [0, 1, 0.1]}, {}, {}, {}, {}]\n", "refined.yaml");
+  message =
+      hexapod_refined_error_of(head + "cardan: [{}, {axis2: [0, 1, 0.1]}, {}, {}, {}, {}]\n", "refined.yaml");
   EXPECT_NE(message.find("cardan[1].axis2"), std::string::npos) << message;
-  message = error_of(head + "cardan: [{}, {}, {}, {offset1: [80, 0, 0]}, {}, {}]\n", "refined.yaml");
+  message = hexapod_refined_error_of(head + "cardan: [{}, {}, {}, {offset1: [80, 0, 0]}, {}, {}]\n",
+                                     "refined.yaml");
   EXPECT_NE(message.find("cardan[3]: joint offsets add up to 80.000 mm"), std::string::npos) << message;
   // Misspelt top-level key.
-  message = error_of(head + "cardans: [{}, {}, {}, {}, {}, {}]\n", "refined.yaml");
+  message = hexapod_refined_error_of(head + "cardans: [{}, {}, {}, {}, {}, {}]\n", "refined.yaml");
   EXPECT_NE(message.find("refined.yaml:19: cardans: unknown key"), std::string::npos) << message;
 }
 

@@ -13,7 +13,7 @@
 namespace pkm {
 namespace {
 
-Pose krylov_pose(double x, double y, double z, double psi_deg, double theta_deg, double gamma_deg) {
+Pose hexapod_krylov_pose(double x, double y, double z, double psi_deg, double theta_deg, double gamma_deg) {
   PoseVector c;
   c << x, y, z, rad_from_deg(psi_deg), rad_from_deg(theta_deg), rad_from_deg(gamma_deg);
   return pose_from_vector(AngleConvention::krylov, c);
@@ -21,7 +21,7 @@ Pose krylov_pose(double x, double y, double z, double psi_deg, double theta_deg,
 
 TEST(HexapodCh5, E2StrutLengthsAtStartPose) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
-  const auto lengths = m.mechanism->inverse(krylov_pose(-50, 0, 700, 0, 0, 0));
+  const auto lengths = m.mechanism->inverse(hexapod_krylov_pose(-50, 0, 700, 0, 0, 0));
   ASSERT_TRUE(lengths.ok());
   const double expected[6] = {623.7911728445, 607.5487036598, 603.1222458757,
                               586.3074649620, 588.5880863511, 621.6397151039};
@@ -35,13 +35,13 @@ TEST(HexapodCh5, DerivedValidationVectors) {
     double lengths[6];
   };
   const Case cases[] = {
-      {krylov_pose(50, 0, 700, 0, 0, 0),
+      {hexapod_krylov_pose(50, 0, 700, 0, 0, 0),
        {586.3074649620, 603.1222458757, 607.5487036599, 623.7911728446, 621.6397151039, 588.5880863511}},
-      {krylov_pose(0, 0, 700, 0, 0, 0),
+      {hexapod_krylov_pose(0, 0, 700, 0, 0, 0),
        {603.2710297988, 603.2710297988, 603.2710297988, 603.2710297988, 603.2710297988, 603.2710297988}},
-      {krylov_pose(0, 0, 500, 0, 0, 0),
+      {hexapod_krylov_pose(0, 0, 500, 0, 0, 0),
        {428.8775295985, 428.8775295985, 428.8775295985, 428.8775295985, 428.8775295985, 428.8775295985}},
-      {krylov_pose(10, -20, 650, 5, -3, 2),
+      {hexapod_krylov_pose(10, -20, 650, 5, -3, 2),
        {554.9838565140, 580.7906869557, 558.4217904139, 568.8122903499, 545.4392839872, 546.5444035422}},
   };
   for (const Case& c : cases) {
@@ -55,7 +55,7 @@ TEST(HexapodCh5, E3TruncatedLengthsGiveThePrintedPoseAndContourError) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   ActuatorVector truncated(6);
   truncated << 623.791, 607.548, 603.122, 586.307, 588.588, 621.639;
-  const auto fk = m.mechanism->forward(truncated, krylov_pose(-50, 0, 700, 0, 0, 0));
+  const auto fk = m.mechanism->forward(truncated, hexapod_krylov_pose(-50, 0, 700, 0, 0, 0));
   ASSERT_TRUE(fk.ok()) << fk.error().message;
   const PoseVector c = vector_from_pose(AngleConvention::krylov, fk->pose);
   // Printed: (-49.9997, 2.6542e-4, 699.9996, -1.9999e-4, -6.3184e-6, 4.6194e-6), angles in degrees.
@@ -80,7 +80,7 @@ TEST(HexapodCh5, Struts2And3ReverseOnTheStandardLine) {
   for (int i = 0; i <= 100000; ++i) {
     const double x = -50 + 100.0 * i / 100000;
     double l[6];
-    hexapod.strut_lengths(krylov_pose(x, 0, 700, 0, 0, 0), l);
+    hexapod.strut_lengths(hexapod_krylov_pose(x, 0, 700, 0, 0, 0), l);
     if (l[1] < min_l2) {
       min_l2 = l[1];
       x_at_min = x;
@@ -207,9 +207,9 @@ TEST(HexapodAssemblyModes, SixThreeEnumerationContainsTheTruePoseAndOnlySolution
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   std::mt19937_64 rng(11);
   for (int i = 0; i < 20; ++i) {
-    const Pose truth =
-        krylov_pose(test::uniform(rng, -60, 60), test::uniform(rng, -60, 60), test::uniform(rng, 620, 760),
-                    test::uniform(rng, -15, 15), test::uniform(rng, -15, 15), test::uniform(rng, -15, 15));
+    const Pose truth = hexapod_krylov_pose(test::uniform(rng, -60, 60), test::uniform(rng, -60, 60),
+                                           test::uniform(rng, 620, 760), test::uniform(rng, -15, 15),
+                                           test::uniform(rng, -15, 15), test::uniform(rng, -15, 15));
     const auto lengths = m.mechanism->inverse(truth);
     const auto all = m.mechanism->forward_all(*lengths);
     ASSERT_TRUE(all.ok()) << all.error().message;
@@ -231,7 +231,7 @@ TEST(HexapodAssemblyModes, SixThreeEnumerationContainsTheTruePoseAndOnlySolution
 
 TEST(HexapodAssemblyModes, MirroredSolutionIsReportedNotReturnedAsSuccess) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
-  const Pose truth = krylov_pose(10, 5, 700, 2, 1, -3);
+  const Pose truth = hexapod_krylov_pose(10, 5, 700, 2, 1, -3);
   const auto lengths = m.mechanism->inverse(truth);
   // Start below the base plane: Newton converges to the mirror image, which must be rejected.
   Pose mirror_guess = truth;
@@ -250,7 +250,7 @@ TEST(HexapodAssemblyModes, MirroredSolutionIsReportedNotReturnedAsSuccess) {
 TEST(HexapodErrors, SingularJacobianIsReported) {
   // A planar configuration: all platform joints in the base plane makes every strut horizontal.
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
-  Pose flat = krylov_pose(0, 0, 150, 0, 0, 0);  // joint plane at z = 0, the base plane
+  Pose flat = hexapod_krylov_pose(0, 0, 150, 0, 0, 0);  // joint plane at z = 0, the base plane
   const auto lengths = m.mechanism->inverse(flat);
   ASSERT_TRUE(lengths.ok());
   const auto fk = m.mechanism->forward(*lengths, flat);

@@ -26,7 +26,7 @@ Machine ch5_with(const std::string& extra) {
   return test::machine_from_text(kCh5HexapodText + extra);
 }
 
-std::string load_error(const std::string& text) {
+std::string joint_limits_load_error(const std::string& text) {
   auto m = parse_machine_text(text, "test.yaml");
   if (m) {
     ADD_FAILURE() << "expected an error for:\n" << text;
@@ -102,7 +102,8 @@ TEST(JointLimitsFile, BadValuesNameFileLineAndKey) {
            Case{"joint_max_deg: 40", "limits.joint_max_deg: unknown key"},
            Case{"actuator_speed: -1", "limits.actuator_speed: must be positive"},
        }) {
-    const std::string message = load_error(fmt::format("{}limits:\n  {}\n", kCh5HexapodText, c.entry));
+    const std::string message =
+        joint_limits_load_error(fmt::format("{}limits:\n  {}\n", kCh5HexapodText, c.entry));
     EXPECT_NE(message.find(fmt::format("test.yaml:{}: {}", line, c.expected)), std::string::npos)
         << "got: " << message;
   }
@@ -123,14 +124,15 @@ TEST(JointLimitsFile, GivenNeutralAxesAreNormalisedAndKeepTheirLines) {
 
 TEST(JointLimitsFile, BadNeutralAxesAreRejected) {
   const int line = appended_line(kCh5HexapodText);
-  const std::string count =
-      load_error(std::string(kCh5HexapodText) + "base_joint_axes: [[0, 0, 1], [0, 0, 1], [0, 0, 1]]\n");
+  const std::string count = joint_limits_load_error(std::string(kCh5HexapodText) +
+                                                    "base_joint_axes: [[0, 0, 1], [0, 0, 1], [0, 0, 1]]\n");
   EXPECT_NE(count.find(fmt::format("test.yaml:{}: base_joint_axes: expected a list of 6 points", line)),
             std::string::npos)
       << count;
-  const std::string zero = load_error(std::string(kCh5HexapodText) +
-                                      "platform_joint_axes: [[0, 0, 1], [0, 0, 1], [0, 0, 0], [0, 0, 1], "
-                                      "[0, 0, 1], [0, 0, 1]]\n");
+  const std::string zero =
+      joint_limits_load_error(std::string(kCh5HexapodText) +
+                              "platform_joint_axes: [[0, 0, 1], [0, 0, 1], [0, 0, 0], [0, 0, 1], "
+                              "[0, 0, 1], [0, 0, 1]]\n");
   EXPECT_NE(
       zero.find(fmt::format("test.yaml:{}: platform_joint_axes[2]: a direction must not be zero", line)),
       std::string::npos)
@@ -140,10 +142,10 @@ TEST(JointLimitsFile, BadNeutralAxesAreRejected) {
 TEST(JointLimitsFile, HomeBeyondAJointLimitIsRejected) {
   // Axes along x put every base joint of the home pose far from its axis.
   const int limit_line = appended_line(kCh5HexapodText) + 2;
-  const std::string message =
-      load_error(std::string(kCh5HexapodText) +
-                 "base_joint_axes: [[1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0]]\n"
-                 "limits:\n  base_joint_max_deg: 40\n");
+  const std::string message = joint_limits_load_error(
+      std::string(kCh5HexapodText) +
+      "base_joint_axes: [[1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0]]\n"
+      "limits:\n  base_joint_max_deg: 40\n");
   EXPECT_NE(message.find("home: the home pose is beyond a joint limit: base joint 1 swings"),
             std::string::npos)
       << message;
@@ -154,7 +156,7 @@ TEST(JointLimitsFile, HomeBeyondAJointLimitIsRejected) {
 
 TEST(JointLimitsFile, HomeBeyondTheConditioningLimitIsRejected) {
   const std::string message =
-      load_error(std::string(kCh5HexapodText) + "limits: {max_condition_number: 1}\n");
+      joint_limits_load_error(std::string(kCh5HexapodText) + "limits: {max_condition_number: 1}\n");
   EXPECT_NE(message.find("home: the home pose is too badly conditioned: the Jacobian's condition number"),
             std::string::npos)
       << message;
@@ -166,11 +168,11 @@ base_joints: [[0.0, 200.0], [-173.20508075688772, -100.0], [173.20508075688772, 
 platform_joints: [[0.0, 100.0], [-86.60254037844386, -50.0], [86.60254037844386, -50.0]]
 home: [0.0, 0.0, 15.0]
 )";
-  const std::string swing = load_error(planar3 + "limits: {base_joint_max_deg: 40}\n");
+  const std::string swing = joint_limits_load_error(planar3 + "limits: {base_joint_max_deg: 40}\n");
   EXPECT_NE(swing.find("test.yaml:5: limits.base_joint_max_deg: planar mechanisms have pin joints"),
             std::string::npos)
       << swing;
-  const std::string axes = load_error(planar3 + "base_joint_axes: [[0, 1], [0, 1], [0, 1]]\n");
+  const std::string axes = joint_limits_load_error(planar3 + "base_joint_axes: [[0, 1], [0, 1], [0, 1]]\n");
   EXPECT_NE(axes.find("test.yaml:5: base_joint_axes: unknown key"), std::string::npos) << axes;
   const Machine m = test::machine_from_text(planar3 + "limits: {max_condition_number: 1000}\n");
   EXPECT_EQ(*m.joint_limits.max_condition_number, 1000.0);

@@ -12,7 +12,7 @@ using test::appended_line;
 using test::kCh5HexapodText;
 
 // The loader's message for the ch5 hexapod with `extra` appended; fails the test if the file loads.
-std::string load_error(const std::string& extra) {
+std::string motion_settings_load_error(const std::string& extra) {
   auto m = parse_machine_text(kCh5HexapodText + extra, "test.yaml");
   if (m) {
     ADD_FAILURE() << "expected an error for:\n" << extra;
@@ -83,7 +83,7 @@ TEST(MotionSettings, NonPositiveValuesNameFileLineAndKey) {
   for (const char* key : {"rapid_mm_min", "max_feed_mm_min", "path_accel_mm_s2", "path_jerk_mm_s3",
                           "path_tolerance_mm", "angular_feed_deg_min"}) {
     for (const char* value : {"0", "-5"}) {
-      const std::string message = load_error(fmt::format("motion:\n  {}: {}\n", key, value));
+      const std::string message = motion_settings_load_error(fmt::format("motion:\n  {}: {}\n", key, value));
       EXPECT_NE(message.find(fmt::format("test.yaml:{}: motion.{}: must be positive", line, key)),
                 std::string::npos)
           << message;
@@ -93,11 +93,11 @@ TEST(MotionSettings, NonPositiveValuesNameFileLineAndKey) {
 
 TEST(MotionSettings, NonNumbersNameFileLineAndKey) {
   const int line = appended_line(kCh5HexapodText) + 1;
-  const std::string message = load_error("motion:\n  rapid_mm_min: fast\n");
+  const std::string message = motion_settings_load_error("motion:\n  rapid_mm_min: fast\n");
   EXPECT_NE(message.find(fmt::format("test.yaml:{}: motion.rapid_mm_min: expected a number", line)),
             std::string::npos)
       << message;
-  const std::string origin = load_error("motion:\n  program_origin_mm: [0, zero, 700]\n");
+  const std::string origin = motion_settings_load_error("motion:\n  program_origin_mm: [0, zero, 700]\n");
   EXPECT_NE(origin.find(fmt::format("test.yaml:{}: motion.program_origin_mm[1]: expected a number", line)),
             std::string::npos)
       << origin;
@@ -105,7 +105,7 @@ TEST(MotionSettings, NonNumbersNameFileLineAndKey) {
 
 TEST(MotionSettings, UnknownKeyIsRejected) {
   const int line = appended_line(kCh5HexapodText) + 1;
-  const std::string message = load_error("motion:\n  rapid_speed: 6000\n");
+  const std::string message = motion_settings_load_error("motion:\n  rapid_speed: 6000\n");
   EXPECT_NE(message.find(fmt::format("test.yaml:{}: motion.rapid_speed: unknown key", line)),
             std::string::npos)
       << message;
@@ -113,7 +113,7 @@ TEST(MotionSettings, UnknownKeyIsRejected) {
 }
 
 TEST(MotionSettings, SectionMustBeAMapping) {
-  const std::string message = load_error("motion: 6000\n");
+  const std::string message = motion_settings_load_error("motion: 6000\n");
   EXPECT_NE(
       message.find(fmt::format("test.yaml:{}: motion: expected a mapping", appended_line(kCh5HexapodText))),
       std::string::npos)
@@ -121,7 +121,7 @@ TEST(MotionSettings, SectionMustBeAMapping) {
 }
 
 TEST(MotionSettings, ProgramOriginOfASpatialMachineHasThreeNumbers) {
-  const std::string message = load_error("motion: {program_origin_mm: [0, 0]}\n");
+  const std::string message = motion_settings_load_error("motion: {program_origin_mm: [0, 0]}\n");
   EXPECT_NE(message.find("motion.program_origin_mm: expected 3 numbers, got 2"), std::string::npos)
       << message;
 }

@@ -29,7 +29,7 @@ std::string planar2_yaml(const std::string& a1, const std::string& a2, const std
 }
 
 /// The message of a machine file that must fail to load.
-std::string load_error(const std::string& yaml, const std::string& name = "bad.yaml") {
+std::string planar2_load_error(const std::string& yaml, const std::string& name = "bad.yaml") {
   auto machine = parse_machine_text(yaml, name);
   EXPECT_FALSE(machine.ok()) << "expected " << name << " to be rejected";
   return machine ? std::string() : machine.error().message;
@@ -83,7 +83,7 @@ TEST(Planar2Reference, Section61aVelocityWithCorrectedEquation4) {
 }
 
 /// Random base joints at least 50 mm apart.
-Planar2Geometry random_geometry(std::mt19937_64& rng) {
+Planar2Geometry planar2_random_geometry(std::mt19937_64& rng) {
   Planar2Geometry g;
   do {
     for (auto& a : g.base_joints_mm) a = {test::uniform(rng, -500, 500), test::uniform(rng, -500, 500)};
@@ -94,7 +94,7 @@ Planar2Geometry random_geometry(std::mt19937_64& rng) {
 TEST(Planar2Property, InverseThenForwardRoundTripsOnRandomGeometries) {
   std::mt19937_64 rng(20240611);
   for (int geometry_index = 0; geometry_index < 5; ++geometry_index) {
-    const Planar2Geometry g = random_geometry(rng);
+    const Planar2Geometry g = planar2_random_geometry(rng);
     const Eigen::Vector2d mid = 0.5 * (g.base_joints_mm[0] + g.base_joints_mm[1]);
     const Eigen::Vector2d along = (g.base_joints_mm[1] - g.base_joints_mm[0]).normalized();
     const Planar2 mechanism(g, mid + 300.0 * Eigen::Vector2d(-along.y(), along.x()));
@@ -130,7 +130,7 @@ TEST(Planar2Property, InverseThenForwardRoundTripsOnRandomGeometries) {
 TEST(Planar2Property, JacobianMatchesCentralFiniteDifferences) {
   std::mt19937_64 rng(5);
   for (int i = 0; i < 200; ++i) {
-    const Planar2Geometry g = random_geometry(rng);
+    const Planar2Geometry g = planar2_random_geometry(rng);
     const Planar2 mechanism(g, Eigen::Vector2d(0, 1000));
     const Eigen::Vector2d b(test::uniform(rng, -800, 800), test::uniform(rng, -800, 800));
     if ((b - g.base_joints_mm[0]).norm() < 20.0 || (b - g.base_joints_mm[1]).norm() < 20.0) continue;
@@ -198,27 +198,28 @@ TEST(Planar2MachineFile, DefaultHomeIsOnThePositiveSideAndNotSingular) {
 }
 
 TEST(Planar2MachineFile, ErrorsNameFileLineAndKey) {
-  EXPECT_NE(load_error("type: planar2\nhome: [1, 2]\n").find("bad.yaml:1: base_joints: missing"),
+  EXPECT_NE(planar2_load_error("type: planar2\nhome: [1, 2]\n").find("bad.yaml:1: base_joints: missing"),
             std::string::npos);
-  EXPECT_NE(load_error("type: planar2\nbase_joint:\n  - [0, 0]\n  - [1, 0]\n")
+  EXPECT_NE(planar2_load_error("type: planar2\nbase_joint:\n  - [0, 0]\n  - [1, 0]\n")
                 .find("bad.yaml:2: base_joint: unknown key"),
             std::string::npos);
-  EXPECT_NE(load_error(planar2_yaml("[0, 0]", "[300, 40]", "  - [1, 1]\n"))
+  EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "  - [1, 1]\n"))
                 .find("bad.yaml:3: base_joints: expected a list of 2 points of 2 numbers, got 3 points"),
             std::string::npos);
-  EXPECT_NE(load_error(planar2_yaml("[0, 0]", "[300, 40, 0]"))
+  EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40, 0]"))
                 .find("bad.yaml:4: base_joints[1]: expected 2 numbers, got 3"),
             std::string::npos);
-  EXPECT_NE(load_error(planar2_yaml("[0, 0]", "[300, 40]", "home: [1, 2, 3]\n"))
+  EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "home: [1, 2, 3]\n"))
                 .find("bad.yaml:5: home: expected a list of 2 numbers, got 3"),
             std::string::npos);
-  EXPECT_NE(load_error(planar2_yaml("[0, 0]", "[300, 40]", "tool: [0, 10]\n"))
+  EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "tool: [0, 10]\n"))
                 .find("bad.yaml:5: tool: planar2 has no platform"),
             std::string::npos);
-  EXPECT_NE(load_error(planar2_yaml("[0, 0]", "[300, 40]", "home: [150, 20]\n"))
+  EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "home: [150, 20]\n"))
                 .find("bad.yaml:5: home: planar2 is singular"),
             std::string::npos);
-  EXPECT_NE(load_error(planar2_yaml("[7, 7]", "[7, 7]")).find("bad.yaml:3: base_joints: A1 and A2 coincide"),
+  EXPECT_NE(planar2_load_error(planar2_yaml("[7, 7]", "[7, 7]"))
+                .find("bad.yaml:3: base_joints: A1 and A2 coincide"),
             std::string::npos);
 }
 

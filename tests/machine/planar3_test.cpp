@@ -40,7 +40,7 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }
 
 /// Random base (spread 150…400 mm) and platform (spread 40…150 mm) triangles that are not nearly flat.
-Planar3Geometry random_geometry(std::mt19937_64& rng) {
+Planar3Geometry planar3_random_geometry(std::mt19937_64& rng) {
   Planar3Geometry g;
   auto area = [](const std::array<Eigen::Vector2d, 3>& p) {
     return 0.5 * std::abs(cross(p[1] - p[0], p[2] - p[0]));
@@ -68,7 +68,7 @@ std::string planar3_yaml(const std::string& platform, const std::string& extra =
 const std::string kUniformPlatform =
     "  - [0, 100]\n  - [-86.60254037844386, -50]\n  - [86.60254037844386, -50]\n";
 
-std::string load_error(const std::string& yaml, const std::string& name = "bad.yaml") {
+std::string planar3_load_error(const std::string& yaml, const std::string& name = "bad.yaml") {
   auto machine = parse_machine_text(yaml, name);
   EXPECT_FALSE(machine.ok()) << "expected " << name << " to be rejected";
   return machine ? std::string() : machine.error().message;
@@ -137,7 +137,7 @@ TEST(Planar3Property, InverseThenForwardRoundTripsOnRandomGeometries) {
   std::mt19937_64 rng(77);
   for (int geometry_index = 0; geometry_index < 6; ++geometry_index) {
     // The first geometry is the ch3 uniform (similar-triangle) layout; the others are random.
-    const Planar3Geometry g = geometry_index == 0 ? uniform_geometry(90) : random_geometry(rng);
+    const Planar3Geometry g = geometry_index == 0 ? uniform_geometry(90) : planar3_random_geometry(rng);
     const Planar3 mechanism(g, Eigen::Vector3d(0, 0, rad_from_deg(15)));
     int tested = 0;
     while (tested < 1000) {
@@ -166,7 +166,7 @@ TEST(Planar3Property, InverseThenForwardRoundTripsOnRandomGeometries) {
 TEST(Planar3Property, JacobianMatchesCentralFiniteDifferences) {
   std::mt19937_64 rng(11);
   for (int i = 0; i < 200; ++i) {
-    const Planar3Geometry g = random_geometry(rng);
+    const Planar3Geometry g = planar3_random_geometry(rng);
     const Planar3 mechanism(g, Eigen::Vector3d::Zero());
     const Eigen::Vector3d c(test::uniform(rng, -100, 100), test::uniform(rng, -100, 100),
                             rad_from_deg(test::uniform(rng, -90, 90)));
@@ -194,7 +194,7 @@ TEST(Planar3AssemblyModes, RandomLayoutsReachSixModesAndNeverMore) {
   std::mt19937_64 rng(3);
   int most = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const Planar3Geometry g = random_geometry(rng);
+    const Planar3Geometry g = planar3_random_geometry(rng);
     const Planar3 mechanism(g, Eigen::Vector3d::Zero());
     const Pose truth = pose_from_planar(Eigen::Vector3d(
         test::uniform(rng, -50, 50), test::uniform(rng, -50, 50), rad_from_deg(test::uniform(rng, -90, 90))));
@@ -214,7 +214,7 @@ TEST(Planar3AssemblyModes, EveryModeAMultiStartSearchFindsIsEnumerated) {
   FkOptions free_branch;
   free_branch.require_same_branch = false;
   for (int trial = 0; trial < 30; ++trial) {
-    const Planar3 mechanism(random_geometry(rng), Eigen::Vector3d::Zero());
+    const Planar3 mechanism(planar3_random_geometry(rng), Eigen::Vector3d::Zero());
     const Eigen::Vector3d truth(test::uniform(rng, -80, 80), test::uniform(rng, -80, 80),
                                 test::uniform(rng, -3, 3));
     const ActuatorVector q = *mechanism.inverse(pose_from_planar(truth));
@@ -323,7 +323,7 @@ TEST(Planar3Branch, CrossingToTheOtherSignOfDetJIsAWrongBranchError) {
   free_branch.require_same_branch = false;
   int crossings = 0;
   for (int trial = 0; trial < 1000; ++trial) {
-    const Planar3 mechanism(random_geometry(rng), Eigen::Vector3d::Zero());
+    const Planar3 mechanism(planar3_random_geometry(rng), Eigen::Vector3d::Zero());
     const Eigen::Vector3d truth(test::uniform(rng, -80, 80), test::uniform(rng, -80, 80),
                                 test::uniform(rng, -1, 1));
     const Eigen::Vector3d guess =
@@ -395,28 +395,28 @@ TEST(Planar3MachineFile, DefaultHomeAvoidsTheSingularZeroAngle) {
 }
 
 TEST(Planar3MachineFile, ErrorsNameFileLineAndKey) {
-  EXPECT_NE(load_error("type: planar3\nbase_joints:\n  - [0, 0]\n  - [1, 0]\n  - [0, 1]\n")
+  EXPECT_NE(planar3_load_error("type: planar3\nbase_joints:\n  - [0, 0]\n  - [1, 0]\n  - [0, 1]\n")
                 .find("bad.yaml:1: platform_joints: missing"),
             std::string::npos);
-  EXPECT_NE(load_error(planar3_yaml(kUniformPlatform, "platfrom_joint: 3\n"))
+  EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "platfrom_joint: 3\n"))
                 .find("bad.yaml:10: platfrom_joint: unknown key"),
             std::string::npos);
-  EXPECT_NE(load_error(planar3_yaml("  - [0, 100]\n  - [1, 2]\n"))
+  EXPECT_NE(planar3_load_error(planar3_yaml("  - [0, 100]\n  - [1, 2]\n"))
                 .find("bad.yaml:7: platform_joints: expected a list of 3 points of 2 numbers, got 2 points"),
             std::string::npos);
-  EXPECT_NE(load_error(planar3_yaml("  - [0, 100]\n  - [1, 2, 3]\n  - [4, 5]\n"))
+  EXPECT_NE(planar3_load_error(planar3_yaml("  - [0, 100]\n  - [1, 2, 3]\n  - [4, 5]\n"))
                 .find("bad.yaml:8: platform_joints[1]: expected 2 numbers, got 3"),
             std::string::npos);
-  EXPECT_NE(load_error(planar3_yaml(kUniformPlatform, "home: [0, 0]\n"))
+  EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "home: [0, 0]\n"))
                 .find("bad.yaml:10: home: expected a list of 3 numbers, got 2"),
             std::string::npos);
-  EXPECT_NE(load_error(planar3_yaml(kUniformPlatform, "home: [0, 0, 0]\n"))
+  EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "home: [0, 0, 0]\n"))
                 .find("bad.yaml:10: home: planar3 is singular"),
             std::string::npos);
-  EXPECT_NE(load_error(planar3_yaml(kUniformPlatform, "tool: [1, 2, 3]\n"))
+  EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "tool: [1, 2, 3]\n"))
                 .find("bad.yaml:10: tool: expected 2 numbers, got 3"),
             std::string::npos);
-  EXPECT_NE(load_error(planar3_yaml(kUniformPlatform, "angles: abc\n")).find("bad.yaml:10: angles:"),
+  EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "angles: abc\n")).find("bad.yaml:10: angles:"),
             std::string::npos);
 }
 

@@ -21,7 +21,7 @@ Pose abc_pose(double x, double y, double z, double a_deg, double b_deg, double c
   return pose_from_vector(AngleConvention::abc, c);
 }
 
-Pose random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
+Pose rotopod_random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
   PoseVector c = vector_from_pose(AngleConvention::abc, around);
   for (int k = 0; k < 3; ++k) c[k] += test::uniform(rng, -mm, mm);
   for (int k = 3; k < 6; ++k) c[k] += rad_from_deg(test::uniform(rng, -deg, deg));
@@ -61,7 +61,7 @@ TEST(Rotopod, CarriagesSitOnTheirStrutSpheresOnTheGivenBranch) {
   const RotopodGeometry& g = rotopod.geometry();
   std::mt19937_64 rng(1);
   for (int i = 0; i < 500; ++i) {
-    const Pose pose = random_pose(rng, rotopod.home(), 40, 5);
+    const Pose pose = rotopod_random_pose(rng, rotopod.home(), 40, 5);
     const auto phi = rotopod.inverse(pose);
     ASSERT_TRUE(phi.ok()) << phi.error().message;
     for (int j = 0; j < 6; ++j) {
@@ -89,7 +89,7 @@ TEST(RotopodProperty, InverseThenForwardRoundTripsOnRandomGeometries) {
     const double home_det = rotopod.strut_line_determinant(rotopod.home());
     int accepted = 0, skipped = 0;
     while (accepted < 1000) {
-      const Pose truth = random_pose(rng, rotopod.home(), 40, 5);
+      const Pose truth = rotopod_random_pose(rng, rotopod.home(), 40, 5);
       // Near a singularity "the" pose is not defined: skip (and count) poses near one or across one from
       // home.
       const double det = rotopod.strut_line_determinant(truth);
@@ -101,7 +101,7 @@ TEST(RotopodProperty, InverseThenForwardRoundTripsOnRandomGeometries) {
       ++accepted;
       const auto phi = rotopod.inverse(truth);
       ASSERT_TRUE(phi.ok()) << phi.error().message;
-      const auto fk = rotopod.forward(*phi, random_pose(rng, truth, 1, 0.5), options);
+      const auto fk = rotopod.forward(*phi, rotopod_random_pose(rng, truth, 1, 0.5), options);
       ASSERT_TRUE(fk.ok()) << fk.error().message;
       const PoseDistance d = pose_distance(fk->pose, truth);
       EXPECT_LT(d.position_mm, 1e-9);
@@ -132,7 +132,8 @@ TEST(Rotopod, JacobianMatchesFiniteDifferencesOfInverse) {
   std::mt19937_64 rng(7);
   for (int g = 0; g < 5; ++g) {
     const Rotopod rotopod = jittered(as_rotopod(m), rng);
-    const PoseVector c = vector_from_pose(AngleConvention::abc, random_pose(rng, rotopod.home(), 30, 4));
+    const PoseVector c =
+        vector_from_pose(AngleConvention::abc, rotopod_random_pose(rng, rotopod.home(), 30, 4));
     const auto j = rotopod.jacobian(pose_from_vector(AngleConvention::abc, c));
     ASSERT_TRUE(j.ok()) << j.error().message;
     for (int k = 0; k < 6; ++k) {
@@ -213,7 +214,7 @@ branch: [1, -1, 1, -1, 1, -1]
   }
 }
 
-std::string error_of(const std::string& yaml, const std::string& name) {
+std::string rotopod_error_of(const std::string& yaml, const std::string& name) {
   auto machine = parse_machine_text(yaml, name);
   EXPECT_FALSE(machine.ok());
   return machine.ok() ? std::string() : machine.error().message;
@@ -227,32 +228,34 @@ TEST(RotopodFile, ErrorsNameFileLineAndKey) {
       "platform_joints: [[-26, 147, 0], [26, 147, 0], [-114, -96, 0], [-140, -51, 0], [140, -51, 0], "
       "[114, -96, 0]]\n";
   // Missing circle.
-  std::string message = error_of(head + "joint_heights: 0\n" + rest, "roto.yaml");
+  std::string message = rotopod_error_of(head + "joint_heights: 0\n" + rest, "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:1: circle: missing"), std::string::npos) << message;
   // Misspelt key inside the circle (line 3).
-  message = error_of(head + "circle: {center: [0, 0], radus: 300}\njoint_heights: 0\n" + rest, "roto.yaml");
+  message =
+      rotopod_error_of(head + "circle: {center: [0, 0], radus: 300}\njoint_heights: 0\n" + rest, "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:3: circle.radus: unknown key"), std::string::npos) << message;
   // Missing radius.
-  message = error_of(head + "circle: {center: [0, 0]}\njoint_heights: 0\n" + rest, "roto.yaml");
+  message = rotopod_error_of(head + "circle: {center: [0, 0]}\njoint_heights: 0\n" + rest, "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:3: circle.radius: missing"), std::string::npos) << message;
   // Wrong count of heights (line 4).
-  message = error_of(head + circle + "joint_heights: [0, 0, 0, 0, 0]\n" + rest, "roto.yaml");
+  message = rotopod_error_of(head + circle + "joint_heights: [0, 0, 0, 0, 0]\n" + rest, "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:4: joint_heights: expected a list of 6 numbers, got 5"),
             std::string::npos)
       << message;
   // Misspelt top-level key (line 4).
-  message = error_of(head + circle + "joint_height: 0\n" + rest, "roto.yaml");
+  message = rotopod_error_of(head + circle + "joint_height: 0\n" + rest, "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:4: joint_height: unknown key"), std::string::npos) << message;
   // Bad branch value (line 7) and non-positive radius (line 3).
-  message =
-      error_of(head + circle + "joint_heights: 0\n" + rest + "branch: [1, -1, 1, -1, 0, -1]\n", "roto.yaml");
+  message = rotopod_error_of(head + circle + "joint_heights: 0\n" + rest + "branch: [1, -1, 1, -1, 0, -1]\n",
+                             "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:7: branch[4]: expected +1 or -1, got 0"), std::string::npos) << message;
-  message = error_of(head + "circle: {center: [0, 0], radius: -3}\njoint_heights: 0\n" + rest, "roto.yaml");
+  message =
+      rotopod_error_of(head + "circle: {center: [0, 0], radius: -3}\njoint_heights: 0\n" + rest, "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:3: circle.radius: the circle radius must be positive"), std::string::npos)
       << message;
   // A home the struts cannot reach (line 7).
-  message =
-      error_of(head + circle + "joint_heights: 0\n" + rest + "home: [0, 0, 2000, 0, 0, 0]\n", "roto.yaml");
+  message = rotopod_error_of(head + circle + "joint_heights: 0\n" + rest + "home: [0, 0, 2000, 0, 0, 0]\n",
+                             "roto.yaml");
   EXPECT_NE(message.find("roto.yaml:7: home: the home pose is not reachable"), std::string::npos) << message;
 }
 

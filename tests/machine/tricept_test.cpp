@@ -34,11 +34,11 @@ std::string tricept_yaml(const std::string& extra = "", const std::string& platf
 }
 
 /// 1/|M⁻¹|_F: within a factor √3 of the smallest singular value (a conditioning test without an SVD).
-double smallest_singular_value(const Eigen::Matrix3d& m) {
+double tricept_smallest_singular_value(const Eigen::Matrix3d& m) {
   return std::abs(m.determinant()) > 0.0 ? 1.0 / m.inverse().norm() : 0.0;
 }
 
-std::string load_error(const std::string& yaml, const std::string& name = "bad_tricept.yaml") {
+std::string tricept_load_error(const std::string& yaml, const std::string& name = "bad_tricept.yaml") {
   auto machine = parse_machine_text(yaml, name);
   EXPECT_FALSE(machine.ok()) << "expected " << name << " to be rejected";
   return machine ? std::string() : machine.error().message;
@@ -77,7 +77,7 @@ RandomTricept random_tricept(std::mt19937_64& rng) {
     auto tricept = Tricept::create(t.geometry, AngleConvention::abc, t.home);
     if (!tricept) continue;
     const Eigen::Matrix3d j = *tricept->jacobian(tricept->home());
-    if (smallest_singular_value(j) < 0.05) continue;
+    if (tricept_smallest_singular_value(j) < 0.05) continue;
     return t;
   }
 }
@@ -262,37 +262,37 @@ TEST(TriceptFile, DefaultHomeIsAboveTheCentreJoint) {
 TEST(TriceptFile, MissingKeyNamesFileLineAndKey) {
   std::string yaml = tricept_yaml();
   yaml = yaml.substr(0, yaml.find("platform_joints:"));
-  const std::string message = load_error(yaml, "no_flange.yaml");
+  const std::string message = tricept_load_error(yaml, "no_flange.yaml");
   EXPECT_TRUE(std::regex_search(message, std::regex(R"(^no_flange\.yaml:[0-9]+: platform_joints: missing)")))
       << message;
 }
 
 TEST(TriceptFile, MisspeltKeyNamesFileLineAndKey) {
-  const std::string message = load_error(tricept_yaml("centre_joint: [0, 0, 0]\n"), "typo.yaml");
+  const std::string message = tricept_load_error(tricept_yaml("centre_joint: [0, 0, 0]\n"), "typo.yaml");
   EXPECT_NE(message.find("typo.yaml:11: centre_joint: unknown key"), std::string::npos) << message;
-  const std::string message2 = load_error(tricept_yaml("", "platform_joint"), "typo2.yaml");
+  const std::string message2 = tricept_load_error(tricept_yaml("", "platform_joint"), "typo2.yaml");
   EXPECT_NE(message2.find("typo2.yaml:7: platform_joint: unknown key"), std::string::npos) << message2;
 }
 
 TEST(TriceptFile, WrongCountNamesFileLineAndKey) {
   std::string yaml = tricept_yaml();
   yaml.erase(yaml.find("  - [173.20508075688772, -100, 0]\n"));
-  const std::string message = load_error(yaml, "count.yaml");
+  const std::string message = tricept_load_error(yaml, "count.yaml");
   EXPECT_NE(message.find("count.yaml:8: platform_joints: expected a list of 3 points"), std::string::npos)
       << message;
-  const std::string message2 = load_error(tricept_yaml("center_joint: [0, 0]\n"), "centre.yaml");
+  const std::string message2 = tricept_load_error(tricept_yaml("center_joint: [0, 0]\n"), "centre.yaml");
   EXPECT_NE(message2.find("centre.yaml:11: center_joint: expected 3 numbers, got 2"), std::string::npos)
       << message2;
 }
 
 TEST(TriceptFile, ToolOffTheAxisIsRejected) {
-  const std::string message = load_error(tricept_yaml("tool: [10, 0, 200]\n"), "tool.yaml");
+  const std::string message = tricept_load_error(tricept_yaml("tool: [10, 0, 200]\n"), "tool.yaml");
   EXPECT_NE(message.find("tool.yaml:11: tool:"), std::string::npos) << message;
   EXPECT_NE(message.find("manipulator axis"), std::string::npos) << message;
 }
 
 TEST(TriceptFile, UnreachableHomeIsRejectedAtTheHomeLine) {
-  const std::string message = load_error(tricept_yaml("home: [0, 0, -500, 0, 0, 0]\n"), "home.yaml");
+  const std::string message = tricept_load_error(tricept_yaml("home: [0, 0, -500, 0, 0, 0]\n"), "home.yaml");
   EXPECT_NE(message.find("home.yaml:11: home:"), std::string::npos) << message;
   EXPECT_NE(message.find("out of reach"), std::string::npos) << message;
 }

@@ -43,11 +43,11 @@ std::string tripod_yaml(const std::string& angles = "abc", const std::string& ax
 }
 
 /// 1/|M⁻¹|_F: within a factor √3 of the smallest singular value (a conditioning test without an SVD).
-double smallest_singular_value(const Eigen::Matrix3d& m) {
+double tripod_smallest_singular_value(const Eigen::Matrix3d& m) {
   return std::abs(m.determinant()) > 0.0 ? 1.0 / m.inverse().norm() : 0.0;
 }
 
-std::string load_error(const std::string& yaml, const std::string& name = "bad_tripod.yaml") {
+std::string tripod_load_error(const std::string& yaml, const std::string& name = "bad_tripod.yaml") {
   auto machine = parse_machine_text(yaml, name);
   EXPECT_FALSE(machine.ok()) << "expected " << name << " to be rejected";
   return machine ? std::string() : machine.error().message;
@@ -80,7 +80,7 @@ RandomTripod random_tripod(std::mt19937_64& rng, AngleConvention convention) {
     auto tripod = Tripod::create(t.geometry, convention, t.home);
     if (!tripod) continue;
     auto j = tripod->jacobian(tripod->home());
-    if (!j || smallest_singular_value(*j) < 0.05) continue;
+    if (!j || tripod_smallest_singular_value(*j) < 0.05) continue;
     return t;
   }
 }
@@ -317,7 +317,7 @@ TEST(Tripod, StrutLengthsThatCannotHoldThePlatformAreUnreachable) {
 TEST(TripodFile, MissingKeyNamesFileLineAndKey) {
   std::string yaml = tripod_yaml();
   yaml = yaml.substr(0, yaml.find("base_axes:")) + yaml.substr(yaml.find("platform_joints:"));
-  const std::string message = load_error(yaml, "no_axes.yaml");
+  const std::string message = tripod_load_error(yaml, "no_axes.yaml");
   EXPECT_TRUE(std::regex_search(message, std::regex(R"(^no_axes\.yaml:[0-9]+: base_axes: missing)")))
       << message;
 }
@@ -325,18 +325,18 @@ TEST(TripodFile, MissingKeyNamesFileLineAndKey) {
 TEST(TripodFile, MisspeltKeyNamesFileLineAndKey) {
   std::string yaml = tripod_yaml();
   yaml.replace(yaml.find("base_axes:"), 10, "base_axis:");
-  const std::string message = load_error(yaml, "typo.yaml");
+  const std::string message = tripod_load_error(yaml, "typo.yaml");
   EXPECT_NE(message.find("typo.yaml:7: base_axis: unknown key"), std::string::npos) << message;
 }
 
 TEST(TripodFile, WrongCountNamesFileLineAndKey) {
   const std::string two_axes = "base_axes:\n  - [-1, 0, 0]\n  - [0.5, -0.8660254037844386, 0]\n";
-  const std::string message = load_error(tripod_yaml("abc", two_axes), "count.yaml");
+  const std::string message = tripod_load_error(tripod_yaml("abc", two_axes), "count.yaml");
   EXPECT_NE(message.find("count.yaml:8: base_axes: expected a list of 3 points"), std::string::npos)
       << message;
   const std::string short_point =
       "base_axes:\n  - [-1, 0]\n  - [0.5, -0.8660254037844386, 0]\n  - [0.5, 0.8, 0]\n";
-  const std::string message2 = load_error(tripod_yaml("abc", short_point), "short.yaml");
+  const std::string message2 = tripod_load_error(tripod_yaml("abc", short_point), "short.yaml");
   EXPECT_NE(message2.find("short.yaml:8: base_axes[0]: expected 3 numbers, got 2"), std::string::npos)
       << message2;
 }
@@ -344,19 +344,20 @@ TEST(TripodFile, WrongCountNamesFileLineAndKey) {
 TEST(TripodFile, TiltedOrZeroOrParallelAxesAreRejected) {
   const std::string tilted =
       "base_axes:\n  - [-1, 0, 0]\n  - [0.5, -0.8660254037844386, 0.1]\n  - [0.5, 0.8, 0]\n";
-  const std::string message = load_error(tripod_yaml("abc", tilted), "tilted.yaml");
+  const std::string message = tripod_load_error(tripod_yaml("abc", tilted), "tilted.yaml");
   EXPECT_NE(message.find("tilted.yaml:9: base_axes[1]:"), std::string::npos) << message;
   EXPECT_NE(message.find("horizontal"), std::string::npos) << message;
   const std::string zero = "base_axes:\n  - [-1, 0, 0]\n  - [0.5, -0.8660254037844386, 0]\n  - [0, 0, 0]\n";
-  EXPECT_NE(load_error(tripod_yaml("abc", zero), "zero.yaml").find("zero.yaml:10: base_axes[2]:"),
+  EXPECT_NE(tripod_load_error(tripod_yaml("abc", zero), "zero.yaml").find("zero.yaml:10: base_axes[2]:"),
             std::string::npos);
   const std::string parallel = "base_axes:\n  - [1, 0, 0]\n  - [-1, 0, 0]\n  - [2, 0, 0]\n";
-  EXPECT_NE(load_error(tripod_yaml("abc", parallel), "parallel.yaml").find("parallel.yaml:8: base_axes:"),
-            std::string::npos);
+  EXPECT_NE(
+      tripod_load_error(tripod_yaml("abc", parallel), "parallel.yaml").find("parallel.yaml:8: base_axes:"),
+      std::string::npos);
 }
 
 TEST(TripodFile, EulerAnglesAreRejected) {
-  const std::string message = load_error(tripod_yaml("euler_zxz"), "euler.yaml");
+  const std::string message = tripod_load_error(tripod_yaml("euler_zxz"), "euler.yaml");
   EXPECT_NE(message.find("euler.yaml:2: angles:"), std::string::npos) << message;
   EXPECT_NE(message.find("abc or krylov"), std::string::npos) << message;
 }
@@ -366,12 +367,12 @@ TEST(TripodFile, UnreachableHomeIsRejectedAtTheHomeLine) {
   const std::string radial =
       "base_axes:\n  - [0, 1, 0]\n  - [-0.8660254037844386, -0.5, 0]\n  - [0.8660254037844386, -0.5, 0]\n";
   const std::string message =
-      load_error(tripod_yaml("abc", radial, "home: [0, 0, 800, 0, 0, 0]\n"), "radial.yaml");
+      tripod_load_error(tripod_yaml("abc", radial, "home: [0, 0, 800, 0, 0, 0]\n"), "radial.yaml");
   EXPECT_NE(message.find("radial.yaml:15: home:"), std::string::npos) << message;
 }
 
 TEST(TripodFile, HomeOutsideTheActuatorRangeIsRejected) {
-  const std::string message = load_error(
+  const std::string message = tripod_load_error(
       tripod_yaml("abc", "", "limits: {actuator_min: 100, actuator_max: 300}\nhome: [0, 0, 800, 0, 0, 0]\n"),
       "range.yaml");
   EXPECT_NE(message.find("range.yaml:16: home:"), std::string::npos) << message;

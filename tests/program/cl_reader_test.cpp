@@ -23,7 +23,7 @@ CanonicalProgram read(std::string_view text, const InterpretOptions& options = {
   return std::move(program.value());
 }
 
-std::string error_of(std::string_view text) {
+std::string cl_reader_error_of(std::string_view text) {
   auto program = read_cl_data(text, "test.cl");
   if (program) {
     ADD_FAILURE() << "expected an error for:\n" << text;
@@ -167,8 +167,8 @@ TEST(ClReaderSyntax, ContinuationLinesJoinOneStatement) {
 }
 
 TEST(ClReaderSyntax, ErrorsInContinuationLinesNameThePhysicalLine) {
-  EXPECT_EQ(error_of("FEDRAT/100\nGOTO/1.0,2.0,$\n   3.x\n"), "test.cl:3:4: bad number '3.x'");
-  EXPECT_EQ(error_of("FEDRAT/100\nGOTO/1.0,$\n2.0,$\n  0,0,0,0\n"),
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\nGOTO/1.0,2.0,$\n   3.x\n"), "test.cl:3:4: bad number '3.x'");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\nGOTO/1.0,$\n2.0,$\n  0,0,0,0\n"),
             "test.cl:4:5: the axis vector (i,j,k) has zero length");
 }
 
@@ -234,7 +234,7 @@ TEST(ClReaderFeed, PerRevolutionNeedsTheSpindleSpeed) {
   EXPECT_NEAR(p.moves[1].feed_mm_min, 254.0, 1e-9);
   EXPECT_NEAR(p.moves[2].feed_mm_min, 508.0, 1e-9);  // per-revolution feed follows the spindle speed
   EXPECT_EQ(
-      error_of("LOADTL/1\nFEDRAT/0.1, MMPR\nGOTO/1,0,0\n"),
+      cl_reader_error_of("LOADTL/1\nFEDRAT/0.1, MMPR\nGOTO/1,0,0\n"),
       "test.cl:2:13: feed per revolution is not supported before a spindle speed is known (SPINDL/rpm)");
 }
 
@@ -298,23 +298,25 @@ TEST(ClReaderArc, ObliqueAxisIsNormalisedAndGetsTheNearestPlane) {
 
 TEST(ClReaderArc, ToleratesRoundingButNotAnotherRadius) {
   EXPECT_EQ(read("FROM/10.0001,0,0\nFEDRAT/300\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,9.9999,0\n").moves.size(), 1u);
-  EXPECT_EQ(error_of("FROM/10,0,0\nFEDRAT/300\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,12,0\n"),
+  EXPECT_EQ(cl_reader_error_of("FROM/10,0,0\nFEDRAT/300\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,12,0\n"),
             "test.cl:4:1: CIRCLE: the end point is 12.0000 mm from the axis, the radius is 10.0000 mm");
-  EXPECT_EQ(error_of("FROM/11,0,0\nFEDRAT/300\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n"),
+  EXPECT_EQ(cl_reader_error_of("FROM/11,0,0\nFEDRAT/300\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n"),
             "test.cl:4:1: CIRCLE: the start point is 11.0000 mm from the axis, the radius is 10.0000 mm");
 }
 
 TEST(ClReaderArc, Errors) {
-  EXPECT_EQ(error_of("FROM/10,0,0\nFEDRAT/300\nCIRCLE/0,0,0,0,0,1,10\n"),
+  EXPECT_EQ(cl_reader_error_of("FROM/10,0,0\nFEDRAT/300\nCIRCLE/0,0,0,0,0,1,10\n"),
             "test.cl:3:1: CIRCLE is not followed by the GOTO to its end point");
-  EXPECT_EQ(error_of("FROM/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nDELAY/1\n"),
+  EXPECT_EQ(cl_reader_error_of("FROM/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nDELAY/1\n"),
             "test.cl:3:1: DELAY between CIRCLE (line 2) and the GOTO to its end point");
-  EXPECT_EQ(error_of("FROM/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nRAPID\nGOTO/0,10,0\n"),
+  EXPECT_EQ(cl_reader_error_of("FROM/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nRAPID\nGOTO/0,10,0\n"),
             "test.cl:4:1: RAPID cannot apply to a circular move (CIRCLE)");
-  EXPECT_EQ(error_of("CIRCLE/0,0,0,0,0,1\n"),
+  EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,1\n"),
             "test.cl:1:1: CIRCLE takes at least 7 values (xc,yc,zc,i,j,k,r), got 6");
-  EXPECT_EQ(error_of("CIRCLE/0,0,0,0,0,0,10\n"), "test.cl:1:14: the axis vector (i,j,k) has zero length");
-  EXPECT_EQ(error_of("CIRCLE/0,0,0,0,0,1,-10\n"), "test.cl:1:20: the CIRCLE radius must be positive");
+  EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,0,10\n"),
+            "test.cl:1:14: the axis vector (i,j,k) has zero length");
+  EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,1,-10\n"),
+            "test.cl:1:20: the CIRCLE radius must be positive");
 }
 
 TEST(ClReaderEvents, NonMotionStatementsAreRecordedWithTheirLine) {
@@ -394,47 +396,48 @@ TEST(ClReaderOpskip, StatementsBetweenOnAndOffFollowTheBlockDeleteSwitch) {
 }
 
 TEST(ClReaderErrors, UnknownStatement) {
-  EXPECT_EQ(error_of("FEDRAT/100\n  GOHOME\n"), "test.cl:2:3: unknown statement 'GOHOME'");
-  EXPECT_EQ(error_of("CYCLE/DRILL,10,FEDTO,0\n"), "test.cl:1:1: unknown statement 'CYCLE'");
-  EXPECT_EQ(error_of("1.0,2.0,3.0\n"), "test.cl:1:1: unknown statement '1.0,2.0,3.0'");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\n  GOHOME\n"), "test.cl:2:3: unknown statement 'GOHOME'");
+  EXPECT_EQ(cl_reader_error_of("CYCLE/DRILL,10,FEDTO,0\n"), "test.cl:1:1: unknown statement 'CYCLE'");
+  EXPECT_EQ(cl_reader_error_of("1.0,2.0,3.0\n"), "test.cl:1:1: unknown statement '1.0,2.0,3.0'");
 }
 
 TEST(ClReaderErrors, BadNumbersNameTheirColumn) {
-  EXPECT_EQ(error_of("FEDRAT/100\nGOTO/1.0, 2.0.1, 3\n"), "test.cl:2:11: bad number '2.0.1'");
-  EXPECT_EQ(error_of("FEDRAT/100\nGOTO/1.0,,3\n"), "test.cl:2:10: missing value");
-  EXPECT_EQ(error_of("FEDRAT/fast\n"), "test.cl:1:8: unknown FEDRAT modifier 'fast'");
-  EXPECT_EQ(error_of("FEDRAT/-5\n"), "test.cl:1:8: the feed rate must be positive");
-  EXPECT_EQ(error_of("FEDRAT/MMPM\n"), "test.cl:1:1: FEDRAT without a feed value");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\nGOTO/1.0, 2.0.1, 3\n"), "test.cl:2:11: bad number '2.0.1'");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\nGOTO/1.0,,3\n"), "test.cl:2:10: missing value");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/fast\n"), "test.cl:1:8: unknown FEDRAT modifier 'fast'");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/-5\n"), "test.cl:1:8: the feed rate must be positive");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/MMPM\n"), "test.cl:1:1: FEDRAT without a feed value");
 }
 
 TEST(ClReaderErrors, ZeroToolAxis) {
-  EXPECT_EQ(error_of("FEDRAT/100\nGOTO/1,2,3, 0,0,0\n"),
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\nGOTO/1,2,3, 0,0,0\n"),
             "test.cl:2:13: the axis vector (i,j,k) has zero length");
-  EXPECT_EQ(error_of("TLAXIS/0,0,0\n"), "test.cl:1:8: the axis vector (i,j,k) has zero length");
+  EXPECT_EQ(cl_reader_error_of("TLAXIS/0,0,0\n"), "test.cl:1:8: the axis vector (i,j,k) has zero length");
 }
 
 TEST(ClReaderErrors, WrongValueCounts) {
-  EXPECT_EQ(error_of("FEDRAT/100\nGOTO/1,2,3,4\n"),
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\nGOTO/1,2,3,4\n"),
             "test.cl:2:1: GOTO takes 3 values (x,y,z) or 6 (x,y,z,i,j,k), got 4");
-  EXPECT_EQ(error_of("GOTO/1,2\n"), "test.cl:1:1: GOTO takes 3 values (x,y,z) or 6 (x,y,z,i,j,k), got 2");
-  EXPECT_EQ(error_of("FROM/1,2,3,4,5\n"),
+  EXPECT_EQ(cl_reader_error_of("GOTO/1,2\n"),
+            "test.cl:1:1: GOTO takes 3 values (x,y,z) or 6 (x,y,z,i,j,k), got 2");
+  EXPECT_EQ(cl_reader_error_of("FROM/1,2,3,4,5\n"),
             "test.cl:1:1: FROM takes 3 values (x,y,z) or 6 (x,y,z,i,j,k), got 5");
-  EXPECT_EQ(error_of("TLAXIS/0,1\n"), "test.cl:1:1: TLAXIS takes 3 values (i,j,k), got 2");
-  EXPECT_EQ(error_of("RAPID/1\n"), "test.cl:1:7: RAPID takes no values");
+  EXPECT_EQ(cl_reader_error_of("TLAXIS/0,1\n"), "test.cl:1:1: TLAXIS takes 3 values (i,j,k), got 2");
+  EXPECT_EQ(cl_reader_error_of("RAPID/1\n"), "test.cl:1:7: RAPID takes no values");
 }
 
 TEST(ClReaderErrors, StateThatIsMissingOrNotSupported) {
-  EXPECT_EQ(error_of("GOTO/1,2,3\n"), "test.cl:1:1: cutting move before any feed rate (FEDRAT)");
+  EXPECT_EQ(cl_reader_error_of("GOTO/1,2,3\n"), "test.cl:1:1: cutting move before any feed rate (FEDRAT)");
   EXPECT_EQ(
-      error_of("CUTCOM/LEFT\n"),
+      cl_reader_error_of("CUTCOM/LEFT\n"),
       "test.cl:1:8: cutter compensation is not supported (only CUTCOM/OFF): write tool-tip (centre-line) CL "
       "data");
-  EXPECT_EQ(error_of("UNITS/FEET\n"), "test.cl:1:7: UNITS takes MM or INCHES");
-  EXPECT_EQ(error_of("SPINDL/SFM,300\n"),
+  EXPECT_EQ(cl_reader_error_of("UNITS/FEET\n"), "test.cl:1:7: UNITS takes MM or INCHES");
+  EXPECT_EQ(cl_reader_error_of("SPINDL/SFM,300\n"),
             "test.cl:1:8: surface speed (SFM/SMM) is not supported: give the speed in RPM");
-  EXPECT_EQ(error_of("SPINDL/1000,FAST\n"), "test.cl:1:13: unknown SPINDL modifier 'FAST'");
-  EXPECT_EQ(error_of("DELAY/REV,5\n"), "test.cl:1:7: DELAY/REV needs a spindle speed (SPINDL/rpm)");
-  EXPECT_EQ(error_of("MULTAX/MAYBE\n"), "test.cl:1:8: MULTAX takes ON or OFF");
+  EXPECT_EQ(cl_reader_error_of("SPINDL/1000,FAST\n"), "test.cl:1:13: unknown SPINDL modifier 'FAST'");
+  EXPECT_EQ(cl_reader_error_of("DELAY/REV,5\n"), "test.cl:1:7: DELAY/REV needs a spindle speed (SPINDL/rpm)");
+  EXPECT_EQ(cl_reader_error_of("MULTAX/MAYBE\n"), "test.cl:1:8: MULTAX takes ON or OFF");
 }
 
 TEST(ClReaderErrors, MessageNamesTheSource) {

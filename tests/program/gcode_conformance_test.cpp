@@ -25,7 +25,7 @@ using pkm::program::Plane;
 
 namespace fs = std::filesystem;
 
-fs::path conformance_dir() {
+fs::path gcode_conformance_conformance_dir() {
   return fs::path(PKM_SOURCE_DIR) / "tests" / "program" / "conformance";
 }
 
@@ -36,10 +36,10 @@ std::string read_all(const fs::path& path) {
   return buffer.str();
 }
 
-std::vector<std::string> conformance_programs() {
+std::vector<std::string> gcode_conformance_conformance_programs() {
   std::vector<std::string> names;
-  if (!fs::exists(conformance_dir())) return names;
-  for (const auto& entry : fs::directory_iterator(conformance_dir()))
+  if (!fs::exists(gcode_conformance_conformance_dir())) return names;
+  for (const auto& entry : fs::directory_iterator(gcode_conformance_conformance_dir()))
     if (entry.path().extension() == ".ngc") names.push_back(entry.path().stem().string());
   std::sort(names.begin(), names.end());
   return names;
@@ -49,7 +49,7 @@ std::vector<std::string> conformance_programs() {
 // table (tools.tbl) and gives pkm a copy with every length times 25.4.
 std::string tool_table_in_mm() {
   static const std::string path = [] {
-    std::istringstream in(read_all(conformance_dir() / "tools.tbl"));
+    std::istringstream in(read_all(gcode_conformance_conformance_dir() / "tools.tbl"));
     const fs::path out_path = fs::temp_directory_path() / "pkm_gcode_conformance_tools_mm.tbl";
     std::ofstream out(out_path);
     std::string line;
@@ -251,8 +251,8 @@ class GcodeConformance : public testing::TestWithParam<std::string> {};
 
 TEST_P(GcodeConformance, MatchesRs274) {
   const std::string name = GetParam();
-  const fs::path program_path = conformance_dir() / (name + ".ngc");
-  const fs::path golden_path = conformance_dir() / (name + ".rs274");
+  const fs::path program_path = gcode_conformance_conformance_dir() / (name + ".ngc");
+  const fs::path golden_path = gcode_conformance_conformance_dir() / (name + ".rs274");
   ASSERT_TRUE(fs::exists(golden_path)) << "no golden file; run scripts/regen-rs274-golden.sh";
   const Rs274Run theirs = parse_rs274(read_all(golden_path));
   ASSERT_TRUE(theirs.unparsed.empty()) << "rs274 reported: " << theirs.unparsed.front();
@@ -280,12 +280,13 @@ TEST_P(GcodeConformance, MatchesRs274) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Programs, GcodeConformance, testing::ValuesIn(conformance_programs()),
+INSTANTIATE_TEST_SUITE_P(Programs, GcodeConformance,
+                         testing::ValuesIn(gcode_conformance_conformance_programs()),
                          [](const testing::TestParamInfo<std::string>& param) { return "p" + param.param; });
 
 TEST(GcodeConformanceSuite, HasAtLeastThirtyPrograms) {
-  EXPECT_GE(conformance_programs().size(), 30u);
-  EXPECT_TRUE(fs::exists(conformance_dir() / "tools.tbl"));
+  EXPECT_GE(gcode_conformance_conformance_programs().size(), 30u);
+  EXPECT_TRUE(fs::exists(gcode_conformance_conformance_dir() / "tools.tbl"));
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ using pkm::program::InterpretOptions;
 using pkm::program::MoveKind;
 using pkm::program::Plane;
 
-CanonicalProgram run(const std::string& text, const InterpretOptions& options = {}) {
+CanonicalProgram gcode_interpreter_run(const std::string& text, const InterpretOptions& options = {}) {
   auto result = interpret_gcode(text, "t.ngc", options);
   if (!result) {
     ADD_FAILURE() << result.error().message;
@@ -32,7 +32,7 @@ CanonicalProgram run(const std::string& text, const InterpretOptions& options = 
 }
 
 // The error message for `text`, which must fail.
-std::string error_of(const std::string& text, const InterpretOptions& options = {}) {
+std::string gcode_interpreter_error_of(const std::string& text, const InterpretOptions& options = {}) {
   auto result = interpret_gcode(text, "t.ngc", options);
   if (result) {
     ADD_FAILURE() << "expected an error for:\n" << text;
@@ -42,19 +42,19 @@ std::string error_of(const std::string& text, const InterpretOptions& options = 
   return result.error().message;
 }
 
-std::string write_temp(const std::string& name, const std::string& text) {
+std::string gcode_interpreter_write_temp(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / ("pkm_gcode_test_" + name);
   std::ofstream(path) << text;
   return path.string();
 }
 
 std::string tool_table() {
-  static const std::string path = write_temp("tools.tbl",
-                                             "T1 P1 Z25.0 D6 ;end mill\n"
-                                             "T2 P2 Z-10.5 D3 ;drill\n"
-                                             "\n"
-                                             "; comment line\n"
-                                             "T7 P3 Z100 X0 Y0.0\n");
+  static const std::string path = gcode_interpreter_write_temp("tools.tbl",
+                                                               "T1 P1 Z25.0 D6 ;end mill\n"
+                                                               "T2 P2 Z-10.5 D3 ;drill\n"
+                                                               "\n"
+                                                               "; comment line\n"
+                                                               "T7 P3 Z100 X0 Y0.0\n");
   return path;
 }
 
@@ -75,7 +75,7 @@ void expect_error_at(const std::string& message, int line, int column, const std
 // Moves
 
 TEST(GcodeInterpreter, RapidsAndLinesInMillimetres) {
-  const auto p = run("G21 G90\nG0 X10 Y5 Z2\nF600\nG1 Z-1\nX40\nM2\n");
+  const auto p = gcode_interpreter_run("G21 G90\nG0 X10 Y5 Z2\nF600\nG1 Z-1\nX40\nM2\n");
   ASSERT_EQ(p.moves.size(), 3u);
   EXPECT_EQ(p.moves[0].kind, MoveKind::rapid);
   EXPECT_EQ(p.moves[0].line, 2);
@@ -91,7 +91,8 @@ TEST(GcodeInterpreter, RapidsAndLinesInMillimetres) {
 }
 
 TEST(GcodeInterpreter, InchesAreConvertedToMillimetres) {
-  const auto p = run("G20\nG0 X1 Y2\nG1 Z-0.5 F10\nG2 X2 Y2 I0.5 J0\nG64 P0.001\nG1 X0\nM2\n");
+  const auto p =
+      gcode_interpreter_run("G20\nG0 X1 Y2\nG1 Z-0.5 F10\nG2 X2 Y2 I0.5 J0\nG64 P0.001\nG1 X0\nM2\n");
   ASSERT_EQ(p.moves.size(), 4u);
   expect_vec(p.moves[0].end_mm, {25.4, 50.8, 0});
   expect_vec(p.moves[1].end_mm, {25.4, 50.8, -12.7});
@@ -101,20 +102,20 @@ TEST(GcodeInterpreter, InchesAreConvertedToMillimetres) {
 }
 
 TEST(GcodeInterpreter, FeedKeepsItsSpeedAcrossAUnitSwitch) {
-  const auto p = run("G20 F10\nG1 X1\nG21\nG1 X30\nM2\n");
+  const auto p = gcode_interpreter_run("G20 F10\nG1 X1\nG21\nG1 X30\nM2\n");
   ASSERT_EQ(p.moves.size(), 2u);
   EXPECT_DOUBLE_EQ(p.moves[0].feed_mm_min, 254.0);
   EXPECT_DOUBLE_EQ(p.moves[1].feed_mm_min, 254.0);
 }
 
 TEST(GcodeInterpreter, ArcDirectionsAndNormalsInEveryPlane) {
-  const auto p =
-      run("G21 F100\n"
-          "G17 G2 X10 Y10 I10 J0\n"  // from 0,0,0: centre (10,0), clockwise seen from +Z
-          "G3 X20 Y0 I0 J-10\n"      // centre (10,0)
-          "G18 G3 X30 Z10 I10 K0\n"  // XZ: centre x=30 z=0
-          "G19 G2 Y10 Z20 J10 K0\n"  // YZ: centre y=10 z=10
-          "M2\n");
+  const auto p = gcode_interpreter_run(
+      "G21 F100\n"
+      "G17 G2 X10 Y10 I10 J0\n"  // from 0,0,0: centre (10,0), clockwise seen from +Z
+      "G3 X20 Y0 I0 J-10\n"      // centre (10,0)
+      "G18 G3 X30 Z10 I10 K0\n"  // XZ: centre x=30 z=0
+      "G19 G2 Y10 Z20 J10 K0\n"  // YZ: centre y=10 z=10
+      "M2\n");
   ASSERT_EQ(p.moves.size(), 4u);
   EXPECT_EQ(p.moves[0].kind, MoveKind::arc);
   expect_vec(p.moves[0].center_mm, {10, 0, 0});
@@ -131,7 +132,7 @@ TEST(GcodeInterpreter, ArcDirectionsAndNormalsInEveryPlane) {
 }
 
 TEST(GcodeInterpreter, QuarterArcSweepsNinetyDegrees) {
-  const auto p = run("G21 F100\nG0 X10\nG3 X0 Y10 I-10 J0\nG2 X10 Y0 I0 J-10\nM2\n");
+  const auto p = gcode_interpreter_run("G21 F100\nG0 X10\nG3 X0 Y10 I-10 J0\nG2 X10 Y0 I0 J-10\nM2\n");
   ASSERT_EQ(p.moves.size(), 3u);
   EXPECT_NEAR(pkm::program::gcode::arc_sweep_rad({10, 0, 0}, p.moves[1]), std::numbers::pi / 2, 1e-12);
   EXPECT_NEAR(pkm::program::gcode::arc_sweep_rad({0, 10, 0}, p.moves[2]), std::numbers::pi / 2, 1e-12);
@@ -139,7 +140,8 @@ TEST(GcodeInterpreter, QuarterArcSweepsNinetyDegrees) {
 }
 
 TEST(GcodeInterpreter, RadiusArcsPickTheShortOrTheLongArc) {
-  const auto p = run("G21 F100\nG2 X10 Y10 R10\nG0 X0 Y0\nG2 X10 Y10 R-10\nG0 X0 Y0\nG3 X10 Y10 R10\nM2\n");
+  const auto p = gcode_interpreter_run(
+      "G21 F100\nG2 X10 Y10 R10\nG0 X0 Y0\nG2 X10 Y10 R-10\nG0 X0 Y0\nG3 X10 Y10 R10\nM2\n");
   ASSERT_EQ(p.moves.size(), 5u);
   expect_vec(p.moves[0].center_mm, {10, 0, 0});  // clockwise quarter from (0,0) to (10,10)
   expect_vec(p.moves[2].center_mm, {0, 10, 0});  // the three-quarter arc
@@ -148,13 +150,13 @@ TEST(GcodeInterpreter, RadiusArcsPickTheShortOrTheLongArc) {
 }
 
 TEST(GcodeInterpreter, RadiusArcSlightlyTooShortIsAHalfCircle) {
-  const auto p = run("G21 F100\nG2 X10 R4.999\nM2\n");
+  const auto p = gcode_interpreter_run("G21 F100\nG2 X10 R4.999\nM2\n");
   ASSERT_EQ(p.moves.size(), 1u);
   expect_vec(p.moves[0].center_mm, {5, 0, 0});
 }
 
 TEST(GcodeInterpreter, FullCircleAndHelixWithTurns) {
-  const auto p = run("G21 F100\nG0 X5\nG3 I-5 J0\nG2 X5 Y0 Z-6 I-5 J0 P3\nM2\n");
+  const auto p = gcode_interpreter_run("G21 F100\nG0 X5\nG3 I-5 J0\nG2 X5 Y0 Z-6 I-5 J0 P3\nM2\n");
   ASSERT_EQ(p.moves.size(), 3u);
   expect_vec(p.moves[1].end_mm, {5, 0, 0});
   expect_vec(p.moves[1].center_mm, {0, 0, 0});
@@ -168,8 +170,8 @@ TEST(GcodeInterpreter, FullCircleAndHelixWithTurns) {
 }
 
 TEST(GcodeInterpreter, IncrementalMovesAndArcCentres) {
-  const auto p =
-      run("G21 G91 F100\nG1 X5 Y5\nX5 A10\nG90.1 G90 G2 X20 Y5 I15 J5\nG91.1 G91 G2 X5 Y-5 I0 J-5\nM2\n");
+  const auto p = gcode_interpreter_run(
+      "G21 G91 F100\nG1 X5 Y5\nX5 A10\nG90.1 G90 G2 X20 Y5 I15 J5\nG91.1 G91 G2 X5 Y-5 I0 J-5\nM2\n");
   ASSERT_EQ(p.moves.size(), 4u);
   expect_vec(p.moves[0].end_mm, {5, 5, 0});
   expect_vec(p.moves[1].end_mm, {10, 5, 0});
@@ -183,7 +185,7 @@ TEST(GcodeInterpreter, StartPositionFromOptions) {
   InterpretOptions options;
   options.start_mm = {1, 2, 3};
   options.start_abc_deg = {4, 5, 6};
-  const auto p = run("G91 G1 X1 F100\nM2\n", options);
+  const auto p = gcode_interpreter_run("G91 G1 X1 F100\nM2\n", options);
   ASSERT_EQ(p.moves.size(), 1u);
   expect_vec(p.moves[0].end_mm, {2, 2, 3});
   expect_vec(p.moves[0].end_abc_deg, {4, 5, 6});
@@ -194,9 +196,9 @@ TEST(GcodeInterpreter, StartPositionFromOptions) {
 TEST(GcodeInterpreter, ToolLengthOffsetsShiftProgramZ) {
   InterpretOptions options;
   options.tool_table_path = tool_table();
-  const auto p =
-      run("G21 F100\nG0 Z1\nT1 M6\nG43\nG1 X5\nG43 H2\nG1 X6\nG49\nG1 X7\nG43 H7 Z50\nG43 H0\nG1 X8\nM2\n",
-          options);
+  const auto p = gcode_interpreter_run(
+      "G21 F100\nG0 Z1\nT1 M6\nG43\nG1 X5\nG43 H2\nG1 X6\nG49\nG1 X7\nG43 H7 Z50\nG43 H0\nG1 X8\nM2\n",
+      options);
   ASSERT_EQ(p.moves.size(), 6u);
   // The tool tip stays put when the offset changes, so its program Z changes by the offset (as rs274).
   expect_vec(p.moves[1].end_mm, {5, 0, 1 - 25.0});
@@ -212,7 +214,7 @@ TEST(GcodeInterpreter, ToolLengthOffsetsShiftProgramZ) {
 }
 
 TEST(GcodeInterpreter, InverseTimeFeeds) {
-  const auto p = run("G21 G93\nG1 X10 F20\nG1 A90 F2\nG0 X0\nG94 F300\nG1 X1\nM2\n");
+  const auto p = gcode_interpreter_run("G21 G93\nG1 X10 F20\nG1 A90 F2\nG0 X0\nG94 F300\nG1 X1\nM2\n");
   ASSERT_EQ(p.moves.size(), 4u);
   EXPECT_TRUE(p.moves[0].inverse_time);
   EXPECT_DOUBLE_EQ(p.moves[0].inverse_time_per_min, 20.0);
@@ -226,14 +228,14 @@ TEST(GcodeInterpreter, InverseTimeFeeds) {
 }
 
 TEST(GcodeInterpreter, InverseTimeFeedsIgnoreInches) {
-  const auto p = run("G20 G93\nG1 X1 F4\nM2\n");
+  const auto p = gcode_interpreter_run("G20 G93\nG1 X1 F4\nM2\n");
   ASSERT_EQ(p.moves.size(), 1u);
   EXPECT_DOUBLE_EQ(p.moves[0].inverse_time_per_min, 4.0);
   EXPECT_DOUBLE_EQ(p.moves[0].feed_mm_min, 4 * 25.4);
 }
 
 TEST(GcodeInterpreter, DwellStaysInPlace) {
-  const auto p = run("G21 F100\nG1 X3 Y4\nG4 P1.5\nG4 P2 G1 X5\nM2\n");
+  const auto p = gcode_interpreter_run("G21 F100\nG1 X3 Y4\nG4 P1.5\nG4 P2 G1 X5\nM2\n");
   ASSERT_EQ(p.moves.size(), 4u);
   EXPECT_EQ(p.moves[1].kind, MoveKind::dwell);
   EXPECT_DOUBLE_EQ(p.moves[1].dwell_s, 1.5);
@@ -244,8 +246,8 @@ TEST(GcodeInterpreter, DwellStaysInPlace) {
 }
 
 TEST(GcodeInterpreter, PathControlModes) {
-  const auto p =
-      run("G21 F100\nG1 X1\nG64 P0.05\nG1 X2\nG61\nG1 X3\nG61.1\nG1 X4\nG64\nG1 X5\nG64 P0 X6\nM2\n");
+  const auto p = gcode_interpreter_run(
+      "G21 F100\nG1 X1\nG64 P0.05\nG1 X2\nG61\nG1 X3\nG61.1\nG1 X4\nG64\nG1 X5\nG64 P0 X6\nM2\n");
   ASSERT_EQ(p.moves.size(), 6u);
   EXPECT_EQ(p.moves[0].path_tolerance_mm, -1.0);
   EXPECT_FALSE(p.moves[0].exact_stop);
@@ -262,7 +264,8 @@ TEST(GcodeInterpreter, PathControlModes) {
 TEST(GcodeInterpreter, EventsAreRecordedWithTheirLines) {
   InterpretOptions options;
   options.tool_table_path = tool_table();
-  const auto p = run("G21\nT1 M6\nS12000 M3\nM8\nM7\nM9\nS500\nM4\nM5\nT2\nM6\nM30\n", options);
+  const auto p =
+      gcode_interpreter_run("G21\nT1 M6\nS12000 M3\nM8\nM7\nM9\nS500\nM4\nM5\nT2\nM6\nM30\n", options);
   ASSERT_EQ(p.events.size(), 10u);
   EXPECT_EQ(p.events[0].what, "M6 T1");
   EXPECT_EQ(p.events[0].line, 2);
@@ -279,25 +282,25 @@ TEST(GcodeInterpreter, EventsAreRecordedWithTheirLines) {
 }
 
 TEST(GcodeInterpreter, ProgramEndsAtM2M30OrPercentOrLastLine) {
-  EXPECT_EQ(run("G21 F100\nG1 X1\nM30\nG1 X2\n").moves.size(), 1u);
-  EXPECT_EQ(run("G21 F100\nG1 X1\nM30\nG1 X2\n").end_line, 3);
-  const auto percent = run("%\nG21 F100\nG1 X1\n%\nG1 X5\n");
+  EXPECT_EQ(gcode_interpreter_run("G21 F100\nG1 X1\nM30\nG1 X2\n").moves.size(), 1u);
+  EXPECT_EQ(gcode_interpreter_run("G21 F100\nG1 X1\nM30\nG1 X2\n").end_line, 3);
+  const auto percent = gcode_interpreter_run("%\nG21 F100\nG1 X1\n%\nG1 X5\n");
   EXPECT_EQ(percent.moves.size(), 1u);
   EXPECT_EQ(percent.end_line, 4);
-  const auto no_end = run("G21 F100\nG1 X1\n(last)\n");
+  const auto no_end = gcode_interpreter_run("G21 F100\nG1 X1\n(last)\n");
   EXPECT_EQ(no_end.moves.size(), 1u);
   EXPECT_EQ(no_end.end_line, 3);
 }
 
 TEST(GcodeInterpreter, CommentsCaseBlanksAndBlockNumbers) {
-  const auto p =
-      run("(header) ; with ( a stray paren\n"
-          "N10 g21 (mm) f 300\n"
-          "n20G01x1y2(no blanks)\n"
-          "G 1 X 1 0 . 5 Y - 2\r\n"
-          "\tG1 X+7 Y.5 ; trailing comment X99\n"
-          "G01 X5. Y-.25\n"
-          "m2\n");
+  const auto p = gcode_interpreter_run(
+      "(header) ; with ( a stray paren\n"
+      "N10 g21 (mm) f 300\n"
+      "n20G01x1y2(no blanks)\n"
+      "G 1 X 1 0 . 5 Y - 2\r\n"
+      "\tG1 X+7 Y.5 ; trailing comment X99\n"
+      "G01 X5. Y-.25\n"
+      "m2\n");
   ASSERT_EQ(p.moves.size(), 4u);
   expect_vec(p.moves[0].end_mm, {1, 2, 0});
   expect_vec(p.moves[1].end_mm, {10.5, -2, 0});
@@ -307,22 +310,22 @@ TEST(GcodeInterpreter, CommentsCaseBlanksAndBlockNumbers) {
 }
 
 TEST(GcodeInterpreter, ByteOrderMarkIsSkipped) {
-  const auto p = run("\xEF\xBB\xBFG21 F100 G1 X1\nM2\n");
+  const auto p = gcode_interpreter_run("\xEF\xBB\xBFG21 F100 G1 X1\nM2\n");
   ASSERT_EQ(p.moves.size(), 1u);
   EXPECT_EQ(p.moves[0].line, 1);
 }
 
 TEST(GcodeInterpreter, BlockDeleteSwitch) {
   const std::string text = "G21 F100\n/G1 X5\n  / G1 Y5\nG1 Z1\nM2\n";
-  EXPECT_EQ(run(text).moves.size(), 1u);  // on by default
+  EXPECT_EQ(gcode_interpreter_run(text).moves.size(), 1u);  // on by default
   InterpretOptions off;
   off.block_delete = false;
-  EXPECT_EQ(run(text, off).moves.size(), 3u);
+  EXPECT_EQ(gcode_interpreter_run(text, off).moves.size(), 3u);
 }
 
 TEST(GcodeInterpreter, MotionCodeWithoutAxesIsAZeroLengthMove) {
   // As rs274: an explicit G0/G1 with no axis words moves to where the tool is; arc data alone repeats G2/G3.
-  const auto p = run("G21 F100\nG0 X5\nG0\nG1 F200\nG2 X15 I5\nI-5\nF50\nM2\n");
+  const auto p = gcode_interpreter_run("G21 F100\nG0 X5\nG0\nG1 F200\nG2 X15 I5\nI-5\nF50\nM2\n");
   ASSERT_EQ(p.moves.size(), 5u);
   expect_vec(p.moves[1].end_mm, {5, 0, 0});
   EXPECT_EQ(p.moves[2].kind, MoveKind::line);
@@ -332,13 +335,13 @@ TEST(GcodeInterpreter, MotionCodeWithoutAxesIsAZeroLengthMove) {
 }
 
 TEST(GcodeInterpreter, AcceptedNoOpModes) {
-  const auto p = run("G17 G40 G49 G80 G54 G90 G91.1 G94 G97 G21\nF10 G1 X1\nM2\n");
+  const auto p = gcode_interpreter_run("G17 G40 G49 G80 G54 G90 G91.1 G94 G97 G21\nF10 G1 X1\nM2\n");
   EXPECT_EQ(p.moves.size(), 1u);
 }
 
 TEST(GcodeInterpreter, ArcWithinRs274ToleranceIsAccepted) {
   // End radius 10.02 vs 10: 0.02 mm < 0.02·√2 mm (rs274 accepts it too, tests/program/conformance/33_*).
-  const auto p = run("G21 F100\nG2 X20.02 I10\nM2\n");
+  const auto p = gcode_interpreter_run("G21 F100\nG2 X20.02 I10\nM2\n");
   EXPECT_EQ(p.moves.size(), 1u);
 }
 
@@ -376,158 +379,180 @@ TEST(GcodeInterpreterErrors, MessageFormatNamesSourceLineColumn) {
 }
 
 TEST(GcodeInterpreterErrors, BadNumbers) {
-  expect_error_at(error_of("G21\nG1 X1.2.3 F1\n"), 2, 4, "bad number 'X1.2.3'");
-  expect_error_at(error_of("G1 X- F1\n"), 1, 4, "bad number");
-  expect_error_at(error_of("G1 Y. F1\n"), 1, 4, "bad number");
-  expect_error_at(error_of("G1 X1e3 F1\n"), 1, 6, "E word is not supported");
-  expect_error_at(error_of("G1.25 X1\n"), 1, 1, "bad G-code number");
-  expect_error_at(error_of("M6.5\n"), 1, 1, "bad M-code number");
-  expect_error_at(error_of("G21\nG1000\n"), 2, 1, "bad G-code number");
-  expect_error_at(error_of("G1 X" + std::string(70, '1') + "\n"), 1, 4, "number too long in X word");
+  expect_error_at(gcode_interpreter_error_of("G21\nG1 X1.2.3 F1\n"), 2, 4, "bad number 'X1.2.3'");
+  expect_error_at(gcode_interpreter_error_of("G1 X- F1\n"), 1, 4, "bad number");
+  expect_error_at(gcode_interpreter_error_of("G1 Y. F1\n"), 1, 4, "bad number");
+  expect_error_at(gcode_interpreter_error_of("G1 X1e3 F1\n"), 1, 6, "E word is not supported");
+  expect_error_at(gcode_interpreter_error_of("G1.25 X1\n"), 1, 1, "bad G-code number");
+  expect_error_at(gcode_interpreter_error_of("M6.5\n"), 1, 1, "bad M-code number");
+  expect_error_at(gcode_interpreter_error_of("G21\nG1000\n"), 2, 1, "bad G-code number");
+  expect_error_at(gcode_interpreter_error_of("G1 X" + std::string(70, '1') + "\n"), 1, 4,
+                  "number too long in X word");
 }
 
 TEST(GcodeInterpreterErrors, LetterWithoutNumber) {
-  expect_error_at(error_of("G21\nG1 X F10\n"), 2, 4, "X word without a number");
-  expect_error_at(error_of("G1 X1 G\n"), 1, 7, "G word without a number");
+  expect_error_at(gcode_interpreter_error_of("G21\nG1 X F10\n"), 2, 4, "X word without a number");
+  expect_error_at(gcode_interpreter_error_of("G1 X1 G\n"), 1, 7, "G word without a number");
 }
 
 TEST(GcodeInterpreterErrors, CommentsAndCharacters) {
-  expect_error_at(error_of("G21 (a (b) c)\n"), 1, 8, "nested comment");
-  expect_error_at(error_of("G21\nG0 X1 (open\n"), 2, 7, "comment not closed");
-  expect_error_at(error_of("G0 X1 @\n"), 1, 7, "unexpected character '@'");
-  expect_error_at(error_of("G0 X1 %\n"), 1, 7, "unexpected character '%'");
-  expect_error_at(error_of(std::string("G0 X1 \x01\n")), 1, 7, "unexpected byte 0x01");
-  expect_error_at(error_of("G21\n% junk\n"), 2, 1, "'%' must stand alone");
+  expect_error_at(gcode_interpreter_error_of("G21 (a (b) c)\n"), 1, 8, "nested comment");
+  expect_error_at(gcode_interpreter_error_of("G21\nG0 X1 (open\n"), 2, 7, "comment not closed");
+  expect_error_at(gcode_interpreter_error_of("G0 X1 @\n"), 1, 7, "unexpected character '@'");
+  expect_error_at(gcode_interpreter_error_of("G0 X1 %\n"), 1, 7, "unexpected character '%'");
+  expect_error_at(gcode_interpreter_error_of(std::string("G0 X1 \x01\n")), 1, 7, "unexpected byte 0x01");
+  expect_error_at(gcode_interpreter_error_of("G21\n% junk\n"), 2, 1, "'%' must stand alone");
 }
 
 TEST(GcodeInterpreterErrors, ParametersExpressionsAndOWords) {
-  expect_error_at(error_of("#1=5\n"), 1, 1, "parameters (#) are not supported");
-  expect_error_at(error_of("G0 X#1\n"), 1, 5, "parameters (#) are not supported");
-  expect_error_at(error_of("G0 X[1+2]\n"), 1, 5, "expressions ([...]) are not supported");
-  expect_error_at(error_of("G21\no100 sub\n"), 2, 1, "O-words");
+  expect_error_at(gcode_interpreter_error_of("#1=5\n"), 1, 1, "parameters (#) are not supported");
+  expect_error_at(gcode_interpreter_error_of("G0 X#1\n"), 1, 5, "parameters (#) are not supported");
+  expect_error_at(gcode_interpreter_error_of("G0 X[1+2]\n"), 1, 5, "expressions ([...]) are not supported");
+  expect_error_at(gcode_interpreter_error_of("G21\no100 sub\n"), 2, 1, "O-words");
 }
 
 TEST(GcodeInterpreterErrors, BlockNumberMustOpenTheBlock) {
-  expect_error_at(error_of("G1 N5 X1\n"), 1, 4, "N word (block number) must open the block");
+  expect_error_at(gcode_interpreter_error_of("G1 N5 X1\n"), 1, 4,
+                  "N word (block number) must open the block");
 }
 
 TEST(GcodeInterpreterErrors, UnknownAndUnsupportedCodes) {
-  expect_error_at(error_of("G21\nG12 X1\n"), 2, 1, "unknown G-code G12");
-  expect_error_at(error_of("G5.3\n"), 1, 1, "unsupported G-code G5.3 (spline");
-  expect_error_at(error_of("G0 X1\nG81 X1 Y1 Z-1 R1\n"), 2, 1, "unsupported G-code G81 (canned cycle)");
-  expect_error_at(error_of("G42 D1\n"), 1, 1, "cutter radius compensation");
-  expect_error_at(error_of("G21 G55\n"), 1, 5, "work offset other than G54");
-  expect_error_at(error_of("G28\n"), 1, 1, "unsupported G-code G28");
-  expect_error_at(error_of("G92 X0\n"), 1, 1, "unsupported G-code G92");
-  expect_error_at(error_of("G20 G96 S100\n"), 1, 5, "constant surface speed");
-  expect_error_at(error_of("G98\n"), 1, 1, "unsupported G-code G98");
-  expect_error_at(error_of("G43.1 Z1\n"), 1, 1, "unsupported G-code G43.1");
-  expect_error_at(error_of("M123\n"), 1, 1, "unsupported M-code M123 (user-defined M-code)");
-  expect_error_at(error_of("M250\n"), 1, 1, "unknown M-code M250");
-  expect_error_at(error_of("G21\nM0\n"), 2, 1, "unsupported M-code M0 (program pause)");
-  expect_error_at(error_of("M98 P100\n"), 1, 1, "subprogram call");
+  expect_error_at(gcode_interpreter_error_of("G21\nG12 X1\n"), 2, 1, "unknown G-code G12");
+  expect_error_at(gcode_interpreter_error_of("G5.3\n"), 1, 1, "unsupported G-code G5.3 (spline");
+  expect_error_at(gcode_interpreter_error_of("G0 X1\nG81 X1 Y1 Z-1 R1\n"), 2, 1,
+                  "unsupported G-code G81 (canned cycle)");
+  expect_error_at(gcode_interpreter_error_of("G42 D1\n"), 1, 1, "cutter radius compensation");
+  expect_error_at(gcode_interpreter_error_of("G21 G55\n"), 1, 5, "work offset other than G54");
+  expect_error_at(gcode_interpreter_error_of("G28\n"), 1, 1, "unsupported G-code G28");
+  expect_error_at(gcode_interpreter_error_of("G92 X0\n"), 1, 1, "unsupported G-code G92");
+  expect_error_at(gcode_interpreter_error_of("G20 G96 S100\n"), 1, 5, "constant surface speed");
+  expect_error_at(gcode_interpreter_error_of("G98\n"), 1, 1, "unsupported G-code G98");
+  expect_error_at(gcode_interpreter_error_of("G43.1 Z1\n"), 1, 1, "unsupported G-code G43.1");
+  expect_error_at(gcode_interpreter_error_of("M123\n"), 1, 1,
+                  "unsupported M-code M123 (user-defined M-code)");
+  expect_error_at(gcode_interpreter_error_of("M250\n"), 1, 1, "unknown M-code M250");
+  expect_error_at(gcode_interpreter_error_of("G21\nM0\n"), 2, 1, "unsupported M-code M0 (program pause)");
+  expect_error_at(gcode_interpreter_error_of("M98 P100\n"), 1, 1, "subprogram call");
 }
 
 TEST(GcodeInterpreterErrors, UnsupportedLetters) {
-  expect_error_at(error_of("G0 U1\n"), 1, 4, "U axis is not supported");
-  expect_error_at(error_of("G0 X1 W1\n"), 1, 7, "W axis is not supported");
-  expect_error_at(error_of("G0 X1 V1\n"), 1, 7, "V axis is not supported");
-  expect_error_at(error_of("G1 Q1 X1\n"), 1, 4, "Q word is not supported");
-  expect_error_at(error_of("G1 X1 D3\n"), 1, 7, "D word is not supported");
-  expect_error_at(error_of("G1 X1 L3\n"), 1, 7, "L word is not supported");
-  expect_error_at(error_of("G64 P0.1 Q0.1\n"), 1, 10, "Q word is not supported");
+  expect_error_at(gcode_interpreter_error_of("G0 U1\n"), 1, 4, "U axis is not supported");
+  expect_error_at(gcode_interpreter_error_of("G0 X1 W1\n"), 1, 7, "W axis is not supported");
+  expect_error_at(gcode_interpreter_error_of("G0 X1 V1\n"), 1, 7, "V axis is not supported");
+  expect_error_at(gcode_interpreter_error_of("G1 Q1 X1\n"), 1, 4, "Q word is not supported");
+  expect_error_at(gcode_interpreter_error_of("G1 X1 D3\n"), 1, 7, "D word is not supported");
+  expect_error_at(gcode_interpreter_error_of("G1 X1 L3\n"), 1, 7, "L word is not supported");
+  expect_error_at(gcode_interpreter_error_of("G64 P0.1 Q0.1\n"), 1, 10, "Q word is not supported");
 }
 
 TEST(GcodeInterpreterErrors, TwoCodesFromOneModalGroup) {
-  expect_error_at(error_of("G21\nG0 G1 X5\n"), 2, 4, "G0 and G1 in one block belong to the same modal group");
-  expect_error_at(error_of("G20 G21\n"), 1, 5, "same modal group");
-  expect_error_at(error_of("G90 G91.1 G91\n"), 1, 11, "G90 and G91");
-  expect_error_at(error_of("M3 M4 S100\n"), 1, 4, "M3 and M4");
-  expect_error_at(error_of("M7 M8\n"), 1, 4, "M7 and M8");
-  expect_error_at(error_of("G61 G64\n"), 1, 5, "same modal group");
+  expect_error_at(gcode_interpreter_error_of("G21\nG0 G1 X5\n"), 2, 4,
+                  "G0 and G1 in one block belong to the same modal group");
+  expect_error_at(gcode_interpreter_error_of("G20 G21\n"), 1, 5, "same modal group");
+  expect_error_at(gcode_interpreter_error_of("G90 G91.1 G91\n"), 1, 11, "G90 and G91");
+  expect_error_at(gcode_interpreter_error_of("M3 M4 S100\n"), 1, 4, "M3 and M4");
+  expect_error_at(gcode_interpreter_error_of("M7 M8\n"), 1, 4, "M7 and M8");
+  expect_error_at(gcode_interpreter_error_of("G61 G64\n"), 1, 5, "same modal group");
 }
 
 TEST(GcodeInterpreterErrors, RepeatedWord) {
-  expect_error_at(error_of("G0 X1 X2\n"), 1, 7, "two X words in one block");
-  expect_error_at(error_of("G1 F1 X1 F2\n"), 1, 10, "two F words");
+  expect_error_at(gcode_interpreter_error_of("G0 X1 X2\n"), 1, 7, "two X words in one block");
+  expect_error_at(gcode_interpreter_error_of("G1 F1 X1 F2\n"), 1, 10, "two F words");
 }
 
 TEST(GcodeInterpreterErrors, WordsNothingUses) {
-  expect_error_at(error_of("G21\nX5\n"), 2, 1, "axis words without a motion mode");
-  expect_error_at(error_of("G80 Y5\n"), 1, 5, "axis words with G80");
-  expect_error_at(error_of("G4 P1 X1\n"), 1, 7, "axis words without a motion mode");
-  expect_error_at(error_of("G1 X1 I1 F1\n"), 1, 7, "I word with no G2 or G3");
-  expect_error_at(error_of("G1 X1 F1 R2\n"), 1, 10, "R word with no G2 or G3");
-  expect_error_at(error_of("G1 X10 P2 F1\n"), 1, 8, "P word with no G2, G3, G4 or G64");
-  expect_error_at(error_of("F1 G2 X10 I5\nP2\n"), 2, 1, "P word with no G2, G3, G4 or G64");
-  expect_error_at(error_of("F1 G4 P1 G2 X10 I5\n"), 1, 7, "P word claimed by more than one");
-  expect_error_at(error_of("H1\n"), 1, 1, "H word without G43");
-  expect_error_at(error_of("G49 H1\n"), 1, 5, "H word without G43");
+  expect_error_at(gcode_interpreter_error_of("G21\nX5\n"), 2, 1, "axis words without a motion mode");
+  expect_error_at(gcode_interpreter_error_of("G80 Y5\n"), 1, 5, "axis words with G80");
+  expect_error_at(gcode_interpreter_error_of("G4 P1 X1\n"), 1, 7, "axis words without a motion mode");
+  expect_error_at(gcode_interpreter_error_of("G1 X1 I1 F1\n"), 1, 7, "I word with no G2 or G3");
+  expect_error_at(gcode_interpreter_error_of("G1 X1 F1 R2\n"), 1, 10, "R word with no G2 or G3");
+  expect_error_at(gcode_interpreter_error_of("G1 X10 P2 F1\n"), 1, 8, "P word with no G2, G3, G4 or G64");
+  expect_error_at(gcode_interpreter_error_of("F1 G2 X10 I5\nP2\n"), 2, 1, "P word with no G2, G3, G4 or G64");
+  expect_error_at(gcode_interpreter_error_of("F1 G4 P1 G2 X10 I5\n"), 1, 7,
+                  "P word claimed by more than one");
+  expect_error_at(gcode_interpreter_error_of("H1\n"), 1, 1, "H word without G43");
+  expect_error_at(gcode_interpreter_error_of("G49 H1\n"), 1, 5, "H word without G43");
 }
 
 TEST(GcodeInterpreterErrors, DwellNeedsPositiveP) {
-  expect_error_at(error_of("G21\nG4\n"), 2, 1, "G4 without a P word");
-  expect_error_at(error_of("G4 P-1\n"), 1, 4, "negative dwell time");
+  expect_error_at(gcode_interpreter_error_of("G21\nG4\n"), 2, 1, "G4 without a P word");
+  expect_error_at(gcode_interpreter_error_of("G4 P-1\n"), 1, 4, "negative dwell time");
 }
 
 TEST(GcodeInterpreterErrors, NegativeOrNonIntegerValues) {
-  expect_error_at(error_of("G21 F-100\n"), 1, 5, "negative feed rate");
-  expect_error_at(error_of("S-5 M3\n"), 1, 1, "negative spindle speed");
-  expect_error_at(error_of("T1.5 M6\n"), 1, 1, "T must be a whole number");
-  expect_error_at(error_of("T-1\n"), 1, 1, "T must be a whole number");
-  expect_error_at(error_of("G21\nT12345678901\n"), 2, 1, "T must be a whole number from 0 to 1000000");
-  expect_error_at(error_of("F1 G2 X10 I5 P1e9\n"), 1, 16, "E word");
-  expect_error_at(error_of("F1 G2 X10 I5 P1000000000\n"), 1, 14, "P (turns) must be a whole number from 1");
-  expect_error_at(error_of("G43 H1.5\n"), 1, 5, "H must be a whole number");
-  expect_error_at(error_of("G64 P-0.1\n"), 1, 5, "negative G64 tolerance");
+  expect_error_at(gcode_interpreter_error_of("G21 F-100\n"), 1, 5, "negative feed rate");
+  expect_error_at(gcode_interpreter_error_of("S-5 M3\n"), 1, 1, "negative spindle speed");
+  expect_error_at(gcode_interpreter_error_of("T1.5 M6\n"), 1, 1, "T must be a whole number");
+  expect_error_at(gcode_interpreter_error_of("T-1\n"), 1, 1, "T must be a whole number");
+  expect_error_at(gcode_interpreter_error_of("G21\nT12345678901\n"), 2, 1,
+                  "T must be a whole number from 0 to 1000000");
+  expect_error_at(gcode_interpreter_error_of("F1 G2 X10 I5 P1e9\n"), 1, 16, "E word");
+  expect_error_at(gcode_interpreter_error_of("F1 G2 X10 I5 P1000000000\n"), 1, 14,
+                  "P (turns) must be a whole number from 1");
+  expect_error_at(gcode_interpreter_error_of("G43 H1.5\n"), 1, 5, "H must be a whole number");
+  expect_error_at(gcode_interpreter_error_of("G64 P-0.1\n"), 1, 5, "negative G64 tolerance");
 }
 
 TEST(GcodeInterpreterErrors, FeedMissing) {
-  expect_error_at(error_of("G21\nG1 X1\n"), 2, 1, "G1 with no feed rate programmed (F)");
-  expect_error_at(error_of("G1 X1 F0\n"), 1, 7, "G1 with no feed rate");
-  expect_error_at(error_of("G0 X1\nG2 X3 I1\n"), 2, 1, "G2 with no feed rate");
+  expect_error_at(gcode_interpreter_error_of("G21\nG1 X1\n"), 2, 1, "G1 with no feed rate programmed (F)");
+  expect_error_at(gcode_interpreter_error_of("G1 X1 F0\n"), 1, 7, "G1 with no feed rate");
+  expect_error_at(gcode_interpreter_error_of("G0 X1\nG2 X3 I1\n"), 2, 1, "G2 with no feed rate");
   // G94 clears the feed, as in rs274.
-  expect_error_at(error_of("F100\nG94 G1 X1\n"), 2, 5, "G1 with no feed rate");
-  expect_error_at(error_of("G93\nG1 X1\n"), 2, 1, "inverse-time mode (G93) needs an F word");
-  expect_error_at(error_of("G1 X1 F10\n  Y2 G93\n"), 2, 3, "G1 in inverse-time mode (G93) needs an F word");
-  expect_error_at(error_of("G0 X1\n  G1 Y2\n"), 2, 3, "G1 with no feed rate");
-  expect_error_at(error_of("G93 G1 X1 F10\nX2\n"), 2, 1, "needs an F word");
-  expect_error_at(error_of("G93 G1 X1 F0\n"), 1, 11, "inverse-time F must be greater than 0");
+  expect_error_at(gcode_interpreter_error_of("F100\nG94 G1 X1\n"), 2, 5, "G1 with no feed rate");
+  expect_error_at(gcode_interpreter_error_of("G93\nG1 X1\n"), 2, 1,
+                  "inverse-time mode (G93) needs an F word");
+  expect_error_at(gcode_interpreter_error_of("G1 X1 F10\n  Y2 G93\n"), 2, 3,
+                  "G1 in inverse-time mode (G93) needs an F word");
+  expect_error_at(gcode_interpreter_error_of("G0 X1\n  G1 Y2\n"), 2, 3, "G1 with no feed rate");
+  expect_error_at(gcode_interpreter_error_of("G93 G1 X1 F10\nX2\n"), 2, 1, "needs an F word");
+  expect_error_at(gcode_interpreter_error_of("G93 G1 X1 F0\n"), 1, 11,
+                  "inverse-time F must be greater than 0");
 }
 
 TEST(GcodeInterpreterErrors, ArcData) {
-  expect_error_at(error_of("G21 F100\nG2 X1\n"), 2, 1, "G2 with no I, J, K or R");
-  expect_error_at(error_of("F100 G3 X1 Y1\n"), 1, 6, "G3 with no I, J, K or R");
-  expect_error_at(error_of("F100 G2 X1 R1 I1\n"), 1, 12, "R and I/J/K in one arc");
-  expect_error_at(error_of("F100 G17 G2 X10 I5 K1\n"), 1, 20, "K word in a G17 (XY) arc");
-  expect_error_at(error_of("F100 G18 G2 X10 I5 J1\n"), 1, 20, "J word in a G18 (XZ) arc");
-  expect_error_at(error_of("F100 G19 G2 Y10 I5 J5\n"), 1, 17, "I word in a G19 (YZ) arc");
-  expect_error_at(error_of("F100 G90.1 G2 X10 Y0 I5\n"), 1, 22, "J word missing: absolute arc centres");
+  expect_error_at(gcode_interpreter_error_of("G21 F100\nG2 X1\n"), 2, 1, "G2 with no I, J, K or R");
+  expect_error_at(gcode_interpreter_error_of("F100 G3 X1 Y1\n"), 1, 6, "G3 with no I, J, K or R");
+  expect_error_at(gcode_interpreter_error_of("F100 G2 X1 R1 I1\n"), 1, 12, "R and I/J/K in one arc");
+  expect_error_at(gcode_interpreter_error_of("F100 G17 G2 X10 I5 K1\n"), 1, 20, "K word in a G17 (XY) arc");
+  expect_error_at(gcode_interpreter_error_of("F100 G18 G2 X10 I5 J1\n"), 1, 20, "J word in a G18 (XZ) arc");
+  expect_error_at(gcode_interpreter_error_of("F100 G19 G2 Y10 I5 J5\n"), 1, 17, "I word in a G19 (YZ) arc");
+  expect_error_at(gcode_interpreter_error_of("F100 G90.1 G2 X10 Y0 I5\n"), 1, 22,
+                  "J word missing: absolute arc centres");
 }
 
 TEST(GcodeInterpreterErrors, ArcGeometry) {
   // End off the circle: radius 10 at the start, 10.15 at the end (> 0.1 % and > 0.028 mm).
-  expect_error_at(error_of("G21 F100\nG2 X20.15 I10 J0\n"), 2, 11, "arc end is not on the circle");
+  expect_error_at(gcode_interpreter_error_of("G21 F100\nG2 X20.15 I10 J0\n"), 2, 11,
+                  "arc end is not on the circle");
   // The same in inches: 0.003 inch off (> 0.002·√2 inch).
-  expect_error_at(error_of("G20 F10\nG2 X2.003 I1\n"), 2, 11, "arc end is not on the circle");
-  expect_error_at(error_of("F100\nG2 X10 I0 J0\n"), 2, 8, "zero-radius arc: the centre is the start point");
-  expect_error_at(error_of("F100\nG2 X10 I10 J0\n"), 2, 8, "zero-radius arc: the centre is the end point");
-  expect_error_at(error_of("F100\nG2 X0 Y0 R5\n"), 2, 10, "R arc with its end point at the start point");
-  expect_error_at(error_of("F100\nG2 X10 R4.99\n"), 2, 8, "too small to reach the end point");
-  expect_error_at(error_of("F100\nG2 X10 R0\n"), 2, 8, "too small");
-  expect_error_at(error_of("F100\nG2 X10 I5 P0\n"), 2, 11, "P (turns) must be a whole number from 1");
-  expect_error_at(error_of("F100\nG3 X10 I5 P1.5\n"), 2, 11, "P (turns) must be a whole number from 1");
+  expect_error_at(gcode_interpreter_error_of("G20 F10\nG2 X2.003 I1\n"), 2, 11,
+                  "arc end is not on the circle");
+  expect_error_at(gcode_interpreter_error_of("F100\nG2 X10 I0 J0\n"), 2, 8,
+                  "zero-radius arc: the centre is the start point");
+  expect_error_at(gcode_interpreter_error_of("F100\nG2 X10 I10 J0\n"), 2, 8,
+                  "zero-radius arc: the centre is the end point");
+  expect_error_at(gcode_interpreter_error_of("F100\nG2 X0 Y0 R5\n"), 2, 10,
+                  "R arc with its end point at the start point");
+  expect_error_at(gcode_interpreter_error_of("F100\nG2 X10 R4.99\n"), 2, 8,
+                  "too small to reach the end point");
+  expect_error_at(gcode_interpreter_error_of("F100\nG2 X10 R0\n"), 2, 8, "too small");
+  expect_error_at(gcode_interpreter_error_of("F100\nG2 X10 I5 P0\n"), 2, 11,
+                  "P (turns) must be a whole number from 1");
+  expect_error_at(gcode_interpreter_error_of("F100\nG3 X10 I5 P1.5\n"), 2, 11,
+                  "P (turns) must be a whole number from 1");
 }
 
 TEST(GcodeInterpreterErrors, ToolLengthNeedsTheTable) {
-  expect_error_at(error_of("G43 H1\n"), 1, 5, "needs a tool table");
+  expect_error_at(gcode_interpreter_error_of("G43 H1\n"), 1, 5, "needs a tool table");
   InterpretOptions options;
   options.tool_table_path = tool_table();
-  expect_error_at(error_of("G21\nG43 H5\n", options), 2, 5, "tool 5 is not in the tool table");
-  expect_error_at(error_of("T9 M6\n", options), 1, 1, "tool T9 is not in the tool table");
+  expect_error_at(gcode_interpreter_error_of("G21\nG43 H5\n", options), 2, 5,
+                  "tool 5 is not in the tool table");
+  expect_error_at(gcode_interpreter_error_of("T9 M6\n", options), 1, 1, "tool T9 is not in the tool table");
   // Without H the spindle tool counts.
   InterpretOptions none;
-  expect_error_at(error_of("T1 M6\nG43\n", none), 2, 1, "G43 for tool 1 needs a tool table");
+  expect_error_at(gcode_interpreter_error_of("T1 M6\nG43\n", none), 2, 1,
+                  "G43 for tool 1 needs a tool table");
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -580,11 +605,11 @@ TEST(GcodeToolTable, MissingTableFileIsAnIoError) {
 }
 
 TEST(GcodeLoadPartProgram, ReadsGcodeFilesAndNamesThem) {
-  const std::string path = write_temp("load.ngc", "G21 F100\nG1 X1\nG1 X1.2.3\n");
+  const std::string path = gcode_interpreter_write_temp("load.ngc", "G21 F100\nG1 X1\nG1 X1.2.3\n");
   auto result = pkm::program::load_part_program(path);
   ASSERT_FALSE(result.ok());
   EXPECT_EQ(result.error().message.rfind(path + ":3:4: ", 0), 0u) << result.error().message;
-  const std::string good = write_temp("good.NGC", "G21 F100\nG1 X1\nM2\n");
+  const std::string good = gcode_interpreter_write_temp("good.NGC", "G21 F100\nG1 X1\nM2\n");
   auto ok = pkm::program::load_part_program(good);
   ASSERT_TRUE(ok.ok()) << ok.error().message;
   EXPECT_EQ(ok->moves.size(), 1u);
@@ -600,7 +625,7 @@ TEST(GcodeLoadPartProgram, UnreadableFileIsAnIoErrorWithThePath) {
 
 TEST(GcodeLoadPartProgram, ClExtensionsGoToTheClReader) {
   // Not G-code: the CL reader takes .cl/.cls/.apt files, so a G-code error message must not appear.
-  const std::string path = write_temp("prog.cls", "G1 X1.2.3\n");
+  const std::string path = gcode_interpreter_write_temp("prog.cls", "G1 X1.2.3\n");
   auto result = pkm::program::load_part_program(path);
   if (!result.ok()) {
     EXPECT_EQ(result.error().message.find("bad number 'X1.2.3'"), std::string::npos);

@@ -29,19 +29,19 @@ using pkm::program::write_gcode;
 
 namespace fs = std::filesystem;
 
-fs::path conformance_dir() {
+fs::path gcode_writer_conformance_dir() {
   return pkm::test::source_path("tests/program/conformance");
 }
 
 InterpretOptions with_tool_table() {
   InterpretOptions options;
-  options.tool_table_path = (conformance_dir() / "tools.tbl").string();
+  options.tool_table_path = (gcode_writer_conformance_dir() / "tools.tbl").string();
   return options;
 }
 
-std::vector<fs::path> conformance_programs() {
+std::vector<fs::path> gcode_writer_conformance_programs() {
   std::vector<fs::path> paths;
-  for (const auto& entry : fs::directory_iterator(conformance_dir()))
+  for (const auto& entry : fs::directory_iterator(gcode_writer_conformance_dir()))
     if (entry.path().extension() == ".ngc") paths.push_back(entry.path());
   std::sort(paths.begin(), paths.end());
   return paths;
@@ -113,7 +113,7 @@ const CanonicalMove* first_with_tool_length(const CanonicalProgram& program) {
 int round_trip_conformance(const GcodeWriteOptions& options, double tolerance) {
   int compared = 0;
   int refused = 0;
-  for (const fs::path& path : conformance_programs()) {
+  for (const fs::path& path : gcode_writer_conformance_programs()) {
     const std::string name = path.filename().string();
     auto original = pkm::program::load_part_program(path.string(), with_tool_table());
     if (!original) {

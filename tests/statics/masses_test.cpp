@@ -12,16 +12,6 @@ namespace {
 using test::appended_line;
 using test::kCh5HexapodText;
 
-std::string masses_error(const std::string& base, const std::string& extra) {
-  auto m = parse_machine_text(base + extra, "test.yaml");
-  if (m) {
-    ADD_FAILURE() << "expected an error for:\n" << extra;
-    return {};
-  }
-  EXPECT_EQ(m.error().code, ErrorCode::bad_input);
-  return m.error().message;
-}
-
 const char* kPlanar3Text = R"(type: planar3
 base_joints: [[0.0, 200.0], [-173.20508075688772, -100.0], [173.20508075688772, -100.0]]
 platform_joints: [[0.0, 100.0], [-86.60254037844386, -50.0], [86.60254037844386, -50.0]]
@@ -68,7 +58,8 @@ TEST(Masses, MissingKeysKeepTheirDefaults) {
 
 TEST(Masses, NegativeMassNamesFileLineAndKey) {
   const int line = appended_line(kCh5HexapodText) + 2;
-  const std::string message = masses_error(kCh5HexapodText, "masses:\n  platform_kg: 10\n  strut_kg: -3\n");
+  const std::string message =
+      test::appended_section_error(kCh5HexapodText, "masses:\n  platform_kg: 10\n  strut_kg: -3\n");
   EXPECT_NE(message.find("test.yaml:" + std::to_string(line) + ": masses.strut_kg"), std::string::npos)
       << message;
   EXPECT_NE(message.find("negative"), std::string::npos) << message;
@@ -76,20 +67,20 @@ TEST(Masses, NegativeMassNamesFileLineAndKey) {
 
 TEST(Masses, WrongVectorLengthNamesTheKey) {
   const int line = appended_line(kCh5HexapodText) + 1;
-  std::string message = masses_error(kCh5HexapodText, "masses:\n  platform_com_mm: [1, 2]\n");
+  std::string message = test::appended_section_error(kCh5HexapodText, "masses:\n  platform_com_mm: [1, 2]\n");
   EXPECT_NE(message.find("test.yaml:" + std::to_string(line) + ": masses.platform_com_mm"), std::string::npos)
       << message;
   EXPECT_NE(message.find("expected 3 numbers, got 2"), std::string::npos) << message;
-  message = masses_error(kCh5HexapodText, "masses:\n  gravity_mm_s2: [0, 0, -9810, 1]\n");
+  message = test::appended_section_error(kCh5HexapodText, "masses:\n  gravity_mm_s2: [0, 0, -9810, 1]\n");
   EXPECT_NE(message.find(": masses.gravity_mm_s2: expected 3 numbers, got 4"), std::string::npos) << message;
 }
 
 TEST(Masses, NotANumberUnknownKeyOrNotAMapping) {
-  std::string message = masses_error(kCh5HexapodText, "masses:\n  platform_kg: heavy\n");
+  std::string message = test::appended_section_error(kCh5HexapodText, "masses:\n  platform_kg: heavy\n");
   EXPECT_NE(message.find("masses.platform_kg: expected a number, got 'heavy'"), std::string::npos) << message;
-  message = masses_error(kCh5HexapodText, "masses:\n  strut_mass: 3\n");
+  message = test::appended_section_error(kCh5HexapodText, "masses:\n  strut_mass: 3\n");
   EXPECT_NE(message.find("masses.strut_mass: unknown key"), std::string::npos) << message;
-  message = masses_error(kCh5HexapodText, "masses: 60\n");
+  message = test::appended_section_error(kCh5HexapodText, "masses: 60\n");
   EXPECT_NE(message.find("masses: expected a mapping"), std::string::npos) << message;
 }
 
@@ -97,7 +88,8 @@ TEST(Masses, PlanarMachinesMayGiveTheCentreOfMassAsXY) {
   const Machine m = test::machine_from_text(std::string(kPlanar3Text) +
                                             "masses: {platform_kg: 5, platform_com_mm: [10, -4]}\n");
   EXPECT_EQ(m.masses.platform_com_mm, Eigen::Vector3d(10, -4, 0));
-  const std::string message = masses_error(kPlanar3Text, "masses: {platform_com_mm: [1, 2, 3, 4]}\n");
+  const std::string message =
+      test::appended_section_error(kPlanar3Text, "masses: {platform_com_mm: [1, 2, 3, 4]}\n");
   EXPECT_NE(message.find("expected [x, y] or [x, y, z], got 4 numbers"), std::string::npos) << message;
 }
 
