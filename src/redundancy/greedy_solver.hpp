@@ -16,7 +16,7 @@ namespace pkm::redundancy {
 struct GreedySettings {
   double grid_step_deg = 0.25;    ///< one free coordinate: grid spacing over the bounds
   int golden_iterations = 40;     ///< refinement of the best grid value
-  double tolerance_rad = 1e-7;    ///< three: the simplex stops when the values move less than this
+  double tolerance_rad = 1e-6;    ///< three: the simplex stops when the values move less than this
   double initial_step_deg = 0.1;  ///< three: size of the first simplex (steps change the angles by ~0.1°)
   int restarts = 2;               ///< three: runs of the simplex, each from the last one's result
   int max_evaluations = 2000;     ///< three: evaluations per run

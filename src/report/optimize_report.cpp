@@ -127,12 +127,16 @@ Result<nlohmann::json> optimize_report(const Machine& machine, const program::Ca
                 fmt::format("{} → {} ({:.1f} % of the time at strut speed limits)",
                             with_unit(number("const_sum_mm"), unit), with_unit(number("opt_sum_mm"), unit),
                             100.0 * number("opt_sum_mm") / number("const_sum_mm"))));
-  table.push_back(table_row("Peak force held constant → chosen",
-                            fmt::format("{} → {}", with_unit(number("peak_force_const_N"), "N"),
-                                        with_unit(number("peak_force_opt_N"), "N"))));
-  table.push_back(table_row("Energy held constant → chosen",
-                            fmt::format("{} → {}", with_unit(number("energy_const_J"), "J"),
-                                        with_unit(number("energy_opt_J"), "J"))));
+  if (forces.peak(0) > 0.0 || forces.peak(1) > 0.0) {
+    table.push_back(table_row("Peak force held constant → chosen",
+                              fmt::format("{} → {}", with_unit(number("peak_force_const_N"), "N"),
+                                          with_unit(number("peak_force_opt_N"), "N"))));
+    table.push_back(table_row("Energy held constant → chosen",
+                              fmt::format("{} → {}", with_unit(number("energy_const_J"), "J"),
+                                          with_unit(number("energy_opt_J"), "J"))));
+  } else {
+    table.push_back(table_row("Strut forces and energy", "no load and no masses: none (--load, masses:)"));
+  }
   table.push_back(table_row("Duration at the programmed feed", with_unit(time_s.back(), "s")));
   table.push_back(table_row("Output program", output_file));
   table.push_back(table_row("Program", program.source));

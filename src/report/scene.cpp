@@ -4,11 +4,39 @@
 #include <cmath>
 
 #include "core/units.hpp"
+#include "machine/planar2.hpp"
+#include "machine/planar3.hpp"
 #include "report/decimator.hpp"
 
 namespace pkm::report {
 
 namespace {
+
+/// The struts to draw at `pose`: the mechanism's passive joints, or for the planar mechanisms (whose pin
+/// joints strut_joints() leaves out: they have no swing limit) their base joints and platform joints in z =
+/// 0.
+int drawn_struts(const Mechanism& mechanism, const Pose& pose, StrutJointPoints& joints) {
+  const int n = mechanism.strut_joints(pose, joints);
+  if (n != 0) return n;
+  if (const auto* planar3 = dynamic_cast<const Planar3*>(&mechanism)) {
+    const Planar3Geometry& g = planar3->geometry();
+    for (int j = 0; j < 3; ++j) {
+      joints.base_mm[j] = Eigen::Vector3d(g.base_joints_mm[j].x(), g.base_joints_mm[j].y(), 0.0);
+      joints.platform_mm[j] =
+          pose.to_base(Eigen::Vector3d(g.platform_joints_mm[j].x(), g.platform_joints_mm[j].y(), 0.0));
+    }
+    return 3;
+  }
+  if (const auto* planar2 = dynamic_cast<const Planar2*>(&mechanism)) {
+    const Planar2Geometry& g = planar2->geometry();
+    for (int j = 0; j < 2; ++j) {
+      joints.base_mm[j] = Eigen::Vector3d(g.base_joints_mm[j].x(), g.base_joints_mm[j].y(), 0.0);
+      joints.platform_mm[j] = pose.position_mm;
+    }
+    return 2;
+  }
+  return 0;
+}
 
 nlohmann::json point_json(const Eigen::Vector3d& p) {
   // 0.1 µm is far below anything the view can show; fewer digits keep the page small.
@@ -19,7 +47,7 @@ nlohmann::json point_json(const Eigen::Vector3d& p) {
 /// The base joints at home, ordered round their centroid: the base outline.
 nlohmann::json base_outline(const Machine& machine) {
   StrutJointPoints joints;
-  const int n = machine.mechanism->strut_joints(machine.mechanism->home(), joints);
+  const int n = drawn_struts(*machine.mechanism, machine.mechanism->home(), joints);
   nlohmann::json outline = nlohmann::json::array();
   if (n <= 0) return outline;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -83,7 +111,7 @@ void SceneBuilder::add_frame(double time_s, int line, const Pose& pose,
   frame_tool_.push_back(point_json(pose.position_mm));
   frame_axis_.push_back(point_json(pose.rotation.col(2)));
   StrutJointPoints joints;
-  const int n = machine_.mechanism->strut_joints(pose, joints);
+  const int n = drawn_struts(*machine_.mechanism, pose, joints);
   nlohmann::json struts = nlohmann::json::array();
   for (int j = 0; j < n; ++j)
     struts.push_back(
