@@ -1,8 +1,10 @@
 // pkm interpolate PROGRAM --machine M.yaml --period-ms H --step-mm D
 //   --method exact|carrier|carrier-corrected|estimating [--rho-max MM] --out DIR [--json]:
 // plans the part program (as pkm plan), then turns the planned motion into whole drive steps per servo period
-// (spec ch5): DIR/steps.csv and DIR/steps.bin (per period and actuator: signed steps and position code) and
-// DIR/summary.json with the contour error the drives would produce. Nothing is left in DIR if the run fails.
+// (spec ch5): DIR/steps.csv and DIR/steps.bin (per period and actuator: signed steps and position code),
+// DIR/contour.csv (per period: the contour error and where the tool is) and DIR/summary.json with the contour
+// error the drives would produce; --report FILE adds the HTML report. Nothing is left in DIR if the run
+// fails.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -164,7 +166,8 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
   cmd->add_option("program", args->program, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
       ->required();
   cmd->add_option("--machine", args->machine, "machine file (YAML)")->required();
-  cmd->add_option("--out", args->out, "directory for steps.csv, steps.bin and summary.json")->required();
+  cmd->add_option("--out", args->out, "directory for steps.csv, steps.bin, contour.csv and summary.json")
+      ->required();
   auto* period_option =
       cmd->add_option("--period-ms", args->period_ms,
                       "servo (carrier) period h, ms (0.1…20; default drives.period_ms, else 1)");

@@ -1,8 +1,9 @@
 #pragma once
 // DIR/contour.csv of `pkm interpolate`: per servo period, what the drives' whole steps did to the tool — the
 // largest contour error in the period, where FK puts the tool at its end and where the programmed path is
-// then (base frame, mm). The report (report/run_report.hpp) draws the executed path and its error from it;
-// steps.csv stays the drives' own record. Staged like the other outputs: no file unless the run succeeds.
+// then (base frame, mm). The report (report/interpolate_report.cpp) draws the executed path and its error
+// from it; steps.csv stays the drives' own record. Staged like the other outputs: no file unless the run
+// succeeds.
 #include <Eigen/Core>
 #include <string>
 

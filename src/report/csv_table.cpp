@@ -41,10 +41,11 @@ Result<int> CsvReader::require(std::string_view name) const {
 }
 
 bool CsvReader::next(std::vector<double>& row) {
-  if (error_ || !std::getline(in_, text_)) return false;
-  ++line_;
-  if (!text_.empty() && text_.back() == '\r') text_.pop_back();
-  if (text_.empty()) return next(row);  // a trailing empty line
+  do {  // empty lines (a trailing one) are skipped
+    if (error_ || !std::getline(in_, text_)) return false;
+    ++line_;
+    if (!text_.empty() && text_.back() == '\r') text_.pop_back();
+  } while (text_.empty());
   row.assign(columns_.size(), std::numeric_limits<double>::quiet_NaN());
   const char* p = text_.data();
   const char* const end = p + text_.size();

@@ -45,7 +45,7 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
                     "of another machine?)",
                     files.directory, unit));
   }
-  auto rows = count_csv_rows(steps_file);
+  auto rows = expected_rows(files.summary, "periods", steps_file);
   if (!rows) return rows.error();
   CsvReader steps, contour;
   if (Status opened = steps.open(steps_file); !opened) return opened.error();

@@ -66,7 +66,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   const fs::path dir(files.directory);
   const std::string path_file = (dir / "path.csv").string();
   const std::string actuator_file = (dir / "actuators.csv").string();
-  auto rows = count_csv_rows(path_file);
+  auto rows = expected_rows(files.summary, "ticks", path_file);
   if (!rows) return rows.error();
   CsvReader path, actuators;
   if (Status opened = path.open(path_file); !opened) return opened.error();
@@ -106,6 +106,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   long count = 0;
   double t_prev = 0.0, last_frame_time = -1.0;
   Pose pose;
+  Eigen::Vector3d abc_deg = Eigen::Vector3d::Zero();
   int line = 0;
   double t = 0.0;
   for (;;) {
@@ -146,13 +147,14 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
         Eigen::Vector3d(prow[static_cast<std::size_t>(column[3])], prow[static_cast<std::size_t>(column[4])],
                         prow[static_cast<std::size_t>(column[5])]) +
         machine.motion.program_origin_mm;
-    pose.rotation = rotation_from_angles(
-        AngleConvention::abc, Eigen::Vector3d(rad_from_deg(prow[static_cast<std::size_t>(column[6])]),
-                                              rad_from_deg(prow[static_cast<std::size_t>(column[7])]),
-                                              rad_from_deg(prow[static_cast<std::size_t>(column[8])])));
+    abc_deg =
+        Eigen::Vector3d(prow[static_cast<std::size_t>(column[6])], prow[static_cast<std::size_t>(column[7])],
+                        prow[static_cast<std::size_t>(column[8])]);
     // The tool is where the drives put it at every tick; between ticks it deviates by the path error.
     scene.add_path_point(pose.position_mm, pose.position_mm, error);
     if (scene.frame_due(t)) {
+      // The orientation only matters for the frames (a rotation per tick would cost as much as the parsing).
+      pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
       scene.add_frame(t, line, pose, closeness);
       last_frame_time = t;
     }
@@ -162,7 +164,10 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     ++count;
   }
   if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no rows", path_file));
-  if (t > last_frame_time) scene.add_frame(t, line, pose, closeness);  // the end of the run is a frame
+  if (t > last_frame_time) {  // the end of the run is a frame
+    pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
+    scene.add_frame(t, line, pose, closeness);
+  }
   for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
 
   const std::vector<std::string> names = actuator_names(n);

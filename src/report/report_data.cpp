@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "machine/machine_file.hpp"
+#include "report/csv_table.hpp"
 #include "report/report_html.hpp"
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
@@ -27,6 +28,12 @@ nlohmann::json chart_json(const std::string& id, const std::string& title, const
   }
   return {{"id", id},          {"title", title},   {"y_label", y_label},         {"y_unit", y_unit},
           {"x", std::move(x)}, {"series", series}, {"limits", std::move(limits)}};
+}
+
+Result<long> expected_rows(const nlohmann::json& summary, const char* key, const std::string& csv_file) {
+  if (summary.contains(key) && summary[key].is_number_integer() && summary[key].get<long>() > 0)
+    return summary[key].get<long>();
+  return count_csv_rows(csv_file);
 }
 
 nlohmann::json limit_line(const std::string& label, double value) {

@@ -38,6 +38,9 @@ nlohmann::json chart_json(const std::string& id, const std::string& title, const
                           const std::string& y_unit, const MinMaxDecimator& data,
                           const std::vector<std::string>& names, bool with_path_length,
                           nlohmann::json limits = nlohmann::json::array());
+/// How many rows `csv_file` has: the summary's count under `key` (ticks, periods) when it gives one, so that
+/// sizing the decimation costs no extra pass over a file of gigabytes; otherwise counted.
+Result<long> expected_rows(const nlohmann::json& summary, const char* key, const std::string& csv_file);
 /// A horizontal line on a chart.
 nlohmann::json limit_line(const std::string& label, double value);
 /// Lines at the ends of the actuators' travel ("max 900 mm", "min 350 mm"), where the machine gives them.

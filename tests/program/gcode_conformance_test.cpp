@@ -4,6 +4,7 @@
 // line, ARC_FEED → arc, DWELL → dwell, with end points, arc centres, turns and direction, and the feed in
 // effect (SET_FEED_RATE). rs274 prints in the program's units (inches after G20) with 4 decimals.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,8 +51,11 @@ std::vector<std::string> gcode_conformance_conformance_programs() {
 std::string tool_table_in_mm() {
   static const std::string path = [] {
     std::istringstream in(read_all(gcode_conformance_conformance_dir() / "tools.tbl"));
+    // ctest runs the programs in parallel, each rewriting this table: each writes its own copy and renames it
+    // into place, so no process reads a table another is still writing.
     const fs::path out_path = fs::temp_directory_path() / "pkm_gcode_conformance_tools_mm.tbl";
-    std::ofstream out(out_path);
+    const fs::path staged = out_path.string() + "." + std::to_string(getpid());
+    std::ofstream out(staged);
     std::string line;
     while (std::getline(in, line)) {
       const std::string data = line.substr(0, line.find(';'));
@@ -66,6 +70,8 @@ std::string tool_table_in_mm() {
       }
       out << '\n';
     }
+    out.close();
+    fs::rename(staged, out_path);
     return out_path.string();
   }();
   return path;
