@@ -40,4 +40,13 @@ void print_json(const nlohmann::json& json) {
   std::cout << json.dump(2) << "\n";
 }
 
+void draw_progress(double fraction) {
+  constexpr int width = 40;
+  const int filled = static_cast<int>(fraction * width);
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.append(static_cast<std::size_t>(width - filled), '.');
+  std::cerr << fmt::format("\r  [{}] {:3.0f} %", bar, fraction * 100.0) << (fraction >= 1.0 ? "\n" : "")
+            << std::flush;
+}
+
 }  // namespace pkm::cli

@@ -64,15 +64,6 @@ void take_drive_defaults(InterpolateArguments& args, const Machine& machine) {
     args.max_step_rate_hz = *machine.drives.max_step_rate_hz;
 }
 
-void draw_interpolation_progress(double fraction) {
-  constexpr int width = 40;
-  const int filled = static_cast<int>(fraction * width);
-  std::string bar(static_cast<std::size_t>(filled), '#');
-  bar.append(static_cast<std::size_t>(width - filled), '.');
-  std::cerr << fmt::format("\r  [{}] {:3.0f} %", bar, fraction * 100.0) << (fraction >= 1.0 ? "\n" : "")
-            << std::flush;
-}
-
 Result<interpolation::InterpolateOptions> interpolate_options(const InterpolateArguments& args,
                                                               const Machine& machine) {
   interpolation::InterpolateOptions options;
@@ -267,7 +258,7 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
     interpolation::StepsCsvWriter csv;
     interpolation::StepStreamWriter binary;
     if (isatty(STDERR_FILENO) && plan->duration_s / options->period_s > 200000)
-      options->progress = draw_interpolation_progress;
+      options->progress = draw_progress;
     auto start_steps = interpolation::start_positions(*machine, plan->path, options->step_mm);
     if (!start_steps) {
       exit_code = report_error("interpolate", start_steps.error());

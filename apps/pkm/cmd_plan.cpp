@@ -19,18 +19,7 @@
 
 namespace pkm::cli {
 
-namespace {
-
-void draw_progress(double fraction) {
-  constexpr int width = 40;
-  const int filled = static_cast<int>(fraction * width);
-  std::string bar(static_cast<std::size_t>(filled), '#');
-  bar.append(static_cast<std::size_t>(width - filled), '.');
-  std::cerr << fmt::format("\r  [{}] {:3.0f} %", bar, fraction * 100.0) << (fraction >= 1.0 ? "\n" : "")
-            << std::flush;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void add_plan_command(CLI::App& app, int& exit_code) {
   auto* cmd =
