@@ -6,13 +6,15 @@
 # Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck),
 # make conformance (the G-code golden files against LinuxCNC's rs274), make browser-test (the HTML report in
 # headless Chromium), make screenshots (the same, saving docs/images/report-*.png),
+# make fuzz (the libFuzzer harnesses in fuzz/, built with clang + ASan/UBSan in build-fuzz/, FUZZ_SECONDS each),
 # make bench, make format, make tidy.
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
 PROGRAM ?= examples/programs/pocket.ngc
+FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots bench format tidy clean
+.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots fuzz bench format tidy clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -38,7 +40,7 @@ sanitize: deps
 
 # Formatting must match .clang-format; cppcheck must find nothing.
 lint: deps
-	@find src apps tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
+	@find src apps tests bench fuzz -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
 	@cppcheck --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
 		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps
 	@echo "lint: clean"
@@ -58,16 +60,26 @@ screenshots: build
 	@bash scripts/install-deps.sh --with-browser
 	node tests/browser/report_browser_test.mjs --pkm $(BUILD)/pkm --out $(BUILD)/browser-test --screenshots docs/images
 
+# Each harness of fuzz/ for FUZZ_SECONDS, one after the other, on its corpus in build-fuzz/corpus/ (fuzz/run.sh);
+# fails and prints the reproducer on a crash, leak, UB or timeout. Only the harnesses and the library are built,
+# at -O1 with assertions on, so that a broken contract stops the run too.
+fuzz:
+	@bash scripts/install-deps.sh --with-fuzz
+	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+		-DPKM_FUZZ=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON > /dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target pkm_fuzzers
+	@bash fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+
 bench: deps
 	@cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DPKM_UNITY_LIB=ON -DPKM_BUILD_BENCH=ON > /dev/null
 	@cmake --build build-bench -j $(JOBS)
 	@for b in build-bench/bench/*; do $$b --benchmark_min_time=0.2; done
 
 format:
-	@find src apps tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+	@find src apps tests bench fuzz -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
 
 tidy: build
 	@find src apps -name '*.cpp' | xargs clang-tidy -p $(BUILD) --quiet
 
 clean:
-	rm -rf build build-asan build-bench
+	rm -rf build build-asan build-bench build-fuzz

@@ -4,6 +4,7 @@
 #   --with-linuxcnc  also LinuxCNC's standalone G-code interpreter rs274 (package linuxcnc-uspace), the peer the
 #                    conformance suite is checked against (scripts/regen-rs274-golden.sh)
 #   --with-browser   also Debian's Chromium, for the report's browser test (tests/browser/)
+#   --with-fuzz      also clang with libFuzzer's runtime and llvm-symbolizer, for make fuzz (fuzz/)
 # Node.js and npm build the HTML report's page (web/); a machine that has them already (any source) keeps its own.
 set -euo pipefail
 packages=(
@@ -14,6 +15,7 @@ packages=(
 )
 if [ "${1:-}" = "--with-linuxcnc" ]; then packages+=(linuxcnc-uspace); fi
 if [ "${1:-}" = "--with-browser" ]; then packages+=(chromium); fi
+if [ "${1:-}" = "--with-fuzz" ]; then packages+=(clang libclang-rt-dev llvm); fi
 if ! command -v node > /dev/null || ! command -v npm > /dev/null; then packages+=(nodejs npm); fi
 missing=()
 for p in "${packages[@]}"; do

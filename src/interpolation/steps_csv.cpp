@@ -103,7 +103,11 @@ Status StepsCsvWriter::finish() {
 Result<StepsCsv> read_steps_csv(const std::string& path) {
   auto text = program::read_text_file(path, "the steps file");
   if (!text) return text.error();
-  program::TextLines lines(*text);
+  return parse_steps_csv(*text, path);
+}
+
+Result<StepsCsv> parse_steps_csv(std::string_view text, const std::string& path) {
+  program::TextLines lines(text);
   std::string_view line;
   int number = 0;
   auto fail = [&](const std::string& what) {

@@ -61,4 +61,8 @@ struct StepsCsv {
 /// Reads a steps.csv; errors name the file and the line.
 Result<StepsCsv> read_steps_csv(const std::string& path);
 
+/// The same from the file's text (read_steps_csv reads the file and calls
+/// this; the fuzz harness feeds it bytes); `source_name` is used in messages.
+Result<StepsCsv> parse_steps_csv(std::string_view text, const std::string& source_name);
+
 }  // namespace pkm::interpolation

@@ -1,0 +1,13 @@
+// libFuzzer harness: G-code text through the interpreter (program::interpret_gcode), as pkm interpret and
+// plan read a .ngc. An exception escaping the library ends the run as a crash: bad input must come back as an
+// error.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "fuzz_entries.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  pkm::fuzz::run_gcode(std::string_view(reinterpret_cast<const char*>(data), size));
+  return 0;
+}
