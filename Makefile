@@ -65,7 +65,7 @@ screenshots: build
 # at -O1 with assertions on, so that a broken contract stops the run too.
 fuzz:
 	@bash scripts/install-deps.sh --with-fuzz
-	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
 		-DPKM_FUZZ=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON > /dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target pkm_fuzzers
 	@bash fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
