@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/output_set.hpp"
 #include "machine/machine_file.hpp"
 
 namespace pkm::cli {
@@ -11,8 +12,13 @@ namespace pkm::cli {
 /// mode, 4 singular or not converged. CLI11 usage errors keep CLI11's own non-zero codes.
 int exit_code_for(ErrorCode code);
 
-/// Prints "pkm <command>: error: <message>" on stderr and returns the exit code for the error.
+/// Prints "pkm <command>: error: <message>" on stderr, control bytes and broken UTF-8 escaped, and returns
+/// the exit code for the error.
 int report_error(const std::string& command, const Error& error);
+
+/// With --report FILE (`report_file` not empty): the HTML report of the run staged in `outputs`, read back
+/// from its staging folder as `pkm report` reads a run, written as one more member of the set.
+Status stage_directory_report(OutputSet& outputs, const std::string& report_file);
 
 /// Loads a machine file or reports why not.
 Result<Machine> load_machine_or_report(const std::string& path);

@@ -6,6 +6,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "kinematics/kinematics_timing.hpp"
+#include "number_options.hpp"
 
 namespace pkm::cli {
 
@@ -17,12 +18,16 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   auto json = std::make_shared<bool>(false);
   auto options = std::make_shared<KinematicsTimingOptions>();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
+  const NumberRange pose_count{1.0, 1e8, true, true, "", true};
   cmd->add_option("--ik-poses", options->ik_poses, "random poses for IK (±20 mm, ±10°)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in(pose_count));
   cmd->add_option("--path-poses", options->path_poses, "poses along the warm FK path (0.1 mm steps)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in(pose_count));
   cmd->add_option("--cold-poses", options->cold_poses, "random poses for cold FK from home (±50 mm, ±20°)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in(pose_count));
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
     auto machine = load_machine_or_report(*machine_path);

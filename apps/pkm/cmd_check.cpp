@@ -11,6 +11,7 @@
 #include "kinematics/conditioning.hpp"
 #include "kinematics/mobility.hpp"
 #include "machine/pose_input.hpp"
+#include "number_options.hpp"
 
 namespace pkm::cli {
 
@@ -21,10 +22,14 @@ void add_check_command(CLI::App& app, int& exit_code) {
   auto half_range_mm = std::make_shared<double>(50.0);
   auto half_angle_deg = std::make_shared<double>(10.0);
   cmd->add_option("machine", *machine_path, "machine file (YAML)")->required();
+  // Beyond these the sample says nothing about the machine: no machine pkm models moves metres or turns
+  // its platform over.
   cmd->add_option("--range-mm", *half_range_mm, "half-range of the translation sample around home, mm")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in({0.0, 10000.0, true, true, "mm"}));
   cmd->add_option("--range-deg", *half_angle_deg, "half-range of the angle sample around home, deg")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in({0.0, 180.0, true, true, "deg"}));
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
     auto machine = load_machine_or_report(*machine_path);

@@ -30,25 +30,42 @@ nlohmann::json vector_json(const Eigen::Vector3d& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
 }
 
-nlohmann::json moves_json(const program::CanonicalProgram& program) {
-  nlohmann::json moves = nlohmann::json::array();
-  for (const program::CanonicalMove& m : program.moves) {
-    nlohmann::json j;
-    j["line"] = m.line;
-    j["kind"] = kind_name(m.kind);
-    j["end"] = {m.end_mm.x(),      m.end_mm.y(),      m.end_mm.z(),
-                m.end_abc_deg.x(), m.end_abc_deg.y(), m.end_abc_deg.z()};
-    if (m.kind == program::MoveKind::arc) {
-      j["center"] = vector_json(m.center_mm);
-      j["normal"] = vector_json(m.normal);
-      j["turns"] = m.turns;
-    }
-    j["feed_mm_min"] = m.feed_mm_min;
-    if (m.inverse_time) j["inverse_time_per_min"] = m.inverse_time_per_min;
-    if (m.kind == program::MoveKind::dwell) j["dwell_s"] = m.dwell_s;
-    moves.push_back(std::move(j));
+nlohmann::json move_json(const program::CanonicalMove& m) {
+  nlohmann::json j;
+  j["line"] = m.line;
+  j["kind"] = kind_name(m.kind);
+  j["end"] = {m.end_mm.x(),      m.end_mm.y(),      m.end_mm.z(),
+              m.end_abc_deg.x(), m.end_abc_deg.y(), m.end_abc_deg.z()};
+  if (m.kind == program::MoveKind::arc) {
+    j["center"] = vector_json(m.center_mm);
+    j["normal"] = vector_json(m.normal);
+    j["turns"] = m.turns;
   }
-  return moves;
+  j["feed_mm_min"] = m.feed_mm_min;
+  if (m.inverse_time) j["inverse_time_per_min"] = m.inverse_time_per_min;
+  if (m.kind == program::MoveKind::dwell) j["dwell_s"] = m.dwell_s;
+  return j;
+}
+
+// The array as json.dump(2) would print it, one move at a time: a JSON document of every move of a
+// 3-million-line program took more than 3 GB; this needs one move's worth.
+void print_moves_json(const program::CanonicalProgram& program) {
+  if (program.moves.empty()) {
+    std::cout << "[]\n";
+    return;
+  }
+  std::cout << "[\n";
+  for (std::size_t i = 0; i < program.moves.size(); ++i) {
+    std::string element = move_json(program.moves[i]).dump(2);
+    std::string indented = "  ";
+    indented.reserve(element.size() + element.size() / 8);
+    for (const char c : element) {
+      indented.push_back(c);
+      if (c == '\n') indented.append("  ");
+    }
+    std::cout << indented << (i + 1 < program.moves.size() ? ",\n" : "\n");
+  }
+  std::cout << "]\n";
 }
 
 void print_table(const program::CanonicalProgram& program) {
@@ -105,7 +122,7 @@ void add_interpret_command(CLI::App& app, int& exit_code) {
       return;
     }
     if (*json) {
-      print_json(moves_json(*program));
+      print_moves_json(*program);
     } else {
       print_table(*program);
     }

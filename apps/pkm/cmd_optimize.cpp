@@ -9,6 +9,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
+#include "core/output_set.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/gcode_writer.hpp"
 #include "program/part_program.hpp"
@@ -113,18 +114,22 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("optimize", text.error());
       return;
     }
-    if (Status written = write_file_atomically(*out_path, *text); !written) {
+    // The program and the report replace the previous ones together or not at all.
+    OutputSet outputs;
+    auto staged_program = outputs.stage_file(*out_path);
+    Status written = staged_program ? write_file_atomically(*staged_program, *text) : staged_program.error();
+    summary["out"] = *out_path;
+    if (written && !report_file->empty()) {
+      auto staged_report = outputs.stage_file(*report_file);
+      auto data = report::optimize_report(*machine, *program, *result, *options, summary, *out_path);
+      written = !staged_report ? Status(staged_report.error())
+                : !data        ? Status(data.error())
+                               : report::write_report_html(*staged_report, *data);
+    }
+    if (written) written = outputs.commit();
+    if (!written) {
       exit_code = report_error("optimize", written.error());
       return;
-    }
-    summary["out"] = *out_path;
-    if (!report_file->empty()) {
-      auto data = report::optimize_report(*machine, *program, *result, *options, summary, *out_path);
-      Status written = data ? report::write_report_html(*report_file, *data) : Status(data.error());
-      if (!written) {
-        exit_code = report_error("optimize", written.error());
-        return;
-      }
     }
     if (*json) {
       print_json(summary);

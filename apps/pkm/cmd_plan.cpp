@@ -11,6 +11,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "number_options.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/plan_output.hpp"
 #include "program/part_program.hpp"
@@ -19,7 +20,12 @@
 
 namespace pkm::cli {
 
-namespace {}  // namespace
+namespace {
+
+// A blend tolerance beyond this is a typo (a tenth of a metre around every corner), not a wish.
+constexpr double kMaxToleranceMm = 100.0;
+
+}  // namespace
 
 void add_plan_command(CLI::App& app, int& exit_code) {
   auto* cmd =
@@ -31,17 +37,22 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto json = std::make_shared<bool>(false);
   auto no_error = std::make_shared<bool>(false);
   auto options = std::make_shared<planning::PlanOptions>();
-  auto tolerance = std::make_shared<double>(-1.0);
+  auto tolerance = std::make_shared<double>(0.0);
   auto report_file = std::make_shared<std::string>();
   cmd->add_option("program", *program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
   cmd->add_option("--out", *out_dir, "directory for actuators.csv, path.csv and summary.json")->required();
-  cmd->add_option("--rate", options->rate_hz, "servo rate, Hz")->capture_default_str();
-  cmd->add_option("--override", options->override_pct, "operator feed override, % (0…200)")
-      ->capture_default_str();
-  cmd->add_option("--tolerance", *tolerance,
-                  "corner blending tolerance, mm (0: exact stop at corners; default: the machine file's)");
+  cmd->add_option("--rate", options->rate_hz, "servo rate, Hz")
+      ->capture_default_str()
+      ->check(number_in({1.0, 100000.0, true, true, "Hz"}));
+  cmd->add_option("--override", options->override_pct, "operator feed override, % (> 0 and ≤ 200)")
+      ->capture_default_str()
+      ->check(number_in({0.0, 200.0, false, true, "%"}));
+  auto* tolerance_option =
+      cmd->add_option("--tolerance", *tolerance,
+                      "corner blending tolerance, mm (0: exact stop at corners; default: the machine file's)")
+          ->check(number_in({0.0, kMaxToleranceMm, true, true, "mm"}));
   cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
   cmd->add_flag("--no-path-error", *no_error, "skip the forward-kinematics check of the path error (faster)");
   cmd->add_flag("--json", *json, "print the summary as JSON");
@@ -84,7 +95,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
       *program = std::move(optimized->program);
     }
     planning::PlanOptions plan_options = *options;
-    if (*tolerance >= 0.0) plan_options.path_tolerance_mm = *tolerance;
+    if (tolerance_option->count() > 0) plan_options.path_tolerance_mm = *tolerance;
     const auto started = std::chrono::steady_clock::now();
     auto plan = planning::plan_motion(*machine, *program, plan_options);
     if (!plan) {
@@ -98,16 +109,24 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     output.evaluate_path_error = !*no_error;
     if (isatty(STDERR_FILENO) && plan->duration_s * plan_options.rate_hz > 200000)
       output.progress = draw_progress;
-    auto run = planning::write_plan_outputs(*plan, *machine, *out_dir, output);
+    // The CSVs, the summary and the report replace the previous run's together or not at all.
+    OutputSet outputs;
+    if (Status used = outputs.use_directory(*out_dir); !used) {
+      exit_code = report_error("plan", used.error());
+      return;
+    }
+    auto run = planning::write_plan_outputs(*plan, *machine, outputs, output);
     if (!run) {
       exit_code = report_error("plan", run.error());
       return;
     }
-    if (!report_file->empty()) {
-      if (Status written = report::write_directory_report(*out_dir, *report_file); !written) {
-        exit_code = report_error("plan", written.error());
-        return;
-      }
+    if (Status written = stage_directory_report(outputs, *report_file); !written) {
+      exit_code = report_error("plan", written.error());
+      return;
+    }
+    if (Status committed = outputs.commit(); !committed) {
+      exit_code = report_error("plan", committed.error());
+      return;
     }
     nlohmann::json summary = planning::summary_json(*plan, *machine, *run);
     summary["planning_time_s"] = planning_s;

@@ -18,6 +18,7 @@
 #include "interpolation/realtime_player.hpp"
 #include "interpolation/step_stream.hpp"
 #include "interpolation/steps_csv.hpp"
+#include "number_options.hpp"
 
 namespace pkm::cli {
 
@@ -99,6 +100,11 @@ nlohmann::json play_json(const interpolation::PlayerStatistics& s,
           {"mean_lateness_us", s.mean_lateness_us},
           {"p99_lateness_us", s.p99_lateness_us},
           {"min_lateness_us", s.min_lateness_us},
+          {"lateness_count", s.lateness.count},
+          {"lateness_us_p50", s.lateness.p50_us},
+          {"lateness_us_p99", s.lateness.p99_us},
+          {"lateness_us_p99_9", s.lateness.p99_9_us},
+          {"lateness_us_max", s.lateness.max_us},
           {"overruns", s.overruns},
           {"memory_locked", s.memory_locked},
           {"realtime_priority", s.realtime_priority},
@@ -116,7 +122,7 @@ void add_play_command(CLI::App& app, int& exit_code) {
   auto settings = std::make_shared<interpolation::PlayerSettings>();
   cmd->add_option("input", *input, "a directory with steps.bin, or a step stream file")->required();
   cmd->add_option("--periods", settings->max_periods, "play only the first N periods")
-      ->check(CLI::Range(0L, std::numeric_limits<long>::max()));
+      ->check(number_in({0.0, 1e15, true, true, "", true}));
   cmd->add_option("--to", *to, "write each period as a steps.csv row to FILE, a FIFO, or - (stdout)");
   cmd->add_flag("--realtime", settings->try_realtime,
                 "try to lock memory and run SCHED_FIFO (reported; usually refused without privileges)");
@@ -155,8 +161,9 @@ void add_play_command(CLI::App& app, int& exit_code) {
                        header.machine.empty() ? "" : ", machine " + header.machine);
     out << fmt::format("  played            {} periods in {:.3f} s\n", s.periods, s.wall_time_s);
     out << fmt::format(
-        "  lateness          max {:.1f} µs, mean {:.1f} µs, p99 {:.0f} µs (after the deadline)\n",
-        s.max_lateness_us, s.mean_lateness_us, s.p99_lateness_us);
+        "  lateness          p50 {:.1f} µs, p99 {:.1f} µs, p99.9 {:.1f} µs, max {:.1f} µs, mean {:.1f} µs "
+        "(after the deadline)\n",
+        s.lateness.p50_us, s.lateness.p99_us, s.lateness.p99_9_us, s.lateness.max_us, s.mean_lateness_us);
     out << fmt::format("  overruns          {} (later than one period)\n", s.overruns);
     out << fmt::format("  memory locked     {}   SCHED_FIFO {}\n", s.memory_locked ? "yes" : "no",
                        s.realtime_priority ? "yes" : "no");

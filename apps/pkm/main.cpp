@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "number_options.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return pkm::cli::exit_for_parse_error(app, e);
   }
   return exit_code;
 }

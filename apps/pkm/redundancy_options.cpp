@@ -4,6 +4,8 @@
 
 #include <charconv>
 
+#include "number_options.hpp"
+
 namespace pkm::cli {
 
 void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, bool law_required) {
@@ -17,7 +19,8 @@ void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, b
   command.add_option("--bounds", arguments.bounds,
                      "LO,HI bounds of every free coordinate, degrees (default: start ± 30)");
   command.add_option("--step-mm", arguments.step_mm, "path step between optimised points, mm")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(number_in({0.0, 1000.0, false, true, "mm"}));
   command.add_option(
       "--load", arguments.load,
       "cutting load: key=value list (tangential, normal, axial, cutter_radius, contact, force, "
@@ -29,10 +32,14 @@ void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, b
       .add_option("--energy-accounting", arguments.energy_accounting,
                   "energy law: no-recovery (seeds) | braking-free | recovery")
       ->capture_default_str();
-  command.add_option("--force-limit", arguments.force_limit_N,
-                     "drive force limit, N: candidates over it are not admissible (0: none)");
-  command.add_option("--max-rate", arguments.max_rate_deg_per_mm,
-                     "global solver: largest change of a free coordinate per mm of path, deg/mm (0: none)");
+  command
+      .add_option("--force-limit", arguments.force_limit_N,
+                  "drive force limit, N: candidates over it are not admissible (0: none)")
+      ->check(number_in({0.0, 1e9, true, true, "N"}));
+  command
+      .add_option("--max-rate", arguments.max_rate_deg_per_mm,
+                  "global solver: largest change of a free coordinate per mm of path, deg/mm (0: none)")
+      ->check(number_in({0.0, 1e6, true, true, "deg/mm"}));
 }
 
 namespace {

@@ -17,7 +17,14 @@ namespace {
 // O_EXCL detects that and a new suffix is drawn. Failing this often means something else is wrong.
 constexpr int kAtomicFileNameAttempts = 100;
 
-std::string atomic_file_suffix() {
+std::string atomic_file_reason(int error_number) {
+  // std::strerror is not thread-safe; the generic category's message is the same text.
+  return std::error_code(error_number, std::generic_category()).message();
+}
+
+}  // namespace
+
+std::string random_file_suffix() {
   static constexpr char kAlphabet[] = "0123456789abcdefghijklmnopqrstuvwxyz";
   thread_local std::mt19937_64 generator{std::random_device{}()};
   std::uniform_int_distribution<int> pick(0, static_cast<int>(sizeof(kAlphabet)) - 2);
@@ -25,13 +32,6 @@ std::string atomic_file_suffix() {
   for (char& c : suffix) c = kAlphabet[pick(generator)];
   return suffix;
 }
-
-std::string atomic_file_reason(int error_number) {
-  // std::strerror is not thread-safe; the generic category's message is the same text.
-  return std::error_code(error_number, std::generic_category()).message();
-}
-
-}  // namespace
 
 StagedFile::~StagedFile() {
   if (!committed_) discard();
@@ -53,7 +53,7 @@ Error StagedFile::failure(int error_number) {
 Status StagedFile::open(const std::string& path) {
   path_ = path;
   for (int attempt = 0; attempt < kAtomicFileNameAttempts; ++attempt) {
-    std::string candidate = path + ".tmp-" + atomic_file_suffix();
+    std::string candidate = path + ".tmp-" + random_file_suffix();
     // 0666 lets the umask decide, as for any file a program creates.
     const int descriptor = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (descriptor >= 0) {

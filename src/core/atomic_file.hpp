@@ -42,6 +42,9 @@ class StagedFile {
   bool committed_ = false;
 };
 
+/// Six random letters and digits for a temporary name next to a file (`.tmp-XXXXXX`, `.old-XXXXXX`).
+std::string random_file_suffix();
+
 /// Writes `text` to `path` through a StagedFile. Errors (ErrorCode::io) read "cannot write PATH: REASON".
 Status write_file_atomically(const std::string& path, std::string_view text);
 

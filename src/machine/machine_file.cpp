@@ -2,9 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-#include <sstream>
-
+#include "core/input_file.hpp"
 #include "core/units.hpp"
 #include "machine/joint_limits.hpp"
 #include "machine/machine_file_sections.hpp"
@@ -26,16 +24,12 @@ void convert_limits_to_radians(ActuatorLimits& limits) {
 
 Result<Machine> parse_machine_text(const std::string& yaml_text, const std::string& source_name) {
   YamlReader reader(source_name);
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("{}:{}: not valid YAML: {}", source_name, e.mark.line + 1, e.msg));
-  }
+  auto document = parse_yaml_document(yaml_text, source_name);
+  if (!document) return document.error();
+  const YAML::Node root = *document;
   if (!root || !root.IsMap()) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("{}:1: expected a mapping with at least 'type:'", source_name));
+                      fmt::format("{}:1:1: expected a mapping with at least 'type:'", source_name));
   }
 
   auto type_name = reader.required_string(root, "type");
@@ -60,7 +54,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
   for (const auto& item : root) {
-    const std::string key = item.first.as<std::string>();
+    const std::string key = item.first.Scalar();  // a scalar: parse_yaml_document checked every key
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
       std::string list;
       for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
@@ -86,6 +80,12 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
     }
     convention = *parsed;
   }
+
+  // Free texts, but texts: a list here is a mistake the report would show as "[1, 2]".
+  auto name = reader.optional_string(root, "name");
+  if (!name) return name.error();
+  if (auto description = reader.optional_string(root, "description"); !description)
+    return description.error();
 
   Eigen::Vector3d tool = Eigen::Vector3d::Zero();
   if (root["tool"]) {
@@ -123,7 +123,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
 
   Machine machine;
   machine.source = source_name;
-  machine.name = root["name"] && root["name"].IsScalar() ? root["name"].Scalar() : std::string(*type_name);
+  machine.name = name->value_or(*type_name);
   machine.mechanism = std::move(mechanism.value());
   machine.limits = limits->actuators;
   if (machine.mechanism->actuators_are_angles()) convert_limits_to_radians(machine.limits);
@@ -162,11 +162,9 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
 }
 
 Result<Machine> load_machine_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return make_error(ErrorCode::io, fmt::format("{}: cannot open machine file", path));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_machine_text(buffer.str(), path);
+  auto text = read_text_input(path, "machine file");
+  if (!text) return text.error();
+  return parse_machine_text(*text, path);
 }
 
 }  // namespace pkm

@@ -9,6 +9,12 @@
 
 namespace pkm {
 
+namespace {
+
+constexpr double kMaxUserNumber = 1e6;  // mm or degrees
+
+}  // namespace
+
 Result<std::vector<double>> parse_number_list(std::string_view text, std::string_view field) {
   std::vector<double> out;
   std::size_t start = 0;
@@ -24,6 +30,13 @@ Result<std::vector<double>> parse_number_list(std::string_view text, std::string
     if (token.empty() || ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) {
       return make_error(ErrorCode::bad_input, fmt::format("{}: '{}' is not a number (item {} of '{}')", field,
                                                           token, out.size() + 1, text));
+    }
+    // No machine reaches a kilometre or turns a million degrees: such a number is a typo, and 1e308 would
+    // overflow to infinity inside the kinematics.
+    if (std::abs(value) > kMaxUserNumber) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: '{}' is out of range (at most {:g} in size; item {} of '{}')", field,
+                                    token, kMaxUserNumber, out.size() + 1, text));
     }
     out.push_back(value);
     if (comma == std::string_view::npos) break;

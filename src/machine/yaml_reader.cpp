@@ -1,10 +1,123 @@
 #include "machine/yaml_reader.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <unordered_map>
+
+#include "core/input_file.hpp"
 
 namespace pkm {
+
+namespace {
+
+std::string yaml_mark_text(const YAML::Mark& mark) {
+  return fmt::format("{}:{}", mark.line + 1, mark.column + 1);
+}
+
+std::string yaml_child_key(std::string_view parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : fmt::format("{}.{}", parent, key);
+}
+
+// What yaml-cpp lets through: a key that is a list or a mapping (`[a]: 1`), which no pkm file has and which
+// the readers could not name, and a key given twice, of which yaml-cpp keeps the first without a word.
+Status check_yaml_node(const YAML::Node& node, const std::string& where, const std::string& source) {
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      if (auto checked = check_yaml_node(node[i], fmt::format("{}[{}]", where, i), source); !checked)
+        return checked;
+    }
+  } else if (node.IsMap()) {
+    std::unordered_map<std::string, int> first_line;
+    for (const auto& item : node) {
+      if (!item.first.IsScalar()) {
+        return make_error(
+            ErrorCode::bad_input,
+            fmt::format("{}: {}: a key must be a plain word, not a {}", yaml_where(source, item.first),
+                        where.empty() ? "(top level)" : where, item.first.IsSequence() ? "list" : "mapping"));
+      }
+      const std::string key = yaml_child_key(where, item.first.Scalar());
+      const auto [seen, inserted] = first_line.emplace(item.first.Scalar(), yaml_line(item.first));
+      if (!inserted) {
+        return make_error(ErrorCode::bad_input,
+                          fmt::format("{}: {}: given twice (first on line {})",
+                                      yaml_where(source, item.first), key, seen->second));
+      }
+      if (auto checked = check_yaml_node(item.second, key, source); !checked) return checked;
+    }
+  }
+  return ok_status();
+}
+
+// yaml-cpp reads ahead before it notices the depth, so its mark can lie past the end of the file. For the
+// usual case, brackets nested too deep ([[[[...), the place is the bracket that opens the level too many;
+// otherwise yaml-cpp's mark, kept inside the text.
+YAML::Mark yaml_deep_nesting_mark(std::string_view text, const YAML::DeepRecursion& e) {
+  YAML::Mark mark;
+  mark.line = mark.column = 0;
+  int depth = 0;
+  char quote = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quote) {
+      if (c == quote) quote = 0;
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+    } else if (c == '[' || c == '{') {
+      if (++depth >= e.depth() - 1) return mark;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+    if (c == '\n') {
+      ++mark.line;
+      mark.column = 0;
+    } else {
+      ++mark.column;
+    }
+  }
+  YAML::Mark clamped = e.mark;
+  const auto last_line = static_cast<int>(std::count(text.begin(), text.end(), '\n')) -
+                         (!text.empty() && text.back() == '\n' ? 1 : 0);
+  if (clamped.line > last_line) {
+    clamped.line = std::max(last_line, 0);
+    clamped.column = 0;
+  }
+  return clamped;
+}
+
+}  // namespace
+
+Result<YAML::Node> parse_yaml_document(std::string_view text, const std::string& source_name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::DeepRecursion& e) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}:{}: not valid YAML: nested more than {} levels deep", source_name,
+                                  yaml_mark_text(yaml_deep_nesting_mark(text, e)), e.depth() - 1));
+  } catch (const YAML::Exception& e) {
+    const std::string where =
+        e.mark.is_null() ? source_name : fmt::format("{}:{}", source_name, yaml_mark_text(e.mark));
+    return make_error(ErrorCode::bad_input, fmt::format("{}: not valid YAML: {}", where, e.msg));
+  }
+  if (auto checked = check_yaml_node(root, "", source_name); !checked) return checked.error();
+  return root;
+}
+
+Result<YAML::Node> load_yaml_file(const std::string& path, std::string_view what) {
+  auto text = read_text_input(path, what);
+  if (!text) return text.error();
+  return parse_yaml_document(*text, path);
+}
+
+std::string yaml_where(const std::string& source, const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.is_null() || mark.line < 0 ? source : fmt::format("{}:{}", source, yaml_mark_text(mark));
+}
 
 int yaml_line(const YAML::Node& node) {
   const YAML::Mark mark = node.Mark();
@@ -20,20 +133,32 @@ int yaml_key_line(const YAML::Node& mapping, std::string_view key) {
 }
 
 Error YamlReader::error_at(const YAML::Node& node, std::string_view key, std::string_view message) const {
-  return make_error(ErrorCode::bad_input,
-                    fmt::format("{}:{}: {}: {}", source_, yaml_line(node), key, message));
+  return make_error(ErrorCode::bad_input, fmt::format("{}: {}: {}", yaml_where(source_, node), key, message));
+}
+
+Error YamlReader::error_at_value(const YAML::Node& parent, std::string_view key,
+                                 std::string_view message) const {
+  const YAML::Node value = parent[std::string(key)];
+  if (value && !value.IsNull()) return error_at(value, key, message);
+  if (parent.IsMap()) {
+    for (const auto& item : parent) {
+      if (item.first.IsScalar() && item.first.Scalar() == key) return error_at(item.first, key, message);
+    }
+  }
+  return error_at(parent, key, message);
 }
 
 Error YamlReader::error_missing(const YAML::Node& parent, std::string_view key, std::string_view what) const {
   return make_error(ErrorCode::bad_input,
-                    fmt::format("{}:{}: {}: missing (expected {})", source_, yaml_line(parent), key, what));
+                    fmt::format("{}: {}: missing (expected {})", yaml_where(source_, parent), key, what));
 }
 
 Status YamlReader::check_keys(const YAML::Node& mapping, std::string_view where,
                               std::initializer_list<std::string_view> allowed) const {
   if (!mapping.IsMap()) return error_at(mapping, where, "expected a mapping of keys");
   for (const auto& entry : mapping) {
-    const std::string key = entry.first.as<std::string>();
+    // Scalar(), not as<std::string>(): a key that is a list must not throw (parse_yaml_document refuses it).
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : std::string("?");
     bool known = false;
     for (std::string_view a : allowed) known = known || a == key;
     if (!known) {
@@ -50,7 +175,14 @@ Result<double> YamlReader::number(const YAML::Node& node, std::string_view key) 
   if (!node.IsScalar()) return error_at(node, key, "expected a number");
   double value = 0.0;
   if (!YAML::convert<double>::decode(node, value)) {
-    return error_at(node, key, fmt::format("expected a number, got '{}'", node.Scalar()));
+    // yaml-cpp refuses 1e999 like a word; say that it is a number, only too large.
+    const std::string& text = node.Scalar();
+    char* end = nullptr;
+    errno = 0;
+    std::strtod(text.c_str(), &end);
+    if (!text.empty() && end == text.c_str() + text.size() && errno == ERANGE)
+      return error_at(node, key, fmt::format("expected a finite number, got '{}' (out of range)", text));
+    return error_at(node, key, fmt::format("expected a number, got '{}'", text));
   }
   if (!std::isfinite(value)) return error_at(node, key, "expected a finite number");
   return value;
@@ -59,6 +191,7 @@ Result<double> YamlReader::number(const YAML::Node& node, std::string_view key) 
 Result<double> YamlReader::required_number(const YAML::Node& parent, std::string_view key) const {
   const YAML::Node node = parent[std::string(key)];
   if (!node) return error_missing(parent, key, "a number");
+  if (node.IsNull()) return error_at_value(parent, key, "expected a number, got nothing");
   return number(node, key);
 }
 
@@ -66,6 +199,7 @@ Result<std::optional<double>> YamlReader::optional_number(const YAML::Node& pare
                                                           std::string_view key) const {
   const YAML::Node node = parent[std::string(key)];
   if (!node) return std::optional<double>{};
+  if (node.IsNull()) return error_at_value(parent, key, "expected a number, got nothing");
   auto value = number(node, key);
   if (!value) return value.error();
   return std::optional<double>{*value};
@@ -74,8 +208,21 @@ Result<std::optional<double>> YamlReader::optional_number(const YAML::Node& pare
 Result<std::string> YamlReader::required_string(const YAML::Node& parent, std::string_view key) const {
   const YAML::Node node = parent[std::string(key)];
   if (!node) return error_missing(parent, key, "a value");
-  if (!node.IsScalar()) return error_at(node, key, "expected a single word");
+  if (!node.IsScalar()) return error_at_value(parent, key, "expected a single word");
   return node.Scalar();
+}
+
+Result<std::optional<std::string>> YamlReader::optional_string(const YAML::Node& parent,
+                                                               std::string_view key) const {
+  const YAML::Node node = parent[std::string(key)];
+  if (!node) return std::optional<std::string>{};
+  if (!node.IsScalar()) {
+    return error_at_value(parent, key,
+                          node.IsNull() ? "expected a word or a text, got nothing"
+                                        : fmt::format("expected a word or a text, not a {}",
+                                                      node.IsSequence() ? "list" : "mapping"));
+  }
+  return std::optional<std::string>{node.Scalar()};
 }
 
 Result<int> YamlReader::required_integer(const YAML::Node& parent, std::string_view key) const {
@@ -105,6 +252,8 @@ Result<Eigen::Vector3d> YamlReader::required_point(const YAML::Node& parent, std
                                                    int dims) const {
   const YAML::Node node = parent[std::string(key)];
   if (!node) return error_missing(parent, key, fmt::format("a list of {} numbers", dims));
+  if (node.IsNull())
+    return error_at_value(parent, key, fmt::format("expected a list of {} numbers, got nothing", dims));
   return point(node, key, dims);
 }
 
@@ -114,7 +263,9 @@ Result<std::vector<Eigen::Vector3d>> YamlReader::points(const YAML::Node& parent
   const std::string what = count > 0 ? fmt::format("a list of {} points of {} numbers", count, dims)
                                      : fmt::format("a list of points of {} numbers", dims);
   if (!node) return error_missing(parent, key, what);
-  if (!node.IsSequence()) return error_at(node, key, "expected " + what);
+  if (!node.IsSequence())
+    return error_at_value(
+        parent, key, fmt::format("expected {}, got {}", what, node.IsNull() ? "nothing" : "a single value"));
   if ((count > 0 && static_cast<int>(node.size()) != count) || node.size() == 0) {
     return error_at(node, key, fmt::format("expected {}, got {} points", what, node.size()));
   }
@@ -132,7 +283,9 @@ Result<std::vector<double>> YamlReader::numbers(const YAML::Node& parent, std::s
   const YAML::Node node = parent[std::string(key)];
   const std::string what = count > 0 ? fmt::format("a list of {} numbers", count) : "a list of numbers";
   if (!node) return error_missing(parent, key, what);
-  if (!node.IsSequence()) return error_at(node, key, "expected " + what);
+  if (!node.IsSequence())
+    return error_at_value(
+        parent, key, fmt::format("expected {}, got {}", what, node.IsNull() ? "nothing" : "a single value"));
   if ((count > 0 && static_cast<int>(node.size()) != count) || node.size() == 0) {
     return error_at(node, key, fmt::format("expected {}, got {}", what, node.size()));
   }

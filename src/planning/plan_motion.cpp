@@ -26,18 +26,21 @@ ProgramStart program_start(const Machine& machine) {
 namespace {
 
 Status check_options(const PlanOptions& options) {
+  // The library speaks of its parameters; the CLI names its flags before a value gets here.
   if (!(options.rate_hz >= 1.0 && options.rate_hz <= 100000.0)) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("--rate {} Hz is outside 1…100000 Hz", options.rate_hz));
+                      fmt::format("servo rate: must be ≥ 1 and ≤ 100000 Hz, got {} Hz", options.rate_hz));
   }
   if (!(options.override_pct > 0.0 && options.override_pct <= 200.0)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("feed override: must be > 0 and ≤ 200 %, got {} %", options.override_pct));
+  }
+  if (options.path_tolerance_mm &&
+      !(*options.path_tolerance_mm >= 0.0 && std::isfinite(*options.path_tolerance_mm))) {
     return make_error(
         ErrorCode::bad_input,
-        fmt::format("--override {} % is outside the operator range 0…200 %", options.override_pct));
-  }
-  if (options.path_tolerance_mm && !(*options.path_tolerance_mm >= 0.0)) {
-    return make_error(ErrorCode::bad_input,
-                      "--tolerance must be 0 (exact stops) or a positive distance in mm");
+        fmt::format("path tolerance: must be 0 (exact stops) or a positive distance in mm, got {}",
+                    *options.path_tolerance_mm));
   }
   return ok_status();
 }

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <filesystem>
 #include <string_view>
 #include <utility>
 
@@ -15,8 +14,6 @@ namespace pkm::planning {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 constexpr std::size_t kPlanOutputChunk = std::size_t{1} << 20;
 
 // One output file of the run: text gathers in a buffer and goes to the staged file a megabyte at a time.
@@ -24,9 +21,9 @@ struct PlanOutputFile {
   StagedFile file;
   fmt::memory_buffer buffer;
 
-  Status open(const fs::path& path) {
+  Status open(const std::string& path) {
     buffer.reserve(kPlanOutputChunk);
-    return file.open(path.string());
+    return file.open(path);
   }
   Status flush() {
     const Status written = file.write(std::string_view(buffer.data(), buffer.size()));
@@ -95,15 +92,20 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
 
 Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
                                       const std::string& directory, const OutputOptions& options) {
-  const fs::path dir(directory);
-  std::error_code error;
-  fs::create_directories(dir, error);
-  if (error)
-    return Error{ErrorCode::io, fmt::format("cannot create directory {}: {}", directory, error.message())};
+  OutputSet outputs;
+  if (auto used = outputs.use_directory(directory); !used) return used.error();
+  auto run = write_plan_outputs(plan, machine, outputs, options);
+  if (!run) return run;
+  if (auto committed = outputs.commit(); !committed) return committed.error();
+  return run;
+}
+
+Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine, OutputSet& outputs,
+                                      const OutputOptions& options) {
   PlanOutputFile actuators_csv, path_csv, summary_file;
   for (auto [file, name] : {std::pair{&actuators_csv, "actuators.csv"}, std::pair{&path_csv, "path.csv"},
                             std::pair{&summary_file, "summary.json"}}) {
-    if (auto opened = file->open(dir / name); !opened) return opened.error();
+    if (auto opened = file->open(outputs.staged_path(name)); !opened) return opened.error();
   }
   const Mechanism& mechanism = *machine.mechanism;
   const int n = mechanism.actuator_count();

@@ -1,12 +1,13 @@
 #pragma once
 // Writing a planned run: DIR/actuators.csv (time and every actuator position per servo tick), DIR/path.csv
 // (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json.
-// Files are written to temporaries in DIR and renamed only when the whole run succeeded, so a failed run
-// leaves no half-written output.
+// The files join an OutputSet (core/output_set.hpp): they replace the previous run's only together, when the
+// whole run succeeded, so a failed run leaves the previous run complete and nothing of its own.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/output_set.hpp"
 #include "core/result.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
@@ -21,7 +22,12 @@ struct OutputOptions {
   std::function<void(double)> progress;
 };
 
-/// Streams the plan at the servo rate into the three files. Returns the measured summary.
+/// Streams the plan at the servo rate into the three files, staged in `outputs` (which must have its
+/// directory); the caller commits the set, possibly with more files. Returns the measured summary.
+Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine, OutputSet& outputs,
+                                      const OutputOptions& options);
+
+/// The same into `directory` as a set of its own, committed on success.
 Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
                                       const std::string& directory, const OutputOptions& options);
 

@@ -5,12 +5,19 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
+
+#include "core/input_file.hpp"
 
 namespace pkm::report {
 
 Status CsvReader::open(const std::string& path) {
   path_ = path;
+  // A directory or a device in place of the CSV is refused by name; a missing file gets the hint below.
+  if (std::error_code ignored; std::filesystem::exists(path, ignored)) {
+    if (auto checked = check_input_file(path, "run data", InputReading::streamed); !checked) return checked;
+  }
   in_.open(path, std::ios::binary);
   if (!in_)
     return make_error(ErrorCode::io, fmt::format("{}: cannot open (is this a pkm run directory?)", path));

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/input_file.hpp"
 #include "machine/machine_file.hpp"
 #include "report/csv_table.hpp"
 #include "report/report_html.hpp"
@@ -72,8 +73,9 @@ nlohmann::json table_row(const std::string& label, const std::string& value, int
 
 nlohmann::json program_lines(const std::string& file, const std::set<int>& lines) {
   nlohmann::json out = nlohmann::json::object();
+  if (lines.empty() || !check_input_file(file, "part program")) return out;
   std::ifstream in(file);
-  if (!in || lines.empty()) return out;
+  if (!in) return out;
   std::string text;
   int number = 0;
   auto wanted = lines.begin();
@@ -131,16 +133,18 @@ nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneB
 Result<nlohmann::json> report_from_directory(const std::string& directory, const ReportOptions& options) {
   const fs::path dir(directory);
   const fs::path summary_path = dir / "summary.json";
-  std::ifstream summary_file(summary_path);
-  if (!summary_file) {
+  std::error_code ignored;
+  if (!fs::exists(summary_path, ignored)) {
     return make_error(ErrorCode::io,
                       fmt::format("{}: no summary.json: not the output directory of pkm plan or "
                                   "pkm interpolate",
                                   directory));
   }
+  auto summary_text = read_input_file(summary_path.string(), "run summary");
+  if (!summary_text) return summary_text.error();
   nlohmann::json summary;
   try {
-    summary = nlohmann::json::parse(summary_file);
+    summary = nlohmann::json::parse(*summary_text);
   } catch (const nlohmann::json::exception& e) {
     return make_error(ErrorCode::bad_input,
                       fmt::format("{}: not valid JSON: {}", summary_path.string(), e.what()));

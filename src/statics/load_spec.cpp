@@ -3,10 +3,9 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
+#include "core/input_file.hpp"
 #include "statics/load_keys.hpp"
 #include "statics/load_model.hpp"
 
@@ -82,11 +81,9 @@ Status load_spec_item(std::string_view item, CuttingLoad& load) {
 
 Result<LoadModel> load_spec_file(const std::string& path) {
   if (path.empty()) return make_error(ErrorCode::bad_input, "--load: '@' must be followed by a file name");
-  std::ifstream in(path);
-  if (!in) return make_error(ErrorCode::io, fmt::format("{}: cannot open load file", path));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_load_yaml(buffer.str(), path);
+  auto text = read_text_input(path, "load file");
+  if (!text) return text.error();
+  return parse_load_yaml(*text, path);
 }
 
 }  // namespace

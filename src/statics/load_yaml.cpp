@@ -4,32 +4,26 @@
 
 #include <cmath>
 #include <limits>
-#include <set>
 
+#include "machine/yaml_reader.hpp"
 #include "statics/load_keys.hpp"
 #include "statics/load_model.hpp"
 
 namespace pkm::statics {
 namespace {
 
+// The load keys on top of the machine files' YamlReader, so that both kinds of file report errors alike.
 class LoadYamlReader {
  public:
-  explicit LoadYamlReader(const std::string& source) : source_(source) {}
+  explicit LoadYamlReader(const std::string& source) : yaml_(source) {}
 
   // "FILE:LINE:COLUMN: KEY: message", 1-based.
   Error error_at(const YAML::Node& node, std::string_view key, std::string_view message) const {
-    const YAML::Mark mark = node.Mark();
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("{}:{}:{}: {}: {}", source_, mark.line + 1, mark.column + 1, key, message));
+    return yaml_.error_at(node, key, message);
   }
 
   Result<double> number(const YAML::Node& node, std::string_view key) const {
-    double value = 0.0;
-    if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
-      return error_at(node, key, fmt::format("expected a number, got '{}'", describe(node)));
-    }
-    if (!std::isfinite(value)) return error_at(node, key, "expected a finite number");
-    return value;
+    return yaml_.number(node, key);
   }
 
   Result<Eigen::Vector3d> vector(const YAML::Node& node, std::string_view key) const {
@@ -50,11 +44,9 @@ class LoadYamlReader {
   Status load_case(const YAML::Node& node, std::string_view where, bool allow_lines,
                    CuttingLoad& load) const {
     if (!node.IsMap()) return error_at(node, where, "expected a mapping of load keys");
-    std::set<std::string> seen;
-    for (const auto& entry : node) {
+    for (const auto& entry : node) {  // parse_yaml_document refused keys given twice
       const std::string key = entry.first.Scalar();
       const std::string full = fmt::format("{}.{}", where, key);
-      if (!seen.insert(key).second) return error_at(entry.first, full, "given twice");
       const YAML::Node value = entry.second;
       if (allow_lines && key == "lines") continue;
       if (double* field = load_number_field(load, key)) {
@@ -117,21 +109,15 @@ class LoadYamlReader {
     return "nothing";
   }
 
-  const std::string& source_;
+  YamlReader yaml_;
 };
 
 }  // namespace
 
 Result<LoadModel> parse_load_yaml(const std::string& text, const std::string& source_name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    const std::string where = e.mark.is_null()
-                                  ? source_name
-                                  : fmt::format("{}:{}:{}", source_name, e.mark.line + 1, e.mark.column + 1);
-    return make_error(ErrorCode::bad_input, fmt::format("{}: not valid YAML: {}", where, e.msg));
-  }
+  auto document = parse_yaml_document(text, source_name);
+  if (!document) return document.error();
+  const YAML::Node root = *document;
   if (!root || !root.IsMap()) {
     return make_error(
         ErrorCode::bad_input,
