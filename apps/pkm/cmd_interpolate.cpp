@@ -15,11 +15,13 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "interpolation/contour_trace.hpp"
 #include "interpolation/interpolate_run.hpp"
 #include "interpolation/step_stream.hpp"
 #include "interpolation/steps_csv.hpp"
+#include "number_options.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/part_program.hpp"
 #include "report/report_data.hpp"
@@ -161,26 +163,35 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       ->required();
   auto* period_option =
       cmd->add_option("--period-ms", args->period_ms,
-                      "servo (carrier) period h, ms (0.1…20; default drives.period_ms, else 1)");
-  auto* step_option = cmd->add_option(
-      "--step-mm", args->step_mm,
-      "drive resolution Δ, mm per step (deg for angular actuators; default drives.step_mm, else 0.001)");
+                      "servo (carrier) period h, ms (0.1…20; default drives.period_ms, else 1)")
+          ->check(number_in({0.1, 20.0, true, true, "ms"}));
+  auto* step_option = cmd->add_option("--step-mm", args->step_mm,
+                                      "drive resolution Δ, mm per step (deg for angular actuators; default "
+                                      "drives.step_mm, else 0.001)")
+                          ->check(number_in({0.0, 10.0, false, true, "mm"}));
   cmd->add_option("--method", args->method, "exact, carrier, carrier-corrected or estimating")
       ->capture_default_str();
-  cmd->add_option("--rho-max", args->rho_max_mm, "contour tolerance ρ_max, mm")->capture_default_str();
+  cmd->add_option("--rho-max", args->rho_max_mm, "contour tolerance ρ_max, mm")
+      ->capture_default_str()
+      ->check(number_in({0.0, 100.0, false, true, "mm"}));
   cmd->add_option("--delta-rho-max", args->delta_rho_max,
-                  "error amplification δρ_max (default: the largest along the path)");
-  cmd->add_option("--override", args->override_pct, "operator feed override at the start, % (0…200)")
-      ->capture_default_str();
+                  "error amplification δρ_max (default: the largest along the path)")
+      ->check(number_in({0.0, 1e6, true, true, ""}));
+  cmd->add_option("--override", args->override_pct, "operator feed override at the start, % (> 0 and ≤ 200)")
+      ->capture_default_str()
+      ->check(number_in({0.0, 200.0, false, true, "%"}));
   cmd->add_option("--override-at", args->override_at,
                   "override changes during the run, TIME_S:PERCENT,… (take effect from period i+2)");
   cmd->add_option("--accel", args->accel, "acceleration law: linear or s-curve")->capture_default_str();
   auto* step_rate_option =
       cmd->add_option("--max-step-rate", args->max_step_rate_hz,
-                      "largest step rate of a drive, Hz (default drives.max_step_rate_hz)");
+                      "largest step rate of a drive, Hz (default drives.max_step_rate_hz)")
+          ->check(number_in({0.0, 1e9, true, true, "Hz"}));
   cmd->add_option("--error-samples", args->error_samples, "contour-error points inside each period")
-      ->capture_default_str();
-  cmd->add_option("--deviation-mm", args->deviation_mm, "estimating: allowed deviation δ (default ρ_max)");
+      ->capture_default_str()
+      ->check(number_in({1.0, 1000.0, true, true, "", true}));
+  cmd->add_option("--deviation-mm", args->deviation_mm, "estimating: allowed deviation δ (default ρ_max)")
+      ->check(number_in({0.0, 100.0, true, true, "mm"}));
   cmd->add_option("--candidates", args->candidates, "estimating: all-six, one-to-all or struts per tact")
       ->capture_default_str();
   cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table for G43");
@@ -239,15 +250,12 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("interpolate", timing.error());
       return;
     }
-    std::error_code dir_error;
-    std::filesystem::create_directories(args->out, dir_error);
-    if (dir_error) {
-      exit_code =
-          report_error("interpolate", Error{ErrorCode::io, fmt::format("cannot create directory {}: {}",
-                                                                       args->out, dir_error.message())});
+    // The step files, the contour trace, the summary and the report replace the previous run's together.
+    OutputSet outputs;
+    if (Status used = outputs.use_directory(args->out); !used) {
+      exit_code = report_error("interpolate", used.error());
       return;
     }
-    const std::filesystem::path dir(args->out);
     interpolation::StepStreamHeader header;
     header.actuators = machine->mechanism->actuator_count();
     header.period_s = options->period_s;
@@ -265,18 +273,18 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       return;
     }
     header.start_position = *start_steps;
-    auto opened_csv = csv.open((dir / "steps.csv").string(), header);
+    auto opened_csv = csv.open(outputs.staged_path("steps.csv"), header);
     if (!opened_csv) {
       exit_code = report_error("interpolate", opened_csv.error());
       return;
     }
-    auto opened_bin = binary.open((dir / "steps.bin").string(), header);
+    auto opened_bin = binary.open(outputs.staged_path("steps.bin"), header);
     if (!opened_bin) {
       exit_code = report_error("interpolate", opened_bin.error());
       return;
     }
     interpolation::ContourTraceWriter trace;
-    if (auto opened_trace = trace.open((dir / "contour.csv").string()); !opened_trace) {
+    if (auto opened_trace = trace.open(outputs.staged_path("contour.csv")); !opened_trace) {
       exit_code = report_error("interpolate", opened_trace.error());
       return;
     }
@@ -302,16 +310,18 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
     json["override_pct"] = args->override_pct;
     json["accel"] = args->accel;
     if (options->max_step_rate_hz) json["max_step_rate_hz"] = *options->max_step_rate_hz;
-    if (Status written = write_file_atomically((dir / "summary.json").string(), json.dump(2) + "\n");
+    if (Status written = write_file_atomically(outputs.staged_path("summary.json"), json.dump(2) + "\n");
         !written) {
       exit_code = report_error("interpolate", written.error());
       return;
     }
-    if (!args->report.empty()) {
-      if (Status written = report::write_directory_report(args->out, args->report); !written) {
-        exit_code = report_error("interpolate", written.error());
-        return;
-      }
+    if (Status written = stage_directory_report(outputs, args->report); !written) {
+      exit_code = report_error("interpolate", written.error());
+      return;
+    }
+    if (Status committed = outputs.commit(); !committed) {
+      exit_code = report_error("interpolate", committed.error());
+      return;
     }
     if (args->json) {
       print_json(json);
