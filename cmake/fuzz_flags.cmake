@@ -7,3 +7,5 @@ endif()
 add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
                     -fno-omit-frame-pointer)
 add_link_options(-fsanitize=address,undefined)
+# The library silences GCC-only warnings by name (#pragma GCC diagnostic); clang need not know them.
+add_compile_options(-Wno-unknown-warning-option)
