@@ -1,11 +1,14 @@
 // Interpolation down to drive steps (spec ch5) on the seeds' test hexapod and test line (−50, 0, 700) →
-// (50, 0, 700), for docs/PERFORMANCE.md; goal (issue 5): the corrected carrier method under 10 µs per period,
-// beside the estimating-function method's time per tact, in one run.
+// (50, 0, 700), for docs/PERFORMANCE.md; goals: the corrected carrier method under 10 µs per period (issue
+// 5), its p99.9 too (issue 12), beside the estimating-function method's time per tact, in one run.
 //
-// BM_CarrierPeriod: one iteration is one servo period of the real-time part: the carrier step (ideal time,
-// strut laws, chord check) and the quantisation (remainder registers, or the discreteness correction with its
-// two FK solves and two Jacobians). At 50 mm/s, h = 1 ms, Δ = 1 µm; the run restarts at the line's end
-// outside the timing. Counter s_per_period.
+// BM_PeriodTime: one iteration is one servo period of the real-time part, as `pkm interpolate` times it: the
+// carrier step (ideal time, strut laws, chord check) and the quantisation (remainder registers, or the
+// discreteness correction with its two FK solves and two Jacobians), on the planned ch5 line (acceleration,
+// 50 mm/s, deceleration) at h = 1 ms and 0.1 ms, Δ = 1 µm; the run restarts at the line's end outside the
+// timing. Every period is also timed on its own with the steady clock into a fixed histogram
+// (core/duration_histogram.hpp; recording does not allocate): counters p50_us, p99_us, p99_9_us, max_us,
+// periods (the count) and over_10us (periods above 10 µs), beside the mean (the benchmark's time).
 //
 // BM_EstimatingTact: the estimating-function interpolator (§4): time per tact with the seed's final candidate
 // set (all six struts move, 64 candidates, one FK each), for docs/PERFORMANCE.md. One benchmark iteration is
@@ -15,9 +18,12 @@
 // (§4.5, case E7: 0.23 mm/s at t_T = 1 ms).
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <filesystem>
+#include <map>
 #include <optional>
 
+#include "core/duration_histogram.hpp"
 #include "interpolation/carrier_interpolator.hpp"
 #include "interpolation/discreteness_corrector.hpp"
 #include "interpolation/estimating_function.hpp"
@@ -39,31 +45,42 @@ const Machine& machine() {
   return m;
 }
 
-/// The 100 mm test line, starting exactly at (−50, 0, 700) (the example puts program Z0 at z = 700).
-const path::Path& ch5_line() {
-  static const planning::MotionPlan plan = [] {
-    program::InterpretOptions options;
-    options.start_mm = Eigen::Vector3d(-50.0, 0.0, 0.0);
-    auto program = program::interpret_gcode("G21 G90 G17\nG1 X50 Y0 Z0 F3000\nM2\n", "ch5_line.ngc", options);
-    if (!program) throw std::runtime_error(program.error().message);
-    auto planned = planning::plan_motion(machine(), *program, {});
-    if (!planned) throw std::runtime_error(planned.error().message);
-    return std::move(planned.value());
-  }();
-  return plan.path;
+/// The 100 mm test line, starting exactly at (−50, 0, 700) (the example puts program Z0 at z = 700), planned
+/// at `rate_hz`.
+const planning::MotionPlan& ch5_line_plan(double rate_hz) {
+  static std::map<double, planning::MotionPlan> plans;
+  if (auto found = plans.find(rate_hz); found != plans.end()) return found->second;
+  program::InterpretOptions options;
+  options.start_mm = Eigen::Vector3d(-50.0, 0.0, 0.0);
+  auto program = program::interpret_gcode("G21 G90 G17\nG1 X50 Y0 Z0 F3000\nM2\n", "ch5_line.ngc", options);
+  if (!program) throw std::runtime_error(program.error().message);
+  planning::PlanOptions plan_options;
+  plan_options.rate_hz = rate_hz;
+  auto planned = planning::plan_motion(machine(), *program, plan_options);
+  if (!planned) throw std::runtime_error(planned.error().message);
+  return plans.emplace(rate_hz, std::move(planned.value())).first->second;
 }
 
-// The real-time part of one carrier period, repeated along the line.
-void BM_CarrierPeriod(benchmark::State& state, bool corrected) {
-  const path::Path& path = ch5_line();
-  const auto laws = interpolation::StrutLaws::fit(machine(), path, {}, "ch5_line.ngc");
-  if (!laws) {
-    state.SkipWithError(laws.error().message.c_str());
+const path::Path& ch5_line() {
+  return ch5_line_plan(1000.0).path;
+}
+
+enum class PeriodMethod { exact, carrier, carrier_corrected };
+
+// The real-time part of one carrier period, repeated along the line, each period timed on its own.
+void BM_PeriodTime(benchmark::State& state, PeriodMethod method, double period_s) {
+  const planning::MotionPlan& plan = ch5_line_plan(1.0 / period_s);
+  const path::Path& path = plan.path;
+  const auto laws = method == PeriodMethod::exact
+                        ? interpolation::StrutLaws::exact(machine(), path, "ch5_line.ngc")
+                        : interpolation::StrutLaws::fit(machine(), path, {}, "ch5_line.ngc");
+  auto timing = interpolation::IdealTiming::from_plan(plan, machine());
+  if (!laws || !timing) {
+    state.SkipWithError("strut laws or timing failed");
     return;
   }
-  const interpolation::IdealTiming timing = interpolation::IdealTiming::constant_speed(path.length(), 50.0);
   interpolation::CarrierSettings settings;
-  settings.period_s = 0.001;
+  settings.period_s = period_s;
   const interpolation::ContourGauge gauge(machine(), path);
   interpolation::CorrectorSettings corrector_settings;
   corrector_settings.step = 0.001;
@@ -71,7 +88,7 @@ void BM_CarrierPeriod(benchmark::State& state, bool corrected) {
   std::optional<interpolation::DiscretenessCorrector> corrector;
   interpolation::RemainderQuantizer remainder(6, 0.001);
   const auto restart = [&]() -> bool {
-    carrier.emplace(*laws, timing, settings);
+    carrier.emplace(*laws, *timing, settings);
     std::array<double, kMaxActuators> start{};
     if (!carrier->start(start)) return false;
     corrector.emplace(machine(), path, gauge, corrector_settings);
@@ -84,8 +101,10 @@ void BM_CarrierPeriod(benchmark::State& state, bool corrected) {
   }
   interpolation::CarrierPeriod period;
   interpolation::StepPeriod out;
-  long periods = 0;
+  DurationHistogram period_time(10'000);
+  using Clock = std::chrono::steady_clock;
   for (auto _ : state) {
+    const Clock::time_point started = Clock::now();
     if (!carrier->next(period)) {
       state.PauseTiming();
       if (!restart()) {
@@ -95,7 +114,7 @@ void BM_CarrierPeriod(benchmark::State& state, bool corrected) {
       state.ResumeTiming();
       continue;
     }
-    if (corrected) {
+    if (method == PeriodMethod::carrier_corrected) {
       if (!corrector->quantize(period, out)) {
         state.SkipWithError("correction failed");
         break;
@@ -103,14 +122,25 @@ void BM_CarrierPeriod(benchmark::State& state, bool corrected) {
     } else {
       remainder.quantize(period, out);
     }
-    ++periods;
+    period_time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
     benchmark::DoNotOptimize(out);
   }
-  using benchmark::Counter;
-  state.counters["s_per_period"] = Counter(static_cast<double>(periods), Counter::kIsRate | Counter::kInvert);
+  const DurationDistribution d = period_time.distribution();
+  state.counters["periods"] = static_cast<double>(d.count);
+  state.counters["p50_us"] = d.p50_us;
+  state.counters["p99_us"] = d.p99_us;
+  state.counters["p99_9_us"] = d.p99_9_us;
+  state.counters["max_us"] = d.max_us;
+  state.counters["over_10us"] = static_cast<double>(d.over_budget);
 }
-BENCHMARK_CAPTURE(BM_CarrierPeriod, corrected, true)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_CarrierPeriod, naive_registers, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PeriodTime, corrected_1kHz, PeriodMethod::carrier_corrected, 1e-3)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PeriodTime, corrected_10kHz, PeriodMethod::carrier_corrected, 1e-4)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PeriodTime, carrier_1kHz, PeriodMethod::carrier, 1e-3)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PeriodTime, carrier_10kHz, PeriodMethod::carrier, 1e-4)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PeriodTime, exact_1kHz, PeriodMethod::exact, 1e-3)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PeriodTime, exact_10kHz, PeriodMethod::exact, 1e-4)->Unit(benchmark::kMicrosecond);
 
 void BM_EstimatingTact(benchmark::State& state, interpolation::CandidateSet set, double step_mm) {
   interpolation::EstimatingSettings settings;

@@ -1,7 +1,8 @@
 // Hot paths do not allocate (STYLE habit 3): IK, FK (warm, with and without a workspace), the Jacobian and
-// the joint-angle and conditioning checks of every shipped machine, and the servo-rate stream of a planned
-// program (filter, path evaluation, IK per tick) run under a counting global operator new.
-// This file owns the replacement for pkm_tests.
+// the joint-angle and conditioning checks of every shipped machine, the servo-rate stream of a planned
+// program (filter, path evaluation, IK per tick) and the periods of an interpolation run (the computation,
+// its timing histogram, the contour measurement, the sinks' hand-over) run under a counting global operator
+// new. This file owns the replacement for pkm_tests.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -11,6 +12,7 @@
 #include "core/units.hpp"
 #include "interpolation/carrier_interpolator.hpp"
 #include "interpolation/discreteness_corrector.hpp"
+#include "interpolation/interpolate_run.hpp"
 #include "interpolation/remainder_quantizer.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
@@ -210,6 +212,51 @@ TEST(NoAllocation, InterpolationPeriods) {
     EXPECT_EQ(g_allocations.load() - before, 0) << (fitted ? "fitted laws" : "exact laws");
     EXPECT_GT(periods, 1000);
     EXPECT_FALSE(carrier.error().has_value());
+  }
+}
+
+// A sink that keeps nothing: what the run itself does per period, without a writer's buffers.
+class NoAllocationCountingSink : public interpolation::StepSink {
+ public:
+  Status write(const interpolation::StepPeriod&) override {
+    ++periods;
+    return ok_status();
+  }
+  Status finish() override { return ok_status(); }
+  long periods = 0;
+};
+
+// The whole loop of interpolate() between one period's hand-over and the next (the carrier step, the
+// quantisation, the period-time histogram, the contour monitor, the sinks), after a warm-up of a few periods:
+// a servo loop must not allocate (issue 12: allocation was one of the causes looked for in the worst period).
+TEST(NoAllocation, InterpolateRunPeriodsAfterWarmUp) {
+  const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  const auto program = test::gcode_for(m, "G0 X-50 Y0 Z0\nG1 X50 F3000\nG2 X50 Y0 I-20 J0 A3\nM2\n");
+  const auto plan = test::plan_or_fail(m, program);
+  auto timing = interpolation::IdealTiming::from_plan(plan, m);
+  ASSERT_TRUE(timing.ok());
+  constexpr long kWarmUpPeriods = 2;
+  for (const interpolation::Method method : {interpolation::Method::carrier_corrected,
+                                             interpolation::Method::carrier, interpolation::Method::exact}) {
+    long seen = 0;
+    long at_last_period = 0;
+    long allocations = 0;
+    interpolation::InterpolateOptions options;
+    options.method = method;
+    options.on_period = [&](const interpolation::StepPeriod&, const interpolation::PeriodContour&,
+                            const Eigen::Vector3d&) {
+      const long now = g_allocations.load();
+      if (seen >= kWarmUpPeriods) allocations += now - at_last_period;
+      at_last_period = now;
+      ++seen;
+    };
+    NoAllocationCountingSink sink;
+    auto summary = interpolation::interpolate(m, plan.path, *timing, options, {&sink}, "t.ngc");
+    const std::string name(interpolation::to_string(method));
+    ASSERT_TRUE(summary.ok()) << name << ": " << summary.error().message;
+    EXPECT_EQ(allocations, 0) << name;
+    EXPECT_GT(seen, 1000) << name;
+    EXPECT_EQ(sink.periods, seen) << name;
   }
 }
 

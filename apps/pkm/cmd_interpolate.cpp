@@ -147,6 +147,12 @@ void print_interpolation_table(const nlohmann::json& s, const std::string& progr
       "  per period        {:.1f} FK solves, compute max {:.2f} µs, mean {:.2f} µs, max {} steps\n",
       s["fk_solves_per_period"].get<double>(), s["max_compute_us_per_period"].get<double>(),
       s["mean_compute_us_per_period"].get<double>(), s["max_steps_per_period"].get<int>());
+  std::cout << fmt::format(
+      "  period time       p50 {:.2f} µs, p99 {:.2f} µs, p99.9 {:.2f} µs, max {:.1f} µs of {} periods "
+      "({} above 10 µs; compute only)\n",
+      s["period_time_us_p50"].get<double>(), s["period_time_us_p99"].get<double>(),
+      s["period_time_us_p99_9"].get<double>(), s["period_time_us_max"].get<double>(),
+      s["period_time_count"].get<long>(), s["period_time_over_10us"].get<long>());
   std::cout << fmt::format("  written           {}/steps.csv, steps.bin, contour.csv, summary.json\n", out);
 }
 

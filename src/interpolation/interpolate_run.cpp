@@ -131,14 +131,13 @@ class RunRecorder {
     }
     return ok_status();
   }
-  void compute_time(Clock::time_point started) {
-    const double us = std::chrono::duration<double, std::micro>(Clock::now() - started).count();
-    summary_.max_compute_us_per_period = std::max(summary_.max_compute_us_per_period, us);
-    total_us_ += us;
-    ++timed_;
+  void compute_time(Clock::time_point started) noexcept {
+    period_time_.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
   }
   Status finish() {
-    summary_.mean_compute_us_per_period = timed_ > 0 ? total_us_ / static_cast<double>(timed_) : 0.0;
+    summary_.period_time = period_time_.distribution();
+    summary_.max_compute_us_per_period = summary_.period_time.max_us;
+    summary_.mean_compute_us_per_period = summary_.period_time.mean_us;
     for (StepSink* sink : sinks_) {
       if (Status done = sink->finish(); !done) return done;
     }
@@ -151,8 +150,7 @@ class RunRecorder {
   InterpolateSummary& summary_;
   const InterpolateOptions& options_;
   double duration_s_;
-  double total_us_ = 0.0;
-  long timed_ = 0;
+  DurationHistogram period_time_{kPeriodTimeBudgetNs};  // fixed buckets: recording never allocates
 };
 
 std::array<double, kMaxActuators> values_of(const std::array<std::int64_t, kMaxActuators>& steps, int count,
@@ -429,6 +427,13 @@ nlohmann::json interpolation_summary_json(const InterpolateSummary& summary, con
       {"jacobians_per_period", summary.jacobians_per_period},
       {"max_compute_us_per_period", summary.max_compute_us_per_period},
       {"mean_compute_us_per_period", summary.mean_compute_us_per_period},
+      {"period_time_count", summary.period_time.count},
+      {"period_time_us_p50", summary.period_time.p50_us},
+      {"period_time_us_p99", summary.period_time.p99_us},
+      {"period_time_us_p99_9", summary.period_time.p99_9_us},
+      {"period_time_us_max", summary.period_time.max_us},
+      {"period_time_us_mean", summary.period_time.mean_us},
+      {"period_time_over_10us", summary.period_time.over_budget},
       {"max_steps_per_period", summary.max_steps_per_period},
       {"max_steps_line", summary.max_steps_line},
       {"max_remainder_steps", summary.max_remainder_steps},

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/duration_histogram.hpp"
 #include "core/result.hpp"
 #include "interpolation/carrier_interpolator.hpp"
 #include "interpolation/contour_monitor.hpp"
@@ -28,6 +29,9 @@
 namespace pkm::interpolation {
 
 enum class Method { exact, carrier, carrier_corrected, estimating };
+
+/// The compute budget of one period that the summary counts periods above: 10 µs, a tenth of a 10 kHz period.
+inline constexpr std::int64_t kPeriodTimeBudgetNs = 10'000;
 std::optional<Method> method_from_string(std::string_view name);
 std::string_view to_string(Method method);
 
@@ -71,6 +75,10 @@ struct InterpolateSummary {
   double jacobians_per_period = 0.0;
   double max_compute_us_per_period = 0.0;
   double mean_compute_us_per_period = 0.0;
+  /// The compute time of every period (what a servo loop runs: ideal time, strut laws, chord check,
+  /// quantisation; not the contour measurement nor the sinks), steady clock; over_budget counts the periods
+  /// above kPeriodTimeBudgetNs.
+  DurationDistribution period_time;
   int actuators = 0;
   std::array<std::int64_t, kMaxActuators> start_position{};
   std::array<std::int64_t, kMaxActuators> end_position{};

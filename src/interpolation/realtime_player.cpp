@@ -17,7 +17,6 @@ namespace pkm::interpolation {
 namespace {
 
 constexpr std::int64_t kPlayerNsPerS = 1'000'000'000;
-constexpr std::size_t kPlayerBuckets = 20'000;  // 1 µs each: 0…20 ms, the last one for everything later
 // Decoded periods kept ahead of the deadline: at 10 kHz, a tenth of a second.
 constexpr std::size_t kPlayerReadAhead = 1024;
 // Periods decoded after each release: more than the one consumed, so the ring refills after a slow read.
@@ -103,29 +102,6 @@ class PlayerReadAhead {
 
 }  // namespace
 
-LatenessRecorder::LatenessRecorder() : buckets_(kPlayerBuckets + 1, 0) {}
-
-void LatenessRecorder::add(std::int64_t lateness_ns) {
-  const std::int64_t bucket = std::clamp<std::int64_t>(lateness_ns / 1000, 0, kPlayerBuckets);
-  ++buckets_[static_cast<std::size_t>(bucket)];
-  max_ns_ = count_ ? std::max(max_ns_, lateness_ns) : lateness_ns;
-  min_ns_ = count_ ? std::min(min_ns_, lateness_ns) : lateness_ns;
-  sum_ns_ += static_cast<double>(lateness_ns);
-  ++count_;
-}
-
-double LatenessRecorder::percentile_us(double fraction) const {
-  if (count_ == 0) return 0.0;
-  const auto wanted =
-      static_cast<long>(std::ceil(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(count_)));
-  long seen = 0;
-  for (std::size_t b = 0; b < kPlayerBuckets; ++b) {
-    seen += buckets_[b];
-    if (seen >= std::max(wanted, 1L)) return std::min(static_cast<double>(b + 1), max_us());
-  }
-  return max_us();
-}
-
 Result<PlayerStatistics> play(StepStreamReader& source, StepSink& sink, const PlayerSettings& settings) {
   if (!std::isfinite(settings.period_s) || settings.period_s < 0.0)
     return make_error(ErrorCode::bad_input, fmt::format("servo period {} s", settings.period_s));
@@ -140,7 +116,7 @@ Result<PlayerStatistics> play(StepStreamReader& source, StepSink& sink, const Pl
   PlayerReadAhead ahead(source);
   ahead.refill(kPlayerReadAhead);
   if (source.error()) return *source.error();
-  LatenessRecorder lateness;
+  DurationHistogram lateness(period_ns);
   PlayerStatistics statistics;
   PlayerRealtime realtime(settings.try_realtime);
   statistics.memory_locked = realtime.locked();
@@ -170,7 +146,8 @@ Result<PlayerStatistics> play(StepStreamReader& source, StepSink& sink, const Pl
   statistics.max_lateness_us = lateness.max_us();
   statistics.min_lateness_us = lateness.min_us();
   statistics.mean_lateness_us = lateness.mean_us();
-  statistics.p99_lateness_us = lateness.percentile_us(0.99);
+  statistics.lateness = lateness.distribution();
+  statistics.p99_lateness_us = statistics.lateness.p99_us;
   if (auto finished = sink.finish(); !finished) return finished.error();
   return statistics;
 }

@@ -16,8 +16,8 @@
 // need privileges an ordinary user or a container usually lacks, and a refusal is reported, not an error.
 // All of it is undone afterwards.
 #include <cstdint>
-#include <vector>
 
+#include "core/duration_histogram.hpp"
 #include "core/result.hpp"
 #include "interpolation/step_period.hpp"
 #include "interpolation/step_stream.hpp"
@@ -32,33 +32,15 @@ struct PlayerSettings {
 
 struct PlayerStatistics {
   long periods = 0;  ///< released
-  double max_lateness_us = 0.0, mean_lateness_us = 0.0, p99_lateness_us = 0.0;
+  /// Wake-up time − deadline of every period, in a fixed histogram (core/duration_histogram.hpp: within 3 %,
+  /// no memory per period); over_budget counts the overruns.
+  DurationDistribution lateness;
+  double max_lateness_us = 0.0, mean_lateness_us = 0.0, p99_lateness_us = 0.0;  ///< as in `lateness`
   double min_lateness_us = 0.0;  ///< ≥ 0 unless the clock woke early
   long overruns = 0;             ///< periods released more than h after their deadline
   bool memory_locked = false;
   bool realtime_priority = false;
   double wall_time_s = 0.0;  ///< from t0 (the first deadline) to the end of the last release
-};
-
-/// Lateness counts in a fixed histogram of 1 µs buckets up to 20 ms (one more for anything later), so that
-/// the 99th percentile needs no memory per period. Percentiles are the upper edge of their bucket (at most
-/// the largest lateness seen): resolution 1 µs.
-class LatenessRecorder {
- public:
-  LatenessRecorder();
-  void add(std::int64_t lateness_ns);
-  long count() const { return count_; }
-  double max_us() const { return count_ ? static_cast<double>(max_ns_) * 1e-3 : 0.0; }
-  double min_us() const { return count_ ? static_cast<double>(min_ns_) * 1e-3 : 0.0; }
-  double mean_us() const { return count_ ? sum_ns_ / static_cast<double>(count_) * 1e-3 : 0.0; }
-  /// The lateness that `fraction` (0…1) of the periods did not exceed, µs.
-  double percentile_us(double fraction) const;
-
- private:
-  std::vector<std::uint32_t> buckets_;
-  long count_ = 0;
-  double sum_ns_ = 0.0;
-  std::int64_t max_ns_ = 0, min_ns_ = 0;
 };
 
 /// Plays `source` from its current position into `sink`, one period every h, then finishes the sink. On an
