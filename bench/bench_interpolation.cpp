@@ -142,6 +142,28 @@ BENCHMARK_CAPTURE(BM_PeriodTime, carrier_10kHz, PeriodMethod::carrier, 1e-4)->Un
 BENCHMARK_CAPTURE(BM_PeriodTime, exact_1kHz, PeriodMethod::exact, 1e-3)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_PeriodTime, exact_10kHz, PeriodMethod::exact, 1e-4)->Unit(benchmark::kMicrosecond);
 
+// What the machine takes from a running thread, whatever it runs: a loop that only reads the steady clock,
+// the gaps between consecutive readings (interrupts, preemption, a hypervisor). A gap inside a timed period
+// adds to it, so a period of t µs is hit with a probability of about gaps_over_10us_per_s · t: the share of
+// periods above 10 µs that no change of the code removes, only a shorter period.
+void BM_ClockGaps(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  DurationHistogram gaps(10'000);
+  Clock::time_point previous = Clock::now();
+  const Clock::time_point started = previous;
+  for (auto _ : state) {
+    const Clock::time_point now = Clock::now();
+    gaps.add(std::chrono::duration_cast<std::chrono::nanoseconds>(now - previous).count());
+    previous = now;
+  }
+  const double seconds = std::chrono::duration<double>(previous - started).count();
+  state.counters["gaps_over_10us_per_s"] =
+      seconds > 0.0 ? static_cast<double>(gaps.over_budget()) / seconds : 0.0;
+  state.counters["max_gap_us"] = gaps.max_us();
+  state.counters["p99_9_gap_us"] = gaps.percentile_us(0.999);
+}
+BENCHMARK(BM_ClockGaps)->MinTime(1.0);
+
 void BM_EstimatingTact(benchmark::State& state, interpolation::CandidateSet set, double step_mm) {
   interpolation::EstimatingSettings settings;
   settings.step_mm = step_mm;

@@ -77,6 +77,8 @@ class DiscretenessCorrector {
   PoseTracker middle_tracker_;
   PoseTracker probe_tracker_;  ///< the non-linearised reference
   std::array<std::int64_t, kMaxActuators> position_{};
+  int end_hint_ = 0;     ///< path segment of the last period's end
+  int middle_hint_ = 0;  ///< and of its middle
   CorrectorStatistics statistics_;
 };
 

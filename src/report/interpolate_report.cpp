@@ -177,6 +177,11 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
       table_row("Compute per period (max / mean)",
                 fmt::format("{} / {}", with_unit(summary_number(sm, "max_compute_us_per_period"), "µs"),
                             with_unit(summary_number(sm, "mean_compute_us_per_period"), "µs"))));
+  table.push_back(
+      table_row("Compute per period (p50 / p99 / p99.9)",
+                fmt::format("{} / {} / {}", with_unit(summary_number(sm, "period_time_us_p50"), "µs"),
+                            with_unit(summary_number(sm, "period_time_us_p99"), "µs"),
+                            with_unit(summary_number(sm, "period_time_us_p99_9"), "µs"))));
   table.push_back(table_row("Program", files.program));
   table.push_back(table_row("Machine file", machine.source));
 
