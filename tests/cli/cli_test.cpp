@@ -125,7 +125,7 @@ TEST(Cli, WrongPointCountNamesFileLineAndKey) {
                      "platform_joints: [[1,2,3],[1,2,3],[1,2,3],[1,2,3],[1,2,3],[1,2,3]]\n");
   const CliRun r = cli_run("check " + path);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.out.find("pkm_cli_test_short.yaml:4: base_joints"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pkm_cli_test_short.yaml:4:3: base_joints"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("got 2 points"), std::string::npos) << r.out;
 }
 
@@ -136,13 +136,13 @@ TEST(Cli, MisspeltKeyIsAnError) {
                                           "base_joint: []\n");
   const CliRun r = cli_run("check " + path);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.out.find("pkm_cli_test_typo.yaml:3: base_joint: unknown key"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pkm_cli_test_typo.yaml:3:1: base_joint: unknown key"), std::string::npos) << r.out;
 }
 
 TEST(Cli, MissingFileIsAnError) {
   const CliRun r = cli_run("check /nonexistent/machine.yaml");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.out.find("/nonexistent/machine.yaml: cannot open"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/nonexistent/machine.yaml: cannot read machine file"), std::string::npos) << r.out;
 }
 
 TEST(Cli, SingularActuatorValuesExitWithFour) {

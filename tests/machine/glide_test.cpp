@@ -276,49 +276,50 @@ TEST(GlideFile, ErrorsNameFileLineAndKey) {
   const std::string joints = "platform_joints: [[0, 80, 0], [-69.282, -40, 0], [69.282, -40, 0]]\n";
   // Missing strut_lengths.
   std::string message = glide_error_of(std::string(kTriglideGuides) + joints, "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:1: strut_lengths: missing"), std::string::npos) << message;
+  EXPECT_NE(message.find("tri.yaml:1:1: strut_lengths: missing"), std::string::npos) << message;
   // Misspelt top-level key (line 7).
   message =
       glide_error_of(std::string(kTriglideGuides) + "strut_length: [600, 600, 600]\n" + joints, "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:7: strut_length: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("tri.yaml:7:1: strut_length: unknown key"), std::string::npos) << message;
   // Wrong count (line 7): 2 lengths for 3 guides.
   message = glide_error_of(std::string(kTriglideGuides) + "strut_lengths: [600, 600]\n" + joints, "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:7: strut_lengths: expected a list of 3 numbers, got 2"), std::string::npos)
+  EXPECT_NE(message.find("tri.yaml:7:16: strut_lengths: expected a list of 3 numbers, got 2"),
+            std::string::npos)
       << message;
   // Wrong count of platform joints (line 8).
   message = glide_error_of(
       std::string(kTriglideGuides) + "strut_lengths: [600, 600, 600]\nplatform_joints: [[0, 0, 0]]\n",
       "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:8: platform_joints: expected a list of 3 points"), std::string::npos)
+  EXPECT_NE(message.find("tri.yaml:8:18: platform_joints: expected a list of 3 points"), std::string::npos)
       << message;
   // Misspelt guide key (line 5).
   std::string yaml = kTriglideGuides;
   yaml.replace(yaml.find("direction: [0.4330127"), 9, "dirction");
   message = glide_error_of(yaml + "strut_lengths: [600, 600, 600]\n" + joints, "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:5: guides[1].dirction: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("tri.yaml:5:37: guides[1].dirction: unknown key"), std::string::npos) << message;
   // Four guides (line 4: the list starts there).
   message = glide_error_of(
       "type: glide\nangles: abc\nguides:\n  - {point: [0, 0, 0], direction: [1, 0, 0]}\n"
       "  - {point: [0, 0, 0], direction: [1, 0, 0]}\n  - {point: [0, 0, 0], direction: [1, 0, 0]}\n"
       "  - {point: [0, 0, 0], direction: [1, 0, 0]}\n",
       "four.yaml");
-  EXPECT_NE(message.find("four.yaml:4: guides: expected a list of 3 or 6 guides"), std::string::npos)
+  EXPECT_NE(message.find("four.yaml:4:3: guides: expected a list of 3 or 6 guides"), std::string::npos)
       << message;
   // Zero direction, bad branch value, angles on a three-guide home.
   yaml = kTriglideGuides;
   yaml.replace(yaml.find("[0, -0.5, 0.8660254037844386]"), 29, "[0, 0, 0]");
   message = glide_error_of(yaml + "strut_lengths: [600, 600, 600]\n" + joints, "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:4: guides[0].direction: a guide direction must not be zero"),
+  EXPECT_NE(message.find("tri.yaml:4:39: guides[0].direction: a guide direction must not be zero"),
             std::string::npos)
       << message;
   message = glide_error_of(
       std::string(kTriglideGuides) + "strut_lengths: [600, 600, 600]\n" + joints + "branch: [1, 2, 1]\n",
       "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:9: branch[1]: expected +1 or -1, got 2"), std::string::npos) << message;
+  EXPECT_NE(message.find("tri.yaml:9:13: branch[1]: expected +1 or -1, got 2"), std::string::npos) << message;
   message = glide_error_of(std::string(kTriglideGuides) + "strut_lengths: [600, 600, 600]\n" + joints +
                                "home: [0, 0, 300, 0, 5, 0]\n",
                            "tri.yaml");
-  EXPECT_NE(message.find("tri.yaml:9: home: a three-guide glide keeps its platform orientation fixed"),
+  EXPECT_NE(message.find("tri.yaml:9:7: home: a three-guide glide keeps its platform orientation fixed"),
             std::string::npos)
       << message;
 }

@@ -254,20 +254,21 @@ TEST(HexapodRefinedFile, ErrorsNameFileLineAndKey) {
   const std::string head = std::string("type: hexapod_refined\n") + kCh5HexapodGeometry;  // 18 lines
   // Missing `cardan`.
   std::string message = hexapod_refined_error_of(head, "refined.yaml");
-  EXPECT_NE(message.find("refined.yaml:1: cardan: missing"), std::string::npos) << message;
+  EXPECT_NE(message.find("refined.yaml:1:1: cardan: missing"), std::string::npos) << message;
   // Misspelt key inside the third joint map (line 22).
   message = hexapod_refined_error_of(
       head + "cardan:\n  - {}\n  - {}\n  - {axsi1: [0, 1, 0]}\n  - {}\n  - {}\n  - {}\n", "refined.yaml");
-  EXPECT_NE(message.find("refined.yaml:22: cardan[2].axsi1: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("refined.yaml:22:6: cardan[2].axsi1: unknown key"), std::string::npos) << message;
   // Wrong count (line 19).
   message = hexapod_refined_error_of(head + "cardan: [{}, {}, {}, {}, {}]\n", "refined.yaml");
-  EXPECT_NE(message.find("refined.yaml:19: cardan: expected a list of 6 joint maps, got 5"),
+  EXPECT_NE(message.find("refined.yaml:19:9: cardan: expected a list of 6 joint maps, got 5"),
             std::string::npos)
       << message;
   // Wrong vector size (line 20).
   message = hexapod_refined_error_of(
       head + "cardan:\n  - {offset1: [0.1, 0.2]}\n  - {}\n  - {}\n  - {}\n  - {}\n  - {}\n", "refined.yaml");
-  EXPECT_NE(message.find("refined.yaml:20: cardan[0].offset1: expected 3 numbers, got 2"), std::string::npos)
+  EXPECT_NE(message.find("refined.yaml:20:15: cardan[0].offset1: expected 3 numbers, got 2"),
+            std::string::npos)
       << message;
   // Zero axis, parallel axes, offsets that are not calibration errors.
   message =
@@ -281,7 +282,7 @@ TEST(HexapodRefinedFile, ErrorsNameFileLineAndKey) {
   EXPECT_NE(message.find("cardan[3]: joint offsets add up to 80.000 mm"), std::string::npos) << message;
   // Misspelt top-level key.
   message = hexapod_refined_error_of(head + "cardans: [{}, {}, {}, {}, {}, {}]\n", "refined.yaml");
-  EXPECT_NE(message.find("refined.yaml:19: cardans: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("refined.yaml:19:1: cardans: unknown key"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -84,8 +84,8 @@ TEST(MotionSettings, NonPositiveValuesNameFileLineAndKey) {
                           "path_tolerance_mm", "angular_feed_deg_min"}) {
     for (const char* value : {"0", "-5"}) {
       const std::string message = motion_settings_load_error(fmt::format("motion:\n  {}: {}\n", key, value));
-      EXPECT_NE(message.find(fmt::format("test.yaml:{}: motion.{}: must be positive", line, key)),
-                std::string::npos)
+      EXPECT_TRUE(test::names_yaml_place(message, fmt::format("test.yaml:{}", line),
+                                         fmt::format("motion.{}: must be positive", key)))
           << message;
     }
   }
@@ -94,11 +94,11 @@ TEST(MotionSettings, NonPositiveValuesNameFileLineAndKey) {
 TEST(MotionSettings, NonNumbersNameFileLineAndKey) {
   const int line = appended_line(kCh5HexapodText) + 1;
   const std::string message = motion_settings_load_error("motion:\n  rapid_mm_min: fast\n");
-  EXPECT_NE(message.find(fmt::format("test.yaml:{}: motion.rapid_mm_min: expected a number", line)),
+  EXPECT_NE(message.find(fmt::format("test.yaml:{}:17: motion.rapid_mm_min: expected a number", line)),
             std::string::npos)
       << message;
   const std::string origin = motion_settings_load_error("motion:\n  program_origin_mm: [0, zero, 700]\n");
-  EXPECT_NE(origin.find(fmt::format("test.yaml:{}: motion.program_origin_mm[1]: expected a number", line)),
+  EXPECT_NE(origin.find(fmt::format("test.yaml:{}:26: motion.program_origin_mm[1]: expected a number", line)),
             std::string::npos)
       << origin;
 }
@@ -106,7 +106,7 @@ TEST(MotionSettings, NonNumbersNameFileLineAndKey) {
 TEST(MotionSettings, UnknownKeyIsRejected) {
   const int line = appended_line(kCh5HexapodText) + 1;
   const std::string message = motion_settings_load_error("motion:\n  rapid_speed: 6000\n");
-  EXPECT_NE(message.find(fmt::format("test.yaml:{}: motion.rapid_speed: unknown key", line)),
+  EXPECT_NE(message.find(fmt::format("test.yaml:{}:3: motion.rapid_speed: unknown key", line)),
             std::string::npos)
       << message;
   EXPECT_NE(message.find("rapid_mm_min"), std::string::npos) << "lists the allowed keys: " << message;
@@ -115,7 +115,7 @@ TEST(MotionSettings, UnknownKeyIsRejected) {
 TEST(MotionSettings, SectionMustBeAMapping) {
   const std::string message = motion_settings_load_error("motion: 6000\n");
   EXPECT_NE(
-      message.find(fmt::format("test.yaml:{}: motion: expected a mapping", appended_line(kCh5HexapodText))),
+      message.find(fmt::format("test.yaml:{}:9: motion: expected a mapping", appended_line(kCh5HexapodText))),
       std::string::npos)
       << message;
 }
@@ -137,14 +137,14 @@ TEST(MotionSettings, PlanarProgramOriginTakesTwoNumbersOrAZeroZ) {
   auto off_plane =
       parse_machine_text(std::string(kPlanar3Text) + "motion: {program_origin_mm: [5, 6, 1]}\n", "p.yaml");
   ASSERT_FALSE(off_plane.ok());
-  EXPECT_NE(
-      off_plane.error().message.find("p.yaml:5: motion.program_origin_mm: a planar machine moves in z = 0"),
-      std::string::npos)
+  EXPECT_NE(off_plane.error().message.find(
+                "p.yaml:5:29: motion.program_origin_mm: a planar machine moves in z = 0"),
+            std::string::npos)
       << off_plane.error().message;
   auto four =
       parse_machine_text(std::string(kPlanar3Text) + "motion: {program_origin_mm: [1, 2, 0, 4]}\n", "p.yaml");
   ASSERT_FALSE(four.ok());
-  EXPECT_NE(four.error().message.find("p.yaml:5: motion.program_origin_mm: expected [x, y] or [x, y, 0]"),
+  EXPECT_NE(four.error().message.find("p.yaml:5:29: motion.program_origin_mm: expected [x, y] or [x, y, 0]"),
             std::string::npos)
       << four.error().message;
 }

@@ -198,28 +198,28 @@ TEST(Planar2MachineFile, DefaultHomeIsOnThePositiveSideAndNotSingular) {
 }
 
 TEST(Planar2MachineFile, ErrorsNameFileLineAndKey) {
-  EXPECT_NE(planar2_load_error("type: planar2\nhome: [1, 2]\n").find("bad.yaml:1: base_joints: missing"),
+  EXPECT_NE(planar2_load_error("type: planar2\nhome: [1, 2]\n").find("bad.yaml:1:1: base_joints: missing"),
             std::string::npos);
   EXPECT_NE(planar2_load_error("type: planar2\nbase_joint:\n  - [0, 0]\n  - [1, 0]\n")
-                .find("bad.yaml:2: base_joint: unknown key"),
+                .find("bad.yaml:2:1: base_joint: unknown key"),
             std::string::npos);
   EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "  - [1, 1]\n"))
-                .find("bad.yaml:3: base_joints: expected a list of 2 points of 2 numbers, got 3 points"),
+                .find("bad.yaml:3:3: base_joints: expected a list of 2 points of 2 numbers, got 3 points"),
             std::string::npos);
   EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40, 0]"))
-                .find("bad.yaml:4: base_joints[1]: expected 2 numbers, got 3"),
+                .find("bad.yaml:4:5: base_joints[1]: expected 2 numbers, got 3"),
             std::string::npos);
   EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "home: [1, 2, 3]\n"))
-                .find("bad.yaml:5: home: expected a list of 2 numbers, got 3"),
+                .find("bad.yaml:5:7: home: expected a list of 2 numbers, got 3"),
             std::string::npos);
   EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "tool: [0, 10]\n"))
-                .find("bad.yaml:5: tool: planar2 has no platform"),
+                .find("bad.yaml:5:7: tool: planar2 has no platform"),
             std::string::npos);
   EXPECT_NE(planar2_load_error(planar2_yaml("[0, 0]", "[300, 40]", "home: [150, 20]\n"))
-                .find("bad.yaml:5: home: planar2 is singular"),
+                .find("bad.yaml:5:7: home: planar2 is singular"),
             std::string::npos);
   EXPECT_NE(planar2_load_error(planar2_yaml("[7, 7]", "[7, 7]"))
-                .find("bad.yaml:3: base_joints: A1 and A2 coincide"),
+                .find("bad.yaml:3:3: base_joints: A1 and A2 coincide"),
             std::string::npos);
 }
 

@@ -396,28 +396,30 @@ TEST(Planar3MachineFile, DefaultHomeAvoidsTheSingularZeroAngle) {
 
 TEST(Planar3MachineFile, ErrorsNameFileLineAndKey) {
   EXPECT_NE(planar3_load_error("type: planar3\nbase_joints:\n  - [0, 0]\n  - [1, 0]\n  - [0, 1]\n")
-                .find("bad.yaml:1: platform_joints: missing"),
+                .find("bad.yaml:1:1: platform_joints: missing"),
             std::string::npos);
   EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "platfrom_joint: 3\n"))
-                .find("bad.yaml:10: platfrom_joint: unknown key"),
+                .find("bad.yaml:10:1: platfrom_joint: unknown key"),
             std::string::npos);
-  EXPECT_NE(planar3_load_error(planar3_yaml("  - [0, 100]\n  - [1, 2]\n"))
-                .find("bad.yaml:7: platform_joints: expected a list of 3 points of 2 numbers, got 2 points"),
-            std::string::npos);
+  EXPECT_NE(
+      planar3_load_error(planar3_yaml("  - [0, 100]\n  - [1, 2]\n"))
+          .find("bad.yaml:7:3: platform_joints: expected a list of 3 points of 2 numbers, got 2 points"),
+      std::string::npos);
   EXPECT_NE(planar3_load_error(planar3_yaml("  - [0, 100]\n  - [1, 2, 3]\n  - [4, 5]\n"))
-                .find("bad.yaml:8: platform_joints[1]: expected 2 numbers, got 3"),
+                .find("bad.yaml:8:5: platform_joints[1]: expected 2 numbers, got 3"),
             std::string::npos);
   EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "home: [0, 0]\n"))
-                .find("bad.yaml:10: home: expected a list of 3 numbers, got 2"),
+                .find("bad.yaml:10:7: home: expected a list of 3 numbers, got 2"),
             std::string::npos);
   EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "home: [0, 0, 0]\n"))
-                .find("bad.yaml:10: home: planar3 is singular"),
+                .find("bad.yaml:10:7: home: planar3 is singular"),
             std::string::npos);
   EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "tool: [1, 2, 3]\n"))
-                .find("bad.yaml:10: tool: expected 2 numbers, got 3"),
+                .find("bad.yaml:10:7: tool: expected 2 numbers, got 3"),
             std::string::npos);
-  EXPECT_NE(planar3_load_error(planar3_yaml(kUniformPlatform, "angles: abc\n")).find("bad.yaml:10: angles:"),
-            std::string::npos);
+  EXPECT_NE(
+      planar3_load_error(planar3_yaml(kUniformPlatform, "angles: abc\n")).find("bad.yaml:10:9: angles:"),
+      std::string::npos);
 }
 
 }  // namespace

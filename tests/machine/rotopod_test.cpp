@@ -229,34 +229,37 @@ TEST(RotopodFile, ErrorsNameFileLineAndKey) {
       "[114, -96, 0]]\n";
   // Missing circle.
   std::string message = rotopod_error_of(head + "joint_heights: 0\n" + rest, "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:1: circle: missing"), std::string::npos) << message;
+  EXPECT_NE(message.find("roto.yaml:1:1: circle: missing"), std::string::npos) << message;
   // Misspelt key inside the circle (line 3).
   message =
       rotopod_error_of(head + "circle: {center: [0, 0], radus: 300}\njoint_heights: 0\n" + rest, "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:3: circle.radus: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("roto.yaml:3:26: circle.radus: unknown key"), std::string::npos) << message;
   // Missing radius.
   message = rotopod_error_of(head + "circle: {center: [0, 0]}\njoint_heights: 0\n" + rest, "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:3: circle.radius: missing"), std::string::npos) << message;
+  EXPECT_NE(message.find("roto.yaml:3:9: circle.radius: missing"), std::string::npos) << message;
   // Wrong count of heights (line 4).
   message = rotopod_error_of(head + circle + "joint_heights: [0, 0, 0, 0, 0]\n" + rest, "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:4: joint_heights: expected a list of 6 numbers, got 5"),
+  EXPECT_NE(message.find("roto.yaml:4:16: joint_heights: expected a list of 6 numbers, got 5"),
             std::string::npos)
       << message;
   // Misspelt top-level key (line 4).
   message = rotopod_error_of(head + circle + "joint_height: 0\n" + rest, "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:4: joint_height: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("roto.yaml:4:1: joint_height: unknown key"), std::string::npos) << message;
   // Bad branch value (line 7) and non-positive radius (line 3).
   message = rotopod_error_of(head + circle + "joint_heights: 0\n" + rest + "branch: [1, -1, 1, -1, 0, -1]\n",
                              "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:7: branch[4]: expected +1 or -1, got 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("roto.yaml:7:24: branch[4]: expected +1 or -1, got 0"), std::string::npos)
+      << message;
   message =
       rotopod_error_of(head + "circle: {center: [0, 0], radius: -3}\njoint_heights: 0\n" + rest, "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:3: circle.radius: the circle radius must be positive"), std::string::npos)
+  EXPECT_NE(message.find("roto.yaml:3:34: circle.radius: the circle radius must be positive"),
+            std::string::npos)
       << message;
   // A home the struts cannot reach (line 7).
   message = rotopod_error_of(head + circle + "joint_heights: 0\n" + rest + "home: [0, 0, 2000, 0, 0, 0]\n",
                              "roto.yaml");
-  EXPECT_NE(message.find("roto.yaml:7: home: the home pose is not reachable"), std::string::npos) << message;
+  EXPECT_NE(message.find("roto.yaml:7:7: home: the home pose is not reachable"), std::string::npos)
+      << message;
 }
 
 }  // namespace

@@ -263,37 +263,38 @@ TEST(TriceptFile, MissingKeyNamesFileLineAndKey) {
   std::string yaml = tricept_yaml();
   yaml = yaml.substr(0, yaml.find("platform_joints:"));
   const std::string message = tricept_load_error(yaml, "no_flange.yaml");
-  EXPECT_TRUE(std::regex_search(message, std::regex(R"(^no_flange\.yaml:[0-9]+: platform_joints: missing)")))
+  EXPECT_TRUE(
+      std::regex_search(message, std::regex(R"(^no_flange\.yaml:[0-9]+:[0-9]+: platform_joints: missing)")))
       << message;
 }
 
 TEST(TriceptFile, MisspeltKeyNamesFileLineAndKey) {
   const std::string message = tricept_load_error(tricept_yaml("centre_joint: [0, 0, 0]\n"), "typo.yaml");
-  EXPECT_NE(message.find("typo.yaml:11: centre_joint: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("typo.yaml:11:1: centre_joint: unknown key"), std::string::npos) << message;
   const std::string message2 = tricept_load_error(tricept_yaml("", "platform_joint"), "typo2.yaml");
-  EXPECT_NE(message2.find("typo2.yaml:7: platform_joint: unknown key"), std::string::npos) << message2;
+  EXPECT_NE(message2.find("typo2.yaml:7:1: platform_joint: unknown key"), std::string::npos) << message2;
 }
 
 TEST(TriceptFile, WrongCountNamesFileLineAndKey) {
   std::string yaml = tricept_yaml();
   yaml.erase(yaml.find("  - [173.20508075688772, -100, 0]\n"));
   const std::string message = tricept_load_error(yaml, "count.yaml");
-  EXPECT_NE(message.find("count.yaml:8: platform_joints: expected a list of 3 points"), std::string::npos)
+  EXPECT_NE(message.find("count.yaml:8:3: platform_joints: expected a list of 3 points"), std::string::npos)
       << message;
   const std::string message2 = tricept_load_error(tricept_yaml("center_joint: [0, 0]\n"), "centre.yaml");
-  EXPECT_NE(message2.find("centre.yaml:11: center_joint: expected 3 numbers, got 2"), std::string::npos)
+  EXPECT_NE(message2.find("centre.yaml:11:15: center_joint: expected 3 numbers, got 2"), std::string::npos)
       << message2;
 }
 
 TEST(TriceptFile, ToolOffTheAxisIsRejected) {
   const std::string message = tricept_load_error(tricept_yaml("tool: [10, 0, 200]\n"), "tool.yaml");
-  EXPECT_NE(message.find("tool.yaml:11: tool:"), std::string::npos) << message;
+  EXPECT_NE(message.find("tool.yaml:11:7: tool:"), std::string::npos) << message;
   EXPECT_NE(message.find("manipulator axis"), std::string::npos) << message;
 }
 
 TEST(TriceptFile, UnreachableHomeIsRejectedAtTheHomeLine) {
   const std::string message = tricept_load_error(tricept_yaml("home: [0, 0, -500, 0, 0, 0]\n"), "home.yaml");
-  EXPECT_NE(message.find("home.yaml:11: home:"), std::string::npos) << message;
+  EXPECT_NE(message.find("home.yaml:11:7: home:"), std::string::npos) << message;
   EXPECT_NE(message.find("out of reach"), std::string::npos) << message;
 }
 

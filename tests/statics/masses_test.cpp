@@ -60,7 +60,7 @@ TEST(Masses, NegativeMassNamesFileLineAndKey) {
   const int line = appended_line(kCh5HexapodText) + 2;
   const std::string message =
       test::appended_section_error(kCh5HexapodText, "masses:\n  platform_kg: 10\n  strut_kg: -3\n");
-  EXPECT_NE(message.find("test.yaml:" + std::to_string(line) + ": masses.strut_kg"), std::string::npos)
+  EXPECT_NE(message.find("test.yaml:" + std::to_string(line) + ":13: masses.strut_kg"), std::string::npos)
       << message;
   EXPECT_NE(message.find("negative"), std::string::npos) << message;
 }
@@ -68,7 +68,8 @@ TEST(Masses, NegativeMassNamesFileLineAndKey) {
 TEST(Masses, WrongVectorLengthNamesTheKey) {
   const int line = appended_line(kCh5HexapodText) + 1;
   std::string message = test::appended_section_error(kCh5HexapodText, "masses:\n  platform_com_mm: [1, 2]\n");
-  EXPECT_NE(message.find("test.yaml:" + std::to_string(line) + ": masses.platform_com_mm"), std::string::npos)
+  EXPECT_NE(message.find("test.yaml:" + std::to_string(line) + ":20: masses.platform_com_mm"),
+            std::string::npos)
       << message;
   EXPECT_NE(message.find("expected 3 numbers, got 2"), std::string::npos) << message;
   message = test::appended_section_error(kCh5HexapodText, "masses:\n  gravity_mm_s2: [0, 0, -9810, 1]\n");
