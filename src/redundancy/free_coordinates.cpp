@@ -79,7 +79,7 @@ Result<FreeCoordinates> FreeCoordinates::create(const Mechanism& mechanism, Free
   free.start_ = start_rad;
   if (bounds_deg && !((*bounds_deg)[0] < (*bounds_deg)[1])) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("--bounds {},{}: the lower bound must be below the upper one (degrees)",
+                      fmt::format("bounds {},{}: the lower bound must be below the upper one (degrees)",
                                   (*bounds_deg)[0], (*bounds_deg)[1]));
   }
   for (int i = 0; i < free.count_; ++i) {
@@ -89,7 +89,7 @@ Result<FreeCoordinates> FreeCoordinates::create(const Mechanism& mechanism, Free
       if (start_rad[i] < free.lower_rad_[i] - 1e-9 || start_rad[i] > free.upper_rad_[i] + 1e-9) {
         return make_error(
             ErrorCode::bad_input,
-            fmt::format("the program starts with {} = {:.4f} deg, outside --bounds {},{}", free.name(i),
+            fmt::format("the program starts with {} = {:.4f} deg, outside the bounds {},{}", free.name(i),
                         deg_from_rad(start_rad[i]), (*bounds_deg)[0], (*bounds_deg)[1]));
       }
     } else {

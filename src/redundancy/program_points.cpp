@@ -49,7 +49,7 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
                                      double step_mm) {
   if (!(step_mm > 0.0)) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("--step-mm {} must be a positive length in mm", step_mm));
+                      fmt::format("path step: must be a positive length in mm, got {}", step_mm));
   }
   ProgramPoints out;
   out.frame = program_frame(machine);

@@ -29,7 +29,7 @@ std::vector<std::string_view> load_spec_split(std::string_view s, char separator
 }
 
 Error load_spec_error(std::string_view item, std::string_view message) {
-  return make_error(ErrorCode::bad_input, fmt::format("--load: '{}': {}", item, message));
+  return make_error(ErrorCode::bad_input, fmt::format("'{}': {}", item, message));
 }
 
 // The whole text must be one finite number ("1e3", "-5", "+2.5").
@@ -80,7 +80,7 @@ Status load_spec_item(std::string_view item, CuttingLoad& load) {
 }
 
 Result<LoadModel> load_spec_file(const std::string& path) {
-  if (path.empty()) return make_error(ErrorCode::bad_input, "--load: '@' must be followed by a file name");
+  if (path.empty()) return make_error(ErrorCode::bad_input, "'@' must be followed by a file name");
   auto text = read_text_input(path, "load file");
   if (!text) return text.error();
   return parse_load_yaml(*text, path);
@@ -93,7 +93,7 @@ Result<LoadModel> parse_load_spec(std::string_view spec) {
   if (!spec.empty() && spec.front() == '@') return load_spec_file(std::string(spec.substr(1)));
   if (spec.empty()) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("--load: empty; expected key=value pairs ({}) or @FILE", load_key_list()));
+                      fmt::format("empty; expected key=value pairs ({}) or @FILE", load_key_list()));
   }
   LoadModel model;
   std::vector<std::string_view> seen;

@@ -403,6 +403,10 @@ std::vector<CatalogueCase> catalogue_cases() {
        plan_sentinel,
        "run"},
       // --- load files (optimize --load @FILE)
+      {"load_inline_unknown_key",
+       optimize + "--out {t}/o.ngc --load torque=5",
+       2,
+       {"pkm optimize: error: --load: 'torque=5': unknown key 'torque'"}},
       {"load_file_is_directory",
        optimize + "--out {t}/o.ngc --load @{t}/adir_load.yaml",
        2,

@@ -60,7 +60,7 @@ TEST(OptimizeCli, BadArgumentsFailWithoutOutput) {
       {" --law fastest", "--law fastest"},
       {" --law increment --free some", "--free some"},
       {" --law increment --bounds 30", "--bounds 30"},
-      {" --law increment --bounds 20,30", "outside --bounds 20,30"},
+      {" --law increment --bounds 20,30", "outside the bounds 20,30"},
       {" --law force --load tangential=abc", "tangential"},
       {" --law increment --solver quantum", "--solver quantum"},
   };
