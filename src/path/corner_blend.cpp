@@ -4,26 +4,43 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace pkm::path {
 
 namespace {
+
+// Two properties make a blend safe to follow, and both are checked on the blend itself, whatever the moves
+// are (lines, arcs, helices, turning tools):
+//  - deviation: every point within the tolerance of the two programmed moves (sampled at kProbeSamples);
+//  - regularity: the parametric speed |dC/du| nowhere below kMinSpeedShare of its mean. Near a reversal the
+//    cross-fade's velocity vanishes mid-blend (between lines its component along the bisector is
+//    d·cos(θ/2)·(1 + w'(u))), the corner becomes a cusp the tool has to stop at anyway, and the arc-length
+//    map u(s) would need an unbounded slope. Such a corner is an exact stop.
+constexpr int kProbeSamples = 24;
+constexpr double kMinSpeedShare = 0.2;
 
 Eigen::Vector3d blend_point(const Curve& a, const Curve& b, const Segment& seg, double u) {
   const Eigen::Vector3d pa = a.position(seg.fa0 + u * (seg.fa1 - seg.fa0));
   return pa + blend_weight(u) * (b.position(seg.fb0 + u * (seg.fb1 - seg.fb0)) - pa);
 }
 
-/// Unit tangent of the controlled point at fraction f, looking backward (end of a move) or forward.
-Eigen::Vector3d tangent(const Curve& c, double f, bool backward) {
-  const double df = std::min(1e-4, 1e-4 / std::max(c.translation_mm, 1e-9));
-  const Eigen::Vector3d d =
-      backward ? c.position(f) - c.position(f - df) : c.position(f + df) - c.position(f);
-  return d.normalized();
+/// dC/du of the cross-fade C(u) = A(u) + w(u)·(B(u) − A(u)).
+Eigen::Vector3d blend_velocity(const Curve& a, const Curve& b, const Segment& seg, double u) {
+  const double fa = seg.fa0 + u * (seg.fa1 - seg.fa0), fb = seg.fb0 + u * (seg.fb1 - seg.fb0);
+  const Eigen::Vector3d va = a.velocity(fa) * (seg.fa1 - seg.fa0);
+  const Eigen::Vector3d vb = b.velocity(fb) * (seg.fb1 - seg.fb0);
+  return va + blend_weight(u) * (vb - va) + blend_weight_rate(u) * (b.position(fb) - a.position(fa));
+}
+
+/// Unit tangent of the controlled point at fraction f of a move.
+Eigen::Vector3d tangent(const Curve& c, double f) {
+  return c.velocity(f).normalized();
 }
 
 /// Distance from `point` to curve `c` over fractions [f0, f1]. Lines: exact. Helices: the fraction of the
-/// point's angle about the axis (exact for circles), then a few bracketing refinements for the helix pitch.
+/// point's angle about the axis (exact for circles); a turning tool: the nearest of nine points of the
+/// window; then bracketing refinements (the helix pitch, the tool's swing).
 double distance_to_curve(const Curve& c, double f0, double f1, const Eigen::Vector3d& point) {
   if (c.kind == CurveKind::line && c.tool_length_mm == 0.0) {  // exact: distance to the line piece
     const Eigen::Vector3d p0 = c.position(f0), p1 = c.position(f1);
@@ -40,13 +57,20 @@ double distance_to_curve(const Curve& c, double f0, double f1, const Eigen::Vect
     const double middle = 0.5 * (f0 + f1) * c.sweep_rad;
     angle += 2.0 * std::numbers::pi * std::round((middle - angle) / (2.0 * std::numbers::pi));
     best_f = std::clamp(angle / c.sweep_rad, f0, f1);
-  } else {
-    best_f = 0.5 * (f0 + f1);
   }
   double best = (c.position(best_f) - point).squaredNorm();
   if (c.kind == CurveKind::helix && c.axial_mm == 0.0 && c.tool_length_mm == 0.0) return std::sqrt(best);
-  double step = 0.25 * (f1 - f0);
-  for (int it = 0; it < 12; ++it) {
+  if (c.kind == CurveKind::line || c.tool_length_mm != 0.0) {
+    // A turning tool bends the controlled point's curve: start from the nearest of a few points of the
+    // window.
+    for (int k = 0; k <= 8; ++k) {
+      const double f = f0 + (f1 - f0) * k / 8.0;
+      const double d = (c.position(f) - point).squaredNorm();
+      if (d < best) best = d, best_f = f;
+    }
+  }
+  double step = 0.125 * (f1 - f0);
+  for (int it = 0; it < 16; ++it) {
     for (double f : {best_f - step, best_f + step}) {
       if (f < f0 || f > f1) continue;
       const double d = (c.position(f) - point).squaredNorm();
@@ -57,55 +81,137 @@ double distance_to_curve(const Curve& c, double f0, double f1, const Eigen::Vect
   return std::sqrt(best);
 }
 
-double deviation(const Curve& a, const Curve& b, const Segment& blend) {
-  double worst = 0.0;
-  for (int k = 1; k < 12; ++k) {
-    const Eigen::Vector3d p = blend_point(a, b, blend, k / 12.0);
-    const double d =
-        std::min(distance_to_curve(a, blend.fa0, 1.0, p), distance_to_curve(b, 0.0, blend.fb1, p));
-    worst = std::max(worst, d);
-  }
-  return worst;
+struct BlendProbe {
+  double deviation_mm = 0.0;     ///< largest sampled distance from the two moves
+  double min_speed_share = 0.0;  ///< smallest sampled |dC/du| over its mean (the blend's length)
+};
+
+double distance_to_moves(const Curve& a, const Curve& b, const Segment& blend, const Eigen::Vector3d& p) {
+  return std::min(distance_to_curve(a, blend.fa0, 1.0, p), distance_to_curve(b, 0.0, blend.fb1, p));
 }
 
-/// Arc-length parametrisation u(s) of the blend, and its length.
-double fill_blend_table(const Curve& a, const Curve& b, const Segment& seg, BlendTable& table) {
-  constexpr int fine = 48;
-  constexpr std::size_t points = fine + 1;
-  std::array<double, points> cumulative{};
-  Eigen::Vector3d previous = blend_point(a, b, seg, 0.0);
-  for (int k = 1; k <= fine; ++k) {
-    const Eigen::Vector3d p = blend_point(a, b, seg, static_cast<double>(k) / fine);
-    cumulative[k] = cumulative[k - 1] + (p - previous).norm();
+BlendProbe probe(const Curve& a, const Curve& b, const Segment& blend) {
+  BlendProbe result;
+  double length = 0.0, slowest = std::numeric_limits<double>::infinity();
+  int worst = 0;
+  Eigen::Vector3d previous = blend_point(a, b, blend, 0.0);
+  for (int k = 0; k <= kProbeSamples; ++k) {
+    const double u = static_cast<double>(k) / kProbeSamples;
+    const Eigen::Vector3d p = blend_point(a, b, blend, u);
+    length += (p - previous).norm();
     previous = p;
+    slowest = std::min(slowest, blend_velocity(a, b, blend, u).norm());
+    if (k == 0 || k == kProbeSamples) continue;  // the ends lie on the moves
+    const double d = distance_to_moves(a, b, blend, p);
+    if (d > result.deviation_mm) result.deviation_mm = d, worst = k;
   }
-  const double length = cumulative[fine];
+  // The largest deviation lies between the worst sample's neighbours: golden sections find it.
+  double lo = std::max(0, worst - 1) / static_cast<double>(kProbeSamples);
+  double hi = std::min(kProbeSamples, worst + 1) / static_cast<double>(kProbeSamples);
+  for (int it = 0; it < 12 && worst > 0; ++it) {
+    const double m1 = hi - 0.618 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
+    const double d1 = distance_to_moves(a, b, blend, blend_point(a, b, blend, m1));
+    const double d2 = distance_to_moves(a, b, blend, blend_point(a, b, blend, m2));
+    result.deviation_mm = std::max({result.deviation_mm, d1, d2});
+    if (d1 > d2)
+      hi = m2;
+    else
+      lo = m1;
+  }
+  result.min_speed_share = length > 0.0 ? slowest / length : 0.0;
+  return result;
+}
+
+/// Arc-length parametrisation u(s) of the blend, and its length: at knots uniform in u, the arc length
+/// (Gauss– Legendre on |dC/du|, three points per knot piece) and the slope du/ds. The slopes are limited to
+/// three times the neighbouring secants (the Fritsch–Carlson condition), so every cubic Hermite piece of u(s)
+/// is monotone and stays between its knots: an evaluated point is always a point of the blend, never beyond
+/// its ends. Returns the length and the largest tool speed over planned speed |dC/ds| at the pieces' middles
+/// (1 for an exact map; the blend's speed limit is divided by it, so that the tool keeps the programmed
+/// feed).
+struct BlendMap {
+  double length = 0.0;
+  double max_speed_ratio = 1.0;
+};
+BlendMap fill_blend_table(const Curve& a, const Curve& b, const Segment& seg, BlendTable& table) {
   constexpr int last = kBlendKnots - 1;
-  int j = 0;
+  constexpr double du = 1.0 / last;
+  const double node = 0.5 * std::sqrt(0.6);  // Gauss–Legendre nodes at the middle ± this (of the piece)
+  std::array<double, kBlendKnots> speed{};
+  table.s[0] = 0.0;
   for (int k = 0; k <= last; ++k) {
-    double u = 1.0;
-    if (k == 0) {
-      u = 0.0;
-    } else if (k < last) {
-      const double target = length * k / last;
-      while (j + 1 < fine && cumulative[j + 1] < target) ++j;
-      const double span = cumulative[j + 1] - cumulative[j];
-      u = (j + (span > 0 ? (target - cumulative[j]) / span : 0.0)) / fine;
-    }
-    const double du = 1e-6;
-    const double u0 = std::max(0.0, u - du), u1 = std::min(1.0, u + du);
-    const double speed = (blend_point(a, b, seg, u1) - blend_point(a, b, seg, u0)).norm() / (u1 - u0);
-    table.u[k] = u;
-    table.du_ds[k] = length / speed;  // du/d(fraction of length)
+    const double u = k * du;
+    speed[k] = blend_velocity(a, b, seg, u).norm();
+    if (k == last) break;
+    const double mid = u + 0.5 * du;
+    const double piece = du / 18.0 *
+                         (5.0 * blend_velocity(a, b, seg, mid - node * du).norm() +
+                          8.0 * blend_velocity(a, b, seg, mid).norm() +
+                          5.0 * blend_velocity(a, b, seg, mid + node * du).norm());
+    table.s[k + 1] = table.s[k] + piece;
   }
-  return length;
+  const double length = table.s[last];
+  if (!(length > 0.0)) return {};
+  for (double& s : table.s) s /= length;
+  table.s[last] = 1.0;
+  for (int k = 0; k <= last; ++k) table.du_ds[k] = length / std::max(speed[k], 1e-300);
+  for (int k = 0; k <= last; ++k) {
+    const double before = k > 0 ? du / (table.s[k] - table.s[k - 1]) : table.du_ds[k];
+    const double after = k < last ? du / (table.s[k + 1] - table.s[k]) : table.du_ds[k];
+    table.du_ds[k] = std::clamp(table.du_ds[k], 0.0, 3.0 * std::min(before, after));
+  }
+  BlendMap map{length, 1.0};
+  for (int k = 0; k < last; ++k) {  // the Hermite piece at t = 1/2: u and du/d(fraction) there
+    const double h = table.s[k + 1] - table.s[k];
+    const double u = (k + 0.5) * du + h * (table.du_ds[k] - table.du_ds[k + 1]) / 8.0;
+    const double slope = 1.5 * du / h - 0.25 * (table.du_ds[k] + table.du_ds[k + 1]);
+    map.max_speed_ratio = std::max(map.max_speed_ratio, blend_velocity(a, b, seg, u).norm() * slope / length);
+  }
+  return map;
+}
+
+/// The blend of the last `trim` of move `a` and the first `trim` of move `b` (in mm of tool-point travel).
+Segment blend_window(const Segment& prev, const Segment& next, const Curve& a, const Curve& b, double trim) {
+  Segment blend;
+  blend.curve_a = prev.curve_a;
+  blend.curve_b = next.curve_a;
+  blend.fa0 = 1.0 - trim / a.translation_mm;
+  blend.fa1 = 1.0;
+  blend.fb0 = 0.0;
+  blend.fb1 = trim / b.translation_mm;
+  return blend;
+}
+
+/// The largest blend of the corner between `prev` and `next` within `tolerance_mm`, or nothing where no
+/// blend can be both within the tolerance and regular (a reversal, or geometry too small to blend).
+std::optional<Segment> corner_blend(const Segment& prev, const Segment& next, const Curve& a, const Curve& b,
+                                    double angle, double tolerance_mm) {
+  // Each move gives at most half of itself (its other half may go to the blend at its other end).
+  const double max_trim = 0.5 * std::min(a.translation_mm, b.translation_mm);
+  double trim = std::min(max_trim, 4.0 * tolerance_mm / std::max(std::sin(0.5 * angle), 1e-6));
+  Segment blend = blend_window(prev, next, a, b, trim);
+  BlendProbe shape = probe(a, b, blend);
+  // Between lines the deviation is proportional to the trim: scale to just inside the tolerance, then halve
+  // while the sampled deviation is over it (arcs bend the proportion a little).
+  if (shape.deviation_mm > 0.0) {
+    trim = std::min(max_trim, trim * 0.95 * tolerance_mm / shape.deviation_mm);
+    blend = blend_window(prev, next, a, b, trim);
+    shape = probe(a, b, blend);
+  }
+  for (int halving = 0; halving < 30 && shape.deviation_mm > tolerance_mm; ++halving) {
+    trim *= 0.5;
+    blend = blend_window(prev, next, a, b, trim);
+    shape = probe(a, b, blend);
+  }
+  if (shape.deviation_mm > tolerance_mm || shape.min_speed_share < kMinSpeedShare) return std::nullopt;
+  return blend;
 }
 
 }  // namespace
 
 double blend_deviation_mm(const Path& path, int blend_index) {
   const Segment& seg = path.segments[blend_index];
-  return deviation(path.curves[seg.curve_a], path.curves[seg.curve_b], seg);
+  return probe(path.curves[seg.curve_a], path.curves[seg.curve_b], seg).deviation_mm;
 }
 
 void blend_corners(Path& path, double tolerance_mm) {
@@ -118,63 +224,44 @@ void blend_corners(Path& path, double tolerance_mm) {
     Segment& prev = out.back();
     const Curve& a = path.curves[prev.curve_a];
     const Curve& b = path.curves[next.curve_a];
+    // `out` never reallocates (reserved for every move and a blend between each), so `prev` stays valid.
+    if (prev.rotation_only || next.rotation_only) prev.stop_after = true;  // turning: no blend joins it
+    if (prev.stop_after) {
+      out.push_back(next);
+      continue;
+    }
+    const double angle = std::acos(std::clamp(tangent(a, 1.0).dot(tangent(b, 0.0)), -1.0, 1.0));
+    if (angle <= 1e-7) {  // a tangent join needs neither a blend nor a stop
+      out.push_back(next);
+      continue;
+    }
     // The program's G64 P, where given, else the default; the tighter of the two moves'.
     auto tolerance_of = [tolerance_mm](const Segment& s) {
       return s.tolerance_mm > 0.0 ? s.tolerance_mm : tolerance_mm;
     };
     const double tolerance = std::min(tolerance_of(prev), tolerance_of(next));
-    const bool joinable =
-        tolerance > 0.0 && !prev.stop_after && !prev.is_blend() && !prev.rotation_only && !next.rotation_only;
-    if (!joinable && !prev.stop_after && !prev.is_blend()) {
-      // Not blendable: a corner needs a stop; a tangent join does not.
-      const Eigen::Vector3d t1 = tangent(a, 1.0, true), t2 = tangent(b, 0.0, false);
-      if (prev.rotation_only || next.rotation_only || std::acos(std::clamp(t1.dot(t2), -1.0, 1.0)) > 1e-7) {
-        prev.stop_after = true;
-      }
+    std::optional<Segment> blend;
+    if (tolerance > 0.0) blend = corner_blend(prev, next, a, b, angle, tolerance);
+    if (!blend) {
+      prev.stop_after = true;  // a corner: stop and turn
+      out.push_back(next);
+      continue;
     }
-    if (joinable) {
-      const Eigen::Vector3d t1 = tangent(a, 1.0, true), t2 = tangent(b, 0.0, false);
-      const double angle = std::acos(std::clamp(t1.dot(t2), -1.0, 1.0));
-      if (angle > std::numbers::pi - 1e-3) {
-        prev.stop_after = true;  // a reversal: stop and go back
-      } else if (angle > 1e-7) {
-        // The longest trim: half of either move (the other half may be trimmed by the next corner).
-        const double max_trim = 0.5 * std::min(a.translation_mm, b.translation_mm);
-        double trim = std::min(max_trim, 4.0 * tolerance / std::max(std::sin(0.5 * angle), 1e-6));
-        Segment blend;
-        blend.curve_a = prev.curve_a;
-        blend.curve_b = next.curve_a;
-        // The deviation grows in proportion to the trim (exactly so between lines): scale to the tolerance,
-        // then halve until the sampled deviation is within it (arcs bend the proportion a little).
-        auto set_trim = [&](double t) {
-          blend.fa0 = 1.0 - t / a.translation_mm;
-          blend.fa1 = 1.0;
-          blend.fb0 = 0.0;
-          blend.fb1 = t / b.translation_mm;
-          return deviation(a, b, blend);
-        };
-        double dev = set_trim(trim);
-        if (dev > 0.0) {
-          trim = std::min(max_trim, trim * 0.98 * tolerance / dev);
-          dev = set_trim(trim);
-        }
-        for (int halving = 0; halving < 30 && dev > tolerance; ++halving) dev = set_trim(trim *= 0.5);
-        blend.blend = static_cast<int>(path.blend_tables.size());
-        path.blend_tables.emplace_back();
-        blend.length = fill_blend_table(a, b, blend, path.blend_tables.back());
-        blend.turn_rad = angle;
-        blend.line = prev.line;
-        blend.move = prev.move;
-        blend.rapid = prev.rapid && next.rapid;
-        blend.speed_limit = std::min(prev.speed_limit, next.speed_limit);
-        // Trim the two moves to the blend's ends; their lengths scale with the fraction (uniform curves).
-        prev.length *= (blend.fa0 - prev.fa0) / (prev.fa1 - prev.fa0);
-        prev.fa1 = blend.fa0;
-        next.length *= (next.fa1 - blend.fb1) / (next.fa1 - next.fa0);
-        next.fa0 = blend.fb1;
-        out.push_back(blend);
-      }
-    }
+    blend->blend = static_cast<int>(path.blend_tables.size());
+    path.blend_tables.emplace_back();
+    const BlendMap map = fill_blend_table(a, b, *blend, path.blend_tables.back());
+    blend->length = map.length;
+    blend->turn_rad = angle;
+    blend->line = prev.line;
+    blend->move = prev.move;
+    blend->rapid = prev.rapid && next.rapid;
+    blend->speed_limit = std::min(prev.speed_limit, next.speed_limit) / map.max_speed_ratio;
+    // Trim the two moves to the blend's ends; their lengths scale with the fraction (uniform curves).
+    prev.length *= (blend->fa0 - prev.fa0) / (prev.fa1 - prev.fa0);
+    prev.fa1 = blend->fa0;
+    next.length *= (next.fa1 - blend->fb1) / (next.fa1 - next.fa0);
+    next.fa0 = blend->fb1;
+    out.push_back(*blend);
     out.push_back(next);
   }
   // Trimming can leave a move with (almost) nothing between two blends; drop such slivers.

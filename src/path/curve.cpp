@@ -1,5 +1,6 @@
 #include "path/curve.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -64,6 +65,26 @@ Eigen::Vector3d Curve::tip(double f) const {
   const double angle = f * sweep_rad;
   const double radius = radius_mm + f * (radius_end_mm - radius_mm);
   return centre_mm + radius * (std::cos(angle) * u + std::sin(angle) * v) + (f * axial_mm) * normal;
+}
+
+Eigen::Vector3d Curve::tip_velocity(double f) const {
+  if (kind == CurveKind::line) return end_mm - start_mm;
+  const double angle = std::clamp(f, 0.0, 1.0) * sweep_rad;
+  const double radius = radius_mm + std::clamp(f, 0.0, 1.0) * (radius_end_mm - radius_mm);
+  const Eigen::Vector3d radial = std::cos(angle) * u + std::sin(angle) * v;
+  const Eigen::Vector3d across = -std::sin(angle) * u + std::cos(angle) * v;
+  return (radius_end_mm - radius_mm) * radial + (radius * sweep_rad) * across + axial_mm * normal;
+}
+
+Eigen::Vector3d Curve::velocity(double f) const {
+  if (tool_length_mm == 0.0 || rotation_angle_rad == 0.0) return tip_velocity(f);
+  // Slerp turns at a constant rate about one fixed axis: R(f) = R0·exp(f·θ·k), so the tool axis moves as
+  // d/df (R(f)·a) = ω × (R(f)·a) with ω = θ·(R0·k) in the base frame.
+  Eigen::Quaterniond delta = start_rotation.conjugate() * end_rotation;
+  if (delta.w() < 0.0) delta.coeffs() = -delta.coeffs();  // the short way, as slerp_short takes it
+  const Eigen::AngleAxisd turn(delta);
+  const Eigen::Vector3d omega = turn.angle() * (start_rotation * turn.axis());
+  return tip_velocity(f) + tool_length_mm * omega.cross(rotation(f) * tool_axis_platform);
 }
 
 Eigen::Quaterniond Curve::rotation(double f) const {

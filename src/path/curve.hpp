@@ -45,6 +45,11 @@ struct Curve {
     return tool_length_mm == 0.0 ? tip(f) : tip(f) + tool_length_mm * (rotation(f) * tool_axis_platform);
   }
   Eigen::Quaterniond rotation(double f) const;
+  /// d tip / d f: exact, so that tangents stay exact on moves of a micrometre (a finite difference of
+  /// positions near 700 mm keeps only a few digits there).
+  Eigen::Vector3d tip_velocity(double f) const;
+  /// d position / d f, the controlled point's: the tip's, plus the tool turning with the platform.
+  Eigen::Vector3d velocity(double f) const;
 };
 
 Curve make_line(const Eigen::Vector3d& start_mm, const Eigen::Vector3d& end_mm, const Eigen::Quaterniond& q0,

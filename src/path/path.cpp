@@ -18,15 +18,19 @@ int Path::find_segment(double s, int hint) const {
 }
 
 static double blend_parameter(const BlendTable& table, double fraction) {
-  // Cubic Hermite between knots, in the normalised arc length x = fraction·(K−1).
+  // The knot piece holding the fraction (knots are increasing in s), then cubic Hermite within it.
   constexpr int last = kBlendKnots - 1;
-  const double x = std::clamp(fraction, 0.0, 1.0) * last;
-  const int k = std::min(static_cast<int>(x), last - 1);
-  const double t = x - k;
-  const double h = 1.0 / last;  // knot spacing in fraction units
+  const double x = std::clamp(fraction, 0.0, 1.0);
+  const int k = std::clamp(
+      static_cast<int>(std::upper_bound(table.s.begin() + 1, table.s.end() - 1, x) - table.s.begin()) - 1, 0,
+      last - 1);
+  const double h = table.s[k + 1] - table.s[k];
+  if (!(h > 0.0)) return static_cast<double>(k) / last;
+  const double t = std::clamp((x - table.s[k]) / h, 0.0, 1.0);
   const double t2 = t * t, t3 = t2 * t;
-  return (2 * t3 - 3 * t2 + 1) * table.u[k] + (t3 - 2 * t2 + t) * h * table.du_ds[k] +
-         (-2 * t3 + 3 * t2) * table.u[k + 1] + (t3 - t2) * h * table.du_ds[k + 1];
+  const double u0 = static_cast<double>(k) / last, u1 = static_cast<double>(k + 1) / last;
+  return (2 * t3 - 3 * t2 + 1) * u0 + (t3 - 2 * t2 + t) * h * table.du_ds[k] + (-2 * t3 + 3 * t2) * u1 +
+         (t3 - t2) * h * table.du_ds[k + 1];
 }
 
 PathPoint Path::evaluate(int index, double s) const {

@@ -12,11 +12,13 @@
 
 namespace pkm::path {
 
-/// Knots of the arc-length parametrisation of a corner blend: u(s) by cubic Hermite pieces.
+/// Knots of the arc-length parametrisation of a corner blend: u(s) by cubic Hermite pieces between knots at
+/// u = k/(kBlendKnots − 1). Uniform in u, the knots crowd in s where the blend is slow (a sharp corner's
+/// middle), which is where u(s) bends most.
 constexpr int kBlendKnots = 17;
 struct BlendTable {
-  std::array<double, kBlendKnots> u{};      ///< blend parameter at s = k·length/(kBlendKnots − 1)
-  std::array<double, kBlendKnots> du_ds{};  ///< its derivative there
+  std::array<double, kBlendKnots> s{};      ///< fraction of the blend's length at u = k/(kBlendKnots − 1)
+  std::array<double, kBlendKnots> du_ds{};  ///< du/d(fraction of length) there
 };
 
 struct Segment {
@@ -64,6 +66,11 @@ class Path {
 /// The blend weight: 0 → 1 with zero first and second derivative at both ends (curvature-continuous joins).
 inline double blend_weight(double u) {
   return u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
+}
+/// dw/du = 30·u²·(1 − u)².
+inline double blend_weight_rate(double u) {
+  const double v = u * (1.0 - u);
+  return 30.0 * v * v;
 }
 
 }  // namespace pkm::path

@@ -54,6 +54,11 @@ void place_samples(const path::Path& path, double spacing, ProfileSamples& sampl
     // A blend's curvature peaks in its middle, the sharper the corner the higher: enough samples to see it.
     if (seg.is_blend())
       pieces = std::max({pieces, 4, static_cast<int>(std::ceil(seg.turn_rad / rad_from_deg(3.0)))});
+    // A move that starts and ends at rest (between two exact stops, as a short step between reversals) needs a
+    // sample inside, where the profile turns from speeding up to braking: two samples both at rest would have
+    // the motion cover the move in no time.
+    const bool starts_at_rest = k == 0 || path.segments[k - 1].stop_after;
+    if (!seg.is_blend() && starts_at_rest && seg.stop_after) pieces = std::max(pieces, 2);
     pieces = std::max(pieces, 1);
     for (int i = 0; i < pieces; ++i) {
       const double s = seg.s_start + seg.length * i / pieces;
