@@ -41,30 +41,30 @@ using Clock = std::chrono::steady_clock;
 Status check_interpolate_options(const InterpolateOptions& options, bool has_sinks) {
   // The seeds' carrier frequencies are 100 Hz … 10 kHz (§2, E20); their simulations also ran h = 20 ms (E13).
   if (!(options.period_s >= 1e-4 - 1e-12 && options.period_s <= 2e-2 + 1e-12)) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("--period-ms {} is outside 0.1…20 ms (carrier frequencies 50 Hz…10 kHz)",
-                                  options.period_s * 1e3));
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("servo period {} ms is outside 0.1…20 ms (carrier frequencies 50 Hz…10 kHz)",
+                    options.period_s * 1e3));
   }
   if (!(options.step_mm >= 0.0) || (options.step_mm == 0.0 && has_sinks)) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("--step-mm {} must be a positive drive resolution", options.step_mm));
+                      fmt::format("drive step {} must be a positive drive resolution", options.step_mm));
   }
   if (options.step_mm == 0.0 && options.method != Method::exact && options.method != Method::carrier) {
     return make_error(
         ErrorCode::bad_input,
-        fmt::format("the {} method needs whole drive steps (--step-mm > 0)", to_string(options.method)));
+        fmt::format("the {} method needs whole drive steps (drive step > 0)", to_string(options.method)));
   }
   if (!(options.rho_max_mm > 0.0)) {
-    return make_error(
-        ErrorCode::bad_input,
-        fmt::format("--rho-max {} mm must be a positive contour tolerance", options.rho_max_mm));
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("contour tolerance ρ_max {} mm must be positive", options.rho_max_mm));
   }
   if (options.delta_rho_max && !(*options.delta_rho_max > 0.0)) {
-    return make_error(ErrorCode::bad_input, "--delta-rho-max must be positive");
+    return make_error(ErrorCode::bad_input, "error amplification limit δρ_max must be positive");
   }
   if (options.max_step_rate_hz && !(*options.max_step_rate_hz * options.period_s >= 2.0)) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("--max-step-rate {} Hz allows fewer than 2 steps per {} ms period",
+                      fmt::format("largest step rate {} Hz allows fewer than 2 steps per {} ms period",
                                   *options.max_step_rate_hz, options.period_s * 1e3));
   }
   return ok_status();

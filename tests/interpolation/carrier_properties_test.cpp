@@ -204,18 +204,18 @@ TEST(CarrierProperties, BadSettingsAreRefusedWithTheOptionName) {
   options.period_s = 0.05;  // 20 Hz
   auto slow = interpolation::interpolate(run.machine, run.plan.path, run.timing, options, {}, "x.ngc");
   ASSERT_FALSE(slow);
-  EXPECT_NE(slow.error().message.find("--period-ms"), std::string::npos);
+  EXPECT_NE(slow.error().message.find("servo period"), std::string::npos);
   options.period_s = 0.001;
   options.step_mm = 0.0;
   auto continuous_corrected =
       interpolation::interpolate(run.machine, run.plan.path, run.timing, options, {}, "x.ngc");
   ASSERT_FALSE(continuous_corrected);
-  EXPECT_NE(continuous_corrected.error().message.find("--step-mm"), std::string::npos);
+  EXPECT_NE(continuous_corrected.error().message.find("drive step"), std::string::npos);
   options.step_mm = 0.001;
   options.rho_max_mm = -1.0;
   auto negative = interpolation::interpolate(run.machine, run.plan.path, run.timing, options, {}, "x.ngc");
   ASSERT_FALSE(negative);
-  EXPECT_NE(negative.error().message.find("--rho-max"), std::string::npos);
+  EXPECT_NE(negative.error().message.find("contour tolerance"), std::string::npos);
 }
 
 }  // namespace
