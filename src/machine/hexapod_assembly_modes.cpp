@@ -65,7 +65,8 @@ Result<std::vector<FkSolution>> Hexapod::forward_all(const ActuatorVector& q,
   if (!six_three_) {
     return make_error(
         ErrorCode::unsupported,
-        "--all needs a 6-3 hexapod (platform joints merged in pairs); for a 6-6 layout give --guess");
+        "enumerating every assembly mode needs a 6-3 hexapod (platform joints merged in pairs); for a 6-6 "
+        "layout solve from a guess");
   }
   if (q.size() != 6) return make_error(ErrorCode::bad_input, "a hexapod needs 6 strut lengths");
   // Group struts by their shared platform point.
