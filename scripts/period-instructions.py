@@ -64,7 +64,7 @@ def main():
     per_period = sorted(total for part, total in counts[1:])
     if not per_period:
         sys.exit("no periods counted (was pkm built with symbols for its functions?)")
-    print(f"{args.method}, h = {args.period_ms} ms: {len(per_period)} periods (with the warm-up one), "
+    print(f"{args.method}, h = {args.period_ms} ms: {len(per_period)} periods (with a warm-up period where the build has one), "
           f"instructions per period p50 {percentile(per_period, 0.5)}, p99 {percentile(per_period, 0.99)}, "
           f"p99.9 {percentile(per_period, 0.999)}, max {per_period[-1]} "
           f"({per_period[-1] / percentile(per_period, 0.5):.2f}× the median)")
