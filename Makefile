@@ -7,14 +7,14 @@
 # make conformance (the G-code golden files against LinuxCNC's rs274), make browser-test (the HTML report in
 # headless Chromium), make screenshots (the same, saving docs/images/report-*.png),
 # make fuzz (the libFuzzer harnesses in fuzz/, built with clang + ASan/UBSan in build-fuzz/, FUZZ_SECONDS each),
-# make bench, make format, make tidy.
+# make nightly (the generated-program property suite at nightly size), make bench, make format, make tidy.
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
 PROGRAM ?= examples/programs/pocket.ngc
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots fuzz bench format tidy clean
+.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -69,6 +69,12 @@ fuzz:
 		-DPKM_FUZZ=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON > /dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target pkm_fuzzers
 	@bash fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+
+# The generated CAM-like programs (tests/planning/generated_programs_test.cpp) on every shipped machine,
+# NIGHTLY_PROGRAMS per machine instead of make test's 24, and the corner-blend properties.
+NIGHTLY_PROGRAMS ?= 300
+nightly: build
+	PKM_GENERATED_PROGRAMS=$(NIGHTLY_PROGRAMS) $(BUILD)/pkm_tests --gtest_filter='*GeneratedPrograms*:CornerBlend*'
 
 bench: deps
 	@cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DPKM_UNITY_LIB=ON -DPKM_BUILD_BENCH=ON > /dev/null

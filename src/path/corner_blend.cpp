@@ -231,7 +231,11 @@ void blend_corners(Path& path, double tolerance_mm) {
       continue;
     }
     const double angle = std::acos(std::clamp(tangent(a, 1.0).dot(tangent(b, 0.0)), -1.0, 1.0));
-    if (angle <= 1e-7) {  // a tangent join needs neither a blend nor a stop
+    // A join is smooth only where the tool point keeps its direction and the platform its turning rate per
+    // mm: a line that starts tilting where a tangent arc ends is a corner for the struts (their speed jumps).
+    const double rate_jump_rad_mm =
+        (a.angular_rate() / a.translation_mm - b.angular_rate() / b.translation_mm).norm();
+    if (angle <= 1e-7 && rate_jump_rad_mm <= 1e-9) {  // a smooth join needs neither a blend nor a stop
       out.push_back(next);
       continue;
     }

@@ -76,15 +76,20 @@ Eigen::Vector3d Curve::tip_velocity(double f) const {
   return (radius_end_mm - radius_mm) * radial + (radius * sweep_rad) * across + axial_mm * normal;
 }
 
-Eigen::Vector3d Curve::velocity(double f) const {
-  if (tool_length_mm == 0.0 || rotation_angle_rad == 0.0) return tip_velocity(f);
-  // Slerp turns at a constant rate about one fixed axis: R(f) = R0·exp(f·θ·k), so the tool axis moves as
-  // d/df (R(f)·a) = ω × (R(f)·a) with ω = θ·(R0·k) in the base frame.
+Eigen::Vector3d Curve::angular_rate() const {
+  if (rotation_angle_rad == 0.0) return Eigen::Vector3d::Zero();
+  // Slerp turns at a constant rate about one fixed axis: R(f) = R0·exp(f·θ·k), so ω = θ·(R0·k) in the base
+  // frame.
   Eigen::Quaterniond delta = start_rotation.conjugate() * end_rotation;
   if (delta.w() < 0.0) delta.coeffs() = -delta.coeffs();  // the short way, as slerp_short takes it
   const Eigen::AngleAxisd turn(delta);
-  const Eigen::Vector3d omega = turn.angle() * (start_rotation * turn.axis());
-  return tip_velocity(f) + tool_length_mm * omega.cross(rotation(f) * tool_axis_platform);
+  return turn.angle() * (start_rotation * turn.axis());
+}
+
+Eigen::Vector3d Curve::velocity(double f) const {
+  if (tool_length_mm == 0.0 || rotation_angle_rad == 0.0) return tip_velocity(f);
+  // The tool axis turns with the platform: d/df (R(f)·a) = ω × (R(f)·a).
+  return tip_velocity(f) + tool_length_mm * angular_rate().cross(rotation(f) * tool_axis_platform);
 }
 
 Eigen::Quaterniond Curve::rotation(double f) const {

@@ -50,6 +50,8 @@ struct Curve {
   Eigen::Vector3d tip_velocity(double f) const;
   /// d position / d f, the controlled point's: the tip's, plus the tool turning with the platform.
   Eigen::Vector3d velocity(double f) const;
+  /// The platform's angular velocity per unit f in the base frame (constant along a slerp).
+  Eigen::Vector3d angular_rate() const;
 };
 
 Curve make_line(const Eigen::Vector3d& start_mm, const Eigen::Vector3d& end_mm, const Eigen::Quaterniond& q0,

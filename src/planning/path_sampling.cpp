@@ -36,7 +36,7 @@ Error at_line(const program::CanonicalProgram& program, int line, const Error& e
 }
 
 /// Sample positions: every segment split into pieces no longer than `spacing` (arcs: at most 5° each,
-/// blends: at least 4 pieces); the segment ends are samples.
+/// blends: at least 4 pieces, the platform: at most 1° of turning each); the segment ends are samples.
 void place_samples(const path::Path& path, double spacing, ProfileSamples& samples,
                    std::vector<int>& segment) {
   samples.s.clear();
@@ -54,9 +54,15 @@ void place_samples(const path::Path& path, double spacing, ProfileSamples& sampl
     // A blend's curvature peaks in its middle, the sharper the corner the higher: enough samples to see it.
     if (seg.is_blend())
       pieces = std::max({pieces, 4, static_cast<int>(std::ceil(seg.turn_rad / rad_from_deg(3.0)))});
-    // A move that starts and ends at rest (between two exact stops, as a short step between reversals) needs a
-    // sample inside, where the profile turns from speeding up to braking: two samples both at rest would have
-    // the motion cover the move in no time.
+    // The platform's turning bends the actuator curves as much as the tool point's path does (more, where the
+    // tool point hardly moves while the platform tilts): at most 1° of turning per piece.
+    const double turned_rad =
+        seg.is_blend() ? curve.rotation(seg.fa0).angularDistance(path.curves[seg.curve_b].rotation(seg.fb1))
+                       : curve.rotation_angle_rad * (seg.fa1 - seg.fa0);
+    pieces = std::max(pieces, static_cast<int>(std::ceil(turned_rad / rad_from_deg(1.0))));
+    // A move that starts and ends at rest (between two exact stops, as a short step between reversals) needs
+    // a sample inside, where the profile turns from speeding up to braking: two samples both at rest would
+    // have the motion cover the move in no time.
     const bool starts_at_rest = k == 0 || path.segments[k - 1].stop_after;
     if (!seg.is_blend() && starts_at_rest && seg.stop_after) pieces = std::max(pieces, 2);
     pieces = std::max(pieces, 1);

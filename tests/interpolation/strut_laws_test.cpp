@@ -491,7 +491,7 @@ TEST(StrutLawErrors, SplittingStopsAtTheMinimumPieceLengthAndReportsTheError) {
     if (laws.model(p) != LawModel::polynomial) continue;
     const path::Segment& seg = plan.path.segments[laws.piece(p).segment];
     EXPECT_LT(length, 2.0 * settings.min_piece_length) << p;  // split as far as allowed, not further:
-    if (length < seg.length) {
+    if (length < seg.length - 1e-9) {  // a piece smaller than its segment (s values are running sums)
       EXPECT_GE(length, settings.min_piece_length) << p;
     }
   }
