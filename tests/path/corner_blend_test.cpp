@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 
+#include "path_test_support.hpp"
 #include "test_support.hpp"
 
 namespace pkm {
@@ -38,31 +39,6 @@ path::Path blended_pair(const path::Curve& a, const path::Curve& b, double toler
   return p;
 }
 
-/// Nearest distance from `point` to curve `c`: exact for lines, else a dense scan and golden sections.
-double distance_to_move(const path::Curve& c, const Eigen::Vector3d& point) {
-  if (c.kind == path::CurveKind::line && c.tool_length_mm == 0.0) {
-    const Eigen::Vector3d d = c.end_mm - c.start_mm;
-    const double t = std::clamp((point - c.start_mm).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    return (c.start_mm + t * d - point).norm();
-  }
-  constexpr int scan = 500;
-  int best = 0;
-  double best_distance = 1e300;
-  for (int k = 0; k <= scan; ++k) {
-    const double d = (c.position(static_cast<double>(k) / scan) - point).norm();
-    if (d < best_distance) best_distance = d, best = k;
-  }
-  double lo = std::max(0.0, (best - 1.0) / scan), hi = std::min(1.0, (best + 1.0) / scan);
-  for (int it = 0; it < 60; ++it) {
-    const double m1 = lo + 0.382 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
-    if ((c.position(m1) - point).norm() < (c.position(m2) - point).norm())
-      hi = m2;
-    else
-      lo = m1;
-  }
-  return std::min(best_distance, (c.position(0.5 * (lo + hi)) - point).norm());
-}
-
 struct BlendCheck {
   bool blended = false;
   double worst_deviation_mm = 0.0;
@@ -84,7 +60,8 @@ BlendCheck check_pair(const path::Curve& a, const path::Curve& b, double toleran
     Eigen::Vector3d previous = p.evaluate(k, seg.s_start).position_mm;
     for (int i = 1; i <= samples; ++i) {
       const Eigen::Vector3d q = p.evaluate(k, seg.s_start + seg.length * i / samples).position_mm;
-      const double d = std::min(distance_to_move(a, q), distance_to_move(b, q));
+      const double d =
+          std::min(test::distance_to_programmed_move(a, q), test::distance_to_programmed_move(b, q));
       check.worst_deviation_mm = std::max(check.worst_deviation_mm, d);
       const double ratio = (q - previous).norm() / (seg.length / samples);
       check.fastest_ratio = std::max(check.fastest_ratio, ratio);

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "cam_program_generator.hpp"
+#include "path/path_test_support.hpp"
 #include "plan_test_support.hpp"
 #include "test_support.hpp"
 
@@ -20,32 +21,6 @@ namespace {
 int generated_programs_per_machine() {
   const char* value = std::getenv("PKM_GENERATED_PROGRAMS");
   return value != nullptr ? std::max(1, std::atoi(value)) : 16;
-}
-
-/// Distance from `point` to the whole programmed move `c` (independent of the planner's own measure: lines
-/// exactly, helices by a dense scan refined by golden sections).
-double distance_to_programmed_move(const path::Curve& c, const Eigen::Vector3d& point) {
-  if (c.kind == path::CurveKind::line && c.tool_length_mm == 0.0) {
-    const Eigen::Vector3d d = c.end_mm - c.start_mm;
-    const double t = std::clamp((point - c.start_mm).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-    return (c.start_mm + t * d - point).norm();
-  }
-  constexpr int scan = 720;
-  int best = 0;
-  double best_distance = 1e300;
-  for (int k = 0; k <= scan; ++k) {
-    const double d = (c.position(static_cast<double>(k) / scan) - point).norm();
-    if (d < best_distance) best_distance = d, best = k;
-  }
-  double lo = std::max(0.0, (best - 1.0) / scan), hi = std::min(1.0, (best + 1.0) / scan);
-  for (int it = 0; it < 60; ++it) {
-    const double m1 = lo + 0.382 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
-    if ((c.position(m1) - point).norm() < (c.position(m2) - point).norm())
-      hi = m2;
-    else
-      lo = m1;
-  }
-  return std::min(best_distance, (c.position(0.5 * (lo + hi)) - point).norm());
 }
 
 /// Every blend of the path: densely sampled through Path::evaluate (the planner's own arc-length map), each
@@ -60,7 +35,8 @@ void expect_blends_within_tolerance(const path::Path& path, double tolerance, co
     const path::Curve& b = path.curves[seg.curve_b];
     for (int i = 0; i <= 64; ++i) {
       const Eigen::Vector3d p = path.evaluate(k, seg.s_start + seg.length * i / 64.0).position_mm;
-      const double d = std::min(distance_to_programmed_move(a, p), distance_to_programmed_move(b, p));
+      const double d =
+          std::min(test::distance_to_programmed_move(a, p), test::distance_to_programmed_move(b, p));
       ASSERT_LE(d, tolerance * 1.001 + 1e-9) << label << " blend " << k << " (line " << seg.line << ") at "
                                              << i << "/64 is " << d << " mm from the programmed path";
     }
