@@ -5,7 +5,10 @@
 // where A runs over the last d of the first move and B over the first d of the second. w has zero first and
 // second derivatives at both ends, so position, tangent and curvature are continuous (G2) for lines, arcs and
 // helices alike; d is the largest that keeps C within the path tolerance and within half of either move.
-// The blend is reparametrised by arc length so that the planned speed along it is the tool-point speed.
+// A corner whose blend would not be regular (near a reversal the cross-fade's speed |C'(u)| vanishes) or not
+// within the tolerance is an exact stop instead; so is a join where the platform's turning rate jumps and no
+// blend fits. The blend is reparametrised by arc length (a monotone map, so every evaluated point lies on the
+// blend) so that the planned speed along it is the tool-point speed.
 #include "path/path.hpp"
 
 namespace pkm::path {
