@@ -90,7 +90,9 @@ double distance_to_moves(const Curve& a, const Curve& b, const Segment& blend, c
   return std::min(distance_to_curve(a, blend.fa0, 1.0, p), distance_to_curve(b, 0.0, blend.fb1, p));
 }
 
-BlendProbe probe(const Curve& a, const Curve& b, const Segment& blend) {
+/// `refine`: also search the largest deviation between the samples (for the final decision; the sizing steps
+/// before it need only the samples).
+BlendProbe probe(const Curve& a, const Curve& b, const Segment& blend, bool refine) {
   BlendProbe result;
   double length = 0.0, slowest = std::numeric_limits<double>::infinity();
   int worst = 0;
@@ -108,7 +110,7 @@ BlendProbe probe(const Curve& a, const Curve& b, const Segment& blend) {
   // The largest deviation lies between the worst sample's neighbours: golden sections find it.
   double lo = std::max(0, worst - 1) / static_cast<double>(kProbeSamples);
   double hi = std::min(kProbeSamples, worst + 1) / static_cast<double>(kProbeSamples);
-  for (int it = 0; it < 12 && worst > 0; ++it) {
+  for (int it = 0; it < 12 && worst > 0 && refine; ++it) {
     const double m1 = hi - 0.618 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
     const double d1 = distance_to_moves(a, b, blend, blend_point(a, b, blend, m1));
     const double d2 = distance_to_moves(a, b, blend, blend_point(a, b, blend, m2));
@@ -136,7 +138,7 @@ struct BlendMap {
 BlendMap fill_blend_table(const Curve& a, const Curve& b, const Segment& seg, BlendTable& table) {
   constexpr int last = kBlendKnots - 1;
   constexpr double du = 1.0 / last;
-  const double node = 0.5 * std::sqrt(0.6);  // Gauss–Legendre nodes at the middle ± this (of the piece)
+  const double node = 0.5 / std::sqrt(3.0);  // Gauss–Legendre nodes at the middle ± this (of the piece)
   std::array<double, kBlendKnots> speed{};
   table.s[0] = 0.0;
   for (int k = 0; k <= last; ++k) {
@@ -144,10 +146,9 @@ BlendMap fill_blend_table(const Curve& a, const Curve& b, const Segment& seg, Bl
     speed[k] = blend_velocity(a, b, seg, u).norm();
     if (k == last) break;
     const double mid = u + 0.5 * du;
-    const double piece = du / 18.0 *
-                         (5.0 * blend_velocity(a, b, seg, mid - node * du).norm() +
-                          8.0 * blend_velocity(a, b, seg, mid).norm() +
-                          5.0 * blend_velocity(a, b, seg, mid + node * du).norm());
+    const double piece = 0.5 * du *
+                         (blend_velocity(a, b, seg, mid - node * du).norm() +
+                          blend_velocity(a, b, seg, mid + node * du).norm());
     table.s[k + 1] = table.s[k] + piece;
   }
   const double length = table.s[last];
@@ -190,18 +191,18 @@ std::optional<Segment> corner_blend(const Segment& prev, const Segment& next, co
   const double max_trim = 0.5 * std::min(a.translation_mm, b.translation_mm);
   double trim = std::min(max_trim, 4.0 * tolerance_mm / std::max(std::sin(0.5 * angle), 1e-6));
   Segment blend = blend_window(prev, next, a, b, trim);
-  BlendProbe shape = probe(a, b, blend);
+  BlendProbe shape = probe(a, b, blend, false);
   // Between lines the deviation is proportional to the trim: scale to just inside the tolerance, then halve
-  // while the sampled deviation is over it (arcs bend the proportion a little).
+  // while the deviation is over it (arcs bend the proportion a little).
   if (shape.deviation_mm > 0.0) {
     trim = std::min(max_trim, trim * 0.95 * tolerance_mm / shape.deviation_mm);
     blend = blend_window(prev, next, a, b, trim);
-    shape = probe(a, b, blend);
   }
+  shape = probe(a, b, blend, true);
   for (int halving = 0; halving < 30 && shape.deviation_mm > tolerance_mm; ++halving) {
     trim *= 0.5;
     blend = blend_window(prev, next, a, b, trim);
-    shape = probe(a, b, blend);
+    shape = probe(a, b, blend, true);
   }
   if (shape.deviation_mm > tolerance_mm || shape.min_speed_share < kMinSpeedShare) return std::nullopt;
   return blend;
@@ -211,7 +212,7 @@ std::optional<Segment> corner_blend(const Segment& prev, const Segment& next, co
 
 double blend_deviation_mm(const Path& path, int blend_index) {
   const Segment& seg = path.segments[blend_index];
-  return probe(path.curves[seg.curve_a], path.curves[seg.curve_b], seg).deviation_mm;
+  return probe(path.curves[seg.curve_a], path.curves[seg.curve_b], seg, true).deviation_mm;
 }
 
 void blend_corners(Path& path, double tolerance_mm) {
