@@ -38,6 +38,7 @@ TEST(FuzzRegressions, EveryReproducerGivesAResultOrAnError) {
       ++replayed;
     }
   }
+  EXPECT_GT(replayed, 0);
   RecordProperty("replayed", replayed);
 }
 
