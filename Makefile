@@ -61,7 +61,7 @@ screenshots: build
 	@bash scripts/install-deps.sh --with-browser
 	node tests/browser/report_browser_test.mjs --pkm $(BUILD)/pkm --out $(BUILD)/browser-test --screenshots docs/images
 
-# Each harness of fuzz/ for FUZZ_SECONDS, one after the other, on its corpus in build-fuzz/corpus/ (fuzz/run.sh);
+# Each harness of fuzz/ for FUZZ_SECONDS, FUZZ_JOBS (nproc) at a time, on its corpus in build-fuzz/corpus/ (fuzz/run.sh);
 # fails and prints the reproducer on a crash, leak, UB or timeout. Only the harnesses and the library are built,
 # at -O1 with assertions on, so that a broken contract stops the run too.
 fuzz:

@@ -2,7 +2,7 @@
 # Runs the libFuzzer harnesses built in BUILD/fuzz (make fuzz builds them), each on its own working corpus
 # BUILD/corpus/NAME, seeded at run time from the examples, the tests and fuzz/ (so that git keeps one copy of
 # every seed). Usage:
-#   fuzz/run.sh BUILD SECONDS [NAME...]         one harness after the other, SECONDS each; exits 1 and prints
+#   fuzz/run.sh BUILD SECONDS [NAME...]         SECONDS each, FUZZ_JOBS (nproc) at a time; exits 1 and prints
 #                                               the reproducer of any crash, leak, timeout or out-of-memory
 #   fuzz/run.sh --long BUILD SECONDS [NAME...]  all at once in the background under nice -n 19, in fork mode
 #                                               so that a crash does not end the run; logs in BUILD/long/NAME.log
@@ -57,6 +57,7 @@ for name in "${names[@]}"; do
   seed_corpus "$name"
   artifacts=$build/artifacts/$name
   mkdir -p "$artifacts"
+  rm -f "$artifacts.failed"
   # shellcheck disable=SC2046  # one word per option
   if [ "$long" -eq 1 ]; then
     mkdir -p "$build/long"
@@ -67,14 +68,24 @@ for name in "${names[@]}"; do
   fi
   echo "fuzz: $name for ${seconds} s"
   touch "$artifacts.start"  # reproducers newer than this are this run's
-  if ! "$harness" $(options_of "$name") -artifact_prefix="$artifacts/" "$build/corpus/$name" \
-    > "$build/artifacts/$name.log" 2>&1; then
+  # FUZZ_JOBS harnesses at once (default: one per core): CI's 2 cores run the six in half the time.
+  while [ "$(jobs -rp | wc -l)" -ge "${FUZZ_JOBS:-$(nproc)}" ]; do wait -n || true; done
+  (
+    if ! "$harness" $(options_of "$name") -artifact_prefix="$artifacts/" "$build/corpus/$name" \
+      > "$build/artifacts/$name.log" 2>&1; then
+      touch "$build/artifacts/$name.failed"
+    fi
+  ) &
+done
+if [ "$long" -eq 1 ]; then exit 0; fi
+wait
+for name in "${names[@]}"; do
+  if [ -f "$build/artifacts/$name.failed" ]; then
     failed+=("$name")
     tail -n 40 "$build/artifacts/$name.log" >&2
   fi
-  grep -E '^#[0-9]+.*(DONE|cov:)' "$build/artifacts/$name.log" | tail -n 1 || true
+  echo "fuzz: $name: $(grep -E '^#[0-9]+.*(DONE|cov:)' "$build/artifacts/$name.log" | tail -n 1 || true)"
 done
-if [ "$long" -eq 1 ]; then exit 0; fi
 if [ "${#failed[@]}" -gt 0 ]; then
   for name in "${failed[@]}"; do
     echo "fuzz: $name failed; reproducer(s), replay with $build/fuzz/fuzz_$name FILE:" >&2
