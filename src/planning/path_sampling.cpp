@@ -64,7 +64,7 @@ void place_samples(const path::Path& path, double spacing, ProfileSamples& sampl
     // a sample inside, where the profile turns from speeding up to braking: two samples both at rest would
     // have the motion cover the move in no time.
     const bool starts_at_rest = k == 0 || path.segments[k - 1].stop_after;
-    if (!seg.is_blend() && starts_at_rest && seg.stop_after) pieces = std::max(pieces, 2);
+    if (!seg.is_blend() && starts_at_rest && seg.stop_after) pieces = std::max(pieces, 4);
     pieces = std::max(pieces, 1);
     for (int i = 0; i < pieces; ++i) {
       const double s = seg.s_start + seg.length * i / pieces;
