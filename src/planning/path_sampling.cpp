@@ -62,7 +62,8 @@ void place_samples(const path::Path& path, double spacing, ProfileSamples& sampl
     pieces = std::max(pieces, static_cast<int>(std::ceil(turned_rad / rad_from_deg(1.0))));
     // A move that starts and ends at rest (between two exact stops, as a short step between reversals) needs
     // a sample inside, where the profile turns from speeding up to braking: two samples both at rest would
-    // have the motion cover the move in no time.
+    // have the motion cover the move in no time. Three inside: such moves are short and their actuator
+    // derivatives come from few samples (a 0.01 mm 5-axis back-step was 6 % over its estimate with one).
     const bool starts_at_rest = k == 0 || path.segments[k - 1].stop_after;
     if (!seg.is_blend() && starts_at_rest && seg.stop_after) pieces = std::max(pieces, 4);
     pieces = std::max(pieces, 1);
