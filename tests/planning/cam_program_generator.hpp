@@ -77,13 +77,13 @@ struct CamPoint {
 /// The G-code words of a point on `axes` (only the axes the machine controls).
 inline std::string cam_words(const CamAxes& axes, const CamPoint& point) {
   std::string words;
-  const Eigen::Vector3d q = axes.centre_mm + axes.scale * point.p;
   if (axes.tilt_only) {
     // The shape draws in A/B degrees; w moves Z by a tenth of the scale (mm).
     const Eigen::Vector2d ab = axes.centre_abc_deg.head<2>() + axes.scale * point.p.head<2>();
     return fmt::format("Z{:.4f} A{:.4f} B{:.4f}", axes.centre_mm.z() + 0.1 * axes.scale * point.p.z(), ab.x(),
                        ab.y());
   }
+  const Eigen::Vector3d q = axes.centre_mm + axes.scale * point.p;
   if (axes.x) words += fmt::format("X{:.4f} ", q.x());
   if (axes.y) words += fmt::format("Y{:.4f} ", q.y());
   if (axes.z) words += fmt::format("Z{:.4f} ", q.z());
