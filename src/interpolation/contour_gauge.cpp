@@ -37,22 +37,19 @@ Eigen::Vector3d ContourGauge::tangent(double s, int& hint) const noexcept {
   return norm > 1e-12 * (b - a) ? Eigen::Vector3d(d / norm) : Eigen::Vector3d::Zero();
 }
 
-double ContourGauge::line_distance(const Eigen::Vector3d& point_mm, const Eigen::Vector3d& at_mm,
-                                   const Eigen::Vector3d& tangent, double behind,
-                                   double ahead) const noexcept {
-  const Eigen::Vector3d offset = mask(point_mm - at_mm);
-  const double along = offset.dot(tangent);
-  const double perpendicular2 = (offset - along * tangent).squaredNorm();
-  const double beyond = along > ahead ? along - ahead : along < -behind ? -behind - along : 0.0;
-  return std::sqrt(perpendicular2 + beyond * beyond);
-}
-
 ContourDeviation ContourGauge::measure(const Pose& pose, double s_guess, int& hint) const noexcept {
   const double length = path_.length();
   double s = std::clamp(s_guess, 0.0, length);
   path::PathPoint point = path_.evaluate(s, hint);
   // Newton on f(s) = |P(s) − p|²/2 with the curve's local tangent; the path is smooth within a segment and
-  // continuous in s across segments (blends), so a few steps from a nearby guess converge.
+  // continuous in s across segments (blends), so a few steps from a nearby guess converge. Every iterate is
+  // a path point, so its distance bounds the contour error from above: the nearest one seen is kept. Where
+  // the controlled coordinates of the path are flat (a tripod's z during an XY move), a step taken at the
+  // edge of the flat part can run far along the path (6 mm on the tripod example, the circle after a rapid).
+  double best_s = s;
+  path::PathPoint best_point = point;
+  double best_distance2 = mask(pose.position_mm - point.position_mm).squaredNorm();
+  int best_hint = hint;
   for (int step = 0; step < kGaugeNewtonSteps; ++step) {
     const double a = std::max(0.0, s - kGaugeDerivativeStep);
     const double b = std::min(length, s + kGaugeDerivativeStep);
@@ -69,13 +66,18 @@ ContourDeviation ContourGauge::measure(const Pose& pose, double s_guess, int& hi
     if (std::abs(next - s) < 1e-12) break;
     s = next;
     point = path_.evaluate(s, hint);
+    const double distance2 = mask(pose.position_mm - point.position_mm).squaredNorm();
+    if (distance2 < best_distance2) {
+      best_distance2 = distance2, best_s = s, best_point = point, best_hint = hint;
+    }
   }
+  hint = best_hint;
   ContourDeviation deviation;
-  deviation.s = s;
-  deviation.offset_mm = mask(pose.position_mm - point.position_mm);
+  deviation.s = best_s;
+  deviation.offset_mm = mask(pose.position_mm - best_point.position_mm);
   deviation.distance_mm = deviation.offset_mm.norm();
   if (controls_orientation_) {
-    deviation.rotation_rad = Eigen::Quaterniond(pose.rotation).angularDistance(point.rotation);
+    deviation.rotation_rad = Eigen::Quaterniond(pose.rotation).angularDistance(best_point.rotation);
   }
   return deviation;
 }
