@@ -7,6 +7,7 @@
 // moment), so a point near the path costs a few path evaluations. Coordinates a reduced-DOF mechanism does
 // not control follow from the others and are no error (Mechanism::controlled_axes).
 #include <Eigen/Core>
+#include <cmath>
 
 #include "machine/machine.hpp"
 #include "path/path.hpp"
@@ -27,11 +28,17 @@ class ContourGauge {
   /// Nearest path point to `pose`'s controlled point, searching from `s_guess`; `hint` is a segment index.
   /// No allocation.
   ContourDeviation measure(const Pose& pose, double s_guess, int& hint) const noexcept;
-  /// The tangent-line distance: the perpendicular part of `point − at` with respect to the unit `tangent`
-  /// (the cheap form for many candidates near one path point, ch5 §8). The path ends `behind` before and
-  /// `ahead` after `at` (path units): a point beyond an end is that much farther from the path.
-  double line_distance(const Eigen::Vector3d& point_mm, const Eigen::Vector3d& at_mm,
-                       const Eigen::Vector3d& tangent, double behind, double ahead) const noexcept;
+  /// The tangent-line distance of a point at `offset_mm` (already masked) from a path point: its part
+  /// perpendicular to the unit `tangent` there (the cheap form for many candidates near one path point,
+  /// ch5 §8). The path ends `behind` before and `ahead` after the point (path units): a point beyond an end
+  /// is that much farther from the path. Inline: the corrector calls it 128 times a period.
+  static double line_distance(const Eigen::Vector3d& offset_mm, const Eigen::Vector3d& tangent, double behind,
+                              double ahead) noexcept {
+    const double along = offset_mm.dot(tangent);
+    const double perpendicular2 = (offset_mm - along * tangent).squaredNorm();
+    const double beyond = along > ahead ? along - ahead : along < -behind ? -behind - along : 0.0;
+    return std::sqrt(perpendicular2 + beyond * beyond);
+  }
   /// The unit tangent of the tool point's path at s (zero where only the orientation moves).
   Eigen::Vector3d tangent(double s, int& hint) const noexcept;
   /// Zeroes the coordinates the mechanism does not control.

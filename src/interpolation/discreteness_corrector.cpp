@@ -40,7 +40,6 @@ DiscretenessCorrector::DiscretenessCorrector(const Machine& machine, const path:
       settings_(settings),
       count_(machine.mechanism->actuator_count()),
       end_tracker_(machine, machine.mechanism->home()),
-      middle_tracker_(machine, machine.mechanism->home()),
       probe_tracker_(machine, machine.mechanism->home()) {
   const AxisMask axes = machine.mechanism->controlled_axes();
   for (int axis = 0; axis < 6; ++axis) {
@@ -64,14 +63,14 @@ Status DiscretenessCorrector::start(const std::array<double, kMaxActuators>& ide
     return Error{ErrorCode::not_converged, "forward kinematics failed at the start positions"};
   }
   end_tracker_.reset(pose);
-  middle_tracker_.reset(pose);
+  issued_point_mm_ = pose.position_mm;
   probe_tracker_.reset(pose);
   end_hint_ = middle_hint_ = 0;
   return ok_status();
 }
 
 bool DiscretenessCorrector::linearise(PoseTracker& tracker, const std::array<double, kMaxActuators>& values,
-                                      double step_share, Linearisation& out) {
+                                      Linearisation& out) {
   Pose pose;
   ++statistics_.fk_solves;
   if (!tracker.solve(values.data(), pose)) return false;
@@ -82,8 +81,11 @@ bool DiscretenessCorrector::linearise(PoseTracker& tracker, const std::array<dou
   JacobianMatrix sensitivity(coordinates_, count_);
   actuator_sensitivity(*jacobian, sensitivity);
   out.point_mm = pose.position_mm;
-  out.angles = angles_from_rotation(machine_.mechanism->convention(), pose.rotation);
-  const double share = settings_.step * step_share;
+  // The angles matter only to the orientation criterion (three atan2 a period otherwise wasted).
+  out.angles = settings_.orientation_criterion
+                   ? angles_from_rotation(machine_.mechanism->convention(), pose.rotation)
+                   : Eigen::Vector3d::Zero();
+  const double share = settings_.step;
   for (int j = 0; j < count_; ++j) {
     out.point_per_step[j].setZero();
     out.angles_per_step[j].setZero();
@@ -127,7 +129,9 @@ Status DiscretenessCorrector::quantize(const CarrierPeriod& period, StepPeriod& 
                                              ? Eigen::Vector3d::Zero()
                                              : gauge_.tangent(s_middle, middle_hint);
   const Eigen::Vector3d required_angles =
-      angles_from_rotation(machine_.mechanism->convention(), end_point.rotation.toRotationMatrix());
+      settings_.orientation_criterion
+          ? angles_from_rotation(machine_.mechanism->convention(), end_point.rotation.toRotationMatrix())
+          : Eigen::Vector3d::Zero();
 
   const unsigned combinations = 1u << count_;
   unsigned best_feasible = combinations;
@@ -157,28 +161,35 @@ Status DiscretenessCorrector::quantize(const CarrierPeriod& period, StepPeriod& 
     }
   };
 
+  Linearisation end;
   if (settings_.linearise) {
-    Linearisation end;
-    Linearisation middle;
-    if (!linearise(end_tracker_, end_values, 1.0, end)) return fail(period, "end");
-    if (!linearise(middle_tracker_, middle_values, 0.5, middle)) return fail(period, "middle");
-    // Gray-code walk: each combination differs from the previous one in one actuator's extra step.
-    Eigen::Vector3d end_p = end.point_mm;
-    Eigen::Vector3d middle_p = middle.point_mm;
+    if (!linearise(end_tracker_, end_values, end)) return fail(period, "end");
+    // The middle needs only its point, and the drives pass it half way between the issued state and this
+    // one: the midpoint of the two tool points, off the FK of the middle lengths by |Δp|²/(8·L) for a
+    // period's motion Δp on struts of length L (0.1 mm on 500 mm: 2.5e-6 mm, the order the linearisation
+    // itself neglects). Its sensitivities are the end's at half the share (the Jacobians a period apart
+    // differ by ≲ 1e-3 relative). A second FK, Jacobian and inverse cost 40 % of the period (issue 12).
+    const Eigen::Vector3d middle_point_mm = 0.5 * (issued_point_mm_ + end.point_mm);
+    // Gray-code walk: each combination differs from the previous one in one actuator's extra step. The
+    // offsets from the path points move by the (masked) per-step displacements.
+    std::array<Eigen::Vector3d, kMaxActuators> offset_per_step;
+    for (int j = 0; j < count_; ++j) offset_per_step[j] = gauge_.mask(end.point_per_step[j]);
+    Eigen::Vector3d end_offset = gauge_.mask(end.point_mm - end_point.position_mm);
+    Eigen::Vector3d middle_offset = gauge_.mask(middle_point_mm - middle_point.position_mm);
     Eigen::Vector3d angles = end.angles;
+    const double middle_ahead = length - s_middle;
     unsigned gray = 0;
     for (unsigned k = 0; k < combinations; ++k) {
       if (k > 0) {
         const int j = std::countr_zero(k);
         const double sign = (gray >> j) & 1u ? -1.0 : 1.0;
         gray ^= 1u << j;
-        end_p += sign * end.point_per_step[j];
-        middle_p += sign * middle.point_per_step[j];
+        end_offset += sign * offset_per_step[j];
+        middle_offset += (0.5 * sign) * offset_per_step[j];
         angles += sign * end.angles_per_step[j];
       }
-      consider(gray, gauge_.line_distance(end_p, end_point.position_mm, end_tangent, period.s_end, end_ahead),
-               gauge_.line_distance(middle_p, middle_point.position_mm, middle_tangent, s_middle,
-                                    length - s_middle),
+      consider(gray, ContourGauge::line_distance(end_offset, end_tangent, period.s_end, end_ahead),
+               ContourGauge::line_distance(middle_offset, middle_tangent, s_middle, middle_ahead),
                (angles - required_angles).squaredNorm());
     }
   } else {
@@ -215,6 +226,12 @@ Status DiscretenessCorrector::quantize(const CarrierPeriod& period, StepPeriod& 
   }
   statistics_.max_predicted_error_mm =
       std::max({statistics_.max_predicted_error_mm, chosen_end_error, chosen_middle_error});
+  if (settings_.linearise) {
+    issued_point_mm_ = end.point_mm;
+    for (int j = 0; j < count_; ++j) {
+      if ((chosen >> j) & 1u) issued_point_mm_ += end.point_per_step[j];
+    }
+  }
   out.index = period.index;
   out.time_s = period.time_s;
   for (int j = 0; j < count_; ++j) {

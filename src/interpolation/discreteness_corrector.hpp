@@ -10,9 +10,11 @@
 //  - Checked at the period's end and at its middle (eq. 177: the drives move linearly through the period, so
 //    the tool passes L_prev + ΔL*/2 half way); combinations whose middle exceeds ρ_max are dropped while any
 //    other remains (else the one with the smallest larger error of the two is taken and counted).
-//  - Linearised (§8.3): FK only for the all-floor state at the end and in the middle, the other combinations
-//    from the FK sensitivities ∂Y/∂L (the inverse Jacobian) there: 2 FK solves and 2 Jacobians per period
-//    instead of 2·2^n FK solves (the seeds' "7 + 7" counts 6 FK solves per Jacobian; ours is analytic).
+//  - Linearised (§8.3): FK only for the all-floor state at the end, the other combinations from the FK
+//    sensitivities ∂Y/∂L (the inverse Jacobian) there: 1 FK solve and 1 Jacobian per period instead of
+//    2·2^n FK solves (the seeds' "7 + 7" counts 6 FK solves per Jacobian; ours is analytic). The middle
+//    point is the midpoint of the issued state's point and the end's, with half the end's sensitivities:
+//    a period's motion is short enough that FK is linear over it to far below a step (issue 12).
 //    `linearise = false` solves FK for every combination (the reference).
 //  - Optional secondary criterion (eq. 143): among the combinations within a share of ρ_max at both points,
 //    the least (ψ − ψ_req)² + (ϑ − ϑ_req)² + (γ − γ_req)², in the machine's angle convention. The share
@@ -59,11 +61,10 @@ class DiscretenessCorrector {
   struct Linearisation {
     Eigen::Vector3d point_mm;  ///< controlled point of the all-floor state
     Eigen::Vector3d angles;    ///< its angles in the machine's convention, rad
-    std::array<Eigen::Vector3d, kMaxActuators> point_per_step;  ///< ∂p/∂L_j · (step share)
+    std::array<Eigen::Vector3d, kMaxActuators> point_per_step;  ///< ∂p/∂L_j · step
     std::array<Eigen::Vector3d, kMaxActuators> angles_per_step;
   };
-  bool linearise(PoseTracker& tracker, const std::array<double, kMaxActuators>& values, double step_share,
-                 Linearisation& out);
+  bool linearise(PoseTracker& tracker, const std::array<double, kMaxActuators>& values, Linearisation& out);
   Status fail(const CarrierPeriod& period, const char* where) const;
 
   const Machine& machine_;
@@ -74,11 +75,11 @@ class DiscretenessCorrector {
   std::array<int, 6> coordinate_axis_{};  ///< axis (0…5) of each controlled coordinate
   int coordinates_ = 0;
   PoseTracker end_tracker_;
-  PoseTracker middle_tracker_;
   PoseTracker probe_tracker_;  ///< the non-linearised reference
   std::array<std::int64_t, kMaxActuators> position_{};
-  int end_hint_ = 0;     ///< path segment of the last period's end
-  int middle_hint_ = 0;  ///< and of its middle
+  Eigen::Vector3d issued_point_mm_{0.0, 0.0, 0.0};  ///< tool point of `position_` (linearised)
+  int end_hint_ = 0;                                ///< path segment of the last period's end
+  int middle_hint_ = 0;                             ///< and of its middle
   CorrectorStatistics statistics_;
 };
 
