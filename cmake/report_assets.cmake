@@ -5,16 +5,18 @@
 # Without Node.js (or with -DPKM_REPORT_PAGE=OFF) everything else builds: the page is left out, one line says
 # so, and a report asked for fails with a message saying why (report_page_built() is false).
 option(PKM_REPORT_PAGE "Build the HTML report page (needs Node.js and npm)" ON)
+set(pkm_no_page_reason "PKM_REPORT_PAGE is OFF")
 if(PKM_REPORT_PAGE)
   find_program(PKM_NODE node)
   find_program(PKM_NPM npm)
   if(NOT PKM_NODE OR NOT PKM_NPM)
-    message(STATUS "pkm: Node.js or npm not found: building without the HTML report page (--report will fail "
-                   "saying so); scripts/install-deps.sh installs them (Debian packages nodejs, npm)")
+    set(pkm_no_page_reason "Node.js or npm not found (scripts/install-deps.sh installs them: nodejs, npm)")
     set(PKM_REPORT_PAGE OFF)
   endif()
 endif()
 if(NOT PKM_REPORT_PAGE)
+  message(STATUS "pkm: building without the HTML report page: ${pkm_no_page_reason}; a report asked for fails "
+                 "saying so")
   add_library(pkm_report_assets STATIC ${PROJECT_SOURCE_DIR}/cmake/report_page_missing.cpp)
   target_include_directories(pkm_report_assets PRIVATE ${PROJECT_SOURCE_DIR}/src)
   return()
