@@ -5,8 +5,6 @@
 #include <iostream>
 
 #include "core/printable_text.hpp"
-#include "report/report_data.hpp"
-#include "report/report_html.hpp"
 
 namespace pkm::cli {
 
@@ -31,15 +29,6 @@ int report_error(const std::string& command, const Error& error) {
   // The one place every message passes: quoted binary input (a CL file that is not text) is escaped here.
   std::cerr << "pkm " << command << ": error: " << printable_text(error.message) << "\n";
   return exit_code_for(error.code);
-}
-
-Status stage_directory_report(OutputSet& outputs, const std::string& report_file) {
-  if (report_file.empty()) return ok_status();
-  auto staged = outputs.stage_file(report_file);
-  if (!staged) return staged.error();
-  auto data = report::report_from_directory(outputs.staging_directory());
-  if (!data) return data.error();
-  return report::write_report_html(*staged, *data);
 }
 
 Result<Machine> load_machine_or_report(const std::string& path) {

@@ -16,10 +16,6 @@ int exit_code_for(ErrorCode code);
 /// the exit code for the error.
 int report_error(const std::string& command, const Error& error);
 
-/// With --report FILE (`report_file` not empty): the HTML report of the run staged in `outputs`, read back
-/// from its staging folder as `pkm report` reads a run, written as one more member of the set.
-Status stage_directory_report(OutputSet& outputs, const std::string& report_file);
-
 /// Loads a machine file or reports why not.
 Result<Machine> load_machine_or_report(const std::string& path);
 

@@ -14,17 +14,8 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "core/atomic_file.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "interpolation/contour_trace.hpp"
-#include "interpolation/interpolate_run.hpp"
-#include "interpolation/step_stream.hpp"
-#include "interpolation/steps_csv.hpp"
 #include "number_options.hpp"
-#include "planning/motion_plan.hpp"
-#include "program/part_program.hpp"
-#include "report/report_data.hpp"
+#include "pipeline/interpolate_program.hpp"
 
 namespace pkm::cli {
 
@@ -58,17 +49,11 @@ struct InterpolateArguments {
   bool step_rate_given = false;
 };
 
-/// Fills the options the command line left out from the machine file's `drives:` section.
-void take_drive_defaults(InterpolateArguments& args, const Machine& machine) {
-  if (!args.period_given && machine.drives.period_ms) args.period_ms = *machine.drives.period_ms;
-  if (!args.step_given && machine.drives.step) args.step_mm = *machine.drives.step;
-  if (!args.step_rate_given && machine.drives.max_step_rate_hz)
-    args.max_step_rate_hz = *machine.drives.max_step_rate_hz;
-}
-
-Result<interpolation::InterpolateOptions> interpolate_options(const InterpolateArguments& args,
-                                                              const Machine& machine) {
-  interpolation::InterpolateOptions options;
+/// The job from the command line: the method's options as given; drive parameters left out come from the
+/// machine file in the library (pipeline/interpolate_program.hpp).
+Result<pipeline::InterpolateJob> interpolate_job(const InterpolateArguments& args, const Machine& machine) {
+  pipeline::InterpolateJob job;
+  interpolation::InterpolateOptions& options = job.options;
   auto method = interpolation::method_from_string(args.method);
   if (!method) {
     return Error{
@@ -76,12 +61,16 @@ Result<interpolation::InterpolateOptions> interpolate_options(const InterpolateA
         fmt::format("--method '{}': expected exact, carrier, carrier-corrected or estimating", args.method)};
   }
   options.method = *method;
-  options.period_s = args.period_ms * 1e-3;
-  if (!(args.step_mm > 0.0)) {
-    return Error{ErrorCode::bad_input,
-                 fmt::format("--step-mm {} must be a positive drive resolution (mm per step)", args.step_mm)};
+  if (args.period_given) job.period_ms = args.period_ms;
+  if (args.step_given) {
+    if (!(args.step_mm > 0.0)) {
+      return Error{
+          ErrorCode::bad_input,
+          fmt::format("--step-mm {} must be a positive drive resolution (mm per step)", args.step_mm)};
+    }
+    job.step = args.step_mm;
   }
-  options.step_mm = args.step_mm;
+  if (args.step_rate_given) job.max_step_rate_hz = args.max_step_rate_hz;
   options.rho_max_mm = args.rho_max_mm;
   if (args.delta_rho_max > 0.0) options.delta_rho_max = args.delta_rho_max;
   options.chord_check = !args.no_chord_check;
@@ -89,19 +78,14 @@ Result<interpolation::InterpolateOptions> interpolate_options(const InterpolateA
   options.linearise = !args.no_linearise;
   if (args.error_samples < 1) return Error{ErrorCode::bad_input, "--error-samples must be at least 1"};
   options.error_samples = args.error_samples;
-  if (args.max_step_rate_hz > 0.0) options.max_step_rate_hz = args.max_step_rate_hz;
   if (args.accel != "linear" && args.accel != "s-curve") {
     return Error{ErrorCode::bad_input, fmt::format("--accel '{}': expected linear or s-curve", args.accel)};
   }
-  // Online changes are percentages of the programmed feed; the plan already runs at --override.
+  job.accel = args.accel == "linear" ? interpolation::RampShape::linear : interpolation::RampShape::s_curve;
+  job.override_pct = args.override_pct;
   auto changes = interpolation::parse_override_changes(args.override_at);
   if (!changes) return changes.error();
-  for (auto& change : *changes) change.percent *= 100.0 / args.override_pct;
-  options.feed_override.changes = *changes;
-  options.feed_override.shape =
-      args.accel == "linear" ? interpolation::RampShape::linear : interpolation::RampShape::s_curve;
-  options.feed_override.full_ramp_s =
-      (machine.motion.max_feed_mm_min / 60.0) / machine.motion.path_accel_mm_s2;
+  job.override_changes = *changes;
   options.estimating.deviation_mm = args.deviation_mm > 0.0 ? args.deviation_mm : args.rho_max_mm;
   if (args.candidates == "all-six" || args.candidates == "all") {
     options.estimating.candidates = interpolation::CandidateSet::all_six;
@@ -124,35 +108,35 @@ Result<interpolation::InterpolateOptions> interpolate_options(const InterpolateA
     options.estimating.candidates = interpolation::CandidateSet::exactly_k;
     options.estimating.struts_per_tact = k;
   }
-  return options;
+  job.program_path = args.program;
+  job.tool_table_path = args.tool_table;
+  job.out_directory = args.out;
+  job.report_path = args.report;
+  return job;
 }
 
-void print_interpolation_table(const nlohmann::json& s, const std::string& program, const std::string& out) {
-  std::cout << fmt::format("{}: {} method, {} periods of {} ms, step {}\n", program,
-                           s["method"].get<std::string>(), s["periods"].get<long>(),
-                           s["period_ms"].get<double>(),
-                           s.contains("step_mm") ? s["step_mm"].get<double>() : s["step_deg"].get<double>());
+void print_interpolation_table(const interpolation::InterpolateSummary& s, const std::string& program,
+                               const std::string& out) {
+  const interpolation::ContourStatistics& c = s.contour;
+  std::cout << fmt::format("{}: {} method, {} periods of {} ms, step {}\n", program, to_string(s.method),
+                           s.periods, s.period_s * 1e3, s.step_mm);
   std::cout << fmt::format(
       "  time              real {:.4f} s, ideal {:.4f} s ({} periods slowed by the chord check)\n",
-      s["real_time_s"].get<double>(), s["ideal_time_s"].get<double>(),
-      s["chord_reduced_periods"].get<long>());
+      s.real_time_s, s.ideal_time_s, s.carrier.chord_reduced_periods);
   std::cout << fmt::format(
       "  contour error     max {:.3g} mm (line {}), rms {:.3g} mm, after the first period {:.3g} mm\n",
-      s["max_contour_error_mm"].get<double>(), s["max_contour_error_line"].get<int>(),
-      s["rms_contour_error_mm"].get<double>(), s["max_contour_error_after_first_period_mm"].get<double>());
+      c.max_error_mm, c.max_error_line, c.rms_error_mm, c.max_error_after_first_mm);
   std::cout << fmt::format("  start / end       {:.3g} mm / {:.3g} mm (ρ_max {} mm, δρ_max {:.3f})\n",
-                           s["start_error_mm"].get<double>(), s["end_error_mm"].get<double>(),
-                           s["rho_max_mm"].get<double>(), s["delta_rho_max"].get<double>());
+                           c.start_error_mm, c.end_error_mm, s.rho_max_mm, s.delta_rho_max);
   std::cout << fmt::format(
       "  per period        {:.1f} FK solves, compute max {:.2f} µs, mean {:.2f} µs, max {} steps\n",
-      s["fk_solves_per_period"].get<double>(), s["max_compute_us_per_period"].get<double>(),
-      s["mean_compute_us_per_period"].get<double>(), s["max_steps_per_period"].get<int>());
+      s.fk_solves_per_period, s.max_compute_us_per_period, s.mean_compute_us_per_period,
+      s.max_steps_per_period);
+  const DurationDistribution& t = s.period_time;
   std::cout << fmt::format(
       "  period time       p50 {:.2f} µs, p99 {:.2f} µs, p99.9 {:.2f} µs, max {:.1f} µs of {} periods "
       "({} above 10 µs; compute only)\n",
-      s["period_time_us_p50"].get<double>(), s["period_time_us_p99"].get<double>(),
-      s["period_time_us_p99_9"].get<double>(), s["period_time_us_max"].get<double>(),
-      s["period_time_count"].get<long>(), s["period_time_over_10us"].get<long>());
+      t.p50_us, t.p99_us, t.p99_9_us, t.max_us, t.count, t.over_budget);
   std::cout << fmt::format("  written           {}/steps.csv, steps.bin, contour.csv, summary.json\n", out);
 }
 
@@ -217,123 +201,22 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
     args->period_given = period_option->count() > 0;
     args->step_given = step_option->count() > 0;
     args->step_rate_given = step_rate_option->count() > 0;
-    take_drive_defaults(*args, *machine);
-    auto options = interpolate_options(*args, *machine);
-    if (!options) {
-      exit_code = report_error("interpolate", options.error());
+    auto job = interpolate_job(*args, *machine);
+    if (!job) {
+      exit_code = report_error("interpolate", job.error());
       return;
     }
-    if (args->accel == "linear") {
-      // No jerk limit: the plan's moving-average filter shrinks to one period (trapezoidal speed).
-      machine->motion.path_jerk_mm_s3 = std::numeric_limits<double>::max();
-    }
-    const planning::ProgramStart start = planning::program_start(*machine);
-    program::InterpretOptions interpret;
-    interpret.start_mm = start.start_mm;
-    interpret.start_abc_deg = start.start_abc_deg;
-    interpret.tool_table_path = args->tool_table;
-    auto program = program::load_part_program(args->program, interpret);
-    if (!program) {
-      exit_code = report_error("interpolate", program.error());
-      return;
-    }
-    planning::PlanOptions plan_options;
-    plan_options.rate_hz = 1.0 / options->period_s;
-    plan_options.override_pct = args->override_pct;
-    if (!(options->period_s >= 1e-4 - 1e-12 && options->period_s <= 2e-2 + 1e-12)) {
-      exit_code = report_error(
-          "interpolate",
-          Error{ErrorCode::bad_input, fmt::format("--period-ms {} is outside 0.1…20 ms", args->period_ms)});
-      return;
-    }
-    auto plan = planning::plan_motion(*machine, *program, plan_options);
-    if (!plan) {
-      exit_code = report_error("interpolate", plan.error());
-      return;
-    }
-    auto timing = interpolation::IdealTiming::from_plan(*plan, *machine);
-    if (!timing) {
-      exit_code = report_error("interpolate", timing.error());
-      return;
-    }
-    // The step files, the contour trace, the summary and the report replace the previous run's together.
-    OutputSet outputs;
-    if (Status used = outputs.use_directory(args->out); !used) {
-      exit_code = report_error("interpolate", used.error());
-      return;
-    }
-    interpolation::StepStreamHeader header;
-    header.actuators = machine->mechanism->actuator_count();
-    header.period_s = options->period_s;
-    // The stream's step is in the actuators' own unit: mm, or rad for angular actuators (given in deg).
-    header.step_mm =
-        machine->mechanism->actuators_are_angles() ? options->step_mm * (kPi / 180.0) : options->step_mm;
-    header.machine = machine->source;
-    interpolation::StepsCsvWriter csv;
-    interpolation::StepStreamWriter binary;
-    if (isatty(STDERR_FILENO) && plan->duration_s / options->period_s > 200000)
-      options->progress = draw_progress;
-    auto start_steps = interpolation::start_positions(*machine, plan->path, options->step_mm);
-    if (!start_steps) {
-      exit_code = report_error("interpolate", start_steps.error());
-      return;
-    }
-    header.start_position = *start_steps;
-    auto opened_csv = csv.open(outputs.staged_path("steps.csv"), header);
-    if (!opened_csv) {
-      exit_code = report_error("interpolate", opened_csv.error());
-      return;
-    }
-    auto opened_bin = binary.open(outputs.staged_path("steps.bin"), header);
-    if (!opened_bin) {
-      exit_code = report_error("interpolate", opened_bin.error());
-      return;
-    }
-    interpolation::ContourTraceWriter trace;
-    if (auto opened_trace = trace.open(outputs.staged_path("contour.csv")); !opened_trace) {
-      exit_code = report_error("interpolate", opened_trace.error());
-      return;
-    }
-    Status trace_status = ok_status();
-    options->on_period = [&](const interpolation::StepPeriod& period,
-                             const interpolation::PeriodContour& contour, const Eigen::Vector3d& path_mm) {
-      if (trace_status) trace_status = trace.add(period, contour, path_mm);
-    };
-    auto summary =
-        interpolation::interpolate(*machine, plan->path, *timing, *options, {&csv, &binary}, program->source);
-    if (!summary) {
-      exit_code = report_error("interpolate", summary.error());
-      return;
-    }
-    if (trace_status) trace_status = trace.finish();
-    if (!trace_status) {
-      exit_code = report_error("interpolate", trace_status.error());
-      return;
-    }
-    nlohmann::json json = interpolation::interpolation_summary_json(*summary, *machine);
-    json["program"] = program->source;
-    json["blocks"] = plan->statistics.blocks;
-    json["override_pct"] = args->override_pct;
-    json["accel"] = args->accel;
-    if (options->max_step_rate_hz) json["max_step_rate_hz"] = *options->max_step_rate_hz;
-    if (Status written = write_file_atomically(outputs.staged_path("summary.json"), json.dump(2) + "\n");
-        !written) {
-      exit_code = report_error("interpolate", written.error());
-      return;
-    }
-    if (Status written = stage_directory_report(outputs, args->report); !written) {
-      exit_code = report_error("interpolate", written.error());
-      return;
-    }
-    if (Status committed = outputs.commit(); !committed) {
-      exit_code = report_error("interpolate", committed.error());
+    if (isatty(STDERR_FILENO)) job->progress = draw_progress;
+    auto result = pipeline::interpolate_program(*machine, *job);
+    if (!result) {
+      exit_code = report_error("interpolate", result.error());
       return;
     }
     if (args->json) {
-      print_json(json);
+      print_json(result->json);
       return;
     }
-    print_interpolation_table(json, args->program, args->out);
+    print_interpolation_table(result->summary, args->program, args->out);
   });
 }
 

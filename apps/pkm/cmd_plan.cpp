@@ -6,17 +6,14 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <iostream>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "core/units.hpp"
 #include "number_options.hpp"
-#include "planning/motion_plan.hpp"
-#include "planning/plan_output.hpp"
-#include "program/part_program.hpp"
+#include "pipeline/plan_program.hpp"
 #include "redundancy_options.hpp"
-#include "report/report_data.hpp"
 
 namespace pkm::cli {
 
@@ -60,101 +57,63 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto redundancy_arguments = std::make_shared<RedundancyArguments>();
   add_redundancy_options(*cmd, *redundancy_arguments, false);
   cmd->callback([=, &exit_code] {
-    std::optional<redundancy::OptimizeOptions> law_options;
+    pipeline::PlanJob job;
     if (!redundancy_arguments->law.empty()) {
       auto parsed = redundancy_options(*redundancy_arguments);
       if (!parsed) {
         exit_code = report_error("plan", parsed.error());
         return;
       }
-      law_options = std::move(*parsed);
+      job.law = std::move(*parsed);
     }
     auto machine = load_machine_or_report(*machine_path);
     if (!machine) {
       exit_code = report_error("plan", machine.error());
       return;
     }
-    const planning::ProgramStart start = planning::program_start(*machine);
-    program::InterpretOptions interpret;
-    interpret.start_mm = start.start_mm;
-    interpret.start_abc_deg = start.start_abc_deg;
-    interpret.tool_table_path = *tool_table;
-    auto program = program::load_part_program(*program_path, interpret);
-    if (!program) {
-      exit_code = report_error("plan", program.error());
+    job.program_path = *program_path;
+    job.tool_table_path = *tool_table;
+    job.plan = *options;
+    if (tolerance_option->count() > 0) job.plan.path_tolerance_mm = *tolerance;
+    job.evaluate_path_error = !*no_error;
+    if (isatty(STDERR_FILENO)) job.progress = draw_progress;
+    job.out_directory = *out_dir;
+    job.report_path = *report_file;
+    auto result = pipeline::plan_program(*machine, job);
+    if (!result) {
+      exit_code = report_error("plan", result.error());
       return;
     }
-    nlohmann::json law_summary;
-    if (law_options) {
-      auto optimized = redundancy::optimize_program(*program, *machine, *law_options);
-      if (!optimized) {
-        exit_code = report_error("plan", optimized.error());
-        return;
-      }
-      law_summary = redundancy::optimize_summary_json(*optimized, *law_options);
-      *program = std::move(optimized->program);
-    }
-    planning::PlanOptions plan_options = *options;
-    if (tolerance_option->count() > 0) plan_options.path_tolerance_mm = *tolerance;
-    const auto started = std::chrono::steady_clock::now();
-    auto plan = planning::plan_motion(*machine, *program, plan_options);
-    if (!plan) {
-      exit_code = report_error("plan", plan.error());
-      return;
-    }
-    const double planning_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    planning::OutputOptions output;
-    output.override_pct = plan_options.override_pct;
-    output.evaluate_path_error = !*no_error;
-    if (isatty(STDERR_FILENO) && plan->duration_s * plan_options.rate_hz > 200000)
-      output.progress = draw_progress;
-    // The CSVs, the summary and the report replace the previous run's together or not at all.
-    OutputSet outputs;
-    if (Status used = outputs.use_directory(*out_dir); !used) {
-      exit_code = report_error("plan", used.error());
-      return;
-    }
-    auto run = planning::write_plan_outputs(*plan, *machine, outputs, output);
-    if (!run) {
-      exit_code = report_error("plan", run.error());
-      return;
-    }
-    if (Status written = stage_directory_report(outputs, *report_file); !written) {
-      exit_code = report_error("plan", written.error());
-      return;
-    }
-    if (Status committed = outputs.commit(); !committed) {
-      exit_code = report_error("plan", committed.error());
-      return;
-    }
-    nlohmann::json summary = planning::summary_json(*plan, *machine, *run);
-    summary["planning_time_s"] = planning_s;
-    if (law_options) summary["redundancy"] = law_summary;
     if (*json) {
+      nlohmann::json summary = result->summary;
+      summary["planning_time_s"] = result->planning_s;
+      if (job.law) summary["redundancy"] = result->law_summary;
       print_json(summary);
       return;
     }
-    const std::string unit = machine->mechanism->actuators_are_angles() ? "deg" : "mm";
+    const planning::RunSummary& run = result->run;
+    const bool angles = machine->mechanism->actuators_are_angles();
+    const std::string unit = angles ? "deg" : "mm";
+    const double scale = angles ? deg_from_rad(1.0) : 1.0;
     std::cout << fmt::format("{}: {} blocks on {} ({}), {} ticks at {} Hz\n", *program_path,
-                             plan->statistics.blocks, machine->name, *machine_path, run->ticks, run->rate_hz);
-    std::cout << fmt::format("  duration          {:.3f} s (path {:.1f} mm, override {} %)\n",
-                             run->duration_s, plan->statistics.length_mm, plan_options.override_pct);
+                             result->plan.statistics.blocks, machine->name, *machine_path, run.ticks,
+                             run.rate_hz);
+    std::cout << fmt::format("  duration          {:.3f} s (path {:.1f} mm, override {} %)\n", run.duration_s,
+                             result->plan.statistics.length_mm, job.plan.override_pct);
     std::cout << fmt::format("  actuator speed    max {:.3f} {}/s   accel max {:.3f} {}/s²\n",
-                             summary["max_actuator_speed_" + unit + "_s"].get<double>(), unit,
-                             summary["max_actuator_accel_" + unit + "_s2"].get<double>(), unit);
+                             run.max_actuator_speed * scale, unit, run.max_actuator_accel * scale, unit);
     std::cout << fmt::format(
-        "  path speed        max {:.3f} mm/s ({:.1f} % of the programmed feed at most)\n",
-        run->max_path_speed, 100.0 * run->max_feed_ratio);
-    if (output.evaluate_path_error) {
+        "  path speed        max {:.3f} mm/s ({:.1f} % of the programmed feed at most)\n", run.max_path_speed,
+        100.0 * run.max_feed_ratio);
+    if (job.evaluate_path_error) {
       std::cout << fmt::format(
           "  path error        max {:.3g} mm (FK of the actuators at mid-period, line {})\n",
-          run->max_path_error_mm, run->max_path_error_line);
+          run.max_path_error_mm, run.max_path_error_line);
     }
-    if (law_options) {
+    if (result->law) {
       std::cout << fmt::format("  {} law           Σ max|ΔL| {:.3f} mm (held constant: {:.3f} mm), free {}\n",
-                               redundancy_arguments->law, law_summary["opt_sum_mm"].get<double>(),
-                               law_summary["const_sum_mm"].get<double>(), redundancy_arguments->free);
+                               redundancy_arguments->law, result->law->chosen().metrics.increment_sum_mm,
+                               result->law->constant.increment_sum_mm, redundancy_arguments->free);
     }
     std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json\n", *out_dir);
   });

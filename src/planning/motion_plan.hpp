@@ -23,6 +23,9 @@ struct PlanOptions {
   double sample_spacing_mm =
       1.0;  ///< largest distance between planning samples (mm, or deg when only rotating)
   double condition_check_spacing_mm = 2.0;  ///< conditioning (singularity) checks along the path
+  /// False: no jerk limit (trapezoidal path speed, the linear acceleration law); the jerk filter shrinks to
+  /// one period.
+  bool jerk_limited = true;
 };
 
 /// What the plan used and where it is limited; for the summary.

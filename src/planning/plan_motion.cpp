@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/rotation.hpp"
 #include "core/units.hpp"
@@ -74,7 +75,8 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   plan.path = std::move(*built);
   plan.period_s = 1.0 / options.rate_hz;
   // Moving average of length T = 2·a/j keeps the path jerk within j (servo_stream.hpp).
-  const double filter_time = 2.0 * motion.path_accel_mm_s2 / motion.path_jerk_mm_s3;
+  const double jerk = options.jerk_limited ? motion.path_jerk_mm_s3 : std::numeric_limits<double>::max();
+  const double filter_time = 2.0 * motion.path_accel_mm_s2 / jerk;
   plan.filter_ticks = std::max(1, static_cast<int>(std::lround(filter_time * options.rate_hz)));
   const double window_s = plan.filter_ticks * plan.period_s;
 

@@ -1,0 +1,122 @@
+#include "pipeline/interpolate_program.hpp"
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.hpp"
+#include "core/output_set.hpp"
+#include "core/units.hpp"
+#include "interpolation/contour_trace.hpp"
+#include "interpolation/step_stream.hpp"
+#include "interpolation/steps_csv.hpp"
+#include "pipeline/run_report.hpp"
+#include "planning/motion_plan.hpp"
+#include "program/part_program.hpp"
+
+namespace pkm::pipeline {
+
+namespace {
+
+constexpr double kMinPeriodMs = 0.1;
+constexpr double kMaxPeriodMs = 20.0;
+
+// The job's drive parameters, completed from the machine file's `drives:` and checked.
+Result<interpolation::InterpolateOptions> resolved_options(const Machine& machine,
+                                                           const InterpolateJob& job) {
+  interpolation::InterpolateOptions options = job.options;
+  // The machine file's reader checks drives.period_ms the same way; this is for a period given in the job.
+  const double period_ms = job.period_ms ? *job.period_ms : machine.drives.period_ms.value_or(1.0);
+  if (!(period_ms >= kMinPeriodMs - 1e-9 && period_ms <= kMaxPeriodMs + 1e-9)) {
+    return Error{ErrorCode::bad_input, fmt::format("servo period {} ms is outside {}…{} ms", period_ms,
+                                                   kMinPeriodMs, kMaxPeriodMs)};
+  }
+  options.period_s = period_ms * 1e-3;
+  const double step = job.step ? *job.step : machine.drives.step.value_or(0.001);
+  if (!(step > 0.0)) {
+    return Error{ErrorCode::bad_input,
+                 fmt::format("drive step {} must be a positive resolution (mm per step)", step)};
+  }
+  options.step_mm = step;
+  const std::optional<double> rate =
+      job.max_step_rate_hz ? job.max_step_rate_hz : machine.drives.max_step_rate_hz;
+  if (rate && *rate > 0.0) options.max_step_rate_hz = *rate;
+  // Changes are percentages of the programmed feed; the plan already runs at the starting override.
+  options.feed_override.changes = job.override_changes;
+  for (auto& change : options.feed_override.changes) change.percent *= 100.0 / job.override_pct;
+  options.feed_override.shape = job.accel;
+  options.feed_override.full_ramp_s =
+      (machine.motion.max_feed_mm_min / 60.0) / machine.motion.path_accel_mm_s2;
+  return options;
+}
+
+}  // namespace
+
+Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job) {
+  auto options = resolved_options(machine, job);
+  if (!options) return options.error();
+  const planning::ProgramStart start = planning::program_start(machine);
+  program::InterpretOptions interpret;
+  interpret.start_mm = start.start_mm;
+  interpret.start_abc_deg = start.start_abc_deg;
+  interpret.tool_table_path = job.tool_table_path;
+  auto program = program::load_part_program(job.program_path, interpret);
+  if (!program) return program.error();
+  planning::PlanOptions plan_options;
+  plan_options.rate_hz = 1.0 / options->period_s;
+  plan_options.override_pct = job.override_pct;
+  // The linear law has no jerk limit: trapezoidal path speed.
+  plan_options.jerk_limited = job.accel != interpolation::RampShape::linear;
+  auto plan = planning::plan_motion(machine, *program, plan_options);
+  if (!plan) return plan.error();
+  auto timing = interpolation::IdealTiming::from_plan(*plan, machine);
+  if (!timing) return timing.error();
+
+  // The step files, the contour trace, the summary and the report replace the previous run's together.
+  OutputSet outputs;
+  if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
+  interpolation::StepStreamHeader header;
+  header.actuators = machine.mechanism->actuator_count();
+  header.period_s = options->period_s;
+  // The stream's step is in the actuators' own unit: mm, or rad for angular actuators (given in deg).
+  header.step_mm =
+      machine.mechanism->actuators_are_angles() ? options->step_mm * (kPi / 180.0) : options->step_mm;
+  header.machine = machine.source;
+  if (job.progress && plan->duration_s / options->period_s > 200000) options->progress = job.progress;
+  auto start_steps = interpolation::start_positions(machine, plan->path, options->step_mm);
+  if (!start_steps) return start_steps.error();
+  header.start_position = *start_steps;
+  interpolation::StepsCsvWriter csv;
+  if (Status opened = csv.open(outputs.staged_path("steps.csv"), header); !opened) return opened.error();
+  interpolation::StepStreamWriter binary;
+  if (Status opened = binary.open(outputs.staged_path("steps.bin"), header); !opened) return opened.error();
+  interpolation::ContourTraceWriter trace;
+  if (Status opened = trace.open(outputs.staged_path("contour.csv")); !opened) return opened.error();
+  Status trace_status = ok_status();
+  options->on_period = [&](const interpolation::StepPeriod& period,
+                           const interpolation::PeriodContour& contour, const Eigen::Vector3d& path_mm) {
+    if (trace_status) trace_status = trace.add(period, contour, path_mm);
+  };
+  auto summary =
+      interpolation::interpolate(machine, plan->path, *timing, *options, {&csv, &binary}, program->source);
+  if (!summary) return summary.error();
+  if (trace_status) trace_status = trace.finish();
+  if (!trace_status) return trace_status.error();
+
+  InterpolateProgramResult result;
+  result.blocks = plan->statistics.blocks;
+  result.json = interpolation::interpolation_summary_json(*summary, machine);
+  result.json["program"] = program->source;
+  result.json["blocks"] = plan->statistics.blocks;
+  result.json["override_pct"] = job.override_pct;
+  result.json["accel"] = job.accel == interpolation::RampShape::linear ? "linear" : "s-curve";
+  if (options->max_step_rate_hz) result.json["max_step_rate_hz"] = *options->max_step_rate_hz;
+  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), result.json.dump(2) + "\n");
+      !written) {
+    return written.error();
+  }
+  if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
+  if (Status committed = outputs.commit(); !committed) return committed.error();
+  result.summary = std::move(*summary);
+  return result;
+}
+
+}  // namespace pkm::pipeline

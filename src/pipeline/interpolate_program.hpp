@@ -1,0 +1,48 @@
+#pragma once
+// `pkm interpolate` as one library call: a part program file in, planned at the servo period and turned into
+// whole drive steps per period (spec ch5), written as an output set: steps.csv and steps.bin (the drives'
+// stream), contour.csv (per period: the contour error and where the tool is), summary.json and, if asked,
+// the HTML report. The set replaces a previous run's only when all of it succeeded.
+//
+// Drive parameters the job leaves unset come from the machine file's `drives:` section, then from the
+// defaults (1 ms, 0.001 mm per step, no step-rate limit).
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "interpolation/feed_override.hpp"
+#include "interpolation/interpolate_run.hpp"
+#include "machine/machine.hpp"
+
+namespace pkm::pipeline {
+
+struct InterpolateJob {
+  std::string program_path;                ///< G-code, or APT CL data (.cl, .cls, .apt)
+  std::string tool_table_path;             ///< LinuxCNC tool table for G43; empty: none
+  std::optional<double> period_ms;         ///< servo period h, 0.1…20 ms
+  std::optional<double> step;              ///< drive resolution Δ, mm per step (deg for angular actuators)
+  std::optional<double> max_step_rate_hz;  ///< per drive
+  double override_pct = 100.0;             ///< operator feed override at the start, % (> 0, ≤ 200)
+  /// Override changes during the run, in % of the programmed feed (they act from period i+2).
+  std::vector<interpolation::OverrideChange> override_changes;
+  /// The acceleration law of the plan and of override changes: linear drops the jerk limit (trapezoidal).
+  interpolation::RampShape accel = interpolation::RampShape::s_curve;
+  /// Method, ρ_max, δρ_max, chord check, orientation criterion, error samples, estimating settings. Its
+  /// period, step, step rate and feed override are set from the fields above.
+  interpolation::InterpolateOptions options;
+  std::function<void(double)> progress;  ///< fraction done, for runs over 200 000 periods
+  std::string out_directory;
+  std::string report_path;  ///< empty: no report
+};
+
+struct InterpolateProgramResult {
+  interpolation::InterpolateSummary summary;
+  int blocks = 0;       ///< of the program
+  nlohmann::json json;  ///< summary.json as written
+};
+
+Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job);
+
+}  // namespace pkm::pipeline

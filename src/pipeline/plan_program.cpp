@@ -1,0 +1,51 @@
+#include "pipeline/plan_program.hpp"
+
+#include <chrono>
+
+#include "core/output_set.hpp"
+#include "pipeline/run_report.hpp"
+#include "planning/plan_output.hpp"
+#include "program/part_program.hpp"
+
+namespace pkm::pipeline {
+
+Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
+  const planning::ProgramStart start = planning::program_start(machine);
+  program::InterpretOptions interpret;
+  interpret.start_mm = start.start_mm;
+  interpret.start_abc_deg = start.start_abc_deg;
+  interpret.tool_table_path = job.tool_table_path;
+  auto program = program::load_part_program(job.program_path, interpret);
+  if (!program) return program.error();
+
+  PlanProgramResult result;
+  if (job.law) {
+    auto optimized = redundancy::optimize_program(*program, machine, *job.law);
+    if (!optimized) return optimized.error();
+    result.law_summary = redundancy::optimize_summary_json(*optimized, *job.law);
+    *program = std::move(optimized->program);
+    result.law = std::move(*optimized);
+  }
+  const auto started = std::chrono::steady_clock::now();
+  auto plan = planning::plan_motion(machine, *program, job.plan);
+  if (!plan) return plan.error();
+  result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  planning::OutputOptions output;
+  output.override_pct = job.plan.override_pct;
+  output.evaluate_path_error = job.evaluate_path_error;
+  if (job.progress && plan->duration_s * job.plan.rate_hz > 200000) output.progress = job.progress;
+  // The CSVs, the summary and the report replace the previous run's together or not at all.
+  OutputSet outputs;
+  if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
+  auto run = planning::write_plan_outputs(*plan, machine, outputs, output);
+  if (!run) return run.error();
+  if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
+  if (Status committed = outputs.commit(); !committed) return committed.error();
+  result.summary = planning::summary_json(*plan, machine, *run);
+  result.run = *run;
+  result.plan = std::move(*plan);
+  return result;
+}
+
+}  // namespace pkm::pipeline

@@ -1,0 +1,40 @@
+#pragma once
+// `pkm plan` as one library call: a part program file in, its planned servo-rate motion written as an output
+// set (actuators.csv, path.csv, summary.json and, if asked, the HTML report) that replaces a previous run's
+// only when all of it succeeded. With a drive control law, the coordinates the operation leaves free are
+// chosen first (redundancy/optimize_program.hpp) and the rewritten program is planned.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "machine/machine.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/run_monitor.hpp"
+#include "redundancy/optimize_program.hpp"
+
+namespace pkm::pipeline {
+
+struct PlanJob {
+  std::string program_path;     ///< G-code, or APT CL data (.cl, .cls, .apt)
+  std::string tool_table_path;  ///< LinuxCNC tool table for G43; empty: none
+  planning::PlanOptions plan;   ///< servo rate, override, blending tolerance (unset: the machine file's)
+  std::optional<redundancy::OptimizeOptions> law;  ///< choose the free coordinates first
+  bool evaluate_path_error = true;                 ///< FK of the actuators at every mid-period
+  std::function<void(double)> progress;            ///< fraction written, for runs over 200 000 ticks
+  std::string out_directory;
+  std::string report_path;  ///< empty: no report
+};
+
+struct PlanProgramResult {
+  planning::MotionPlan plan;
+  planning::RunSummary run;                       ///< what the written ticks measured
+  double planning_s = 0.0;                        ///< wall time of the planning itself (not the writing)
+  nlohmann::json summary;                         ///< summary.json as written
+  std::optional<redundancy::OptimizeResult> law;  ///< with the law's job: what it chose
+  nlohmann::json law_summary;                     ///< its summary (redundancy::optimize_summary_json)
+};
+
+Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job);
+
+}  // namespace pkm::pipeline
