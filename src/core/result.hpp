@@ -21,9 +21,19 @@ enum class ErrorCode {
 
 const char* to_string(ErrorCode code);
 
+/// Where in an input file an error is, as fields (the message says the same in words): bindings raise typed
+/// exceptions from it and editors jump to it. An empty file means the error is not about a file's content.
+struct ErrorLocation {
+  std::string file;
+  int line = 0;     ///< 1-based; 0: unknown
+  int column = 0;   ///< 1-based; 0: unknown
+  std::string key;  ///< of a structured file, with indices ("base_joints[2]"); empty for part programs
+};
+
 struct Error {
   ErrorCode code;
-  std::string message;  ///< one line, names file/line/field and units where they apply
+  std::string message;       ///< one line, names file/line/field and units where they apply
+  ErrorLocation location{};  ///< filled by the file readers (YAML files, G-code, CL data)
 };
 
 template <class T>

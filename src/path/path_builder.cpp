@@ -27,7 +27,8 @@ Eigen::Quaterniond program_rotation(const CanonicalMove& move, const PathFrame& 
 namespace {
 
 Error line_error(const program::CanonicalProgram& program, int line, const std::string& message) {
-  return Error{ErrorCode::bad_input, fmt::format("{}:{}: {}", program.source, line, message)};
+  return Error{ErrorCode::bad_input, fmt::format("{}:{}: {}", program.source, line, message),
+               ErrorLocation{program.source, line, 0, ""}};
 }
 
 double segment_speed_limit(const CanonicalMove& move, const Curve& curve, const PathOptions& options) {

@@ -32,7 +32,8 @@ namespace {
 constexpr double kCurvatureShare = 0.5;  // α: share of the actuator acceleration left for the v²·q'' term
 
 Error at_line(const program::CanonicalProgram& program, int line, const Error& error) {
-  return Error{error.code, fmt::format("{}:{}: {}", program.source, line, error.message)};
+  return Error{error.code, fmt::format("{}:{}: {}", program.source, line, error.message),
+               ErrorLocation{program.source, line, 0, ""}};
 }
 
 /// Sample positions: every segment split into pieces no longer than `spacing` (arcs: at most 5° each,

@@ -135,7 +135,8 @@ class ClReader {
 
  private:
   Error error_at(ClPosition at, std::string_view message) const {
-    return Error{ErrorCode::bad_input, fmt::format("{}:{}:{}: {}", source_, at.line, at.column, message)};
+    return Error{ErrorCode::bad_input, fmt::format("{}:{}:{}: {}", source_, at.line, at.column, message),
+                 ErrorLocation{source_, at.line, at.column, ""}};
   }
 
   Status number(const ClArg& arg, double& out) const {

@@ -8,8 +8,10 @@
 namespace pkm::program::gcode {
 
 Error error_at(const LineRef& where, int column, std::string_view message) {
-  return make_error(ErrorCode::bad_input,
-                    fmt::format("{}:{}:{}: {}", where.source, where.line, column, message));
+  Error error = make_error(ErrorCode::bad_input,
+                           fmt::format("{}:{}:{}: {}", where.source, where.line, column, message));
+  error.location = ErrorLocation{std::string(where.source), where.line, column, ""};
+  return error;
 }
 
 namespace {

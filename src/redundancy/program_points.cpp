@@ -23,7 +23,8 @@ path::PathFrame program_frame(const Machine& machine) {
 namespace {
 
 Error points_line_error(const program::CanonicalProgram& program, int line, const std::string& what) {
-  return make_error(ErrorCode::bad_input, fmt::format("{}:{}: {}", program.source, line, what));
+  return Error{ErrorCode::bad_input, fmt::format("{}:{}: {}", program.source, line, what),
+               ErrorLocation{program.source, line, 0, ""}};
 }
 
 path::Curve points_curve(const CanonicalMove& move, const Eigen::Vector3d& start_mm,

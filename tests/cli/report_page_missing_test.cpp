@@ -22,9 +22,9 @@ TEST(ReportPage, BuiltExactlyWhenTheBuildSaysSo) {
 TEST(ReportPage, AReportWithoutThePageFailsSayingWhyAndWritesNothing) {
   const fs::path out = fs::temp_directory_path() / "pkm_report_page_missing";
   fs::remove_all(out);
-  const auto run = test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " +
-                                 test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " +
-                                 out.string() + " --report " + (out / "report.html").string());
+  const auto run = test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") +
+                                 " --machine " + test::source_path("examples/machines/hexapod_ch5.yaml") +
+                                 " --out " + out.string() + " --report " + (out / "report.html").string());
   EXPECT_EQ(run.exit_code, 2) << run.out;
   EXPECT_NE(run.out.find("built without the report page"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(out / "summary.json"));

@@ -159,9 +159,11 @@ TEST_P(GoldenOutputs, AreUnchanged) {
   const GoldenCase& c = GetParam();
   const fs::path out = fs::path(testing::TempDir()) / ("pkm_golden_" + c.name);
   fs::remove_all(out);
-  const auto run =
-      test::run_pkm(c.command + " " + test::source_path("examples/programs/" + c.program) + " --machine " +
-                    test::source_path("examples/machines/" + c.machine + ".yaml") + " --out " + out.string());
+  // From the source directory with relative paths: the files name the program and the machine (steps.bin's
+  // header, under its checksum), and must not depend on where the project is checked out.
+  const auto run = test::run_pkm_in(test::source_path(""), c.command + " examples/programs/" + c.program +
+                                                               " --machine examples/machines/" + c.machine +
+                                                               ".yaml --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.out;
 
   nlohmann::json actual;
