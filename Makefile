@@ -27,7 +27,9 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-run: build
+# make run builds only what its job needs (the library and the CLI); make test builds the tests too.
+run: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target pkm
 	$(BUILD)/pkm plan $(PROGRAM) --machine $(EXAMPLE) --out $(BUILD)/run --report $(BUILD)/run/report.html
 
 test: build

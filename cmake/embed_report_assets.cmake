@@ -38,6 +38,7 @@ ${style_literal};
 
 std::string_view report_script() { return {kReportScript, sizeof(kReportScript) - 1}; }
 std::string_view report_style() { return {kReportStyle, sizeof(kReportStyle) - 1}; }
+bool report_page_built() { return true; }
 
 }  // namespace pkm::report
 ")

@@ -1,11 +1,25 @@
 # The HTML report's page (docs/report-data.md): web/ is an npm project (three.js, uPlot, esbuild) whose bundle
 # is compiled into pkm. Node.js and npm come from scripts/install-deps.sh; the packages are installed here,
 # at configure time, from web/package-lock.json (never vendored).
-find_program(PKM_NODE node)
-find_program(PKM_NPM npm)
-if(NOT PKM_NODE OR NOT PKM_NPM)
-  message(FATAL_ERROR "pkm's HTML report needs Node.js and npm at build time: run scripts/install-deps.sh "
-                      "(Debian packages nodejs, npm)")
+#
+# Without Node.js (or with -DPKM_REPORT_PAGE=OFF) everything else builds: the page is left out, one line says
+# so, and a report asked for fails with a message saying why (report_page_built() is false).
+option(PKM_REPORT_PAGE "Build the HTML report page (needs Node.js and npm)" ON)
+set(pkm_no_page_reason "PKM_REPORT_PAGE is OFF")
+if(PKM_REPORT_PAGE)
+  find_program(PKM_NODE node)
+  find_program(PKM_NPM npm)
+  if(NOT PKM_NODE OR NOT PKM_NPM)
+    set(pkm_no_page_reason "Node.js or npm not found (scripts/install-deps.sh installs them: nodejs, npm)")
+    set(PKM_REPORT_PAGE OFF)
+  endif()
+endif()
+if(NOT PKM_REPORT_PAGE)
+  message(STATUS "pkm: building without the HTML report page: ${pkm_no_page_reason}; a report asked for fails "
+                 "saying so")
+  add_library(pkm_report_assets STATIC ${PROJECT_SOURCE_DIR}/cmake/report_page_missing.cpp)
+  target_include_directories(pkm_report_assets PRIVATE ${PROJECT_SOURCE_DIR}/src)
+  return()
 endif()
 set(PKM_WEB_DIR ${PROJECT_SOURCE_DIR}/web)
 # Installed again when the lock file is newer than the installed tree (npm writes node_modules/.package-lock.json).

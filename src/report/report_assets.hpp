@@ -8,5 +8,7 @@ namespace pkm::report {
 
 std::string_view report_script();
 std::string_view report_style();
+/// False in a build made without Node.js (cmake/report_page_missing.cpp): no page to write a report with.
+bool report_page_built();
 
 }  // namespace pkm::report

@@ -71,6 +71,12 @@ std::string report_html(const nlohmann::json& data) {
 }
 
 Status write_report_html(const std::string& path, const nlohmann::json& data) {
+  if (!report_page_built()) {
+    return make_error(ErrorCode::unsupported,
+                      fmt::format("cannot write the report {}: this pkm was built without the report page "
+                                  "(Node.js and npm were not found at build time; install them and rebuild)",
+                                  path));
+  }
   const std::filesystem::path file(path);
   if (file.has_parent_path()) {
     std::error_code error;
