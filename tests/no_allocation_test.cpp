@@ -102,6 +102,48 @@ TEST(NoAllocation, KinematicsOfEveryShippedMachine) {
   }
 }
 
+// The servo-loop forms of the interface: warm FK with the mechanism's own workspace (made once, before the
+// count), hot IK into caller storage, and the twist Jacobian, along a short path of every shipped machine.
+TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
+  for (const char* file :
+       {"hexapod_ch5.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml", "planar2.yaml", "planar3.yaml",
+        "tripod.yaml", "tricept.yaml", "hexaglide.yaml", "triglide.yaml", "rotopod.yaml"}) {
+    const Machine m = test::machine_from_example(std::string("examples/machines/") + file);
+    const Mechanism& mech = *m.mechanism;
+    const int n = mech.actuator_count();
+    const AxisMask mask = mech.controlled_axes();
+    constexpr int kPoses = 20;
+    std::vector<Pose> poses;
+    std::vector<ActuatorVector> values;
+    for (int i = 0; i < kPoses; ++i) {
+      PoseVector c = vector_from_pose(mech.convention(), mech.home());
+      for (int axis = 0; axis < 6; ++axis) {
+        if (mask.controlled[axis]) c[axis] += (axis < 3 ? 0.1 : 0.0005) * i;
+      }
+      poses.push_back(*mech.complete_pose(pose_from_vector(mech.convention(), c)));
+      values.push_back(*mech.inverse(poses.back()));
+    }
+    auto workspace = mech.make_fk_workspace();
+    const FkOptions options;
+    std::array<double, kMaxActuators> hot{};
+    JacobianMatrix twist;
+    const long before = g_allocations.load();
+    Pose previous = mech.home();
+    for (int i = 0; i < kPoses; ++i) {
+      auto fk = mech.forward_warm(values[i], previous, options, *workspace);
+      ASSERT_TRUE(fk.ok()) << file << " pose " << i;
+      previous = fk->pose;
+      ASSERT_TRUE(mech.actuator_values(poses[i], hot.data())) << file;
+      for (int j = 0; j < n; ++j) ASSERT_NEAR(hot[j], values[i][j], 1e-12) << file;
+      ASSERT_TRUE(mech.twist_jacobian(poses[i], twist)) << file;
+      ASSERT_EQ(twist.rows(), n);
+    }
+    workspace->forget_path();
+    workspace->reset();
+    EXPECT_EQ(g_allocations.load() - before, 0) << file;
+  }
+}
+
 TEST(NoAllocation, JointAndConditioningLimitsOfEveryShippedMachine) {
   for (const char* file :
        {"hexapod_ch5.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml", "planar2.yaml", "planar3.yaml",
@@ -132,7 +174,7 @@ TEST(NoAllocation, JointAndConditioningLimitsOfEveryShippedMachine) {
   }
 }
 
-TEST(NoAllocation, HexapodPathTrackingWithWorkspace) {
+TEST(NoAllocation, HexapodPathTrackingWithPlatformWorkspace) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   const auto& h = dynamic_cast<const Hexapod&>(*m.mechanism);
   std::vector<ActuatorVector> lengths;
@@ -174,7 +216,7 @@ TEST(NoAllocation, StaticsHexapodStrutForces) {
   const statics::Wrench load{Eigen::Vector3d(100, -50, -600), Eigen::Vector3d(1e3, 2e4, -5e3)};
   double forces[6];
   const long before = g_allocations.load();
-  EXPECT_TRUE(statics::hexapod_strut_forces(h, h.home(), load, forces));
+  EXPECT_TRUE(statics::twist_actuator_forces(h, h.home(), load, forces));
   EXPECT_EQ(g_allocations.load() - before, 0);
 }
 

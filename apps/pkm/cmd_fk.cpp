@@ -22,7 +22,7 @@ void print_solution(const Mechanism& mech, const FkSolution& s) {
   const auto names = pose_coordinate_names(mech);
   const auto values = user_from_pose(mech, s.pose);
   std::vector<std::string> parts;
-  const bool planar = mech.type() == MechanismType::planar2 || mech.type() == MechanismType::planar3;
+  const bool planar = mech.is_planar();
   for (std::size_t i = 0; i < values.size(); ++i) {
     const std::string name = planar && i == 2 ? "phi" : names[i];
     parts.push_back(fmt::format("{}={:.10f}", name, values[i]));

@@ -27,7 +27,7 @@ EstimatingInterpolator::EstimatingInterpolator(const Machine& machine, const pat
       path_(path),
       settings_(settings),
       source_(std::move(source)),
-      hexapod_(dynamic_cast<const Hexapod*>(machine.mechanism.get())),
+      workspace_(machine.mechanism->make_fk_workspace()),
       actuators_(machine.mechanism->actuator_count()),
       projector_(path, machine.mechanism->controlled_axes()) {
   const AxisMask axes = machine.mechanism->controlled_axes();
@@ -110,7 +110,7 @@ Status EstimatingInterpolator::start() {
       return *error_;
     }
   }
-  workspace_.reset();
+  workspace_->reset();
   pose_ = start_pose;
   if (!solve(actuators, pose_)) {
     fail(ErrorCode::not_converged,
@@ -128,17 +128,11 @@ Status EstimatingInterpolator::start() {
 
 bool EstimatingInterpolator::solve(const ActuatorVector& actuators, Pose& pose) {
   ++statistics_.fk_solves;
-  if (hexapod_ != nullptr) {
-    // Every candidate starts from the current pose with the factorisation of the previous solve (a pose a few
-    // steps away serves as a chord-Newton matrix). Forgetting the solution history keeps the workspace from
-    // extrapolating a "path" through the previous tact's candidates.
-    workspace_.solutions_kept = 0;
-    auto solution = hexapod_->forward(actuators, pose_, settings_.fk, workspace_);
-    if (!solution) return false;
-    pose = solution->pose;
-    return true;
-  }
-  auto solution = machine_.mechanism->forward(actuators, pose_, settings_.fk);
+  // Every candidate starts from the current pose with the workspace's factorisation from the previous solve
+  // (on a hexapod a pose a few steps away serves as a chord-Newton matrix). Forgetting the solution history
+  // keeps the workspace from extrapolating a "path" through the previous tact's candidates.
+  workspace_->forget_path();
+  auto solution = machine_.mechanism->forward_warm(actuators, pose_, settings_.fk, *workspace_);
   if (!solution) return false;
   pose = solution->pose;
   return true;

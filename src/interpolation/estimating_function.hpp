@@ -32,6 +32,7 @@
 // for real-time control, hence its use here as a reference (bench/bench_estimating.cpp measures a tact).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,7 +40,6 @@
 #include "core/result.hpp"
 #include "interpolation/estimating_candidates.hpp"
 #include "interpolation/estimating_projection.hpp"
-#include "machine/hexapod.hpp"
 #include "machine/machine.hpp"
 #include "path/path.hpp"
 
@@ -122,8 +122,7 @@ class EstimatingInterpolator {
   const path::Path& path_;
   EstimatingSettings settings_;
   std::string source_;
-  const Hexapod* hexapod_ = nullptr;
-  PlatformFkWorkspace<6> workspace_;
+  std::unique_ptr<FkWorkspace> workspace_;  ///< the mechanism's FK state, made once by the constructor
   int actuators_ = 0;
   EstimatingProjector projector_;
   bool controls_orientation_ = true;

@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "interpolation/law_fit.hpp"
-#include "machine/hexapod.hpp"
 
 namespace pkm::interpolation {
 
@@ -70,8 +69,7 @@ class StrutLawBuilder {
         source_(source),
         polynomial_nodes_(law_fit_lobatto_nodes(settings.polynomial_degree + 1)),
         sqrt_nodes_(law_fit_chebyshev_nodes(kLawFitSqrtNodes)) {
-    const MechanismType type = mechanism_.type();
-    closed_models_ = type == MechanismType::hexapod || type == MechanismType::hexapod_refined;
+    closed_models_ = mechanism_.has_distance_actuators();
   }
 
   Status fit_segment(int index) {
@@ -201,7 +199,6 @@ class StrutLawBuilder {
 
 StrutLaws::StrutLaws(const Machine& machine, const path::Path& path)
     : machine_(&machine),
-      hexapod_(dynamic_cast<const Hexapod*>(machine.mechanism.get())),
       path_(&path),
       actuators_(machine.mechanism->actuator_count()),
       length_(path.length()) {}
@@ -288,17 +285,7 @@ int StrutLaws::find_piece(double s, int hint) const noexcept {
 
 bool StrutLaws::solve_inverse(const path::PathPoint& point, double* actuators) const noexcept {
   const Pose pose = law_fit_pose(point);
-  if (hexapod_ != nullptr) {  // the same lengths as Hexapod::inverse, without building a Result
-    hexapod_->strut_lengths(pose, actuators);
-    for (int j = 0; j < 6; ++j) {
-      if (!(actuators[j] > 0.0)) return false;
-    }
-    return true;
-  }
-  auto ik = machine_->mechanism->inverse(pose);
-  if (!ik) return false;
-  for (int j = 0; j < actuators_; ++j) actuators[j] = (*ik)[j];
-  return true;
+  return machine_->mechanism->actuator_values(pose, actuators);
 }
 
 bool StrutLaws::evaluate(double s, int& hint, double* actuators) const noexcept {

@@ -25,9 +25,7 @@
 #include "machine/machine.hpp"
 #include "path/path.hpp"
 
-namespace pkm {
-class Hexapod;
-}
+namespace pkm {}
 
 namespace pkm::interpolation {
 
@@ -84,7 +82,6 @@ class StrutLaws {
   bool solve_inverse(const path::PathPoint& point, double* actuators) const noexcept;
 
   const Machine* machine_ = nullptr;
-  const Hexapod* hexapod_ = nullptr;  ///< the no-allocation IK of a hexapod, when the machine is one
   const path::Path* path_ = nullptr;
   int actuators_ = 0;
   double length_ = 0.0;

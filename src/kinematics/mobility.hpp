@@ -7,24 +7,16 @@
 #include <array>
 #include <string>
 
-#include "machine/mechanism.hpp"
+#include "machine/mechanism.hpp"  // MechanismStructure (machine/mechanism_structure.hpp)
 
 namespace pkm {
-
-struct MechanismStructure {
-  std::string notation;  ///< e.g. "6-UPS", "3-RPR"
-  bool planar = false;
-  int links = 0;               ///< k, including the base
-  std::array<int, 5> pairs{};  ///< pairs[i] = number of pairs with i + 1 DOF
-  int idle_freedoms = 0;  ///< freedoms that move no output (a strut spinning between two spherical joints)
-};
 
 int spatial_mobility(int links, const std::array<int, 5>& pairs_by_dof);
 int planar_mobility(int links, int one_dof_pairs, int two_dof_pairs);
 /// H of the structure (planar or spatial formula), idle freedoms not yet subtracted.
 int mobility(const MechanismStructure& structure);
 
-/// The structure of a loaded mechanism, as the seeds count it (ch2 §1.2 table).
+/// The structure of a loaded mechanism, as the seeds count it (ch2 §1.2 table): Mechanism::structure.
 MechanismStructure structure_of(const Mechanism& mechanism);
 
 }  // namespace pkm

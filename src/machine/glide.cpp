@@ -94,6 +94,27 @@ int Glide::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   return geometry_.count;
 }
 
+bool Glide::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
+  const Pose p = fixed_orientation(pose);
+  out.resize(geometry_.count, 6);
+  for (int j = 0; j < geometry_.count; ++j) {
+    const Eigen::Vector3d arm = p.rotation * geometry_.platform_joints_mm[j];
+    double s = 0.0;
+    Eigen::Vector3d g;
+    if (!leg_value(j, arm + p.position_mm, s, g)) return false;
+    out.block<1, 3>(j, 0) = g.transpose();
+    out.block<1, 3>(j, 3) = arm.cross(g).transpose();
+  }
+  return true;
+}
+
+MechanismStructure Glide::structure() const {
+  if (rotates()) return {"6-PUS (hexaglide)", false, 14, {6, 6, 6, 0, 0}, 0};
+  // Triglide: each carriage drives a parallelogram of two S–S struts; each strut can spin idly about its
+  // axis.
+  return {"3-P(2S-2S) (triglide)", false, 1 + 3 + 6 + 1, {3, 0, 12, 0, 0}, 6};
+}
+
 Result<JacobianMatrix> Glide::jacobian(const Pose& pose) const {
   const Pose p = fixed_orientation(pose);
   JacobianMatrix twist(geometry_.count, 6);

@@ -44,6 +44,11 @@ class Glide final : public Mechanism {
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// Carriage joints C_j (on the branch's root) and platform joints; −1 when a strut cannot reach its guide.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
+  /// Rows (g_j, (R·b'_j) × g_j), g_j = ∂s_j/∂B_j. A triglide's platform cannot turn (its orientation is held
+  /// by the parallelograms): its ω columns say how the carriages would move if it could, and only its v
+  /// columns meet twists it can make.
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  MechanismStructure structure() const override;
 
   bool rotates() const { return geometry_.count == 6; }
   const GlideGeometry& geometry() const { return geometry_; }

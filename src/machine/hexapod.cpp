@@ -97,6 +97,25 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
   return solution;
 }
 
+Result<FkSolution> Hexapod::forward_warm(const ActuatorVector& actuators, const Pose& guess,
+                                         const FkOptions& options, FkWorkspace& workspace) const {
+  // The owner check makes the downcast safe: only this hexapod's make_fk_workspace made such a workspace.
+  if (workspace.owner() != this) return forward(actuators, guess, options);
+  return forward(actuators, guess, options, static_cast<HexapodFkWorkspace&>(workspace).platform);
+}
+
+std::unique_ptr<FkWorkspace> Hexapod::make_fk_workspace() const {
+  return std::make_unique<HexapodFkWorkspace>(this);
+}
+
+bool Hexapod::actuator_values(const Pose& pose, double* out) const noexcept {
+  strut_lengths(pose, out);
+  for (int j = 0; j < 6; ++j) {
+    if (!(out[j] > 0.0)) return false;
+  }
+  return true;
+}
+
 int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   for (int j = 0; j < 6; ++j) {
     out.base_mm[j] = geometry_.base_joints_mm[j];

@@ -16,6 +16,20 @@ struct HexapodGeometry {
   std::array<Eigen::Vector3d, 6> platform_joints_mm;  ///< in the tool frame
 };
 
+/// The hexapod's FK state along a path: the platform solver's workspace (last factorisation, last solutions).
+class HexapodFkWorkspace final : public FkWorkspace {
+ public:
+  using FkWorkspace::FkWorkspace;
+  std::unique_ptr<FkWorkspace> clone() const override {
+    auto copy = std::make_unique<HexapodFkWorkspace>(owner());
+    copy->platform = platform;
+    return copy;
+  }
+  void reset() override { platform.reset(); }
+  void forget_path() override { platform.solutions_kept = 0; }
+  PlatformFkWorkspace<6> platform;
+};
+
 class Hexapod final : public Mechanism {
  public:
   Hexapod(const HexapodGeometry& geometry, AngleConvention convention, const Pose& home);
@@ -33,6 +47,19 @@ class Hexapod final : public Mechanism {
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// Base joints A_j and platform joints p + R·b'_j.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
+  /// The platform solver with the workspace's factorisation (a HexapodFkWorkspace from make_fk_workspace).
+  Result<FkSolution> forward_warm(const ActuatorVector& actuators, const Pose& guess,
+                                  const FkOptions& options, FkWorkspace& workspace) const override;
+  std::unique_ptr<FkWorkspace> make_fk_workspace() const override;
+  /// strut_lengths(); false when a strut would have zero length (as inverse()).
+  bool actuator_values(const Pose& pose, double* out) const noexcept override;
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override {
+    out = twist_jacobian(pose);
+    return true;
+  }
+  bool has_distance_actuators() const override { return true; }
+  /// 6 × (U, P, S); base + platform + 12 strut parts.
+  MechanismStructure structure() const override { return {"6-UPS", false, 14, {6, 6, 6, 0, 0}, 0}; }
 
   /// FK along a path: as forward(), reusing the factorisation kept in `workspace` by the previous call
   /// (one workspace per path; the first call factorises). The hot path of a servo loop.

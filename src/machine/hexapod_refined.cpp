@@ -197,6 +197,19 @@ Result<Eigen::Matrix<double, 6, 6>> HexapodRefined::twist_jacobian(const Pose& p
   return jacobian;
 }
 
+bool HexapodRefined::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
+  out.resize(6, 6);
+  for (int j = 0; j < 6; ++j) {
+    const Eigen::Vector3d arm = pose.rotation * geometry_.platform_joints_mm[j];
+    double length = 0.0;
+    Eigen::Vector3d g;
+    if (!leg_value(j, arm + pose.position_mm, length, g)) return false;
+    out.block<1, 3>(j, 0) = g.transpose();
+    out.block<1, 3>(j, 3) = arm.cross(g).transpose();
+  }
+  return true;
+}
+
 int HexapodRefined::assembly_mode(const Pose& pose) const {
   const auto twist = twist_jacobian(pose);
   if (!twist) return -1;

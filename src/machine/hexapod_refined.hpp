@@ -93,6 +93,12 @@ class HexapodRefined final : public Mechanism {
   Result<std::array<CardanLegState, 6>> leg_states(const Pose& pose) const;
   /// Twist Jacobian (columns v, ω about the tool point): rows ∂L_j/∂B_j and (R·b'_j) × ∂L_j/∂B_j.
   Result<Eigen::Matrix<double, 6, 6>> twist_jacobian(const Pose& pose) const;
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// The cardan offsets are a fraction of a mm: the lengths stay close to |C + R·b' − A|, and the law fit's
+  /// error check rejects a closed model where they do not.
+  bool has_distance_actuators() const override { return true; }
+  /// As the hexapod: 6 × (U, P or H, S); base + platform + 12 strut parts.
+  MechanismStructure structure() const override { return {"6-UPS", false, 14, {6, 6, 6, 0, 0}, 0}; }
 
   const HexapodGeometry& geometry() const { return geometry_; }
   const std::array<CardanJoint, 6>& joints() const { return joints_; }

@@ -42,6 +42,51 @@ Result<std::vector<FkSolution>> Mechanism::forward_all(const ActuatorVector&, co
                   to_string(type())));
 }
 
+Result<FkSolution> Mechanism::forward_warm(const ActuatorVector& actuators, const Pose& guess,
+                                           const FkOptions& options, FkWorkspace& /*workspace*/) const {
+  return forward(actuators, guess, options);
+}
+
+std::unique_ptr<FkWorkspace> Mechanism::make_fk_workspace() const {
+  return std::make_unique<FkWorkspace>(this);
+}
+
+bool Mechanism::actuator_values(const Pose& pose, double* out) const noexcept {
+  auto values = inverse(pose);
+  if (!values) return false;
+  for (int j = 0; j < values->size(); ++j) out[j] = (*values)[j];
+  return true;
+}
+
+bool Mechanism::twist_jacobian(const Pose& /*pose*/, JacobianMatrix& /*out*/) const noexcept {
+  return false;
+}
+
+double Mechanism::platform_size_mm() const {
+  StrutJointPoints joints;
+  const Pose& at = home();
+  const int count = strut_joints(at, joints);
+  double sum_mm = 0.0;
+  for (int j = 0; j < count; ++j) sum_mm += (joints.platform_mm[j] - at.position_mm).norm();
+  // Without platform joints: the order of size of a machine-tool platform.
+  constexpr double kUnknownPlatformSizeMm = 100.0;
+  return sum_mm > 0.0 ? sum_mm / count : kUnknownPlatformSizeMm;
+}
+
+bool strut_length_twist_jacobian(const StrutJointPoints& joints, int count,
+                                 const Eigen::Vector3d& tool_point_mm, JacobianMatrix& out) noexcept {
+  out.resize(count, 6);
+  for (int j = 0; j < count; ++j) {
+    const Eigen::Vector3d strut = joints.platform_mm[j] - joints.base_mm[j];
+    const double length_mm = strut.norm();
+    if (!(length_mm > 0.0)) return false;
+    const Eigen::Vector3d unit = strut / length_mm;
+    out.block<1, 3>(j, 0) = unit.transpose();
+    out.block<1, 3>(j, 3) = (joints.platform_mm[j] - tool_point_mm).cross(unit).transpose();
+  }
+  return true;
+}
+
 Error another_assembly_mode_error(const Pose& solution) {
   const Eigen::Vector3d& p = solution.position_mm;
   return make_error(ErrorCode::wrong_branch,
@@ -51,7 +96,7 @@ Error another_assembly_mode_error(const Pose& solution) {
 }
 
 std::array<std::string, 6> pose_coordinate_names(const Mechanism& mechanism) {
-  if (mechanism.type() == MechanismType::planar2 || mechanism.type() == MechanismType::planar3) {
+  if (mechanism.is_planar()) {
     return {"x", "y", "z", "-", "-", "phi"};
   }
   switch (mechanism.convention()) {

@@ -7,12 +7,14 @@
 // a circle, angles in rad (`actuator_unit`).
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/pose.hpp"
 #include "core/result.hpp"
+#include "machine/mechanism_structure.hpp"
 #include "machine/mechanism_type.hpp"
 
 namespace pkm {
@@ -67,6 +69,32 @@ struct StrutJointPoints {
   bool mounts_turn = false;
 };
 
+class Mechanism;
+
+/// State a mechanism carries from one forward-kinematics call to the next along a path (Pinocchio's data to
+/// the mechanism's model): made once, at set-up, by Mechanism::make_fk_workspace, so that the servo-loop form
+/// Mechanism::forward_warm never allocates. A workspace belongs to the
+/// mechanism that made it; given to another, it is ignored (that call solves as the plain forward does).
+class FkWorkspace {
+ public:
+  explicit FkWorkspace(const Mechanism* owner) : owner_(owner) {}
+  virtual ~FkWorkspace() = default;
+  FkWorkspace(const FkWorkspace&) = delete;
+  FkWorkspace& operator=(const FkWorkspace&) = delete;
+
+  /// An independent copy with the same state (allocates: for copying whole trackers, never per tick).
+  virtual std::unique_ptr<FkWorkspace> clone() const { return std::make_unique<FkWorkspace>(owner_); }
+  /// Forgets everything: the next call starts from its guess with a fresh factorisation.
+  virtual void reset() {}
+  /// Forgets the path (no extrapolation from earlier solutions) but keeps a factorisation: for many trial
+  /// solves around one pose (the estimating function's candidates), which are no path.
+  virtual void forget_path() {}
+  const Mechanism* owner() const { return owner_; }
+
+ private:
+  const Mechanism* owner_;
+};
+
 class Mechanism {
  public:
   virtual ~Mechanism() = default;
@@ -86,16 +114,56 @@ class Mechanism {
   /// Forward kinematics from a guess (warm start), in the assembly mode of the guess.
   virtual Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                                      const FkOptions& options = {}) const = 0;
+  /// The servo-loop form of forward(): warm-started from the state kept in `workspace` by the previous call
+  /// (hexapods: the previous factorisation and an extrapolated start, platform_newton.hpp). Does not allocate
+  /// when it succeeds. The default keeps no state and solves as forward() does.
+  /// (A name of its own, not a forward() overload: mechanisms override forward() without hiding this.)
+  virtual Result<FkSolution> forward_warm(const ActuatorVector& actuators, const Pose& guess,
+                                          const FkOptions& options, FkWorkspace& workspace) const;
+  /// A workspace for forward_warm (allocates: call at set-up, never per tick).
+  virtual std::unique_ptr<FkWorkspace> make_fk_workspace() const;
   /// All assembly modes, where the mechanism can enumerate them.
   virtual Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                                       const FkOptions& options = {}) const;
+  /// Hot-path inverse kinematics: writes actuator_count() values to `out` (mm, or rad for angular actuators)
+  /// and returns true; false when the pose is out of reach (`out` unspecified). Builds no Result and no
+  /// message: it runs at every interpolation period. The default calls inverse(), which allocates only when
+  /// it fails.
+  virtual bool actuator_values(const Pose& pose, double* out) const noexcept;
   /// d(actuators)/d(controlled coordinates), angle rates in rad in the mechanism's convention.
   virtual Result<JacobianMatrix> jacobian(const Pose& pose) const = 0;
+  /// Twist form of the Jacobian: actuator rates from the platform twist (tool-point velocity v mm/s and
+  /// base-frame angular velocity ω rad/s), actuator_count() × 6 with columns (v, ω), independent of any angle
+  /// convention. Its transpose maps actuator forces to the wrench on the platform (statics). For a
+  /// reduced-DOF mechanism a row is the gradient of that actuator's value over all six platform motions as if
+  /// the platform were free (the constraints are not in it; they are what complete_pose() solves), so only
+  /// twists the mechanism allows are meaningful. Writes `out` and returns true; false when the pose is out of
+  /// reach, or when the mechanism has no twist form (the default). Never allocates.
+  virtual bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept;
   /// The passive joints at both ends of every strut at `pose` (reduced-DOF mechanisms complete the pose
   /// first). Returns the number of struts filled in, 0 for mechanisms without swinging passive joints (planar
   /// pin joints), −1 when the pose is out of reach (a carriage cannot reach its strut, or the pose cannot be
   /// completed). Never allocates for a reachable pose: it runs at every planning sample.
   virtual int strut_joints(const Pose& /*pose*/, StrutJointPoints& /*out*/) const { return 0; }
+  /// Both ends of every strut at `pose` (the leg geometry for drawing, statics and stiffness: directions and
+  /// lengths follow from the points): strut_joints(), and for mechanisms without swinging passive joints (the
+  /// planar pin joints) their base and platform pins in z = 0. Same return values as strut_joints().
+  virtual int strut_ends(const Pose& pose, StrutJointPoints& out) const { return strut_joints(pose, out); }
+
+  // Queries that replace tests of the mechanism's type: the stages ask what they need, not what it is.
+
+  /// Planar mechanisms move in the base xy plane and turn about z only (φ is angle 3).
+  virtual bool is_planar() const { return false; }
+  /// True where every actuator is the distance between a base-fixed point and a platform-fixed point, with
+  /// the whole pose free: then along a straight line or flat arc at constant orientation the actuator laws
+  /// are the closed √(quadratic) and √(Fourier) models of spec ch5 §5.2 (interpolation/strut_laws).
+  virtual bool has_distance_actuators() const { return false; }
+  /// The length that turns a platform rotation (rad) into a joint displacement (mm): scales the angle columns
+  /// of Jacobians so that their determinants compare across poses. The default: the mean distance of the
+  /// platform joints from the tool point at home (strut_joints), 100 mm without joints.
+  virtual double platform_size_mm() const;
+  /// Links and kinematic pairs, for the mobility formula (kinematics/mobility.hpp).
+  virtual MechanismStructure structure() const { return {}; }
 
   /// The pose the machine starts from; FK without a guess starts here. Set once, at construction: mechanisms
   /// derive state from it (the home assembly mode, branch choices), so there is deliberately no setter.
@@ -104,6 +172,12 @@ class Mechanism {
  protected:
   Pose home_;
 };
+
+/// The twist Jacobian of struts whose actuators are their lengths |B_j − A_j|: row j = (u_j, (B_j − p) × u_j)
+/// with u_j the unit strut vector and p the tool point of the (completed) pose. False when a strut has zero
+/// length. For Mechanism::twist_jacobian overrides.
+bool strut_length_twist_jacobian(const StrutJointPoints& joints, int count,
+                                 const Eigen::Vector3d& tool_point_mm, JacobianMatrix& out) noexcept;
 
 /// The error of a forward-kinematics solve that found `solution` in another assembly mode than its guess's.
 Error another_assembly_mode_error(const Pose& solution);

@@ -52,6 +52,29 @@ Result<ActuatorVector> Planar2::inverse(const Pose& pose) const {
   return lengths;
 }
 
+bool Planar2::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
+  const Eigen::Vector2d b = point_of(pose);
+  out.setZero(2, 6);
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::Vector2d strut = b - geometry_.base_joints_mm[i];
+    const double length_mm = strut.norm();
+    if (!(length_mm > 0.0)) return false;
+    out.block<1, 2>(i, 0) = strut.transpose() / length_mm;
+  }
+  return true;
+}
+
+int Planar2::strut_ends(const Pose& pose, StrutJointPoints& out) const {
+  for (int j = 0; j < 2; ++j) {
+    const Eigen::Vector2d& a = geometry_.base_joints_mm[j];
+    out.base_mm[j] = Eigen::Vector3d(a.x(), a.y(), 0.0);
+    out.platform_mm[j] = pose.position_mm;
+  }
+  out.platform_rotation = pose.rotation;
+  out.mounts_turn = false;
+  return 2;
+}
+
 Result<JacobianMatrix> Planar2::jacobian(const Pose& pose) const {
   const Eigen::Vector2d b = point_of(pose);
   JacobianMatrix j(2, 2);

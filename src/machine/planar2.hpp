@@ -40,6 +40,15 @@ class Planar2 final : public Mechanism {
                                               const FkOptions& options = {}) const override;
   /// 2 × 2, rows (B − A_j)ᵀ / L_j, columns (x, y) (eq. 4 corrected).
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// Rows ((B − A_j)ᵀ / L_j, 0, 0, 0, 0): B is a point, so the z and ω columns are zero.
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// Base pins A_j in z = 0; both struts end at B, the tool point.
+  int strut_ends(const Pose& pose, StrutJointPoints& out) const override;
+  bool is_planar() const override { return true; }
+  /// Base, two two-part struts; 5 one-DOF pairs (B joins both struts).
+  MechanismStructure structure() const override {
+    return {"2-RPR (planar, one output joint)", true, 5, {5, 0, 0, 0, 0}, 0};
+  }
 
   /// Hot path: strut lengths for B, no checks, no allocation.
   void strut_lengths(const Eigen::Vector2d& b_mm, double* lengths_mm) const noexcept {

@@ -104,6 +104,36 @@ Result<ActuatorVector> Planar3::inverse(const Pose& pose) const {
   return lengths;
 }
 
+bool Planar3::actuator_values(const Pose& pose, double* out) const noexcept {
+  strut_lengths(planar_coordinates(pose), out);
+  return out[0] > 0.0 && out[1] > 0.0 && out[2] > 0.0;
+}
+
+bool Planar3::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
+  const Eigen::Vector3d xyphi = planar_coordinates(pose);
+  double lengths_mm[3];
+  strut_lengths(xyphi, lengths_mm);
+  if (!(lengths_mm[0] > 0.0 && lengths_mm[1] > 0.0 && lengths_mm[2] > 0.0)) return false;
+  const Eigen::Matrix3d planar = planar_jacobian(xyphi);
+  out.setZero(3, 6);
+  out.col(0) = planar.col(0);
+  out.col(1) = planar.col(1);
+  out.col(5) = planar.col(2);
+  return true;
+}
+
+int Planar3::strut_ends(const Pose& pose, StrutJointPoints& out) const {
+  for (int j = 0; j < 3; ++j) {
+    const Eigen::Vector2d& a = geometry_.base_joints_mm[j];
+    const Eigen::Vector2d& b = geometry_.platform_joints_mm[j];
+    out.base_mm[j] = Eigen::Vector3d(a.x(), a.y(), 0.0);
+    out.platform_mm[j] = pose.to_base(Eigen::Vector3d(b.x(), b.y(), 0.0));
+  }
+  out.platform_rotation = pose.rotation;
+  out.mounts_turn = false;
+  return 3;
+}
+
 Result<JacobianMatrix> Planar3::jacobian(const Pose& pose) const {
   const Eigen::Vector3d xyphi = planar_coordinates(pose);
   Eigen::Vector3d lengths;

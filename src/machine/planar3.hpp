@@ -47,6 +47,17 @@ class Planar3 final : public Mechanism {
                                               const FkOptions& options = {}) const override;
   /// 3 × 3, columns (x, y, φ): eq. (80).
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
+  /// strut_lengths(); false when a strut would have zero length (as inverse()).
+  bool actuator_values(const Pose& pose, double* out) const noexcept override;
+  /// Eq. (80) in twist form: rows (u_x, u_y, 0, 0, 0, (R b'_j) × u_j); the platform moves in the plane, so
+  /// only the v_x, v_y and ω_z columns meet twists it can make.
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// Base pins A_j and platform pins R(φ) b'_j + C, in z = 0.
+  int strut_ends(const Pose& pose, StrutJointPoints& out) const override;
+  bool is_planar() const override { return true; }
+  double platform_size_mm() const override { return platform_radius_mm_; }
+  /// Base, platform, three two-part struts; 9 one-DOF pairs.
+  MechanismStructure structure() const override { return {"3-RPR (planar)", true, 8, {9, 0, 0, 0, 0}, 0}; }
 
   /// Hot path: strut lengths at planar coordinates, no checks, no allocation.
   void strut_lengths(const Eigen::Vector3d& xyphi, double* lengths_mm) const noexcept;

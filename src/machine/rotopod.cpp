@@ -127,6 +127,19 @@ int Rotopod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   return 6;
 }
 
+bool Rotopod::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
+  out.resize(6, 6);
+  for (int j = 0; j < 6; ++j) {
+    const Eigen::Vector3d arm = pose.rotation * geometry_.platform_joints_mm[j];
+    double phi = 0.0;
+    Eigen::Vector3d g;
+    if (!carriage_angle(j, arm + pose.position_mm, reference_rad_[j], phi, g)) return false;
+    out.block<1, 3>(j, 0) = g.transpose();
+    out.block<1, 3>(j, 3) = arm.cross(g).transpose();
+  }
+  return true;
+}
+
 Result<JacobianMatrix> Rotopod::jacobian(const Pose& pose) const {
   JacobianMatrix twist(6, 6);
   for (int j = 0; j < 6; ++j) {

@@ -48,6 +48,10 @@ class Rotopod final : public Mechanism {
   /// Carriage joints A_j(φ_j) and platform joints; the carriages turn with φ_j (mount_yaw_rad = φ_j); −1 when
   /// a strut cannot reach the circle.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
+  /// Rows (g_j, (R·b'_j) × g_j), g_j = ∂φ_j/∂B_j (rad/mm): carriage angle rates from the twist.
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// 6 × (carriage R on the circle, U, S) with constant-length struts.
+  MechanismStructure structure() const override { return {"6-RUS (rotopod)", false, 14, {6, 6, 6, 0, 0}, 0}; }
 
   const RotopodGeometry& geometry() const { return geometry_; }
   /// Carriage joint A_j at angle φ (rad).

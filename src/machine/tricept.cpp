@@ -135,6 +135,14 @@ int Tricept::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   return 3;
 }
 
+bool Tricept::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
+  auto complete = complete_pose(pose);
+  if (!complete) return false;
+  StrutJointPoints joints;
+  if (strut_joints(*complete, joints) != 3) return false;
+  return strut_length_twist_jacobian(joints, 3, complete->position_mm, out);
+}
+
 Result<JacobianMatrix> Tricept::jacobian(const Pose& pose) const {
   auto complete = complete_pose(pose);
   if (!complete) return complete.error();

@@ -51,6 +51,11 @@ class Tricept final : public Mechanism {
   /// The three telescopic struts (universal base joints, spherical flange joints) at the completed pose; the
   /// central leg's cardan is not a strut joint and is not included.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
+  /// The strut lengths' rows (u_j, (B_j − p) × u_j) at the completed pose. The platform can make only the
+  /// twists its constraints allow (complete_pose); the rows hold for any twist, as if the platform were free.
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// 3 × (U, P, S) + central leg (U, P) fixed to the flange.
+  MechanismStructure structure() const override { return {"3-UPS + UP", false, 9, {4, 4, 3, 0, 0}, 0}; }
 
   const TriceptGeometry& geometry() const { return geometry_; }
   /// The manipulator axis through a tool point; false when the point is out of reach (see complete_pose).

@@ -53,6 +53,11 @@ class Tripod final : public Mechanism {
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// Revolute base joints A_j and spherical platform joints, at the completed pose.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
+  /// The strut lengths' rows (u_j, (B_j − p) × u_j) at the completed pose. The platform can make only the
+  /// twists its constraints allow (complete_pose); the rows hold for any twist, as if the platform were free.
+  bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// 3 × (R, P, S).
+  MechanismStructure structure() const override { return {"3-RPS", false, 8, {6, 0, 3, 0, 0}, 0}; }
 
   const TripodGeometry& geometry() const { return geometry_; }
   /// Strut lengths of a complete pose, no completion, no checks.

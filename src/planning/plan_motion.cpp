@@ -18,9 +18,7 @@ ProgramStart program_start(const Machine& machine) {
   ProgramStart start;
   start.start_mm = home.position_mm - machine.motion.program_origin_mm;
   start.start_abc_deg = angles_from_rotation(AngleConvention::abc, home.rotation) * (180.0 / kPi);
-  const MechanismType type = machine.mechanism->type();
-  if (type == MechanismType::planar2 || type == MechanismType::planar3)
-    start.start_abc_deg.head<2>().setZero();
+  if (machine.mechanism->is_planar()) start.start_abc_deg.head<2>().setZero();
   return start;
 }
 
@@ -52,12 +50,10 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
                                const PlanOptions& options) {
   if (Status status = check_options(options); !status) return status.error();
   const MotionSettings& motion = machine.motion;
-  const MechanismType type = machine.mechanism->type();
-
   path::PathFrame frame;
   frame.program_origin_mm = motion.program_origin_mm;
   frame.reference_rotation = Eigen::Quaterniond(machine.mechanism->home().rotation);
-  frame.planar = type == MechanismType::planar2 || type == MechanismType::planar3;
+  frame.planar = machine.mechanism->is_planar();
   path::PathOptions path_options;
   path_options.rapid_mm_s = motion.rapid_mm_min / 60.0;
   path_options.max_feed_mm_s = motion.max_feed_mm_min / 60.0;

@@ -30,15 +30,15 @@ Eigen::Vector3d home_tool_axis(const Mechanism& mechanism) {
 }  // namespace
 
 Result<FreeCoordinates::Kind> FreeCoordinates::kind_for(const Mechanism& mechanism, FreeSet set) {
-  const MechanismType type = mechanism.type();
-  if (type == MechanismType::planar3) return Kind::planar_angle;
   const AxisMask axes = mechanism.controlled_axes();
+  // A planar mechanism that sets its turn φ (3-RPR) can leave φ free; a planar point (2-RPR) has no angle.
+  if (mechanism.is_planar() && axes.controlled[5]) return Kind::planar_angle;
   const bool all_angles = axes.controlled[3] && axes.controlled[4] && axes.controlled[5];
   if (!all_angles) {
     return make_error(ErrorCode::unsupported,
                       fmt::format("the {} controls no orientation that an operation could leave free; "
                                   "redundancy laws need a planar 3-DOF or a six-axis machine",
-                                  to_string(type)));
+                                  to_string(mechanism.type())));
   }
   return set == FreeSet::spin ? Kind::spin : Kind::convention_angles;
 }

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "machine/planar3.hpp"
 #include "statics/actuator_forces.hpp"
 #include "statics/gravity.hpp"
 
@@ -54,24 +53,17 @@ LawEvaluator::LawEvaluator(const Machine& machine, const FreeCoordinates& free, 
       free_(free),
       options_(options),
       need_forces_(need_forces || options.law != Law::increment || options.force_limit_N.has_value()),
-      hexapod_(dynamic_cast<const Hexapod*>(machine.mechanism.get())) {
-  // The platform's size: the mean distance of its joints from the tool point.
-  StrutJointPoints joints;
-  const Pose& home = machine.mechanism->home();
-  const int count = machine.mechanism->strut_joints(home, joints);
-  if (const auto* planar = dynamic_cast<const Planar3*>(machine.mechanism.get())) {
-    characteristic_length_mm_ = planar->platform_radius_mm();
-  } else if (count > 0) {
-    double sum = 0.0;
-    for (int j = 0; j < count; ++j) sum += (joints.platform_mm[j] - home.position_mm).norm();
-    if (sum > 0.0) characteristic_length_mm_ = sum / count;
-  }
+      characteristic_length_mm_(machine.mechanism->platform_size_mm()) {
+  const Mechanism& mechanism = *machine.mechanism;
+  JacobianMatrix twist;
+  six_axis_twist_ = mechanism.controlled_axes().count() == 6 && mechanism.actuator_count() == 6 &&
+                    mechanism.twist_jacobian(mechanism.home(), twist);
 }
 
 double LawEvaluator::normalized_determinant(const Pose& pose) const noexcept {
   JacobianMatrix jacobian;
-  if (hexapod_ != nullptr) {
-    jacobian = hexapod_->twist_jacobian(pose);
+  if (six_axis_twist_) {
+    if (!machine_.mechanism->twist_jacobian(pose, jacobian)) return std::numeric_limits<double>::quiet_NaN();
   } else {
     auto computed = machine_.mechanism->jacobian(pose);
     if (!computed || computed->rows() != computed->cols()) return std::numeric_limits<double>::quiet_NaN();
@@ -81,7 +73,7 @@ double LawEvaluator::normalized_determinant(const Pose& pose) const noexcept {
   const AxisMask axes = machine_.mechanism->controlled_axes();
   int column = 0;
   for (int axis = 0; axis < 6; ++axis) {
-    if (hexapod_ == nullptr && !axes.controlled[axis]) continue;
+    if (!six_axis_twist_ && !axes.controlled[axis]) continue;
     if (axis >= 3) jacobian.col(column) /= characteristic_length_mm_;
     ++column;
   }
@@ -110,14 +102,8 @@ bool LawEvaluator::evaluate(const PathPoint& point, const statics::Wrench& load,
   node.valid = false;
   const Pose pose = free_.pose(point, values);
   const int n = machine_.mechanism->actuator_count();
-  if (hexapod_ != nullptr) {
-    node.lengths.resize(6);
-    hexapod_->strut_lengths(pose, node.lengths.data());
-  } else {
-    auto lengths = machine_.mechanism->inverse(pose);
-    if (!lengths) return false;
-    node.lengths = *lengths;
-  }
+  node.lengths.resize(n);
+  if (!machine_.mechanism->actuator_values(pose, node.lengths.data())) return false;
   const ActuatorLimits& limits = machine_.limits;
   for (int j = 0; j < n; ++j) {
     const double q = node.lengths[j];
@@ -136,8 +122,9 @@ bool LawEvaluator::evaluate(const PathPoint& point, const statics::Wrench& load,
       wrench.force_N += weight.force_N;
       wrench.moment_Nmm += weight.moment_Nmm;
     }
-    if (hexapod_ != nullptr) {
-      if (!statics::hexapod_strut_forces(*hexapod_, pose, wrench, node.forces.data())) return false;
+    if (six_axis_twist_) {
+      if (!statics::twist_actuator_forces(*machine_.mechanism, pose, wrench, node.forces.data()))
+        return false;
     } else {
       auto forces = statics::actuator_forces(*machine_.mechanism, pose, wrench);
       if (!forces) return false;

@@ -11,7 +11,6 @@
 #include <string_view>
 
 #include "core/result.hpp"
-#include "machine/hexapod.hpp"
 #include "machine/machine.hpp"
 #include "redundancy/free_coordinates.hpp"
 #include "statics/wrench.hpp"
@@ -84,7 +83,9 @@ class LawEvaluator {
   const FreeCoordinates& free_;
   LawOptions options_;
   bool need_forces_;
-  const Hexapod* hexapod_ = nullptr;         ///< fast path
+  /// The mechanism controls all six coordinates with six actuators and has a twist Jacobian: determinants
+  /// and forces then use the twist form (fixed-size, free of the angle convention's own singularity).
+  bool six_axis_twist_ = false;
   double characteristic_length_mm_ = 100.0;  ///< scales angle columns of J to lengths
   int branch_sign_ = 0;
   double min_determinant_ = 0.0;  ///< |normalised det J| below this counts as singular

@@ -15,8 +15,7 @@ path::PathFrame program_frame(const Machine& machine) {
   path::PathFrame frame;
   frame.program_origin_mm = machine.motion.program_origin_mm;
   frame.reference_rotation = Eigen::Quaterniond(machine.mechanism->home().rotation);
-  const MechanismType type = machine.mechanism->type();
-  frame.planar = type == MechanismType::planar2 || type == MechanismType::planar3;
+  frame.planar = machine.mechanism->is_planar();
   return frame;
 }
 

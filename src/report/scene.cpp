@@ -4,38 +4,16 @@
 #include <cmath>
 
 #include "core/units.hpp"
-#include "machine/planar2.hpp"
-#include "machine/planar3.hpp"
 #include "report/decimator.hpp"
 
 namespace pkm::report {
 
 namespace {
 
-/// The struts to draw at `pose`: the mechanism's passive joints, or for the planar mechanisms (whose pin
-/// joints strut_joints() leaves out: they have no swing limit) their base joints and platform joints in z =
-/// 0.
+/// The struts to draw at `pose`: both ends of every strut (Mechanism::strut_ends: the passive joints, or the
+/// planar mechanisms' pins in z = 0).
 int drawn_struts(const Mechanism& mechanism, const Pose& pose, StrutJointPoints& joints) {
-  const int n = mechanism.strut_joints(pose, joints);
-  if (n != 0) return n;
-  if (const auto* planar3 = dynamic_cast<const Planar3*>(&mechanism)) {
-    const Planar3Geometry& g = planar3->geometry();
-    for (int j = 0; j < 3; ++j) {
-      joints.base_mm[j] = Eigen::Vector3d(g.base_joints_mm[j].x(), g.base_joints_mm[j].y(), 0.0);
-      joints.platform_mm[j] =
-          pose.to_base(Eigen::Vector3d(g.platform_joints_mm[j].x(), g.platform_joints_mm[j].y(), 0.0));
-    }
-    return 3;
-  }
-  if (const auto* planar2 = dynamic_cast<const Planar2*>(&mechanism)) {
-    const Planar2Geometry& g = planar2->geometry();
-    for (int j = 0; j < 2; ++j) {
-      joints.base_mm[j] = Eigen::Vector3d(g.base_joints_mm[j].x(), g.base_joints_mm[j].y(), 0.0);
-      joints.platform_mm[j] = pose.position_mm;
-    }
-    return 2;
-  }
-  return 0;
+  return mechanism.strut_ends(pose, joints);
 }
 
 nlohmann::json point_json(const Eigen::Vector3d& p) {

@@ -5,7 +5,6 @@
 // Sign (seed (73)/(84)): P_j > 0 means actuator j pushes the platform (strut in compression); it then does
 // positive work when it lengthens. By virtual work,  Σ_j P_j dL_j = −(F · dp + M · dθ).
 // Units: N for linear actuators, N·mm for angular ones (rotopod carriages on a circle).
-#include "machine/hexapod.hpp"
 #include "machine/mechanism.hpp"
 #include "statics/wrench.hpp"
 
@@ -22,15 +21,16 @@ constexpr double kSingularPivotRatio = 1e-9;
 /// a tricept's central leg) do no work and do not load the actuators.
 /// Errors: unreachable (the pose cannot be completed or reached); singular (the Jacobian cannot be inverted,
 /// also at the angle convention's own singularity, e.g. abc at B = ±90°, where angle rates cannot describe
-/// every rotation: hexapod_strut_forces has no such limit); unsupported (a mechanism with more or fewer
+/// every rotation: twist_actuator_forces has no such limit); unsupported (a mechanism with more or fewer
 /// actuators than controlled coordinates).
 Result<ActuatorVector> actuator_forces(const Mechanism& mechanism, const Pose& pose, const Wrench& load);
 
-/// Hot path for the hexapod: J_tᵀ P = −w with J_t = Hexapod::twist_jacobian (rows: Plücker lines of the
-/// struts about the tool point, (91)), a fixed-size 6 × 6 LU; no allocation. Writes six forces (N) and
+/// Hot path for mechanisms with six actuators and a 6 × 6 twist Jacobian (Mechanism::twist_jacobian:
+/// hexapods, rotopod, hexaglide): J_tᵀ P = −w, rows of J_t the actuators' lines about the tool point ((91)
+/// for struts), a fixed-size 6 × 6 LU; no allocation. Writes six forces (N, N·mm for angular actuators) and
 /// returns true; returns false, leaving `forces_N` unspecified, when the pose is singular
-/// (kSingularPivotRatio).
-bool hexapod_strut_forces(const Hexapod& hexapod, const Pose& pose, const Wrench& load,
-                          double* forces_N) noexcept;
+/// (kSingularPivotRatio), out of reach, or the mechanism has no square twist Jacobian.
+bool twist_actuator_forces(const Mechanism& mechanism, const Pose& pose, const Wrench& load,
+                           double* forces_N) noexcept;
 
 }  // namespace pkm::statics

@@ -5,10 +5,6 @@
 namespace pkm::statics {
 namespace {
 
-bool statics_is_planar(MechanismType type) {
-  return type == MechanismType::planar2 || type == MechanismType::planar3;
-}
-
 TwistBasis statics_analytic_basis(const Mechanism& mechanism, const Pose& pose) {
   const AngleConvention convention = mechanism.convention();
   const Eigen::Matrix3d e =
@@ -32,7 +28,7 @@ TwistBasis statics_analytic_basis(const Mechanism& mechanism, const Pose& pose) 
 
 Result<TwistBasis> controlled_twist_basis(const Mechanism& mechanism, const Pose& completed_pose) {
   const AxisMask mask = mechanism.controlled_axes();
-  if (mask.count() == 6 || statics_is_planar(mechanism.type())) {
+  if (mask.count() == 6 || mechanism.is_planar()) {
     return statics_analytic_basis(mechanism, completed_pose);
   }
   const AngleConvention convention = mechanism.convention();

@@ -90,7 +90,7 @@ TEST(StaticsForces, HexapodFastPathEqualsGenericPath) {
       auto generic = actuator_forces(hexapod, *pose, load);
       ASSERT_TRUE(generic.ok()) << generic.error().message;
       double fast[6];
-      ASSERT_TRUE(hexapod_strut_forces(hexapod, *pose, load, fast));
+      ASSERT_TRUE(twist_actuator_forces(hexapod, *pose, load, fast));
       for (int j = 0; j < 6; ++j) EXPECT_NEAR(fast[j], (*generic)[j], 1e-9 * generic->cwiseAbs().maxCoeff());
     }
   }
@@ -166,7 +166,7 @@ TEST(StaticsForces, SingularHexapodPoseIsAnErrorOnBothPaths) {
   ASSERT_FALSE(forces.ok());
   EXPECT_EQ(forces.error().code, ErrorCode::singular);
   double fast[6];
-  EXPECT_FALSE(hexapod_strut_forces(hexapod, home, load, fast));
+  EXPECT_FALSE(twist_actuator_forces(hexapod, home, load, fast));
 }
 
 TEST(StaticsForces, UnreachablePoseIsAnError) {

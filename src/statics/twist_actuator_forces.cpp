@@ -1,4 +1,5 @@
-// The hexapod's statics on the hot path (seed (91) about the tool point): fixed-size, no allocation.
+// Statics on the hot path for six-actuator, six-coordinate mechanisms (seed (91) about the tool point):
+// fixed-size, no allocation. Any mechanism with a square twist Jacobian takes it; the hexapod was its first.
 #include <cmath>
 
 #include "kinematics/fixed_lu.hpp"
@@ -6,11 +7,13 @@
 
 namespace pkm::statics {
 
-bool hexapod_strut_forces(const Hexapod& hexapod, const Pose& pose, const Wrench& load,
-                          double* forces_N) noexcept {
-  // Row j of J_t is (u_j, b_j × u_j): the Plücker line of strut j about the tool point, i.e. column j of
-  // (91)'s a_ij with the moment taken about the tool point instead of O.
-  const Eigen::Matrix<double, 6, 6> j = hexapod.twist_jacobian(pose);
+bool twist_actuator_forces(const Mechanism& mechanism, const Pose& pose, const Wrench& load,
+                           double* forces_N) noexcept {
+  // Row j of J_t is the line of actuator j about the tool point: for a strut (u_j, b_j × u_j), its Plücker
+  // line, i.e. column j of (91)'s a_ij with the moment taken about the tool point instead of O.
+  JacobianMatrix twist;
+  if (!mechanism.twist_jacobian(pose, twist) || twist.rows() != 6 || twist.cols() != 6) return false;
+  const Eigen::Matrix<double, 6, 6> j = twist;
   // Equilibrate the columns (unit-free singularity test, as in actuator_forces): J = J̃ D, J̃ᵀ P = −D⁻¹ w.
   Eigen::Matrix<double, 6, 1> norm;
   for (int c = 0; c < 6; ++c) {
