@@ -1,7 +1,9 @@
 #include "kinematics/kinematics_timing.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "core/units.hpp"
@@ -47,9 +49,11 @@ KinematicsTiming time_kinematics(const Mechanism& mechanism, const KinematicsTim
   }
   double checksum = 0.0;
   auto start = std::chrono::steady_clock::now();
+  // The servo-loop forms of the interface: hot IK into caller storage, warm FK with the mechanism's own
+  // workspace (what interpolation, a LinuxCNC module and the bindings call).
+  std::array<double, kMaxActuators> values{};
   for (const Pose& p : poses) {
-    auto q = mechanism.inverse(p);
-    if (q) checksum += (*q)[0];
+    if (mechanism.actuator_values(p, values.data())) checksum += values[0];
   }
   t.ik_ns_per_pose = seconds_since(start) * 1e9 / o.ik_poses;
 
@@ -80,9 +84,11 @@ KinematicsTiming time_kinematics(const Mechanism& mechanism, const KinematicsTim
   if (path.size() > 1) {
     long iterations = 0, converged = 0;
     Pose previous = path.front();
+    const std::unique_ptr<FkWorkspace> workspace = mechanism.make_fk_workspace();
+    const FkOptions fk_options;
     start = std::chrono::steady_clock::now();
     for (std::size_t i = 1; i < path.size(); ++i) {
-      auto fk = mechanism.forward(path_q[i], previous);
+      auto fk = mechanism.forward_warm(path_q[i], previous, fk_options, *workspace);
       if (fk) {
         iterations += fk->iterations;
         previous = fk->pose;
