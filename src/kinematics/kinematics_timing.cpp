@@ -42,18 +42,23 @@ KinematicsTiming time_kinematics(const Mechanism& mechanism, const KinematicsTim
   std::uint64_t state = o.seed;
   const Pose home = mechanism.home();
 
-  std::vector<Pose> poses;
+  // IK from the six pose coordinates (angles in the mechanism's convention), as a controller hands them over
+  // (LinuxCNC's kinematicsInverse gets an EmcPose): the angles → matrix conversion is in the time.
+  std::vector<PoseVector> poses;
   poses.reserve(static_cast<std::size_t>(o.ik_poses));
   for (int i = 0; i < o.ik_poses; ++i) {
-    poses.push_back(random_pose_near(mechanism, home, o.ik_range_mm, rad_from_deg(o.ik_range_deg), state));
+    poses.push_back(vector_from_pose(
+        mechanism.convention(),
+        random_pose_near(mechanism, home, o.ik_range_mm, rad_from_deg(o.ik_range_deg), state)));
   }
   double checksum = 0.0;
   auto start = std::chrono::steady_clock::now();
   // The servo-loop forms of the interface: hot IK into caller storage, warm FK with the mechanism's own
   // workspace (what interpolation, a LinuxCNC module and the bindings call).
   std::array<double, kMaxActuators> values{};
-  for (const Pose& p : poses) {
-    if (mechanism.actuator_values(p, values.data())) checksum += values[0];
+  for (const PoseVector& p : poses) {
+    if (mechanism.actuator_values(pose_from_vector(mechanism.convention(), p), values.data()))
+      checksum += values[0];
   }
   t.ik_ns_per_pose = seconds_since(start) * 1e9 / o.ik_poses;
 

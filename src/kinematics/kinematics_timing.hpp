@@ -18,7 +18,7 @@ struct KinematicsTimingOptions {
 };
 
 struct KinematicsTiming {
-  double ik_ns_per_pose = 0.0;        ///< hot IK (Mechanism::actuator_values)
+  double ik_ns_per_pose = 0.0;  ///< hot IK (Mechanism::actuator_values) from angles, conversion included
   double fk_us_per_solve_warm = 0.0;  ///< Mechanism::forward_warm with the mechanism's workspace
   double fk_iterations_warm = 0.0;
   double fk_converged_warm = 0.0;  ///< fraction converged to the right pose (1e-6 mm)
