@@ -95,17 +95,13 @@ int Glide::strut_joints(const Pose& pose, StrutJointPoints& out) const {
 }
 
 bool Glide::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
-  const Pose p = fixed_orientation(pose);
-  out.resize(geometry_.count, 6);
-  for (int j = 0; j < geometry_.count; ++j) {
-    const Eigen::Vector3d arm = p.rotation * geometry_.platform_joints_mm[j];
-    double s = 0.0;
-    Eigen::Vector3d g;
-    if (!leg_value(j, arm + p.position_mm, s, g)) return false;
-    out.block<1, 3>(j, 0) = g.transpose();
-    out.block<1, 3>(j, 3) = arm.cross(g).transpose();
-  }
-  return true;
+  return joint_gradient_twist_jacobian(
+      fixed_orientation(pose), geometry_.count, geometry_.platform_joints_mm,
+      [this](int j, const Eigen::Vector3d& joint_mm, Eigen::Vector3d& g) {
+        double s = 0.0;
+        return leg_value(j, joint_mm, s, g);
+      },
+      out);
 }
 
 MechanismStructure Glide::structure() const {

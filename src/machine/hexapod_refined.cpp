@@ -198,16 +198,13 @@ Result<Eigen::Matrix<double, 6, 6>> HexapodRefined::twist_jacobian(const Pose& p
 }
 
 bool HexapodRefined::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
-  out.resize(6, 6);
-  for (int j = 0; j < 6; ++j) {
-    const Eigen::Vector3d arm = pose.rotation * geometry_.platform_joints_mm[j];
-    double length = 0.0;
-    Eigen::Vector3d g;
-    if (!leg_value(j, arm + pose.position_mm, length, g)) return false;
-    out.block<1, 3>(j, 0) = g.transpose();
-    out.block<1, 3>(j, 3) = arm.cross(g).transpose();
-  }
-  return true;
+  return joint_gradient_twist_jacobian(
+      pose, 6, geometry_.platform_joints_mm,
+      [this](int j, const Eigen::Vector3d& joint_mm, Eigen::Vector3d& g) {
+        double length = 0.0;
+        return leg_value(j, joint_mm, length, g);
+      },
+      out);
 }
 
 int HexapodRefined::assembly_mode(const Pose& pose) const {

@@ -179,6 +179,25 @@ class Mechanism {
 bool strut_length_twist_jacobian(const StrutJointPoints& joints, int count,
                                  const Eigen::Vector3d& tool_point_mm, JacobianMatrix& out) noexcept;
 
+/// The twist Jacobian of actuators whose value depends on one platform joint each (carriages, glides, the
+/// refined hexapod's legs): row j = (g_j, a_j × g_j), with a_j = R·(joint j in the tool frame) the joint's
+/// arm from the tool point and g_j the gradient of actuator j's value over the joint's base-frame position,
+/// from `gradient(j, joint_mm, g)` (false: out of reach, and so is the result). For Mechanism::twist_jacobian
+/// overrides; never allocates.
+template <class Joints, class Gradient>
+bool joint_gradient_twist_jacobian(const Pose& pose, int count, const Joints& platform_joints_mm,
+                                   Gradient&& gradient, JacobianMatrix& out) noexcept {
+  out.resize(count, 6);
+  for (int j = 0; j < count; ++j) {
+    const Eigen::Vector3d arm = pose.rotation * platform_joints_mm[j];
+    Eigen::Vector3d g;
+    if (!gradient(j, Eigen::Vector3d(arm + pose.position_mm), g)) return false;
+    out.template block<1, 3>(j, 0) = g.transpose();
+    out.template block<1, 3>(j, 3) = arm.cross(g).transpose();
+  }
+  return true;
+}
+
 /// The error of a forward-kinematics solve that found `solution` in another assembly mode than its guess's.
 Error another_assembly_mode_error(const Pose& solution);
 

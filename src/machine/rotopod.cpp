@@ -128,16 +128,13 @@ int Rotopod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
 }
 
 bool Rotopod::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
-  out.resize(6, 6);
-  for (int j = 0; j < 6; ++j) {
-    const Eigen::Vector3d arm = pose.rotation * geometry_.platform_joints_mm[j];
-    double phi = 0.0;
-    Eigen::Vector3d g;
-    if (!carriage_angle(j, arm + pose.position_mm, reference_rad_[j], phi, g)) return false;
-    out.block<1, 3>(j, 0) = g.transpose();
-    out.block<1, 3>(j, 3) = arm.cross(g).transpose();
-  }
-  return true;
+  return joint_gradient_twist_jacobian(
+      pose, 6, geometry_.platform_joints_mm,
+      [this](int j, const Eigen::Vector3d& joint_mm, Eigen::Vector3d& g) {
+        double phi = 0.0;
+        return carriage_angle(j, joint_mm, reference_rad_[j], phi, g);
+      },
+      out);
 }
 
 Result<JacobianMatrix> Rotopod::jacobian(const Pose& pose) const {

@@ -8,9 +8,9 @@
 #include "interpolation/contour_trace.hpp"
 #include "interpolation/step_stream.hpp"
 #include "interpolation/steps_csv.hpp"
+#include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
 #include "planning/motion_plan.hpp"
-#include "program/part_program.hpp"
 
 namespace pkm::pipeline {
 
@@ -53,12 +53,7 @@ Result<interpolation::InterpolateOptions> resolved_options(const Machine& machin
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job) {
   auto options = resolved_options(machine, job);
   if (!options) return options.error();
-  const planning::ProgramStart start = planning::program_start(machine);
-  program::InterpretOptions interpret;
-  interpret.start_mm = start.start_mm;
-  interpret.start_abc_deg = start.start_abc_deg;
-  interpret.tool_table_path = job.tool_table_path;
-  auto program = program::load_part_program(job.program_path, interpret);
+  auto program = load_program_for(machine, job.program_path, job.tool_table_path);
   if (!program) return program.error();
   planning::PlanOptions plan_options;
   plan_options.rate_hz = 1.0 / options->period_s;

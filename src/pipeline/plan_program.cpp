@@ -3,19 +3,14 @@
 #include <chrono>
 
 #include "core/output_set.hpp"
+#include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
 #include "planning/plan_output.hpp"
-#include "program/part_program.hpp"
 
 namespace pkm::pipeline {
 
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
-  const planning::ProgramStart start = planning::program_start(machine);
-  program::InterpretOptions interpret;
-  interpret.start_mm = start.start_mm;
-  interpret.start_abc_deg = start.start_abc_deg;
-  interpret.tool_table_path = job.tool_table_path;
-  auto program = program::load_part_program(job.program_path, interpret);
+  auto program = load_program_for(machine, job.program_path, job.tool_table_path);
   if (!program) return program.error();
 
   PlanProgramResult result;
