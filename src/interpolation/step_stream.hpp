@@ -43,8 +43,8 @@
 #include <string>
 #include <vector>
 
-#include "core/atomic_file.hpp"
 #include "interpolation/step_period.hpp"
+#include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {
 

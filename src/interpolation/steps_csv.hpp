@@ -11,8 +11,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/atomic_file.hpp"
 #include "interpolation/step_period.hpp"
+#include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {
 

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/output_set.hpp"
 #include "core/result.hpp"
+#include "io/output_set.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/run_monitor.hpp"
