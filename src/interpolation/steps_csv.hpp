@@ -4,7 +4,7 @@
 // Steps and position codes are integers and are written as such; the time is
 // written with the shortest decimal that reads back as the same double, so the
 // file holds the periods exactly (read_steps_csv gives back what was written).
-// The file is staged (core/atomic_file.hpp) and appears only when finish()
+// The file is staged (io/atomic_file.hpp) and appears only when finish()
 // succeeds.
 #include <array>
 #include <string>

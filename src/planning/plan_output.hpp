@@ -1,7 +1,7 @@
 #pragma once
 // Writing a planned run: DIR/actuators.csv (time and every actuator position per servo tick), DIR/path.csv
 // (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json.
-// The files join an OutputSet (core/output_set.hpp): they replace the previous run's only together, when the
+// The files join an OutputSet (io/output_set.hpp): they replace the previous run's only together, when the
 // whole run succeeded, so a failed run leaves the previous run complete and nothing of its own.
 #include <functional>
 #include <nlohmann/json.hpp>
