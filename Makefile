@@ -7,14 +7,15 @@
 # make conformance (the G-code golden files against LinuxCNC's rs274), make browser-test (the HTML report in
 # headless Chromium), make screenshots (the same, saving docs/images/report-*.png),
 # make fuzz (the libFuzzer harnesses in fuzz/, built with clang + ASan/UBSan in build-fuzz/, FUZZ_SECONDS each),
-# make nightly (the generated-program property suite at nightly size), make bench, make format, make tidy.
+# make nightly (the generated-program property suite at nightly size), make bench, make format, make tidy,
+# make consumer (installs pkm::kinematics into build/install and builds and runs examples/consumer against it).
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
 PROGRAM ?= examples/programs/pocket.ngc
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy clean
+.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -83,6 +84,15 @@ bench: deps
 	@cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DPKM_UNITY_LIB=ON -DPKM_BUILD_BENCH=ON > /dev/null
 	@cmake --build build-bench -j $(JOBS)
 	@for b in build-bench/bench/*; do $$b --benchmark_min_time=0.2; done
+
+# The installed kinematics library from outside (docs/libraries.md): cmake --install into $(BUILD)/install, then
+# examples/consumer, a separate CMake project (find_package(pkm)), built in $(BUILD)/consumer and run (IK and FK
+# round trip of a hexapod).
+consumer: build
+	@cmake --install $(BUILD) --prefix $(BUILD)/install > /dev/null
+	@cmake -S examples/consumer -B $(BUILD)/consumer -DCMAKE_PREFIX_PATH=$(abspath $(BUILD))/install > /dev/null
+	@cmake --build $(BUILD)/consumer -j $(JOBS)
+	$(BUILD)/consumer/pkm_consumer
 
 format:
 	@find src apps tests bench fuzz -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i

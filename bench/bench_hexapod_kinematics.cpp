@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "core/units.hpp"
+#include "io/machine_file.hpp"
 #include "machine/hexapod.hpp"
-#include "machine/machine_file.hpp"
 
 namespace pkm {
 namespace {

@@ -28,7 +28,7 @@
 #include "interpolation/discreteness_corrector.hpp"
 #include "interpolation/estimating_function.hpp"
 #include "interpolation/remainder_quantizer.hpp"
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/part_program.hpp"
 

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <random>
 
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
 #include "program/part_program.hpp"

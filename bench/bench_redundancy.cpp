@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/part_program.hpp"
 #include "redundancy/optimize_program.hpp"

@@ -13,7 +13,7 @@
 
 #include "interpolation/step_stream.hpp"
 #include "interpolation/steps_csv.hpp"
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
 #include "program/part_program.hpp"
 #include "statics/load_model.hpp"
 

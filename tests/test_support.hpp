@@ -5,7 +5,7 @@
 #include <random>
 #include <string>
 
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
 #include "source_paths.hpp"
 
 namespace pkm::test {

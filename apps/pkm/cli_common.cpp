@@ -4,7 +4,7 @@
 
 #include <iostream>
 
-#include "core/printable_text.hpp"
+#include "io/printable_text.hpp"
 
 namespace pkm::cli {
 

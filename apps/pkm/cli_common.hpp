@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/output_set.hpp"
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
+#include "io/output_set.hpp"
 
 namespace pkm::cli {
 

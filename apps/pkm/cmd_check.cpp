@@ -8,9 +8,9 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "core/units.hpp"
+#include "io/pose_input.hpp"
 #include "kinematics/conditioning.hpp"
 #include "kinematics/mobility.hpp"
-#include "machine/pose_input.hpp"
 #include "number_options.hpp"
 
 namespace pkm::cli {

@@ -7,7 +7,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "core/units.hpp"
-#include "machine/pose_input.hpp"
+#include "io/pose_input.hpp"
 
 namespace pkm::cli {
 

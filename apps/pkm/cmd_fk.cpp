@@ -6,7 +6,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "machine/pose_input.hpp"
+#include "io/pose_input.hpp"
 
 namespace pkm::cli {
 namespace {

@@ -8,8 +8,8 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "io/pose_input.hpp"
 #include "kinematics/conditioning.hpp"
-#include "machine/pose_input.hpp"
 
 namespace pkm::cli {
 namespace {

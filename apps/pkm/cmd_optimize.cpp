@@ -8,8 +8,8 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "core/atomic_file.hpp"
-#include "core/output_set.hpp"
+#include "io/atomic_file.hpp"
+#include "io/output_set.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/gcode_writer.hpp"
 #include "program/part_program.hpp"

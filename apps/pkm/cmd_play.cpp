@@ -14,10 +14,10 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "core/atomic_file.hpp"
 #include "interpolation/realtime_player.hpp"
 #include "interpolation/step_stream.hpp"
 #include "interpolation/steps_csv.hpp"
+#include "io/atomic_file.hpp"
 #include "number_options.hpp"
 
 namespace pkm::cli {

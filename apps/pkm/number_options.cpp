@@ -7,7 +7,7 @@
 #include <iostream>
 #include <string_view>
 
-#include "core/printable_text.hpp"
+#include "io/printable_text.hpp"
 
 namespace pkm::cli {
 

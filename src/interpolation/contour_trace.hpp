@@ -7,9 +7,9 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "core/atomic_file.hpp"
 #include "interpolation/contour_monitor.hpp"
 #include "interpolation/step_period.hpp"
+#include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {
 

@@ -34,7 +34,7 @@
 // is given agree with that, so the file always reads back exactly as written.
 //
 // The count lives in an end record rather than in the header because the file
-// is written front to back through a staged file (core/atomic_file.hpp), which
+// is written front to back through a staged file (io/atomic_file.hpp), which
 // cannot seek. The end record also tells a finished file from one cut short:
 // the reader checks it and the checksum in open(), before anything is played.
 #include <array>
@@ -43,8 +43,8 @@
 #include <string>
 #include <vector>
 
-#include "core/atomic_file.hpp"
 #include "interpolation/step_period.hpp"
+#include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {
 

@@ -4,15 +4,15 @@
 // Steps and position codes are integers and are written as such; the time is
 // written with the shortest decimal that reads back as the same double, so the
 // file holds the periods exactly (read_steps_csv gives back what was written).
-// The file is staged (core/atomic_file.hpp) and appears only when finish()
+// The file is staged (io/atomic_file.hpp) and appears only when finish()
 // succeeds.
 #include <array>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "core/atomic_file.hpp"
 #include "interpolation/step_period.hpp"
+#include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {
 

@@ -2,13 +2,16 @@
 
 #include <fmt/format.h>
 
-#include "core/atomic_file.hpp"
-#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "interpolation/contour_trace.hpp"
 #include "interpolation/step_stream.hpp"
 #include "interpolation/steps_csv.hpp"
+<<<<<<< HEAD
 #include "pipeline/load_program.hpp"
+=======
+#include "io/atomic_file.hpp"
+#include "io/output_set.hpp"
+>>>>>>> layers
 #include "pipeline/run_report.hpp"
 #include "planning/motion_plan.hpp"
 

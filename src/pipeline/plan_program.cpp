@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "core/output_set.hpp"
+#include "io/output_set.hpp"
 #include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
 #include "planning/plan_output.hpp"

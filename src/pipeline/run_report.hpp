@@ -3,8 +3,8 @@
 // `pkm report DIR` reads a finished run, so that the report shows exactly what the run's files say.
 #include <string>
 
-#include "core/output_set.hpp"
 #include "core/result.hpp"
+#include "io/output_set.hpp"
 
 namespace pkm::pipeline {
 

@@ -6,9 +6,9 @@
 #include <string_view>
 #include <utility>
 
-#include "core/atomic_file.hpp"
 #include "core/rotation.hpp"
 #include "core/units.hpp"
+#include "io/atomic_file.hpp"
 
 namespace pkm::planning {
 

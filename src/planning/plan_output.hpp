@@ -1,14 +1,14 @@
 #pragma once
 // Writing a planned run: DIR/actuators.csv (time and every actuator position per servo tick), DIR/path.csv
 // (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json.
-// The files join an OutputSet (core/output_set.hpp): they replace the previous run's only together, when the
+// The files join an OutputSet (io/output_set.hpp): they replace the previous run's only together, when the
 // whole run succeeded, so a failed run leaves the previous run complete and nothing of its own.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/output_set.hpp"
 #include "core/result.hpp"
+#include "io/output_set.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/run_monitor.hpp"

@@ -1,6 +1,6 @@
 #include "program/text_file.hpp"
 
-#include "core/input_file.hpp"
+#include "io/input_file.hpp"
 
 namespace pkm::program {
 

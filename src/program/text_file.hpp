@@ -1,6 +1,6 @@
 #pragma once
 // Reading a whole text file (part programs, tool tables, steps files) through the guarded reader
-// (core/input_file.hpp): no directories or devices, a size cap, no byte-order mark, lone CRs as line ends.
+// (io/input_file.hpp): no directories or devices, a size cap, no byte-order mark, lone CRs as line ends.
 #include <string>
 
 #include "core/result.hpp"

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "core/input_file.hpp"
+#include "io/input_file.hpp"
 
 namespace pkm::report {
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/input_file.hpp"
-#include "machine/machine_file.hpp"
+#include "io/input_file.hpp"
+#include "io/machine_file.hpp"
 #include "report/csv_table.hpp"
 #include "report/report_html.hpp"
 #include "report/run_reports.hpp"

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "core/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "report/report_assets.hpp"
 
 namespace pkm::report {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/input_file.hpp"
+#include "io/input_file.hpp"
 #include "statics/load_keys.hpp"
 #include "statics/load_model.hpp"
 

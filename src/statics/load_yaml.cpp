@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "machine/yaml_reader.hpp"
+#include "io/yaml_reader.hpp"
 #include "statics/load_keys.hpp"
 #include "statics/load_model.hpp"
 

@@ -559,7 +559,8 @@ std::vector<CatalogueCase> catalogue_cases() {
        "empty.ngc"},
   };
 #if !PKM_REPORT_PAGE
-  // Built without the report page (no Node.js): every report fails alike, tests/cli/report_page_missing_test.cpp.
+  // Built without the report page (no Node.js): every report fails alike,
+  // tests/cli/report_page_missing_test.cpp.
   std::erase_if(cases, [](const CatalogueCase& c) {
     return c.command.find("--report") != std::string::npos || c.command.rfind("report ", 0) == 0;
   });

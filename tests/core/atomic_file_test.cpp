@@ -1,6 +1,6 @@
 // Atomic file writing: the content arrives whole, a failure leaves neither the file nor a temporary behind
 // and names the path with the system's reason.
-#include "core/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

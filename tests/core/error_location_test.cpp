@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string>
 
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
 #include "program/part_program.hpp"
 
 namespace pkm {

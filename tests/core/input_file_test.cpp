@@ -1,7 +1,7 @@
 // The guarded input reader: directories, devices and files over the cap are refused by name with the reason
 // (once std::ios_failure or std::bad_alloc aborted pkm); a byte-order mark is dropped and a lone CR ends a
 // line.
-#include "core/input_file.hpp"
+#include "io/input_file.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,5 +1,5 @@
 // Output sets: all files replace the previous ones together, or none does; nothing of a failed set remains.
-#include "core/output_set.hpp"
+#include "io/output_set.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 namespace {
 

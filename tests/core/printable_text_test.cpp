@@ -1,5 +1,5 @@
 // Escaping for messages: control bytes and broken UTF-8 become \xNN, real UTF-8 text stays readable.
-#include "core/printable_text.hpp"
+#include "io/printable_text.hpp"
 
 #include <gtest/gtest.h>
 

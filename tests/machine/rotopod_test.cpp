@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/units.hpp"
-#include "machine/pose_input.hpp"
+#include "io/pose_input.hpp"
 #include "test_support.hpp"
 
 namespace pkm {

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "machine/machine_file.hpp"
-#include "machine/yaml_reader.hpp"
+#include "io/machine_file.hpp"
+#include "io/yaml_reader.hpp"
 
 namespace {
 

@@ -20,7 +20,7 @@ namespace pkm {
 /// (ErrorCode::bad_input): "FILE:LINE:COLUMN: KEY: reason", or "FILE:LINE:COLUMN: not valid YAML: reason".
 Result<YAML::Node> parse_yaml_document(std::string_view text, const std::string& source_name);
 
-/// The file through the guarded reader (core/input_file.hpp; `what` names it: "machine file"), parsed.
+/// The file through the guarded reader (io/input_file.hpp; `what` names it: "machine file"), parsed.
 Result<YAML::Node> load_yaml_file(const std::string& path, std::string_view what);
 
 class YamlReader {

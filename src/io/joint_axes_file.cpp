@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "machine/machine_file_sections.hpp"
+#include "io/machine_file_sections.hpp"
 
 namespace pkm {
 namespace {

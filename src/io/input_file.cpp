@@ -1,4 +1,4 @@
-#include "core/input_file.hpp"
+#include "io/input_file.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>

@@ -1,6 +1,6 @@
 #include <cmath>
 
-#include "machine/mechanism_files.hpp"
+#include "io/mechanism_files.hpp"
 
 namespace pkm {
 

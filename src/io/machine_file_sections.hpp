@@ -4,8 +4,8 @@
 // axes. Each error names the file, the line and the key (docs/machine-file.md).
 #include <yaml-cpp/yaml.h>
 
+#include "io/yaml_reader.hpp"
 #include "machine/machine.hpp"
-#include "machine/yaml_reader.hpp"
 
 namespace pkm {
 

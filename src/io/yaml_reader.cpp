@@ -1,4 +1,4 @@
-#include "machine/yaml_reader.hpp"
+#include "io/yaml_reader.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/depthguard.h>
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <unordered_map>
 
-#include "core/input_file.hpp"
+#include "io/input_file.hpp"
 
 namespace pkm {
 

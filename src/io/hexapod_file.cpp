@@ -1,7 +1,7 @@
 // Machine-file entry of the hexapod: base_joints (6 points, base frame) and platform_joints (6 points,
 // platform frame); `tool` shifts the pose origin to the tool point.
+#include "io/mechanism_files.hpp"
 #include "machine/hexapod.hpp"
-#include "machine/mechanism_files.hpp"
 
 namespace pkm {
 

@@ -2,7 +2,7 @@
 // gravity load of statics (statics/gravity.hpp). Every key is optional.
 #include <fmt/format.h>
 
-#include "machine/machine_file_sections.hpp"
+#include "io/machine_file_sections.hpp"
 
 namespace pkm {
 

@@ -1,4 +1,4 @@
-#include "core/printable_text.hpp"
+#include "io/printable_text.hpp"
 
 #include <fmt/format.h>
 

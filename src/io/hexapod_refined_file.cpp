@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "core/units.hpp"
+#include "io/mechanism_files.hpp"
 #include "machine/hexapod_refined.hpp"
-#include "machine/mechanism_files.hpp"
 
 namespace pkm {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
+#include "io/mechanism_files.hpp"
 #include "machine/glide.hpp"
-#include "machine/mechanism_files.hpp"
 
 namespace pkm {
 namespace {

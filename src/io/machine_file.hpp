@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "io/yaml_reader.hpp"
 #include "machine/machine.hpp"
-#include "machine/yaml_reader.hpp"
 
 namespace pkm {
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "machine/mechanism_files.hpp"
+#include "io/mechanism_files.hpp"
 #include "machine/tricept.hpp"
 
 namespace pkm {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/units.hpp"
-#include "machine/mechanism_files.hpp"
+#include "io/mechanism_files.hpp"
 #include "machine/planar3.hpp"
 
 namespace pkm {

@@ -2,7 +2,7 @@
 // origin is. Every key is optional; a missing section gives the defaults of MotionSettings.
 #include <fmt/format.h>
 
-#include "machine/machine_file_sections.hpp"
+#include "io/machine_file_sections.hpp"
 
 namespace pkm {
 

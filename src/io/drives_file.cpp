@@ -2,7 +2,7 @@
 // Δ and the servo period h). Every key is optional; `pkm interpolate` takes its defaults from here.
 #include <fmt/format.h>
 
-#include "machine/machine_file_sections.hpp"
+#include "io/machine_file_sections.hpp"
 
 namespace pkm {
 

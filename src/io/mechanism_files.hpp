@@ -1,7 +1,7 @@
 #pragma once
 // One machine-file entry per mechanism; each is defined next to its mechanism in `<mechanism>_file.cpp`.
+#include "io/machine_file.hpp"
 #include "machine/hexapod.hpp"
-#include "machine/machine_file.hpp"
 
 namespace pkm {
 

@@ -1,4 +1,4 @@
-#include "machine/pose_input.hpp"
+#include "io/pose_input.hpp"
 
 #include <fmt/format.h>
 

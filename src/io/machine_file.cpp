@@ -1,11 +1,11 @@
-#include "machine/machine_file.hpp"
+#include "io/machine_file.hpp"
 
 #include <fmt/format.h>
 
-#include "core/input_file.hpp"
 #include "core/units.hpp"
+#include "io/input_file.hpp"
+#include "io/machine_file_sections.hpp"
 #include "machine/joint_limits.hpp"
-#include "machine/machine_file_sections.hpp"
 
 namespace pkm {
 namespace {

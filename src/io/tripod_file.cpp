@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "machine/mechanism_files.hpp"
+#include "io/mechanism_files.hpp"
 #include "machine/tripod.hpp"
 
 namespace pkm {

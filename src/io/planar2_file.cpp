@@ -2,7 +2,7 @@
 // the output joint B (x, y mm). There is no platform, so `tool` is rejected rather than silently ignored.
 #include <cmath>
 
-#include "machine/mechanism_files.hpp"
+#include "io/mechanism_files.hpp"
 #include "machine/planar2.hpp"
 
 namespace pkm {

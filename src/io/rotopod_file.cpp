@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "machine/mechanism_files.hpp"
+#include "io/mechanism_files.hpp"
 #include "machine/rotopod.hpp"
 
 namespace pkm {

@@ -1,4 +1,4 @@
-#include "core/output_set.hpp"
+#include "io/output_set.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "core/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 namespace pkm {
 

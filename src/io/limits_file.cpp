@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/units.hpp"
-#include "machine/machine_file_sections.hpp"
+#include "io/machine_file_sections.hpp"
 
 namespace pkm {
 namespace {

@@ -1,0 +1,72 @@
+# The library as layered static libraries, one or more src/ folders each (docs/libraries.md). A layer may include
+# the headers of the layers below it only:
+#
+#   pkm_kinematics (pkm::kinematics)  core/ machine/ kinematics/   PUBLIC Eigen (fmt header-only, PRIVATE)
+#   pkm_io         (pkm::io)          io/                          PUBLIC kinematics, yaml-cpp, fmt, nlohmann_json
+#   pkm_motion     (pkm::motion)      program/ path/ planning/ redundancy/ interpolation/ statics/
+#                                                                  PUBLIC io; PRIVATE NLopt
+#   pkm_report     (pkm::report)      report/ (+ pkm_report_assets) PUBLIC motion
+#   pkm_pipeline   (pkm::pipeline)    pipeline/                    PUBLIC report
+#   pkm_lib        INTERFACE: all of them (the CLI, tests, bench and fuzz link this)
+
+# PKM_UNITY_LIB compiles every layer in batches (the sanitizer build uses it to fit CI's time on 2 cores).
+option(PKM_UNITY_LIB "Unity build of the library layers" OFF)
+# 8 per batch is the fastest measured on CI's 2 cores: 16 made the sanitizer build slower (9 min against 7).
+set(PKM_UNITY_BATCH 8 CACHE STRING "Source files per unity batch (PKM_UNITY_LIB, PKM_UNITY_TESTS)")
+
+# pkm_layer(<target> <alias> <folder>...): a static library of the .cpp files in src/<folder>/.
+function(pkm_layer target alias)
+  set(sources)
+  foreach(folder ${ARGN})
+    file(GLOB folder_sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${folder}/*.cpp)
+    list(APPEND sources ${folder_sources})
+  endforeach()
+  add_library(${target} STATIC ${sources})
+  add_library(pkm::${alias} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${alias})
+  target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>)
+  # The warning (and sanitizer) flags, not linked as a target: an installed layer does not depend on them.
+  target_compile_options(${target} PRIVATE $<TARGET_PROPERTY:pkm_warnings,INTERFACE_COMPILE_OPTIONS>)
+  if(PKM_UNITY_LIB)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${PKM_UNITY_BATCH})
+  endif()
+endfunction()
+
+# Eigen, fmt and yaml-cpp dominate compile time; precompiled per layer, they keep CI (a Release and a sanitizer
+# build on 2 cores) within its budget. pkm_kinematics has its own (position-independent, fmt header-only); the
+# layers above share pkm_io's, as they are compiled with the same flags.
+set(PKM_LIB_PCH <Eigen/Core> <Eigen/Geometry> <Eigen/LU> <fmt/format.h> <string> <vector>)
+
+# The kinematics: poses, mechanisms, IK/FK/Jacobians, analyses. No file I/O; position-independent, so that a
+# shared object (a LinuxCNC real-time kinematics module) can link it. Its error messages use fmt header-only
+# and privately, so that a consumer of the installed library needs Eigen only.
+pkm_layer(pkm_kinematics kinematics core machine kinematics)
+set_target_properties(pkm_kinematics PROPERTIES POSITION_INDEPENDENT_CODE ON)
+target_include_directories(pkm_kinematics PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/pkm>)
+target_include_directories(pkm_kinematics PRIVATE $<TARGET_PROPERTY:fmt::fmt,INTERFACE_INCLUDE_DIRECTORIES>)
+target_compile_definitions(pkm_kinematics PRIVATE FMT_HEADER_ONLY)
+target_link_libraries(pkm_kinematics PUBLIC Eigen3::Eigen)
+target_precompile_headers(pkm_kinematics PRIVATE ${PKM_LIB_PCH})
+
+# Input and output files: machine files (YAML), pose input, the guarded file reader, atomic outputs and sets.
+pkm_layer(pkm_io io io)
+target_link_libraries(pkm_io PUBLIC pkm_kinematics yaml-cpp fmt::fmt nlohmann_json::nlohmann_json)
+target_precompile_headers(pkm_io PRIVATE ${PKM_LIB_PCH})
+
+# From part program to drive output.
+pkm_layer(pkm_motion motion program path planning redundancy interpolation statics)
+target_link_libraries(pkm_motion PUBLIC pkm_io PRIVATE NLopt::nlopt)
+target_precompile_headers(pkm_motion REUSE_FROM pkm_io)
+
+# The HTML report of a run's output directory (the page itself: pkm_report_assets, cmake/report_assets.cmake).
+pkm_layer(pkm_report report report)
+target_link_libraries(pkm_report PUBLIC pkm_motion PRIVATE pkm_report_assets)
+target_precompile_headers(pkm_report REUSE_FROM pkm_io)
+
+# The CLI's whole runs (plan / interpolate a program, with the optional report): above the report.
+pkm_layer(pkm_pipeline pipeline pipeline)
+target_link_libraries(pkm_pipeline PUBLIC pkm_report pkm_motion)
+target_precompile_headers(pkm_pipeline REUSE_FROM pkm_io)
+
+add_library(pkm_lib INTERFACE)
+target_link_libraries(pkm_lib INTERFACE pkm_pipeline pkm_report pkm_motion pkm_io pkm_kinematics)
