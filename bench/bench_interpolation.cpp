@@ -24,10 +24,10 @@
 #include <optional>
 
 #include "core/duration_histogram.hpp"
-#include "interpolation/carrier_interpolator.hpp"
-#include "interpolation/discreteness_corrector.hpp"
-#include "interpolation/estimating_function.hpp"
-#include "interpolation/remainder_quantizer.hpp"
+#include "interpolation/methods/carrier_interpolator.hpp"
+#include "interpolation/methods/estimating_function.hpp"
+#include "interpolation/quantisation/discreteness_corrector.hpp"
+#include "interpolation/quantisation/remainder_quantizer.hpp"
 #include "io/machine_file.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/part_program.hpp"

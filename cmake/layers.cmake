@@ -54,7 +54,8 @@ target_link_libraries(pkm_io PUBLIC pkm_kinematics yaml-cpp fmt::fmt nlohmann_js
 target_precompile_headers(pkm_io PRIVATE ${PKM_LIB_PCH})
 
 # From part program to drive output.
-pkm_layer(pkm_motion motion program path planning redundancy interpolation statics)
+pkm_layer(pkm_motion motion program path planning redundancy interpolation interpolation/methods
+          interpolation/quantisation interpolation/contour interpolation/drive_output statics)
 target_link_libraries(pkm_motion PUBLIC pkm_io PRIVATE NLopt::nlopt)
 target_precompile_headers(pkm_motion REUSE_FROM pkm_io)
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <string_view>
 
-#include "interpolation/step_stream.hpp"
-#include "interpolation/steps_csv.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
+#include "interpolation/drive_output/steps_csv.hpp"
 #include "io/machine_file.hpp"
 #include "program/part_program.hpp"
 #include "statics/load_model.hpp"

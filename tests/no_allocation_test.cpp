@@ -10,10 +10,10 @@
 #include <new>
 
 #include "core/units.hpp"
-#include "interpolation/carrier_interpolator.hpp"
-#include "interpolation/discreteness_corrector.hpp"
 #include "interpolation/interpolate_run.hpp"
-#include "interpolation/remainder_quantizer.hpp"
+#include "interpolation/methods/carrier_interpolator.hpp"
+#include "interpolation/quantisation/discreteness_corrector.hpp"
+#include "interpolation/quantisation/remainder_quantizer.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
 #include "planning/plan_test_support.hpp"

@@ -1,5 +1,5 @@
 // pkm play DIR_OR_FILE [--periods N] [--to FILE|-] [--realtime] [--json]: releases the drive steps of a
-// steps.bin at their servo rate, as a controller's real-time loop would (interpolation/realtime_player.hpp),
+// steps.bin at their servo rate, as a controller's real-time loop would (interpolation/drive_output/realtime_player.hpp),
 // optionally passing each period on as a text line, and reports how punctually this computer kept the beat.
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -14,9 +14,9 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "interpolation/realtime_player.hpp"
-#include "interpolation/step_stream.hpp"
-#include "interpolation/steps_csv.hpp"
+#include "interpolation/drive_output/realtime_player.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
+#include "interpolation/drive_output/steps_csv.hpp"
 #include "io/atomic_file.hpp"
 #include "number_options.hpp"
 

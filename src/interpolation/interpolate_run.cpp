@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/units.hpp"
-#include "interpolation/remainder_quantizer.hpp"
+#include "interpolation/quantisation/remainder_quantizer.hpp"
 #include "kinematics/conditioning.hpp"
 
 namespace pkm::interpolation {

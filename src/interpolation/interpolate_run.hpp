@@ -18,13 +18,13 @@
 
 #include "core/duration_histogram.hpp"
 #include "core/result.hpp"
-#include "interpolation/carrier_interpolator.hpp"
-#include "interpolation/contour_monitor.hpp"
-#include "interpolation/discreteness_corrector.hpp"
-#include "interpolation/estimating_function.hpp"
-#include "interpolation/ideal_timing.hpp"
-#include "interpolation/step_period.hpp"
-#include "interpolation/strut_laws.hpp"
+#include "interpolation/contour/contour_monitor.hpp"
+#include "interpolation/methods/carrier_interpolator.hpp"
+#include "interpolation/methods/estimating_function.hpp"
+#include "interpolation/methods/ideal_timing.hpp"
+#include "interpolation/methods/strut_laws.hpp"
+#include "interpolation/quantisation/discreteness_corrector.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 
 namespace pkm::interpolation {
 

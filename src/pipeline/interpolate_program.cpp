@@ -3,15 +3,12 @@
 #include <fmt/format.h>
 
 #include "core/units.hpp"
-#include "interpolation/contour_trace.hpp"
-#include "interpolation/step_stream.hpp"
-#include "interpolation/steps_csv.hpp"
-<<<<<<< HEAD
-#include "pipeline/load_program.hpp"
-=======
+#include "interpolation/contour/contour_trace.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
+#include "interpolation/drive_output/steps_csv.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_set.hpp"
->>>>>>> layers
+#include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
 #include "planning/motion_plan.hpp"
 

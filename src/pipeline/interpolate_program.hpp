@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "interpolation/feed_override.hpp"
 #include "interpolation/interpolate_run.hpp"
+#include "interpolation/methods/feed_override.hpp"
 #include "machine/machine.hpp"
 
 namespace pkm::pipeline {

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_support.hpp"
-#include "interpolation/step_stream.hpp"
-#include "interpolation/steps_csv.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
+#include "interpolation/drive_output/steps_csv.hpp"
 
 namespace pkm {
 namespace {

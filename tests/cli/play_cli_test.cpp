@@ -6,9 +6,9 @@
 #include <string>
 
 #include "cli/cli_support.hpp"
-#include "interpolation/step_stream.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
+#include "interpolation/drive_output/steps_csv.hpp"
 #include "interpolation/step_test_support.hpp"
-#include "interpolation/steps_csv.hpp"
 
 namespace pkm {
 namespace {

@@ -3,7 +3,7 @@
 // chord check bounds the contour error, and operator override changes act from period i+2.
 #include <gtest/gtest.h>
 
-#include "interpolation/feed_override.hpp"
+#include "interpolation/methods/feed_override.hpp"
 #include "interpolation_test_support.hpp"
 
 namespace pkm {

@@ -6,7 +6,7 @@
 // struts per tact, saturation from 4 struts on, fewer than the serial machine's 100 from 3 struts on. The
 // greedy rule of those checks is the extractor's ("progress > 0, max progress"), and the counts agree with
 // his reimplementation (132/70/49/40/39/40/40).
-#include "interpolation/estimating_function.hpp"
+#include "interpolation/methods/estimating_function.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // acceleration) or planned like any program.
 #include <string>
 
-#include "interpolation/ideal_timing.hpp"
 #include "interpolation/interpolate_run.hpp"
+#include "interpolation/methods/ideal_timing.hpp"
 #include "planning/plan_test_support.hpp"
 #include "test_support.hpp"
 

@@ -1,6 +1,6 @@
 // The real-time player: every period released in order at its deadline, never early, statistics that add
 // up, and a clean stop on a failing sink. No upper bounds on time: the machine running the tests is shared.
-#include "interpolation/realtime_player.hpp"
+#include "interpolation/drive_output/realtime_player.hpp"
 
 #include <gtest/gtest.h>
 #include <time.h>

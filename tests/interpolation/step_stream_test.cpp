@@ -1,7 +1,7 @@
 // The binary step stream (steps.bin): exact round trips, its size, agreement with steps.csv, and a reader
 // that refuses truncated or damaged files by name and byte offset, and a writer that leaves nothing behind
 // unless it finishes.
-#include "interpolation/step_stream.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "interpolation/drive_output/steps_csv.hpp"
 #include "interpolation/step_test_support.hpp"
-#include "interpolation/steps_csv.hpp"
 
 namespace pkm::interpolation {
 namespace {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "interpolation/step_period.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 
 namespace pkm::test {
 

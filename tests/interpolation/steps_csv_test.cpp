@@ -1,6 +1,6 @@
 // steps.csv: its header and rows as the interpolator's consumers read them, exact numbers, and no file
 // unless the writer finishes.
-#include "interpolation/steps_csv.hpp"
+#include "interpolation/drive_output/steps_csv.hpp"
 
 #include <gtest/gtest.h>
 

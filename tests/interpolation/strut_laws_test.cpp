@@ -1,7 +1,7 @@
 // Analytic strut laws along planned paths (spec ch5 §5.2; cases E9–E12): the model each kind of segment gets,
 // its fit error against inverse kinematics solved here (independently of the laws), and the behaviour at the
 // path's ends and on other mechanisms.
-#include "interpolation/strut_laws.hpp"
+#include "interpolation/methods/strut_laws.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "interpolation/strut_laws.hpp"
+#include "interpolation/methods/strut_laws.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "interpolation/law_fit.hpp"
+#include "interpolation/methods/law_fit.hpp"
 
 namespace pkm::interpolation {
 

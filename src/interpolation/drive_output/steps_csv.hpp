@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "interpolation/step_period.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 #include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {

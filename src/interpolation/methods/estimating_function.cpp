@@ -1,4 +1,4 @@
-#include "interpolation/estimating_function.hpp"
+#include "interpolation/methods/estimating_function.hpp"
 
 #include <fmt/format.h>
 

@@ -38,8 +38,8 @@
 #include <vector>
 
 #include "core/result.hpp"
-#include "interpolation/estimating_candidates.hpp"
-#include "interpolation/estimating_projection.hpp"
+#include "interpolation/methods/estimating_candidates.hpp"
+#include "interpolation/methods/estimating_projection.hpp"
 #include "machine/machine.hpp"
 #include "path/path.hpp"
 

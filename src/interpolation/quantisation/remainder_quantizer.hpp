@@ -11,8 +11,8 @@
 // E14).
 #include <array>
 
-#include "interpolation/carrier_interpolator.hpp"
-#include "interpolation/step_period.hpp"
+#include "interpolation/methods/carrier_interpolator.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 
 namespace pkm::interpolation {
 

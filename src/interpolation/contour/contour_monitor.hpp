@@ -7,7 +7,7 @@
 #include <array>
 #include <cmath>
 
-#include "interpolation/contour_gauge.hpp"
+#include "interpolation/contour/contour_gauge.hpp"
 #include "interpolation/pose_tracker.hpp"
 
 namespace pkm::interpolation {

@@ -1,4 +1,4 @@
-#include "interpolation/contour_monitor.hpp"
+#include "interpolation/contour/contour_monitor.hpp"
 
 #include <algorithm>
 

@@ -23,10 +23,10 @@
 #include <array>
 #include <optional>
 
-#include "interpolation/carrier_interpolator.hpp"
-#include "interpolation/contour_gauge.hpp"
+#include "interpolation/contour/contour_gauge.hpp"
+#include "interpolation/methods/carrier_interpolator.hpp"
 #include "interpolation/pose_tracker.hpp"
-#include "interpolation/step_period.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 
 namespace pkm::interpolation {
 

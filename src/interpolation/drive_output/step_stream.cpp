@@ -1,4 +1,4 @@
-#include "interpolation/step_stream.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>

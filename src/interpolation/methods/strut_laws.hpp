@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "core/result.hpp"
-#include "interpolation/strut_law_piece.hpp"
+#include "interpolation/methods/strut_law_piece.hpp"
 #include "machine/machine.hpp"
 #include "path/path.hpp"
 

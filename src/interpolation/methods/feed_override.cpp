@@ -1,4 +1,4 @@
-#include "interpolation/feed_override.hpp"
+#include "interpolation/methods/feed_override.hpp"
 
 #include <fmt/format.h>
 

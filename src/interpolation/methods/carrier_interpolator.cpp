@@ -1,4 +1,4 @@
-#include "interpolation/carrier_interpolator.hpp"
+#include "interpolation/methods/carrier_interpolator.hpp"
 
 #include <fmt/format.h>
 

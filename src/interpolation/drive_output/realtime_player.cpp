@@ -1,4 +1,4 @@
-#include "interpolation/realtime_player.hpp"
+#include "interpolation/drive_output/realtime_player.hpp"
 
 #include <fmt/format.h>
 #include <pthread.h>

@@ -1,4 +1,4 @@
-#include "interpolation/discreteness_corrector.hpp"
+#include "interpolation/quantisation/discreteness_corrector.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "interpolation/remainder_quantizer.hpp"
+#include "interpolation/quantisation/remainder_quantizer.hpp"
 #include "kinematics/fixed_lu.hpp"
 
 namespace pkm::interpolation {

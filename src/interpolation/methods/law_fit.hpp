@@ -5,7 +5,7 @@
 // a large fit error (strut_laws.cpp checks it against IK away from the fit nodes).
 #include <Eigen/Core>
 
-#include "interpolation/strut_law_piece.hpp"
+#include "interpolation/methods/strut_law_piece.hpp"
 
 namespace pkm::interpolation {
 

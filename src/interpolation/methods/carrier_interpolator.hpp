@@ -22,9 +22,9 @@
 #include <optional>
 
 #include "core/result.hpp"
-#include "interpolation/feed_override.hpp"
-#include "interpolation/ideal_timing.hpp"
-#include "interpolation/strut_laws.hpp"
+#include "interpolation/methods/feed_override.hpp"
+#include "interpolation/methods/ideal_timing.hpp"
+#include "interpolation/methods/strut_laws.hpp"
 
 namespace pkm::interpolation {
 

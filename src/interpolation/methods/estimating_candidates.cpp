@@ -1,4 +1,4 @@
-#include "interpolation/estimating_candidates.hpp"
+#include "interpolation/methods/estimating_candidates.hpp"
 
 #include <fmt/format.h>
 

@@ -7,8 +7,8 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "interpolation/contour_monitor.hpp"
-#include "interpolation/step_period.hpp"
+#include "interpolation/contour/contour_monitor.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 #include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {

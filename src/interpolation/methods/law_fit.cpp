@@ -1,4 +1,4 @@
-#include "interpolation/law_fit.hpp"
+#include "interpolation/methods/law_fit.hpp"
 
 #include <Eigen/QR>
 #include <cmath>

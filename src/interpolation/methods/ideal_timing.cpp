@@ -1,4 +1,4 @@
-#include "interpolation/ideal_timing.hpp"
+#include "interpolation/methods/ideal_timing.hpp"
 
 #include <algorithm>
 #include <cmath>

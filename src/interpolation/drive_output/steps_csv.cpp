@@ -1,4 +1,4 @@
-#include "interpolation/steps_csv.hpp"
+#include "interpolation/drive_output/steps_csv.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "interpolation/remainder_quantizer.hpp"
+#include "interpolation/quantisation/remainder_quantizer.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -43,7 +43,7 @@
 #include <string>
 #include <vector>
 
-#include "interpolation/step_period.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 #include "io/atomic_file.hpp"
 
 namespace pkm::interpolation {

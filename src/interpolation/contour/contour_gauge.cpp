@@ -1,4 +1,4 @@
-#include "interpolation/contour_gauge.hpp"
+#include "interpolation/contour/contour_gauge.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "interpolation/contour_trace.hpp"
+#include "interpolation/contour/contour_trace.hpp"
 
 #include <fmt/format.h>
 

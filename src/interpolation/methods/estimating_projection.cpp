@@ -1,4 +1,4 @@
-#include "interpolation/estimating_projection.hpp"
+#include "interpolation/methods/estimating_projection.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -19,8 +19,8 @@
 
 #include "core/duration_histogram.hpp"
 #include "core/result.hpp"
-#include "interpolation/step_period.hpp"
-#include "interpolation/step_stream.hpp"
+#include "interpolation/drive_output/step_stream.hpp"
+#include "interpolation/quantisation/step_period.hpp"
 
 namespace pkm::interpolation {
 
