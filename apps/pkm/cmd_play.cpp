@@ -1,6 +1,7 @@
 // pkm play DIR_OR_FILE [--periods N] [--to FILE|-] [--realtime] [--json]: releases the drive steps of a
-// steps.bin at their servo rate, as a controller's real-time loop would (interpolation/drive_output/realtime_player.hpp),
-// optionally passing each period on as a text line, and reports how punctually this computer kept the beat.
+// steps.bin at their servo rate, as a controller's real-time loop would
+// (interpolation/drive_output/realtime_player.hpp), optionally passing each period on as a text line, and
+// reports how punctually this computer kept the beat.
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
