@@ -84,7 +84,7 @@ Result<pipeline::InterpolateJob> interpolate_job(const InterpolateArguments& arg
   job.accel = args.accel == "linear" ? interpolation::RampShape::linear : interpolation::RampShape::s_curve;
   job.override_pct = args.override_pct;
   auto changes = interpolation::parse_override_changes(args.override_at);
-  if (!changes) return changes.error();
+  if (!changes) return Error{changes.error().code, "--override-at: " + changes.error().message};
   job.override_changes = *changes;
   options.estimating.deviation_mm = args.deviation_mm > 0.0 ? args.deviation_mm : args.rho_max_mm;
   if (args.candidates == "all-six" || args.candidates == "all") {

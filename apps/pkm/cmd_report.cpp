@@ -26,7 +26,10 @@ void add_report_command(CLI::App& app, int& exit_code) {
     const std::string file =
         out->empty() ? (std::filesystem::path(*directory) / "report.html").string() : *out;
     if (Status written = report::write_directory_report(*directory, file, *options); !written) {
-      exit_code = report_error("report", written.error());
+      Error error = written.error();
+      // The run's machine could not be had: say which option names another.
+      if (error.location.key == "machine") error.message += "; give it with --machine";
+      exit_code = report_error("report", error);
       return;
     }
     std::cout << fmt::format("report: {}\n", file);

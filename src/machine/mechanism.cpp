@@ -38,7 +38,7 @@ std::optional<MechanismType> mechanism_type_from_string(std::string_view name) {
 Result<std::vector<FkSolution>> Mechanism::forward_all(const ActuatorVector&, const FkOptions&) const {
   return make_error(
       ErrorCode::unsupported,
-      fmt::format("{} mechanisms do not enumerate assembly modes; give --guess instead of --all",
+      fmt::format("{} mechanisms do not enumerate assembly modes; solve from a guess pose instead",
                   to_string(type())));
 }
 

@@ -293,7 +293,7 @@ Status Interpreter::set_tool_length(const Block& b, const LineRef& where) {
     if (tool > 0) {
       if (!tools_)
         return gcode::error_at(where, column,
-                               fmt::format("G43 for tool {} needs a tool table (--tool-table)", tool));
+                               fmt::format("G43 for tool {} needs a tool table, and none was given", tool));
       const ToolEntry* entry = tools_->find(tool);
       if (!entry)
         return gcode::error_at(

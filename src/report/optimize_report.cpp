@@ -135,7 +135,9 @@ Result<nlohmann::json> optimize_report(const Machine& machine, const program::Ca
                               fmt::format("{} → {}", with_unit(number("energy_const_J"), "J"),
                                           with_unit(number("energy_opt_J"), "J"))));
   } else {
-    table.push_back(table_row("Strut forces and energy", "no load and no masses: none (--load, masses:)"));
+    table.push_back(
+        table_row("Strut forces and energy",
+                  "no load and no masses: none (give a load file or the machine file's masses:)"));
   }
   table.push_back(table_row("Duration at the programmed feed", with_unit(time_s.back(), "s")));
   table.push_back(table_row("Output program", output_file));

@@ -161,15 +161,21 @@ Result<nlohmann::json> report_from_directory(const std::string& directory, const
   std::string machine_file = options.machine_file;
   if (machine_file.empty()) {
     if (!summary.contains("machine") || !summary["machine"].is_string()) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("{}: machine: missing; give --machine", summary_path.string()));
+      Error error =
+          make_error(ErrorCode::bad_input,
+                     fmt::format("{}: machine: missing; name the machine file", summary_path.string()));
+      error.location = ErrorLocation{summary_path.string(), 0, 0, "machine"};  // the caller may name the flag
+      return error;
     }
     machine_file = summary["machine"].get<std::string>();
   }
   auto machine = load_machine_file(machine_file);
   if (!machine) {
-    return make_error(machine.error().code, fmt::format("{} (the machine of {}; give --machine)",
-                                                        machine.error().message, summary_path.string()));
+    Error error =
+        make_error(machine.error().code, fmt::format("{} (the machine of {}; name another machine file)",
+                                                     machine.error().message, summary_path.string()));
+    error.location = ErrorLocation{summary_path.string(), 0, 0, "machine"};
+    return error;
   }
   RunFiles files{directory, summary,
                  options.program_file.empty() && summary.contains("program")

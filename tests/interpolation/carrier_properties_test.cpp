@@ -200,7 +200,8 @@ TEST(FeedOverride, ParsesChangesAndRejectsBadOnes) {
   for (const char* bad : {"1:250", "x:50", "1", "2:50,1:60", "1:50%"}) {
     auto parsed = interpolation::parse_override_changes(bad);
     ASSERT_FALSE(parsed) << bad;
-    EXPECT_NE(parsed.error().message.find("--override-at"), std::string::npos);
+    EXPECT_NE(parsed.error().message.find("override change"), std::string::npos) << "a parameter, not a flag";
+    EXPECT_EQ(parsed.error().message.find("--"), std::string::npos) << parsed.error().message;
   }
 }
 

@@ -28,12 +28,13 @@ Result<std::vector<OverrideChange>> parse_override_changes(const std::string& te
         !(change.time_s >= 0.0) || !(change.percent >= 0.0 && change.percent <= 200.0)) {
       return Error{
           ErrorCode::bad_input,
-          fmt::format("--override-at: '{}' is not TIME_S:PERCENT with time ≥ 0 s and 0…200 %", item)};
+          fmt::format("override change '{}' is not TIME_S:PERCENT with time ≥ 0 s and 0…200 %", item)};
     }
     if (!changes.empty() && change.time_s < changes.back().time_s) {
       return Error{
           ErrorCode::bad_input,
-          fmt::format("--override-at: '{}' comes before the previous change; give them in time order", item)};
+          fmt::format("override change '{}' comes before the previous change; give them in time order",
+                      item)};
     }
     changes.push_back(change);
   }
