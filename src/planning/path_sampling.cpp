@@ -36,44 +36,98 @@ Error at_line(const program::CanonicalProgram& program, int line, const Error& e
                ErrorLocation{program.source, line, 0, ""}};
 }
 
-/// Sample positions: every segment split into pieces no longer than `spacing` (arcs: at most 5° each,
-/// blends: at least 4 pieces, the platform: at most 1° of turning each); the segment ends are samples.
+/// Fractions of a blend's length at which to sample it, in increasing order, without 0 (the segment's start
+/// is a sample already) and with 1. A near-reversal turns almost all its angle in a short stretch around its
+/// middle, where the cross-fade is slow: samples equally spaced in length (≤ 3° of turning each on average)
+/// left two samples in that stretch, and the actuator curvature between them was underestimated by half
+/// (a hexaglide reached 3015 of its 3000 mm/s²). So the need of each interval between the knots of the
+/// blend's arc-length table (uniform in the cross-fade parameter, path.hpp) is measured: its turning in
+/// 3° of the tool point's direction, in 1° of the platform's, its length in `spacing`; and the samples split
+/// the blend into at least 4 pieces of equal need.
+void blend_sample_fractions(const path::Path& path, int index, double spacing, std::vector<double>& out) {
+  const path::Segment& seg = path.segments[index];
+  const path::BlendTable& table = path.blend_tables[seg.blend];
+  std::array<path::PathPoint, path::kBlendKnots> knot;
+  for (int k = 0; k < path::kBlendKnots; ++k)
+    knot[k] = path.evaluate(index, seg.s_start + seg.length * table.s[k]);
+  // Turning at knot k between the chords on either side, shared by the two intervals that meet there.
+  std::array<double, path::kBlendKnots - 1> turn_rad{};
+  for (int k = 1; k + 1 < path::kBlendKnots; ++k) {
+    const Eigen::Vector3d before = knot[k].position_mm - knot[k - 1].position_mm;
+    const Eigen::Vector3d after = knot[k + 1].position_mm - knot[k].position_mm;
+    if (before.norm() > 0.0 && after.norm() > 0.0) {
+      const double angle = std::atan2(before.cross(after).norm(), before.dot(after));
+      turn_rad[k - 1] += 0.5 * angle;
+      turn_rad[k] += 0.5 * angle;
+    }
+  }
+  // How many pieces each interval needs (fractional), then pieces of equal need: dense where the blend turns.
+  std::array<double, path::kBlendKnots> cumulative{};
+  for (int k = 0; k + 1 < path::kBlendKnots; ++k) {
+    const double rotation_rad = knot[k].rotation.angularDistance(knot[k + 1].rotation);
+    const double need = std::max({seg.length * (table.s[k + 1] - table.s[k]) / spacing,
+                                  turn_rad[k] / rad_from_deg(3.0), rotation_rad / rad_from_deg(1.0)});
+    cumulative[k + 1] = cumulative[k] + need;
+  }
+  const double total = cumulative.back();
+  const int pieces = std::max(4, static_cast<int>(std::ceil(total)));
+  out.clear();
+  int k = 0;
+  for (int i = 1; i < pieces; ++i) {
+    if (!(total > 0.0)) {
+      out.push_back(static_cast<double>(i) / pieces);
+      continue;
+    }
+    const double target = total * i / pieces;
+    while (k + 2 < path::kBlendKnots && cumulative[k + 1] < target) ++k;
+    const double width = cumulative[k + 1] - cumulative[k];
+    const double t = width > 0.0 ? (target - cumulative[k]) / width : 0.0;
+    out.push_back(table.s[k] + (table.s[k + 1] - table.s[k]) * t);
+  }
+  out.push_back(1.0);
+}
+
+/// Sample positions: every segment split into pieces no longer than `spacing` (arcs: at most 5° each, the
+/// platform: at most 1° of turning each; blends: blend_sample_fractions); the segment ends are samples.
 void place_samples(const path::Path& path, double spacing, ProfileSamples& samples,
                    std::vector<int>& segment) {
   samples.s.clear();
   segment.clear();
   samples.s.reserve(path.segments.size() * 3 + 1);
   segment.reserve(path.segments.size() * 3 + 1);
+  std::vector<double> fractions;
+  auto add = [&](double s, int k) {
+    if (!samples.s.empty() && s <= samples.s.back()) return;
+    samples.s.push_back(s);
+    segment.push_back(k);
+  };
   for (int k = 0; k < static_cast<int>(path.segments.size()); ++k) {
     const path::Segment& seg = path.segments[k];
+    if (seg.is_blend()) {
+      add(seg.s_start, k);
+      blend_sample_fractions(path, k, spacing, fractions);
+      fractions.pop_back();  // the end is the next segment's start
+      for (double f : fractions) add(seg.s_start + seg.length * f, k);
+      continue;
+    }
     int pieces = static_cast<int>(std::ceil(seg.length / spacing));
     const path::Curve& curve = path.curves[seg.curve_a];
-    if (!seg.is_blend() && curve.kind == path::CurveKind::helix) {
+    if (curve.kind == path::CurveKind::helix) {
       const double sweep = curve.sweep_rad * (seg.fa1 - seg.fa0);
       pieces = std::max(pieces, static_cast<int>(std::ceil(sweep / rad_from_deg(5.0))));
     }
-    // A blend's curvature peaks in its middle, the sharper the corner the higher: enough samples to see it.
-    if (seg.is_blend())
-      pieces = std::max({pieces, 4, static_cast<int>(std::ceil(seg.turn_rad / rad_from_deg(3.0)))});
     // The platform's turning bends the actuator curves as much as the tool point's path does (more, where the
     // tool point hardly moves while the platform tilts): at most 1° of turning per piece.
-    const double turned_rad =
-        seg.is_blend() ? curve.rotation(seg.fa0).angularDistance(path.curves[seg.curve_b].rotation(seg.fb1))
-                       : curve.rotation_angle_rad * (seg.fa1 - seg.fa0);
+    const double turned_rad = curve.rotation_angle_rad * (seg.fa1 - seg.fa0);
     pieces = std::max(pieces, static_cast<int>(std::ceil(turned_rad / rad_from_deg(1.0))));
     // A move that starts and ends at rest (between two exact stops, as a short step between reversals) needs
     // a sample inside, where the profile turns from speeding up to braking: two samples both at rest would
     // have the motion cover the move in no time. Three inside: such moves are short and their actuator
     // derivatives come from few samples (a 0.01 mm 5-axis back-step was 6 % over its estimate with one).
     const bool starts_at_rest = k == 0 || path.segments[k - 1].stop_after;
-    if (!seg.is_blend() && starts_at_rest && seg.stop_after) pieces = std::max(pieces, 4);
+    if (starts_at_rest && seg.stop_after) pieces = std::max(pieces, 4);
     pieces = std::max(pieces, 1);
-    for (int i = 0; i < pieces; ++i) {
-      const double s = seg.s_start + seg.length * i / pieces;
-      if (!samples.s.empty() && s <= samples.s.back()) continue;
-      samples.s.push_back(s);
-      segment.push_back(k);
-    }
+    for (int i = 0; i < pieces; ++i) add(seg.s_start + seg.length * i / pieces, k);
   }
   const double end = path.length();
   if (samples.s.empty() || end > samples.s.back()) {

@@ -87,8 +87,7 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   auto sampled = sample_path(machine, program, plan.path, sampling, plan.samples, plan.sample_segment);
   if (!sampled) return sampled.error();
 
-  plan_speeds(plan.samples);
-  erode_caps(plan.samples, window_s, motion.path_accel_mm_s2, 0.0);
+  erode_caps(plan.samples, window_s, 0.0);
   plan_speeds(plan.samples);
   plan.timed = time_profile(plan.samples);
   const long last_tick =

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
+#include <functional>
 #include <limits>
+#include <queue>
+#include <utility>
 
 namespace pkm::planning {
 
@@ -33,65 +35,49 @@ void plan_speeds(ProfileSamples& p) {
   }
 }
 
-namespace {
-
-/// Sliding-window minimum over windows [lo_i, hi_i] of sample indices, both non-decreasing in i.
-std::vector<double> window_minimum(const std::vector<double>& values, const std::vector<std::size_t>& lo,
-                                   const std::vector<std::size_t>& hi) {
-  const std::size_t n = values.size();
-  std::vector<double> out(n);
-  std::deque<std::size_t> window;  // indices with increasing values
-  std::size_t next = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    while (next <= hi[i] && next < n) {
-      while (!window.empty() && values[window.back()] >= values[next]) window.pop_back();
-      window.push_back(next++);
-    }
-    while (window.front() < lo[i]) window.pop_front();
-    out[i] = values[window.front()];
-  }
-  return out;
-}
-
-}  // namespace
-
-void erode_caps(ProfileSamples& p, double window_s, double accel_max, double margin) {
+void erode_caps(ProfileSamples& p, double window_s, double margin) {
   const std::size_t n = p.size();
   if (n == 0 || window_s <= 0.0) return;
-  // Reach of the window around sample i, as index ranges made monotone by widening (conservative).
-  std::vector<std::size_t> lo(n), hi(n);
+  // Sample j's cap V_j spreads over [s_j − T·V_j − margin, s_j + T·V_j + margin], one more sample on each
+  // side (caps hold at samples, the reach ends between them), and never across a stop.
+  std::vector<std::size_t> lo(n), hi(n), previous_stop(n), next_stop(n);
+  for (std::size_t i = 0, last = 0; i < n; ++i) previous_stop[i] = last = p.stop[i] ? i : last;
+  for (std::size_t i = n, next = n - 1; i-- > 0;) next_stop[i] = next = p.stop[i] ? i : next;
+  std::vector<std::size_t> order;
+  order.reserve(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (p.stop[j]) continue;  // a stop's zero cap is met by its rest, not by slowing its neighbours
+    const double reach = window_s * p.speed_cap[j] + margin;
+    std::size_t l =
+        static_cast<std::size_t>(std::lower_bound(p.s.begin(), p.s.end(), p.s[j] - reach) - p.s.begin());
+    std::size_t h =
+        static_cast<std::size_t>(std::upper_bound(p.s.begin(), p.s.end(), p.s[j] + reach) - p.s.begin());
+    if (l > 0) --l;
+    if (h >= n) h = n - 1;
+    lo[j] = std::max(l, previous_stop[j]);
+    hi[j] = std::min(h, next_stop[j]);
+    order.push_back(j);
+  }
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo[a] < lo[b]; });
+  // Sweep: at sample i the smallest speed and acceleration caps of the spreads that cover it (heaps of
+  // (cap, last covered sample), stale tops dropped as the sweep passes them).
+  using Spread = std::pair<double, std::size_t>;
+  std::priority_queue<Spread, std::vector<Spread>, std::greater<>> speed, accel;
+  std::vector<double> speed_cap(n), accel_cap(n);
+  std::size_t next = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    // Within one window the speed differs from v_i by at most a·T, so the window spans at most
-    // T·v_i + a·T²/2 of path on either side of s_i.
-    const double reach = window_s * p.speed[i] + 0.5 * accel_max * window_s * window_s + margin;
-    lo[i] = static_cast<std::size_t>(std::lower_bound(p.s.begin(), p.s.end(), p.s[i] - reach) - p.s.begin());
-    hi[i] = static_cast<std::size_t>(std::upper_bound(p.s.begin(), p.s.end(), p.s[i] + reach) - p.s.begin());
-    // One more sample on each side: caps hold at samples, the window's ends fall between them.
-    if (lo[i] > 0) --lo[i];
-    if (hi[i] >= n) hi[i] = n - 1;
+    for (; next < order.size() && lo[order[next]] <= i; ++next) {
+      speed.emplace(p.speed_cap[order[next]], hi[order[next]]);
+      accel.emplace(p.accel_cap[order[next]], hi[order[next]]);
+    }
+    while (!speed.empty() && speed.top().second < i) speed.pop();
+    while (!accel.empty() && accel.top().second < i) accel.pop();
+    speed_cap[i] =
+        p.stop[i] ? 0.0 : (speed.empty() ? p.speed_cap[i] : std::min(p.speed_cap[i], speed.top().first));
+    accel_cap[i] = accel.empty() ? p.accel_cap[i] : std::min(p.accel_cap[i], accel.top().first);
   }
-  for (std::size_t i = n - 1; i-- > 0;) lo[i] = std::min(lo[i], lo[i + 1]);
-  for (std::size_t i = 1; i < n; ++i) hi[i] = std::max(hi[i], hi[i - 1]);
-  // Clip at the stops around each sample (both bounds stay non-decreasing).
-  std::size_t last_stop = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (p.stop[i]) last_stop = i;
-    lo[i] = std::max(lo[i], last_stop);
-  }
-  std::size_t next_stop = n - 1;
-  for (std::size_t i = n; i-- > 0;) {
-    if (p.stop[i]) next_stop = i;
-    hi[i] = std::min(hi[i], next_stop);
-  }
-  std::vector<double> caps = p.speed_cap;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (p.stop[i]) caps[i] = std::numeric_limits<double>::infinity();
-  }
-  p.speed_cap = window_minimum(caps, lo, hi);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (p.stop[i]) p.speed_cap[i] = 0.0;
-  }
-  p.accel_cap = window_minimum(p.accel_cap, lo, hi);
+  p.speed_cap = std::move(speed_cap);
+  p.accel_cap = std::move(accel_cap);
 }
 
 TimedProfile time_profile(const ProfileSamples& p) {

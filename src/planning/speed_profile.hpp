@@ -29,11 +29,15 @@ struct ProfileSamples {
 /// Forward and backward passes: fills `speed` from the caps (v = 0 at the first and last sample).
 void plan_speeds(ProfileSamples& samples);
 
-/// Lowers every cap to the smallest one within ±(T·v_i + a_max·T²/2 + margin) of the sample, where v_i is the
-/// current plan: afterwards a window-T moving average of any profile below the caps is below them too.
-/// Windows never reach across a stop: the profile rests there for T, so no filter window holds motion from
-/// both sides; and a stop's own zero cap is met by that rest, not by slowing its neighbours.
-void erode_caps(ProfileSamples& samples, double window_s, double accel_max, double margin);
+/// Lowers the caps so that a window-T moving average of any profile below them stays below the caps given:
+/// sample j's speed cap V_j (and its acceleration cap) spreads over the path within T·V_j + margin of s_j.
+/// That reach is enough: a profile no faster than V_j there needs at least T to cross it, so when the
+/// filtered position is at s_j the whole window lies inside it, and the window's average is at most V_j. (It
+/// depends on the cap, not on the plan: a reach from the unfiltered plan's speed, T·v + a·T²/2, slowed a
+/// whole rapid to the speed of a slow corner 17 mm ahead.) Spreads never cross a stop: the profile rests
+/// there for T, so no filter window holds motion from both sides; and a stop's own zero cap is met by that
+/// rest, not by slowing its neighbours.
+void erode_caps(ProfileSamples& samples, double window_s, double margin);
 
 /// The unfiltered motion in time: at sample i the profile is at s_i with speed v_i at time `time_s[i]`; after
 /// holding `hold_s[i]` it leaves with constant acceleration to sample i+1.

@@ -86,8 +86,10 @@ bool CarrierInterpolator::next(CarrierPeriod& period) {
     }
     period.chord_error = chord;
     if (settings_.chord_check && chord > settings_.strut_tolerance) {
-      // eq. 159: the chord error is quadratic in the piece's length.
-      scale = std::min(scale, kCarrierChordReserve * std::sqrt(settings_.strut_tolerance / chord));
+      // eq. 159: the chord error is quadratic in the piece's length. Where that did not hold twice (a
+      // corner of the path inside the piece, where the law kinks, makes it linear), shorten linearly.
+      const double ratio = settings_.strut_tolerance / chord;
+      scale = std::min(scale, kCarrierChordReserve * (attempt < 2 ? std::sqrt(ratio) : ratio));
       period.reduced_by_chord = true;
     }
     if (scale >= 1.0 || attempt == kCarrierShortenings) break;
