@@ -153,5 +153,41 @@ TEST(GeneratedPrograms, TheNoisyCircleWithNearReversalsPlans) {
   check_generated_program(machine, run);
 }
 
+// From the nightly run (hexaglide program 223 of 300): a 5-axis spiral with a 171° near-reversal between two
+// 0.2 mm moves while the platform tilts. The blend turns almost all of its angle in a short stretch
+// mid-blend; samples equally spaced along it left two there, the actuator curvature was underestimated by
+// half, and a carriage reached 3110 of its 3000 mm/s². The rapid before it crept at the corner's 0.35 mm/s
+// for 15 mm (the filter erosion reached T·v + a·T²/2 from the unfiltered plan): 28 s for what now takes 2.5
+// s.
+TEST(GeneratedPrograms, AHexaglideNearReversalWithTiltStaysWithinTheCarriageAcceleration) {
+  const Machine machine = test::machine_from_example("examples/machines/hexaglide.yaml");
+  GeneratedRun run;
+  run.label = "hexaglide near-reversal";
+  run.text =
+      "G21 G90 G17 G94\nG1 F1021.6\n"
+      "G0 X-18.7933 Y-2.1747 Z0.0010 A-4.9667 B-0.5763\n"
+      "G1 X-18.7624 Y-2.3951 Z0.0010 A-4.9600 B-0.6314\n"
+      "G1 X-18.7309 Y-2.6049 Z0.0010 A-4.9526 B-0.6865\n"
+      "G1 X-18.6863 Y-2.8002 Z0.0010 A-4.9447 B-0.7416\n"
+      "G1 X-18.6340 Y-2.9852 Z0.0010 A-4.9362 B-0.7965\n"
+      "G1 X-18.6632 Y-2.7560 Z0.0010 A-4.9270 B-0.8513\n"
+      "G1 X-18.5949 Y-3.1992 Z0.0010 A-4.9270 B-0.8513\n"
+      "G1 X-18.5368 Y-3.4108 Z0.0010 A-4.9172 B-0.9060\n"
+      "G1 X-18.5072 Y-3.6270 Z0.0010 A-4.9069 B-0.9606\n"
+      "G1 X-18.4451 Y-3.8179 Z0.0010 A-4.8959 B-1.0151\nM2\n";
+  check_generated_program(machine, run);
+  const planning::ProgramStart start = planning::program_start(machine);
+  program::InterpretOptions interpret;
+  interpret.start_mm = start.start_mm;
+  interpret.start_abc_deg = start.start_abc_deg;
+  auto program = program::interpret_gcode(run.text, "near_reversal.ngc", interpret);
+  ASSERT_TRUE(program.ok());
+  planning::PlanOptions options;
+  options.path_tolerance_mm = run.tolerance_mm;
+  auto plan = planning::plan_motion(machine, program.value(), options);
+  ASSERT_TRUE(plan.ok());
+  EXPECT_LT(plan->duration_s, 10.0) << "the rapid creeps at the speed of the corner ahead";
+}
+
 }  // namespace
 }  // namespace pkm
