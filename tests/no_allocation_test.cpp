@@ -127,6 +127,7 @@ TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
     const FkOptions options;
     std::array<double, kMaxActuators> hot{};
     JacobianMatrix twist;
+    TwistBasis basis;
     const long before = g_allocations.load();
     Pose previous = mech.home();
     for (int i = 0; i < kPoses; ++i) {
@@ -137,6 +138,8 @@ TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
       for (int j = 0; j < n; ++j) ASSERT_NEAR(hot[j], values[i][j], 1e-12) << file;
       ASSERT_TRUE(mech.twist_jacobian(poses[i], twist)) << file;
       ASSERT_EQ(twist.rows(), n);
+      ASSERT_TRUE(mech.controlled_twists(poses[i], basis)) << file;
+      ASSERT_EQ(basis.cols(), mask.count());
     }
     workspace->forget_path();
     workspace->reset();

@@ -47,23 +47,20 @@ Result<std::vector<double>> parse_number_list(std::string_view text, std::string
 
 Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double>& values,
                             std::string_view field) {
-  const MechanismType type = mechanism.type();
   PoseVector c = PoseVector::Zero();
   const AxisMask mask = mechanism.controlled_axes();
   const auto names = controlled_coordinate_names(mechanism);
-  if (type == MechanismType::planar2 || type == MechanismType::planar3) {
-    const std::size_t n = type == MechanismType::planar2 ? 2 : 3;
-    if (values.size() != n) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("{}: a {} pose is {} numbers ({}), got {}", field, to_string(type), n,
-                                    fmt::join(names, ","), values.size()));
-    }
-    c[0] = values[0];
-    c[1] = values[1];
-    if (n == 3) c[5] = rad_from_deg(values[2]);
-  } else if (values.size() == 6) {
+  // A planar pose is its controlled coordinates only (x, y and, where controlled, φ); a spatial one is all
+  // six, or the controlled ones of a reduced-DOF mechanism.
+  const bool controlled_only = static_cast<int>(values.size()) == mask.count();
+  if (mechanism.is_planar() && !controlled_only) {
+    return make_error(ErrorCode::bad_input, fmt::format("{}: a {} pose is {} numbers ({}), got {}", field,
+                                                        to_string(mechanism.type()), mask.count(),
+                                                        fmt::join(names, ","), values.size()));
+  }
+  if (values.size() == 6 && !mechanism.is_planar()) {
     for (int i = 0; i < 6; ++i) c[i] = i < 3 ? values[i] : rad_from_deg(values[i]);
-  } else if (static_cast<int>(values.size()) == mask.count()) {
+  } else if (controlled_only) {
     int k = 0;
     for (int i = 0; i < 6; ++i) {
       if (mask.controlled[i]) c[i] = i < 3 ? values[k++] : rad_from_deg(values[k++]);
@@ -83,15 +80,14 @@ Result<Pose> pose_from_user(const Mechanism& mechanism, const std::vector<double
 std::vector<double> user_from_pose(const Mechanism& mechanism, const Pose& pose) {
   // "+ 0.0" turns a negative zero into zero, so users never see "-0.00".
   const PoseVector c = vector_from_pose(mechanism.convention(), pose).array() + 0.0;
-  switch (mechanism.type()) {
-    case MechanismType::planar2:
-      return {c[0], c[1]};
-    case MechanismType::planar3:
-      return {c[0], c[1], deg_from_rad(c[5])};
-    default:
-      break;
+  std::vector<double> out;
+  const AxisMask mask = mechanism.controlled_axes();
+  for (int i = 0; i < 6; ++i) {
+    // Planar mechanisms show their controlled coordinates only; spatial ones the whole pose.
+    if (mechanism.is_planar() && !mask.controlled[i]) continue;
+    out.push_back(i < 3 ? c[i] : deg_from_rad(c[i]));
   }
-  return {c[0], c[1], c[2], deg_from_rad(c[3]), deg_from_rad(c[4]), deg_from_rad(c[5])};
+  return out;
 }
 
 Result<ActuatorVector> actuators_from_user(const Mechanism& mechanism, const std::vector<double>& values,

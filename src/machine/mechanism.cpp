@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "core/rotation.hpp"
+
 namespace pkm {
 
 std::string_view to_string(MechanismType type) {
@@ -55,6 +57,25 @@ bool Mechanism::actuator_values(const Pose& pose, double* out) const noexcept {
   auto values = inverse(pose);
   if (!values) return false;
   for (int j = 0; j < values->size(); ++j) out[j] = (*values)[j];
+  return true;
+}
+
+Eigen::Matrix<double, 6, 6> coordinate_twists(AngleConvention convention, const Pose& pose) noexcept {
+  Eigen::Matrix<double, 6, 6> t = Eigen::Matrix<double, 6, 6>::Zero();
+  t.topLeftCorner<3, 3>().setIdentity();
+  t.bottomRightCorner<3, 3>() =
+      angular_velocity_matrix(convention, angles_from_rotation(convention, pose.rotation));
+  return t;
+}
+
+bool Mechanism::controlled_twists(const Pose& pose, TwistBasis& out) const noexcept {
+  const Eigen::Matrix<double, 6, 6> all = coordinate_twists(convention(), pose);
+  const AxisMask mask = controlled_axes();
+  out.resize(6, mask.count());
+  int column = 0;
+  for (int axis = 0; axis < 6; ++axis) {
+    if (mask.controlled[axis]) out.col(column++) = all.col(axis);
+  }
   return true;
 }
 

@@ -24,6 +24,9 @@ constexpr int kMaxActuators = 6;
 using ActuatorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1>;
 /// Actuator rates from controlled-coordinate rates: rows = actuators, columns = controlled coordinates.
 using JacobianMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxActuators, 6>;
+/// Platform twists per unit rate of each controlled coordinate: 6 × (controlled coordinates), rows
+/// (v mm, ω rad) per mm or rad of the coordinate (Mechanism::controlled_twists).
+using TwistBasis = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
 
 /// Which of the six pose coordinates a mechanism controls (x, y, z, angle 1, angle 2, angle 3).
 struct AxisMask {
@@ -140,6 +143,15 @@ class Mechanism {
   /// twists the mechanism allows are meaningful. Writes `out` and returns true; false when the pose is out of
   /// reach, or when the mechanism has no twist form (the default). Never allocates.
   virtual bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept;
+  /// How the platform moves when one controlled coordinate changes: column c is the twist (tool-point
+  /// velocity v, base-frame angular velocity ω) per unit rate of the c-th controlled coordinate, in the
+  /// column order of jacobian(). The coordinates a reduced-DOF mechanism does not control follow through its
+  /// constraints (differentiated, not stepped), so these are the twists it allows: twist_jacobian() · T =
+  /// jacobian(), and Tᵀ turns a wrench into generalised forces (statics, dynamics). The default, for
+  /// mechanisms whose uncontrolled coordinates stay fixed: [I 0; 0 E(angles)] restricted to the controlled
+  /// coordinates (ω = E · angle rates, core/rotation.hpp). False when the pose is out of reach or the
+  /// constraints are singular there. Never allocates.
+  virtual bool controlled_twists(const Pose& pose, TwistBasis& out) const noexcept;
   /// The passive joints at both ends of every strut at `pose` (reduced-DOF mechanisms complete the pose
   /// first). Returns the number of struts filled in, 0 for mechanisms without swinging passive joints (planar
   /// pin joints), −1 when the pose is out of reach (a carriage cannot reach its strut, or the pose cannot be
@@ -197,6 +209,10 @@ bool joint_gradient_twist_jacobian(const Pose& pose, int count, const Joints& pl
   }
   return true;
 }
+
+/// The twists per unit rate of all six pose coordinates at `pose`: [I 0; 0 E(angles)] (6 × 6), with E the
+/// angular-velocity matrix of the convention. For Mechanism::controlled_twists overrides.
+Eigen::Matrix<double, 6, 6> coordinate_twists(AngleConvention convention, const Pose& pose) noexcept;
 
 /// The error of a forward-kinematics solve that found `solution` in another assembly mode than its guess's.
 Error another_assembly_mode_error(const Pose& solution);

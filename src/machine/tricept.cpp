@@ -56,23 +56,35 @@ bool Tricept::axis_of(const Eigen::Vector3d& p, TriceptAxis& axis) const noexcep
   return true;
 }
 
+Eigen::Matrix3d Tricept::angular_rate_per_tool_velocity(const Eigen::Vector3d& p,
+                                                        const TriceptAxis& axis) const noexcept {
+  // ω = α̇·e_x + β̇·Rx(α)e_y with ∇α, ∇β from (34), (35).
+  const Eigen::Vector3d r = p - geometry_.center_joint_mm;
+  const double yz_sq = r.y() * r.y() + r.z() * r.z();
+  const double s = std::sqrt(yz_sq);
+  const double d_sq = yz_sq + r.x() * r.x();
+  const Eigen::Vector3d grad_alpha(0.0, -r.z() / yz_sq, r.y() / yz_sq);
+  const Eigen::Vector3d grad_beta(s / d_sq, -r.x() * r.y() / (s * d_sq), -r.x() * r.z() / (s * d_sq));
+  return Eigen::Vector3d::UnitX() * grad_alpha.transpose() +
+         rot_x(axis.alpha_rad).col(1) * grad_beta.transpose();
+}
+
+bool Tricept::controlled_twists(const Pose& pose, TwistBasis& out) const noexcept {
+  TriceptAxis axis;
+  if (!axis_of(pose.position_mm, axis)) return false;
+  out.resize(6, 3);
+  out.topRows<3>().setIdentity();
+  out.bottomRows<3>() = angular_rate_per_tool_velocity(pose.position_mm, axis);
+  return true;
+}
+
 bool Tricept::evaluate(const Eigen::Vector3d& p, Eigen::Vector3d& lengths_mm,
                        Eigen::Matrix3d* jacobian) const noexcept {
   TriceptAxis axis;
   if (!axis_of(p, axis)) return false;
-  const Eigen::Matrix3d rx = rot_x(axis.alpha_rad);
-  const Eigen::Matrix3d rotation = rx * rot_y(axis.beta_rad);  // (36): B = Rx(α)·Ry(β)
-  // Angular velocity per unit tool-point velocity: ω = α̇·e_x + β̇·Rx(α)e_y with ∇α, ∇β from (34), (35).
-  Eigen::Matrix3d omega = Eigen::Matrix3d::Zero();
-  if (jacobian != nullptr) {
-    const Eigen::Vector3d r = p - geometry_.center_joint_mm;
-    const double yz_sq = r.y() * r.y() + r.z() * r.z();
-    const double s = std::sqrt(yz_sq);
-    const double d_sq = yz_sq + r.x() * r.x();
-    const Eigen::Vector3d grad_alpha(0.0, -r.z() / yz_sq, r.y() / yz_sq);
-    const Eigen::Vector3d grad_beta(s / d_sq, -r.x() * r.y() / (s * d_sq), -r.x() * r.z() / (s * d_sq));
-    omega = Eigen::Vector3d::UnitX() * grad_alpha.transpose() + rx.col(1) * grad_beta.transpose();
-  }
+  const Eigen::Matrix3d rotation = rot_x(axis.alpha_rad) * rot_y(axis.beta_rad);  // (36): B = Rx(α)·Ry(β)
+  const Eigen::Matrix3d omega =
+      jacobian != nullptr ? angular_rate_per_tool_velocity(p, axis) : Eigen::Matrix3d::Zero();
   for (int j = 0; j < 3; ++j) {
     const Eigen::Vector3d arm = rotation * platform_tool_mm_[j];
     const Eigen::Vector3d strut = p + arm - geometry_.base_joints_mm[j];

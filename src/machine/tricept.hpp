@@ -54,6 +54,9 @@ class Tricept final : public Mechanism {
   /// The strut lengths' rows (u_j, (B_j − p) × u_j) at the completed pose. The platform can make only the
   /// twists its constraints allow (complete_pose); the rows hold for any twist, as if the platform were free.
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// The tool point is controlled; the platform turns with the manipulator axis: (I; Ω) with Ω the angular
+  /// velocity per unit tool-point velocity from (34)–(36).
+  bool controlled_twists(const Pose& pose, TwistBasis& out) const noexcept override;
   /// 3 × (U, P, S) + central leg (U, P) fixed to the flange.
   MechanismStructure structure() const override { return {"3-UPS + UP", false, 9, {4, 4, 3, 0, 0}, 0}; }
 
@@ -65,6 +68,9 @@ class Tricept final : public Mechanism {
   Tricept(const TriceptGeometry& geometry, AngleConvention convention);
 
   /// Strut lengths and dL/d(tool point) at a tool point; false when it is out of reach.
+  /// dω/dP: the platform's angular velocity per unit tool-point velocity along the manipulator axis.
+  Eigen::Matrix3d angular_rate_per_tool_velocity(const Eigen::Vector3d& tool_point_mm,
+                                                 const TriceptAxis& axis) const noexcept;
   bool evaluate(const Eigen::Vector3d& tool_point_mm, Eigen::Vector3d& lengths_mm,
                 Eigen::Matrix3d* jacobian) const noexcept;
 

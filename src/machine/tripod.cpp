@@ -10,7 +10,6 @@
 #include <cmath>
 
 #include "core/units.hpp"
-#include "kinematics/coordinate_jacobian.hpp"
 
 namespace pkm {
 namespace {
@@ -277,49 +276,82 @@ bool Tripod::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcep
   return strut_length_twist_jacobian(joints, 3, complete->position_mm, out);
 }
 
-Result<JacobianMatrix> Tripod::jacobian(const Pose& pose) const {
-  auto complete = complete_pose(pose);
-  if (!complete) return complete.error();
-  const Pose& p = *complete;
-  // Twist rows (v, ω about the tool point) of the lengths (29) and of the plane constraints (31).
-  JacobianMatrix length_twist(3, 6), plane_twist(3, 6);
+namespace {
+
+/// Twist rows (v, ω about the tool point) of the strut lengths (29) and of the plane constraints (31).
+bool tripod_twist_rows(const TripodGeometry& geometry, const Pose& p,
+                       Eigen::Matrix<double, 3, 6>& length_twist,
+                       Eigen::Matrix<double, 3, 6>& plane_twist) noexcept {
   for (int j = 0; j < 3; ++j) {
-    const Eigen::Vector3d arm = p.rotation * geometry_.platform_joints_mm[j];
-    const Eigen::Vector3d strut = arm + p.position_mm - geometry_.base_joints_mm[j];
+    const Eigen::Vector3d arm = p.rotation * geometry.platform_joints_mm[j];
+    const Eigen::Vector3d strut = arm + p.position_mm - geometry.base_joints_mm[j];
     const double length = strut.norm();
-    if (!(length > 0.0))
-      return make_error(ErrorCode::singular, fmt::format("strut {} has zero length", j + 1));
+    if (!(length > 0.0)) return false;
     const Eigen::Vector3d unit = strut / length;
     length_twist.block<1, 3>(j, 0) = unit.transpose();
     length_twist.block<1, 3>(j, 3) = arm.cross(unit).transpose();
-    plane_twist.block<1, 3>(j, 0) = geometry_.base_axes[j].transpose();
-    plane_twist.block<1, 3>(j, 3) = arm.cross(geometry_.base_axes[j]).transpose();
+    plane_twist.block<1, 3>(j, 0) = geometry.base_axes[j].transpose();
+    plane_twist.block<1, 3>(j, 3) = arm.cross(geometry.base_axes[j]).transpose();
   }
-  const Eigen::Vector3d angles = angles_from_rotation(convention_, p.rotation);
-  const JacobianMatrix dl = coordinate_jacobian(length_twist, convention_, angles, AxisMask::all());
-  const JacobianMatrix dg = coordinate_jacobian(plane_twist, convention_, angles, AxisMask::all());
-  // Implicit differentiation: g(q, d) = 0 ⇒ dd/dq = −(∂g/∂d)⁻¹ ∂g/∂q, and dL/dq = ∂L/∂q + ∂L/∂d · dd/dq.
+  return true;
+}
+
+}  // namespace
+
+bool Tripod::dependent_rates(const Pose& p, Eigen::Matrix<double, 6, 6>& coordinate_twist,
+                             Eigen::Matrix3d& dependent_per_controlled) const noexcept {
+  Eigen::Matrix<double, 3, 6> length_twist, plane_twist;
+  if (!tripod_twist_rows(geometry_, p, length_twist, plane_twist)) return false;
+  coordinate_twist = coordinate_twists(convention_, p);
+  const Eigen::Matrix<double, 3, 6> dg = plane_twist * coordinate_twist;
+  // Implicit differentiation: g(q, d) = 0 ⇒ dd/dq = −(∂g/∂d)⁻¹ ∂g/∂q.
   const AxisMask mask = controlled_axes();
-  Eigen::Matrix3d lq, ld, gq, gd;
+  Eigen::Matrix3d gq, gd;
   int nq = 0, nd = 0;
-  for (int i = 0; i < 6; ++i) {
-    if (mask.controlled[i]) {
-      lq.col(nq) = dl.col(i);
-      gq.col(nq++) = dg.col(i);
-    } else {
-      ld.col(nd) = dl.col(i);
-      gd.col(nd++) = dg.col(i);
-    }
-  }
+  for (int i = 0; i < 6; ++i) (mask.controlled[i] ? gq.col(nq++) : gd.col(nd++)) = dg.col(i);
   const Eigen::PartialPivLU<Eigen::Matrix3d> lu(gd);
-  if (!(lu.rcond() > 1e-12)) {
+  if (!(lu.rcond() > 1e-12)) return false;
+  dependent_per_controlled = -lu.solve(gq);
+  return true;
+}
+
+bool Tripod::controlled_twists(const Pose& pose, TwistBasis& out) const noexcept {
+  auto complete = complete_pose(pose);
+  if (!complete) return false;
+  Eigen::Matrix<double, 6, 6> all;
+  Eigen::Matrix3d dd_dq;
+  if (!dependent_rates(*complete, all, dd_dq)) return false;
+  const AxisMask mask = controlled_axes();
+  Eigen::Matrix<double, 6, 3> tq, td;
+  int nq = 0, nd = 0;
+  for (int i = 0; i < 6; ++i) (mask.controlled[i] ? tq.col(nq++) : td.col(nd++)) = all.col(i);
+  out.resize(6, 3);
+  out = tq + td * dd_dq;
+  return true;
+}
+
+Result<JacobianMatrix> Tripod::jacobian(const Pose& pose) const {
+  auto complete = complete_pose(pose);
+  if (!complete) return complete.error();
+  Eigen::Matrix<double, 3, 6> length_twist, plane_twist;
+  if (!tripod_twist_rows(geometry_, *complete, length_twist, plane_twist))
+    return make_error(ErrorCode::singular, "a strut has zero length");
+  Eigen::Matrix<double, 6, 6> all;
+  Eigen::Matrix3d dd_dq;
+  if (!dependent_rates(*complete, all, dd_dq)) {
     return make_error(
         ErrorCode::singular,
         "the revolute-plane constraints (31) are singular here: x, y and the yaw are not determined "
         "by z and the tilts (the two yaw branches meet)");
   }
+  // dL/dq = ∂L/∂q + ∂L/∂d · dd/dq.
+  const Eigen::Matrix<double, 3, 6> dl = length_twist * all;
+  const AxisMask mask = controlled_axes();
+  Eigen::Matrix3d lq, ld;
+  int nq = 0, nd = 0;
+  for (int i = 0; i < 6; ++i) (mask.controlled[i] ? lq.col(nq++) : ld.col(nd++)) = dl.col(i);
   JacobianMatrix out(3, 3);
-  out = lq - ld * lu.solve(gq);
+  out = lq + ld * dd_dq;
   return out;
 }
 

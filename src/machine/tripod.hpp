@@ -56,6 +56,8 @@ class Tripod final : public Mechanism {
   /// The strut lengths' rows (u_j, (B_j − p) × u_j) at the completed pose. The platform can make only the
   /// twists its constraints allow (complete_pose); the rows hold for any twist, as if the platform were free.
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
+  /// x, y and the yaw follow z and the tilts through the plane constraints (31), differentiated implicitly.
+  bool controlled_twists(const Pose& pose, TwistBasis& out) const noexcept override;
   /// 3 × (R, P, S).
   MechanismStructure structure() const override { return {"3-RPS", false, 8, {6, 0, 3, 0, 0}, 0}; }
 
@@ -70,6 +72,11 @@ class Tripod final : public Mechanism {
   double joint_angle_of(int j, const Eigen::Vector3d& point_mm) const noexcept;
   /// The rigid-body pose through three platform-joint positions (Eigen::umeyama on the three points).
   Pose pose_from_joints(const std::array<Eigen::Vector3d, 3>& joints_mm) const noexcept;
+  /// At a complete pose: the twists per unit rate of all six coordinates, and the rates of the dependent
+  /// coordinates (x, y, yaw) per unit rate of the controlled ones (z and the tilts). False where the plane
+  /// constraints are singular (the two yaw branches meet) or a strut has zero length.
+  bool dependent_rates(const Pose& complete, Eigen::Matrix<double, 6, 6>& coordinate_twist,
+                       Eigen::Matrix3d& dependent_per_controlled) const noexcept;
   /// FK residuals |B_i − B_k|² − d_ik² for the pairs (1,2), (2,3), (3,1) and their derivatives by t.
   void distance_equations(const Eigen::Vector3d& lengths_mm, const Eigen::Vector3d& angles_rad,
                           Eigen::Vector3d& f, Eigen::Matrix3d& df_dt) const noexcept;

@@ -9,20 +9,11 @@
 
 namespace pkm::statics {
 
-/// 6 × m, m = controlled coordinates (≤ 6); rows (v mm, ω rad) per (mm or rad) of coordinate.
-using TwistBasis = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+using pkm::TwistBasis;
 
-/// Finite-difference steps for mechanisms whose dependent coordinates move (tripod, tricept): central
-/// differences of Mechanism::complete_pose, error O(h²) ≈ 1e-12 relative at machine sizes, rounding ≈ 1e-10.
-constexpr double kTwistStepMm = 1e-3;
-constexpr double kTwistStepRad = 1e-5;
-
-/// T_c at a completed pose, columns in the order of Mechanism::jacobian (the controlled coordinates).
-///  - all six coordinates controlled: analytic [I 0; 0 E(angles)] (E: rotation.hpp, ω = E · angle rates);
-///  - planar mechanisms: the same columns for x, y and φ (rotation about z); the others are fixed;
-///  - other reduced-DOF mechanisms: central differences of complete_pose, since x, y, or the angles follow
-///    the controlled coordinates through the mechanism's constraints.
-/// Fails when a perturbed pose cannot be completed (the pose is at the edge of the workspace).
+/// T_c at a completed pose, columns in the order of Mechanism::jacobian (the controlled coordinates), from
+/// Mechanism::controlled_twists (analytic for every mechanism: the tripod and tricept differentiate their
+/// constraints). Fails, with a message, where the mechanism cannot give it.
 Result<TwistBasis> controlled_twist_basis(const Mechanism& mechanism, const Pose& completed_pose);
 
 }  // namespace pkm::statics

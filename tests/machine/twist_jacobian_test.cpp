@@ -1,9 +1,12 @@
 // Mechanism::twist_jacobian against Mechanism::jacobian on every shipped machine (a cross-algorithm check):
 // the coordinate Jacobian is the twist Jacobian times the twist of each controlled coordinate,
-// J_c = J_t · T_c (statics/coordinate_twist.hpp: analytic for six-coordinate and planar mechanisms, central
-// differences of complete_pose for the tripod and tricept).
+// J_c = J_t · T_c (Mechanism::controlled_twists); and T_c of the mechanisms whose dependent coordinates move
+// (tripod, tricept: their constraints differentiated) against central differences of complete_pose.
 #include <gtest/gtest.h>
 
+#include <random>
+
+#include "core/rotation.hpp"
 #include "statics/actuator_forces.hpp"
 #include "statics/coordinate_twist.hpp"
 #include "test_support.hpp"
@@ -33,12 +36,56 @@ TEST(TwistJacobian, TimesTheControlledTwistsIsTheCoordinateJacobianOnEveryShippe
     const auto basis = statics::controlled_twist_basis(mech, pose);
     ASSERT_TRUE(basis.ok()) << basis.error().message;
     const JacobianMatrix product = twist * *basis;
-    // Central differences (tripod, tricept) leave ~1e-10 relative; the analytic cases agree to round-off.
-    constexpr double kAgreement = 1e-8;
+    constexpr double kAgreement = 1e-10;
     EXPECT_LE((product - *coordinate).cwiseAbs().maxCoeff(), kAgreement * coordinate->cwiseAbs().maxCoeff())
         << "twist·T_c:\n"
         << product << "\njacobian:\n"
         << *coordinate;
+  }
+}
+
+// Column c of T_c against the central difference of complete_pose over ±h in controlled coordinate c (the
+// twist of R₊R₋ᵀ = exp([ω]× 2h) + O(h³)), at random poses around home.
+TEST(TwistJacobian, ControlledTwistsAreTheDerivativesOfCompletePose) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> shift(-20.0, 20.0), tilt(-0.08, 0.08);
+  for (const char* file : {"tripod.yaml", "tricept.yaml"}) {
+    const Machine m = test::machine_from_example(std::string("examples/machines/") + file);
+    const Mechanism& mech = *m.mechanism;
+    const AxisMask mask = mech.controlled_axes();
+    for (int trial = 0; trial < 20; ++trial) {
+      SCOPED_TRACE(std::string(file) + " trial " + std::to_string(trial));
+      PoseVector c = vector_from_pose(mech.convention(), mech.home());
+      for (int axis = 0; axis < 6; ++axis) {
+        if (mask.controlled[axis]) c[axis] += axis < 3 ? shift(rng) : tilt(rng);
+      }
+      auto pose = mech.complete_pose(pose_from_vector(mech.convention(), c));
+      ASSERT_TRUE(pose.ok()) << pose.error().message;
+      TwistBasis basis;
+      ASSERT_TRUE(mech.controlled_twists(*pose, basis));
+      const PoseVector centre = vector_from_pose(mech.convention(), *pose);
+      int column = 0;
+      for (int axis = 0; axis < 6; ++axis) {
+        if (!mask.controlled[axis]) continue;
+        const double h = axis < 3 ? 1e-3 : 1e-5;
+        Pose side[2];
+        for (int k = 0; k < 2; ++k) {
+          PoseVector q = centre;
+          q[axis] += k == 0 ? h : -h;
+          auto completed = mech.complete_pose(pose_from_vector(mech.convention(), q));
+          ASSERT_TRUE(completed.ok());
+          side[k] = *completed;
+        }
+        Eigen::Matrix<double, 6, 1> difference;
+        difference << (side[0].position_mm - side[1].position_mm) / (2 * h),
+            rotation_vector_from_rotation(side[0].rotation * side[1].rotation.transpose()) / (2 * h);
+        const double scale = std::max(1.0, basis.col(column).cwiseAbs().maxCoeff());
+        EXPECT_LE((difference - basis.col(column)).cwiseAbs().maxCoeff(), 1e-7 * scale)
+            << "coordinate " << axis << ": analytic " << basis.col(column).transpose() << ", differences "
+            << difference.transpose();
+        ++column;
+      }
+    }
   }
 }
 
