@@ -94,6 +94,24 @@ void BM_Interpret100k(benchmark::State& state) {
 }
 BENCHMARK(BM_Interpret100k)->Unit(benchmark::kMillisecond);
 
+// One CL statement continued with '$' over N lines (a malformed CAM file the bad-input catalogue holds): the
+// reader must stay linear in N (it was quadratic once, 12.8 s at 200 000 lines). Complexity fit: O(N).
+void BM_ReadClContinuedStatement(benchmark::State& state) {
+  std::string text = "UNITS/MM\nFEDRAT/100\nGOTO/1 $\n";
+  for (long i = 0; i < state.range(0); ++i) text += ",0 $\n";
+  text += "\nFINI\n";
+  for (auto _ : state) {
+    auto program = program::read_cl_data(text, "continued.cl", start_options());
+    benchmark::DoNotOptimize(program);
+  }
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_ReadClContinuedStatement)
+    ->RangeMultiplier(4)
+    ->Range(12500, 200000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity(benchmark::oN);
+
 void BM_Plan100k(benchmark::State& state) {
   const std::string& text = long_program();
   double duration = 0.0;

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -113,7 +112,8 @@ void catalogue_write_inputs(const fs::path& t) {
   catalogue_write(t / "load_nan.yaml", "blocks:\n  - lines: [1, 2]\n    normal: .inf\n");
 }
 
-// A CL statement continued with '$' over 200 000 lines (quadratic once: 12.8 s).
+// A CL statement continued with '$' over 200 000 lines (quadratic once: 12.8 s; bench_planning's
+// BM_ReadClContinuedStatement fits its reading time to O(N)).
 void catalogue_write_continued_cl(const fs::path& t) {
   std::string text = "UNITS/MM\nFEDRAT/100\nGOTO/1 $\n";
   for (int i = 0; i < 200000; ++i) text += ",0 $\n";
@@ -596,9 +596,7 @@ TEST_P(BadInputCatalogue, FailsCleanly) {
   const CatalogueSnapshot before = c.unchanged.empty() ? CatalogueSnapshot{} : catalogue_snapshot(watched);
 
   const std::string args = catalogue_expand(c.command, t);
-  const auto started = std::chrono::steady_clock::now();
   const CatalogueRun run = catalogue_run_pkm(args, t / "stderr.txt");
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   EXPECT_FALSE(run.signalled) << "pkm " << args << " crashed: " << run.err;
   EXPECT_EQ(run.exit_code, c.exit_code) << "pkm " << args << "\nstderr: " << run.err;
@@ -612,8 +610,6 @@ TEST_P(BadInputCatalogue, FailsCleanly) {
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n') <= 2, true) << "one line:\n" << run.err;
   }
   EXPECT_FALSE(catalogue_has_raw_control_bytes(run.err)) << run.err;
-  // Linear reading: the 200 000-line statement took 12.8 s when it was quadratic.
-  EXPECT_LT(seconds, 8.0) << "pkm " << args;
   if (!c.unchanged.empty()) {
     EXPECT_EQ(catalogue_snapshot(watched), before) << c.unchanged << " changed";
   }
