@@ -89,14 +89,15 @@ bench: deps
 	@cmake --build build-bench -j $(JOBS)
 	@for b in build-bench/bench/*; do $$b --benchmark_min_time=0.2; done
 
-# The installed kinematics library from outside (docs/libraries.md): cmake --install into $(BUILD)/install, then
+# The installed libraries from outside (docs/libraries.md): cmake --install into $(BUILD)/install, then
 # examples/consumer, a separate CMake project (find_package(pkm)), built in $(BUILD)/consumer and run (IK and FK
-# round trip of a hexapod).
+# round trip of a hexapod on pkm::kinematics; a machine file read and a program planned on pkm::motion).
 consumer: build
 	@cmake --install $(BUILD) --prefix $(BUILD)/install > /dev/null
 	@cmake -S examples/consumer -B $(BUILD)/consumer -DCMAKE_PREFIX_PATH=$(abspath $(BUILD))/install > /dev/null
 	@cmake --build $(BUILD)/consumer -j $(JOBS)
 	$(BUILD)/consumer/pkm_consumer
+	$(BUILD)/consumer/pkm_plan_consumer examples/machines/hexapod_ch5.yaml
 
 format:
 	@find src apps tests bench fuzz -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i

@@ -1,13 +1,18 @@
-# cmake --install: pkm::kinematics (the static library and the headers of core/, machine/ and kinematics/ under
-# include/pkm/, so that #include "machine/hexapod.hpp" works), the export set pkmTargets and pkmConfig.cmake.
-# A consumer: find_package(pkm REQUIRED) and target_link_libraries(app PRIVATE pkm::kinematics); it needs Eigen
-# only (examples/consumer/, docs/libraries.md).
+# cmake --install: the layers an outside project can link, as pkm:: targets of the export set pkmTargets, with
+# the headers of their folders under include/pkm/ (so that #include "machine/hexapod.hpp" works) and
+# pkmConfig.cmake:
+#   pkm::kinematics  core/ machine/ kinematics/                 needs Eigen only
+#   pkm::io          io/ (machine files and other inputs)       + yaml-cpp, fmt, nlohmann_json
+#   pkm::motion      program/ path/ planning/ redundancy/ interpolation/ statics/   + NLopt
+# A consumer: find_package(pkm REQUIRED [COMPONENTS kinematics io motion]) and target_link_libraries(app PRIVATE
+# pkm::motion); pkmConfig.cmake looks for the dependencies of the components asked for only (examples/consumer/,
+# docs/libraries.md). The report and the CLI's pipeline stay inside the project.
 include(CMakePackageConfigHelpers)
 set(PKM_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/pkm)
 
-install(TARGETS pkm_kinematics EXPORT pkmTargets
+install(TARGETS pkm_kinematics pkm_io pkm_motion EXPORT pkmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(folder core machine kinematics)
+foreach(folder core machine kinematics io program path planning redundancy interpolation statics)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/${folder} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pkm
           FILES_MATCHING PATTERN "*.hpp")
 endforeach()
