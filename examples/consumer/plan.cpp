@@ -1,7 +1,7 @@
-// A part program planned by an outside project, linked against the installed pkm::motion (which brings pkm::io
-// and pkm::kinematics): a machine file read with the shared reader, a few G-code lines interpreted from the
-// machine's start pose, the motion planned within the machine's limits. Usage: pkm_plan_consumer MACHINE.yaml
-// Exits non-zero when any step fails or the plan has no motion.
+// A part program planned by an outside project, linked against the installed pkm::motion (which brings
+// pkm::io and pkm::kinematics): a machine file read with the shared reader, a few G-code lines interpreted
+// from the machine's start pose, the motion planned within the machine's limits. Usage: pkm_plan_consumer
+// MACHINE.yaml Exits non-zero when any step fails or the plan has no motion.
 #include <cstdio>
 #include <string>
 
@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", plan.error().message.c_str());
     return 1;
   }
-  std::printf("%zu moves planned on %s: %.3f s of motion\n", program->moves.size(), argv[1], plan->duration_s);
+  std::printf("%zu moves planned on %s: %.3f s of motion\n", program->moves.size(), argv[1],
+              plan->duration_s);
   if (!(plan->duration_s > 0.0)) return 1;
   std::printf("ok\n");
   return 0;
