@@ -12,7 +12,7 @@ set(PKM_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/pkm)
 
 install(TARGETS pkm_kinematics pkm_io pkm_motion EXPORT pkmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(folder core machine kinematics io program path planning redundancy interpolation statics)
+foreach(folder core machine kinematics io program path planning redundancy interpolation statics dynamics)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/${folder} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pkm
           FILES_MATCHING PATTERN "*.hpp")
 endforeach()

@@ -5,6 +5,7 @@
 #include <random>
 #include <string>
 
+#include "core/units.hpp"
 #include "io/machine_file.hpp"
 #include "source_paths.hpp"
 
@@ -31,6 +32,13 @@ inline bool names_yaml_place(const std::string& message, const std::string& plac
     if (p > digits && message.compare(p, 2 + text.size(), ": " + text) == 0) return true;
   }
   return false;
+}
+
+/// A pose from x, y, z (mm) and A, B, C (deg) in the abc convention.
+inline Pose abc_pose(double x, double y, double z, double a_deg, double b_deg, double c_deg) {
+  PoseVector c;
+  c << x, y, z, rad_from_deg(a_deg), rad_from_deg(b_deg), rad_from_deg(c_deg);
+  return pose_from_vector(AngleConvention::abc, c);
 }
 
 inline Machine machine_from_example(const std::string& relative_path) {

@@ -33,6 +33,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto tool_table = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto no_error = std::make_shared<bool>(false);
+  auto with_dynamics = std::make_shared<bool>(false);
   auto options = std::make_shared<planning::PlanOptions>();
   auto tolerance = std::make_shared<double>(0.0);
   auto report_file = std::make_shared<std::string>();
@@ -52,6 +53,10 @@ void add_plan_command(CLI::App& app, int& exit_code) {
           ->check(number_in({0.0, kMaxToleranceMm, true, true, "mm"}));
   cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
   cmd->add_flag("--no-path-error", *no_error, "skip the forward-kinematics check of the path error (faster)");
+  cmd->add_flag(
+      "--dynamics", *with_dynamics,
+      "also the drive forces, power and energy (rigid bodies of the machine file's dynamics: section): "
+      "forces.csv and a dynamics block in summary.json");
   cmd->add_flag("--json", *json, "print the summary as JSON");
   cmd->add_option("--report", *report_file, "also write the HTML report of the run to this file");
   auto redundancy_arguments = std::make_shared<RedundancyArguments>();
@@ -76,6 +81,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     job.plan = *options;
     if (tolerance_option->count() > 0) job.plan.path_tolerance_mm = *tolerance;
     job.evaluate_path_error = !*no_error;
+    job.dynamics = *with_dynamics;
     if (isatty(STDERR_FILENO)) job.progress = draw_progress;
     job.out_directory = *out_dir;
     job.report_path = *report_file;
@@ -115,7 +121,22 @@ void add_plan_command(CLI::App& app, int& exit_code) {
                                redundancy_arguments->law, result->law->chosen().metrics.increment_sum_mm,
                                result->law->constant.increment_sum_mm, redundancy_arguments->free);
     }
-    std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json\n", *out_dir);
+    if (run.dynamics) {
+      const dynamics::RunDynamicsSummary& d = *run.dynamics;
+      const std::string force_unit = angles ? "N·mm" : "N";
+      int worst = 0;
+      for (int j = 1; j < d.drives; ++j)
+        if (d.peak_force_N[j] > d.peak_force_N[worst]) worst = j;
+      std::cout << fmt::format(
+          "  drive force       max {:.1f} {} (drive {}, line {})   power max {:.1f} W (line {})\n",
+          d.peak_force_N[worst], force_unit, worst + 1, d.peak_force_line[worst], d.peak_total_power_W,
+          d.peak_total_power_line);
+      std::cout << fmt::format(
+          "  drive energy      {:.3f} J no recovery, {:.3f} J braking free, {:.3f} J with recovery\n",
+          d.energy.no_recovery_J, d.energy.braking_free_J, d.energy.recovery_J);
+    }
+    std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}\n", *out_dir,
+                             run.dynamics ? ", forces.csv" : "");
   });
 }
 

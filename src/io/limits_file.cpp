@@ -1,5 +1,5 @@
-// The `limits:` section: actuator range, speed and acceleration; passive-joint swing limits; the largest
-// condition number of the Jacobian.
+// The `limits:` section: actuator range, speed, acceleration and force; passive-joint swing limits; the
+// largest condition number of the Jacobian.
 #include <fmt/format.h>
 
 #include "core/units.hpp"
@@ -33,7 +33,8 @@ Result<ActuatorLimits> read_actuator_limits(const YAML::Node& node, const YamlRe
                               {Field{"actuator_min", &limits.min, &limits.min_line},
                                Field{"actuator_max", &limits.max, &limits.max_line},
                                Field{"actuator_speed", &limits.speed, &limits.speed_line},
-                               Field{"actuator_accel", &limits.accel, &limits.accel_line}});
+                               Field{"actuator_accel", &limits.accel, &limits.accel_line},
+                               Field{"actuator_force_max", &limits.force_N, &limits.force_line}});
       !read) {
     return read.error();
   }
@@ -43,7 +44,8 @@ Result<ActuatorLimits> read_actuator_limits(const YAML::Node& node, const YamlRe
         fmt::format("must be greater than actuator_min ({} >= {})", *limits.min, *limits.max));
   }
   for (auto [key, value] :
-       {std::pair{"actuator_speed", limits.speed}, std::pair{"actuator_accel", limits.accel}}) {
+       {std::pair{"actuator_speed", limits.speed}, std::pair{"actuator_accel", limits.accel},
+        std::pair{"actuator_force_max", limits.force_N}}) {
     if (value && !(*value > 0.0)) {
       return reader.error_at(node[key], fmt::format("limits.{}", key), "must be positive");
     }
@@ -92,9 +94,10 @@ Result<FileLimits> read_limits(const YAML::Node& root, const YamlReader& reader,
   FileLimits out;
   const YAML::Node node = root["limits"];
   if (!node) return out;
-  if (auto keys = reader.check_keys(node, "limits",
-                                    {"actuator_min", "actuator_max", "actuator_speed", "actuator_accel",
-                                     "base_joint_max_deg", "platform_joint_max_deg", "max_condition_number"});
+  if (auto keys = reader.check_keys(
+          node, "limits",
+          {"actuator_min", "actuator_max", "actuator_speed", "actuator_accel", "actuator_force_max",
+           "base_joint_max_deg", "platform_joint_max_deg", "max_condition_number"});
       !keys) {
     return keys.error();
   }

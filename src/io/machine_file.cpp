@@ -48,8 +48,8 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
-  std::vector<std::string_view> allowed = {"name",   "description", "type",   "angles", "tool",
-                                           "limits", "motion",      "masses", "drives", "home"};
+  std::vector<std::string_view> allowed = {"name",   "description", "type",     "angles", "tool", "limits",
+                                           "motion", "masses",      "dynamics", "drives", "home"};
   // Planar pin joints have no neutral axis to give.
   if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
@@ -133,6 +133,10 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   auto drives = read_drive_settings(root, reader, machine.mechanism->actuators_are_angles());
   if (!drives) return drives.error();
   machine.drives = *drives;
+  // After the mechanism: the struts are one per actuator, and which parts a strut has depends on the type.
+  auto dynamics = read_dynamics(root, reader, *machine.mechanism, is_planar(entry->type));
+  if (!dynamics) return dynamics.error();
+  machine.dynamics = *dynamics;
   machine.home_given = home.has_value();
 
   // The home pose must itself be a valid configuration of the machine.

@@ -1,7 +1,7 @@
 #pragma once
 // Readers of the machine-file sections every mechanism shares, beside the top-level keys that
-// machine_file.cpp reads itself: `limits:`, `motion:`, `masses:`, `drives:` and the passive-joint neutral
-// axes. Each error names the file, the line and the key (docs/machine-file.md).
+// machine_file.cpp reads itself: `limits:`, `motion:`, `masses:`, `dynamics:`, `drives:` and the
+// passive-joint neutral axes. Each error names the file, the line and the key (docs/machine-file.md).
 #include <yaml-cpp/yaml.h>
 
 #include "io/yaml_reader.hpp"
@@ -31,6 +31,15 @@ Result<DriveSettings> read_drive_settings(const YAML::Node& root, const YamlRead
 /// `masses:` (optional, every key optional, defaults as in MassProperties): masses must not be negative,
 /// vectors have three numbers (planar machines may give platform_com_mm as [x, y]).
 Result<MassProperties> read_mass_properties(const YAML::Node& root, const YamlReader& reader, bool planar);
+
+/// `dynamics:` (optional; docs/machine-file.md): `platform:` with its mass required, the payload, the struts
+/// (one mapping for all, or one per actuator of `mechanism`), gravity and the drive model. Masses ≥ 0,
+/// inertia tensors those of a real body (positive semi-definite, principal moments within the triangle
+/// inequality), stiffness > 0, friction coefficients ≥ 0, lag τ > 0. Inertias are read in kg·m² and kept in
+/// kg·mm². Planar machines may give centres of mass as [x, y]. Glide machines and rotopods (constant-length
+/// struts) have no `upper` strut part; only they may give `carriage_kg` > 0.
+Result<DynamicsParameters> read_dynamics(const YAML::Node& root, const YamlReader& reader,
+                                         const Mechanism& mechanism, bool planar);
 
 /// The neutral axes of the mechanism's passive joints: `base_joint_axes` / `platform_joint_axes` if given,
 /// otherwise the strut directions at the mechanism's home. Errors if a key is given for a mechanism without

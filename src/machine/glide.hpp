@@ -44,6 +44,13 @@ class Glide final : public Mechanism {
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// Carriage joints C_j (on the branch's root) and platform joints; −1 when a strut cannot reach its guide.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
+  /// Carriages slide along straight guides: (e_j, 0).
+  void base_joint_motion(int strut, double actuator, Eigen::Vector3d& first,
+                         Eigen::Vector3d& second) const noexcept override {
+    (void)actuator;
+    first = geometry_.guide_directions[strut];
+    second.setZero();
+  }
   /// Rows (g_j, (R·b'_j) × g_j), g_j = ∂s_j/∂B_j. A triglide's platform cannot turn (its orientation is held
   /// by the parallelograms): its ω columns say how the carriages would move if it could, and only its v
   /// columns meet twists it can make.

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "machine/dynamics_parameters.hpp"
 #include "machine/mass_properties.hpp"
 #include "machine/mechanism.hpp"
 
@@ -17,10 +18,13 @@ struct ActuatorLimits {
   std::optional<double> max;
   std::optional<double> speed;
   std::optional<double> accel;
+  /// Largest force a drive can give, N (`actuator_force_max`; dynamics checks it).
+  std::optional<double> force_N;
   int min_line = 0;
   int max_line = 0;
   int speed_line = 0;
   int accel_line = 0;
+  int force_line = 0;
 };
 
 /// Passive-joint and conditioning limits from `limits:` (docs/machine-file.md); `*_line` as ActuatorLimits.
@@ -85,6 +89,7 @@ struct Machine {
   PassiveJointAxes joint_axes;
   MotionSettings motion;
   MassProperties masses;  ///< `masses:` (machine/mass_properties.hpp); no masses by default
+  DynamicsParameters dynamics;  ///< `dynamics:` (machine/dynamics_parameters.hpp); not given by default
   DriveSettings drives;
   bool home_given = false;
 };

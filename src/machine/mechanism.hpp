@@ -162,6 +162,17 @@ class Mechanism {
   /// planar pin joints) their base and platform pins in z = 0. Same return values as strut_joints().
   virtual int strut_ends(const Pose& pose, StrutJointPoints& out) const { return strut_joints(pose, out); }
 
+  /// How the base-side joint of strut j moves with its own actuator at value `actuator` (mm, or rad): the
+  /// first and second derivatives ∂A_j/∂q_j and ∂²A_j/∂q_j² in the base frame (dynamics: the carriages' and
+  /// the struts' lower ends' velocities and accelerations). Zero for joints fixed to the base (the default);
+  /// a carriage on a straight guide has (e_j, 0), one on a circle the tangent and the centripetal vectors.
+  /// Mechanisms whose base joints move carry struts of constant length.
+  virtual void base_joint_motion(int /*strut*/, double /*actuator*/, Eigen::Vector3d& first,
+                                 Eigen::Vector3d& second) const noexcept {
+    first.setZero();
+    second.setZero();
+  }
+
   // Queries that replace tests of the mechanism's type: the stages ask what they need, not what it is.
 
   /// Planar mechanisms move in the base xy plane and turn about z only (φ is angle 3).

@@ -65,6 +65,13 @@ Eigen::Vector3d Rotopod::carriage_mm(int j, double angle_rad) const {
           geometry_.circle_center_mm.y() + r * std::sin(angle_rad), geometry_.joint_heights_mm[j]};
 }
 
+void Rotopod::base_joint_motion(int /*strut*/, double actuator, Eigen::Vector3d& first,
+                                Eigen::Vector3d& second) const noexcept {
+  const double r = geometry_.circle_radius_mm;
+  first = Eigen::Vector3d(-r * std::sin(actuator), r * std::cos(actuator), 0.0);
+  second = Eigen::Vector3d(-r * std::cos(actuator), -r * std::sin(actuator), 0.0);
+}
+
 bool Rotopod::carriage_angle(int j, const Eigen::Vector3d& joint, double centre_rad, double& angle_rad,
                              Eigen::Vector3d& d_angle_dB) const {
   const CircleReach reach = circle_reach(geometry_, j, joint);

@@ -48,6 +48,9 @@ class Rotopod final : public Mechanism {
   /// Carriage joints A_j(φ_j) and platform joints; the carriages turn with φ_j (mount_yaw_rad = φ_j); −1 when
   /// a strut cannot reach the circle.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;
+  /// Carriages run round the circle: r·(−sin φ, cos φ, 0) and r·(−cos φ, −sin φ, 0) per rad.
+  void base_joint_motion(int strut, double actuator, Eigen::Vector3d& first,
+                         Eigen::Vector3d& second) const noexcept override;
   /// Rows (g_j, (R·b'_j) × g_j), g_j = ∂φ_j/∂B_j (rad/mm): carriage angle rates from the twist.
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
   /// 6 × (carriage R on the circle, U, S) with constant-length struts.

@@ -21,7 +21,8 @@ struct PlanJob {
   planning::PlanOptions plan;   ///< servo rate, override, blending tolerance (unset: the machine file's)
   std::optional<redundancy::OptimizeOptions> law;  ///< choose the free coordinates first
   bool evaluate_path_error = true;                 ///< FK of the actuators at every mid-period
-  std::function<void(double)> progress;            ///< fraction written, for runs over 200 000 ticks
+  bool dynamics = false;  ///< drive forces, power and energy at every tick (forces.csv; docs/dynamics.md)
+  std::function<void(double)> progress;  ///< fraction written, for runs over 200 000 ticks
   std::string out_directory;
   std::string report_path;  ///< empty: no report
 };

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 #include <string_view>
 #include <utility>
 
 #include "core/rotation.hpp"
 #include "core/units.hpp"
+#include "dynamics/run_dynamics.hpp"
 #include "io/atomic_file.hpp"
 
 namespace pkm::planning {
@@ -37,6 +39,34 @@ struct PlanOutputFile {
   }
 };
 
+/// The program file and line of an error at a program line, for messages ("FILE:LINE: …").
+Error at_program_line(const MotionPlan& plan, const Error& error) {
+  Error located = error;
+  located.message = fmt::format("{}:{}: {}", plan.program_source, error.location.line, error.message);
+  located.location.file = plan.program_source;
+  return located;
+}
+
+nlohmann::json dynamics_json(const dynamics::RunDynamicsSummary& d, bool angular) {
+  const std::string unit = angular ? "Nmm" : "N";
+  nlohmann::json drives = nlohmann::json::array();
+  for (int j = 0; j < d.drives; ++j) {
+    drives.push_back({{"peak_force_" + unit, d.peak_force_N[j]},
+                      {"peak_force_line", d.peak_force_line[j]},
+                      {"peak_force_time_s", d.peak_force_time_s[j]},
+                      {"peak_static_" + unit, d.peak_static_N[j]},
+                      {"peak_dynamic_" + unit, d.peak_dynamic_N[j]},
+                      {"peak_power_W", d.peak_power_W[j]}});
+  }
+  return {{"model", "rigid"},
+          {"drives", drives},
+          {"peak_total_power_W", d.peak_total_power_W},
+          {"peak_total_power_line", d.peak_total_power_line},
+          {"energy_no_recovery_J", d.energy.no_recovery_J},
+          {"energy_braking_free_J", d.energy.braking_free_J},
+          {"energy_recovery_J", d.energy.recovery_J}};
+}
+
 }  // namespace
 
 nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, const RunSummary& run) {
@@ -58,7 +88,7 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
   if (machine.limits.min) limits["actuator_min"] = *machine.limits.min * scale;
   if (machine.limits.max) limits["actuator_max"] = *machine.limits.max * scale;
   const PlanStatistics& st = plan.statistics;
-  return {
+  nlohmann::json summary = {
       {"program", plan.program_source},
       {"machine", machine.source},
       {"duration_s", run.duration_s},
@@ -88,6 +118,8 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
       {"limits", limits},
       {"actuators", actuators},
   };
+  if (run.dynamics) summary["dynamics"] = dynamics_json(*run.dynamics, angular);
+  return summary;
 }
 
 Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
@@ -118,6 +150,39 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   fmt::format_to(std::back_inserter(path_csv.buffer),
                  "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s,feed_mm_s,path_error_mm\n");
 
+  PlanOutputFile forces_csv;
+  std::optional<dynamics::RunDynamics> drive_dynamics;
+  if (options.dynamics) {
+    if (!machine.dynamics.given()) {
+      return Error{ErrorCode::bad_input,
+                   fmt::format("{}: the machine file has no dynamics: section (masses and inertias, "
+                               "docs/machine-file.md): the drive forces cannot be computed",
+                               machine.source),
+                   ErrorLocation{machine.source, 0, 0, "dynamics"}};
+    }
+    if (auto opened = forces_csv.open(outputs.staged_path("forces.csv")); !opened) return opened.error();
+    const std::string force_unit = angular ? "Nmm" : "N";
+    fmt::format_to(std::back_inserter(forces_csv.buffer), "time_s,line");
+    for (int j = 1; j <= n; ++j) {
+      fmt::format_to(std::back_inserter(forces_csv.buffer), ",P{0}_{1},P{0}_static_{1},P{0}_dynamic_{1}", j,
+                     force_unit);
+    }
+    for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(forces_csv.buffer), ",power{}_W", j);
+    forces_csv.buffer.push_back('\n');
+    drive_dynamics.emplace(
+        machine, plan.period_s, [&forces_csv, n](const dynamics::TickDynamics& t) -> Status {
+          auto& b = forces_csv.buffer;
+          fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
+          for (int j = 0; j < n; ++j) {
+            fmt::format_to(std::back_inserter(b), ",{:.4f},{:.4f},{:.4f}", t.forces.total[j],
+                           t.forces.static_part[j], t.forces.dynamic_part[j]);
+          }
+          for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.5f}", t.power_W[j]);
+          b.push_back('\n');
+          return forces_csv.flush_if_large();
+        });
+  }
+
   ServoStream stream(plan, machine);
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
   const long total = stream.tick_count();
@@ -125,6 +190,11 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   ServoTick tick;
   while (stream.next(tick)) {
     monitor.add(tick);
+    if (drive_dynamics) {
+      if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose); !added) {
+        return at_program_line(plan, added.error());
+      }
+    }
     fmt::format_to(std::back_inserter(a), "{:.6f}", tick.time_s);
     for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(a), ",{:.6f}", tick.actuators[j] * scale);
     a.push_back('\n');
@@ -147,7 +217,12 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   }
   if (stream.error()) return *stream.error();
   if (options.progress) options.progress(1.0);
-  const RunSummary& run = monitor.summary();
+  RunSummary run = monitor.summary();
+  if (drive_dynamics) {
+    if (Status finished = drive_dynamics->finish(); !finished) return at_program_line(plan, finished.error());
+    run.dynamics = drive_dynamics->summary();
+    if (auto committed = forces_csv.commit(); !committed) return committed.error();
+  }
   fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", summary_json(plan, machine, run).dump(2));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
     if (auto committed = f->commit(); !committed) return committed.error();

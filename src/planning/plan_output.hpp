@@ -1,6 +1,7 @@
 #pragma once
 // Writing a planned run: DIR/actuators.csv (time and every actuator position per servo tick), DIR/path.csv
-// (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json.
+// (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json, and with
+// OutputOptions::dynamics DIR/forces.csv (drive forces: total, static, dynamic; drive power).
 // The files join an OutputSet (io/output_set.hpp): they replace the previous run's only together, when the
 // whole run succeeded, so a failed run leaves the previous run complete and nothing of its own.
 #include <functional>
@@ -18,6 +19,9 @@ namespace pkm::planning {
 struct OutputOptions {
   double override_pct = 100.0;
   bool evaluate_path_error = true;
+  /// Also the rigid-body drive forces, power and energy at every tick (the machine file's `dynamics:`):
+  /// DIR/forces.csv and a "dynamics" block in the summary (src/dynamics, docs/dynamics.md).
+  bool dynamics = false;
   /// Called now and then with the fraction done (0…1), e.g. to draw a progress bar.
   std::function<void(double)> progress;
 };

@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 
+#include "dynamics/run_dynamics.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
@@ -15,6 +16,8 @@
 namespace pkm::planning {
 
 struct RunSummary {
+  /// Drive forces, power and energy (OutputOptions::dynamics), when asked for.
+  std::optional<dynamics::RunDynamicsSummary> dynamics;
   double duration_s = 0.0;
   long ticks = 0;
   double rate_hz = 0.0;

@@ -106,6 +106,22 @@ void catalogue_write_inputs(const fs::path& t) {
   catalogue_write(t / "m_units.yaml", "type: hexapod\nangles: radians\n");
   catalogue_write(t / "m_missing_section.yaml", "type: planar2\nhome: [120.0, 250.0]\n");
   catalogue_write(t / "m_scalar_point.yaml", "type: planar2\nbase_joints: 5\nhome: [120.0, 250.0]\n");
+  catalogue_write(t / "m_dyn_negative_mass.yaml",
+                  std::string(kCatalogueMachine) + "dynamics:\n  platform: {mass_kg: -2}\n");
+  catalogue_write(t / "m_dyn_nan_mass.yaml",
+                  std::string(kCatalogueMachine) + "dynamics:\n  platform: {mass_kg: .nan}\n");
+  catalogue_write(
+      t / "m_dyn_inertia.yaml",
+      std::string(kCatalogueMachine) + "dynamics:\n  platform: {mass_kg: 2, inertia_kg_m2: [1, 1, 5]}\n");
+  catalogue_write(t / "m_dyn_struts.yaml", std::string(kCatalogueMachine) +
+                                               "dynamics:\n  platform: {mass_kg: 2}\n  struts:\n"
+                                               "    - {lower: {mass_kg: 1, com_mm: 50}}\n");
+  catalogue_write(t / "m_dyn_stiffness.yaml",
+                  std::string(kCatalogueMachine) +
+                      "dynamics:\n  platform: {mass_kg: 2}\n"
+                      "  struts: {lower: {mass_kg: 1, com_mm: 50}, stiffness_N_mm: 0}\n");
+  catalogue_write(t / "m_force_max.yaml",
+                  std::string(kCatalogueMachine) + "limits:\n  actuator_force_max: 0\n");
 
   catalogue_write(t / "load_duplicate.yaml", "default:\n  tangential: 10\n  tangential: 20\n");
   catalogue_write(t / "load_key_list.yaml", "default:\n  [a]: 1\n");
@@ -396,6 +412,32 @@ std::vector<CatalogueCase> catalogue_cases() {
        2,
        {"{t}/m_scalar_point.yaml:2:14: base_joints: expected a list of 2 points of 2 numbers, got a single "
         "value"}},
+      {"machine_dynamics_negative_mass",
+       "check {t}/m_dyn_negative_mass.yaml",
+       2,
+       {"{t}/m_dyn_negative_mass.yaml:7:23: dynamics.platform.mass_kg: a mass cannot be negative, got -2 "
+        "kg"}},
+      {"machine_dynamics_nan_mass",
+       "check {t}/m_dyn_nan_mass.yaml",
+       2,
+       {"{t}/m_dyn_nan_mass.yaml:7:23: dynamics.platform.mass_kg: expected a finite number"}},
+      {"machine_dynamics_impossible_inertia",
+       "ik --machine {t}/m_dyn_inertia.yaml --pose 120,250",
+       2,
+       {"{t}/m_dyn_inertia.yaml:7:41: dynamics.platform.inertia_kg_m2: not the inertia of a real body"}},
+      {"machine_dynamics_struts_list_length",
+       "check {t}/m_dyn_struts.yaml",
+       2,
+       {"{t}/m_dyn_struts.yaml:9:5: dynamics.struts: expected one mapping for every strut or a list of 2 "
+        "mappings (one per actuator), got a list of 1"}},
+      {"machine_dynamics_zero_stiffness",
+       "check {t}/m_dyn_stiffness.yaml",
+       2,
+       {"{t}/m_dyn_stiffness.yaml:8:61: dynamics.struts.stiffness_N_mm: must be positive, got 0 N/mm"}},
+      {"machine_force_limit_zero",
+       "check {t}/m_force_max.yaml",
+       2,
+       {"{t}/m_force_max.yaml:7:23: limits.actuator_force_max: must be positive"}},
       {"plan_machine_is_directory",
        plan_of("{line}", "{t}/adir.yaml") + "--out {t}/run",
        2,

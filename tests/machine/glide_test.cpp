@@ -19,12 +19,6 @@
 namespace pkm {
 namespace {
 
-Pose abc_pose(double x, double y, double z, double a_deg, double b_deg, double c_deg) {
-  PoseVector c;
-  c << x, y, z, rad_from_deg(a_deg), rad_from_deg(b_deg), rad_from_deg(c_deg);
-  return pose_from_vector(AngleConvention::abc, c);
-}
-
 Pose glide_random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
   PoseVector c = vector_from_pose(AngleConvention::abc, around);
   for (int k = 0; k < 3; ++k) c[k] += test::uniform(rng, -mm, mm);
@@ -133,13 +127,13 @@ TEST(GlideProperty, TriglideInverseThenForwardRoundTrips) {
 
 TEST(Glide, TriglideKeepsItsOrientation) {
   const Machine m = test::machine_from_example("examples/machines/triglide.yaml");
-  const auto s = m.mechanism->inverse(abc_pose(10, -20, 320, 0, 0, 0));
+  const auto s = m.mechanism->inverse(test::abc_pose(10, -20, 320, 0, 0, 0));
   ASSERT_TRUE(s.ok());
   // Angles in the pose are ignored (only x, y, z are controlled); FK returns the level platform.
-  const auto tilted = m.mechanism->inverse(abc_pose(10, -20, 320, 5, 5, 5));
+  const auto tilted = m.mechanism->inverse(test::abc_pose(10, -20, 320, 5, 5, 5));
   ASSERT_TRUE(tilted.ok());
   EXPECT_LE((*s - *tilted).cwiseAbs().maxCoeff(), 1e-12);
-  const auto fk = m.mechanism->forward(*s, abc_pose(0, 0, 300, 3, -2, 1));
+  const auto fk = m.mechanism->forward(*s, test::abc_pose(0, 0, 300, 3, -2, 1));
   ASSERT_TRUE(fk.ok()) << fk.error().message;
   EXPECT_LT((fk->pose.rotation - Eigen::Matrix3d::Identity()).norm(), 1e-15);
   EXPECT_LT((fk->pose.position_mm - Eigen::Vector3d(10, -20, 320)).norm(), 1e-8);
@@ -179,12 +173,12 @@ TEST(Glide, JacobianMatchesFiniteDifferencesOfInverse) {
 
 TEST(Glide, StrutsThatCannotReachTheirGuidesAreUnreachable) {
   const Machine m = test::machine_from_example("examples/machines/hexaglide.yaml");
-  const auto s = m.mechanism->inverse(abc_pose(0, 0, -900, 0, 0, 0));
+  const auto s = m.mechanism->inverse(test::abc_pose(0, 0, -900, 0, 0, 0));
   ASSERT_FALSE(s.ok());
   EXPECT_EQ(s.error().code, ErrorCode::unreachable);
   EXPECT_NE(s.error().message.find("carriage 1"), std::string::npos) << s.error().message;
   EXPECT_NE(s.error().message.find("mm too far"), std::string::npos) << s.error().message;
-  const auto j = m.mechanism->jacobian(abc_pose(0, 0, -900, 0, 0, 0));
+  const auto j = m.mechanism->jacobian(test::abc_pose(0, 0, -900, 0, 0, 0));
   ASSERT_FALSE(j.ok());
   EXPECT_EQ(j.error().code, ErrorCode::unreachable);
 }
@@ -204,9 +198,10 @@ TEST(Glide, StrutPerpendicularToItsGuideIsSingular) {
   }
   g.guide_points_mm[0] = {0, 400, 0};  // exact numbers for leg 1
   g.platform_joints_mm[0] = {0, 50, 0};
-  const Glide glide(g, AngleConvention::abc, abc_pose(0, 0, -300, 0, 0, 0));
+  const Glide glide(g, AngleConvention::abc, test::abc_pose(0, 0, -300, 0, 0, 0));
   EXPECT_GT(glide.guide_conditioning(glide.home()), 0.5);
-  const Pose singular = abc_pose(0, -150, 7, 0, 0, 0);  // joint 1 at (0, -100, 7): 500 mm from the guide line
+  const Pose singular =
+      test::abc_pose(0, -150, 7, 0, 0, 0);  // joint 1 at (0, -100, 7): 500 mm from the guide line
   const auto s = glide.inverse(singular);
   ASSERT_TRUE(s.ok()) << s.error().message;
   EXPECT_DOUBLE_EQ((*s)[0], 7.0);

@@ -15,12 +15,6 @@
 namespace pkm {
 namespace {
 
-Pose abc_pose(double x, double y, double z, double a_deg, double b_deg, double c_deg) {
-  PoseVector c;
-  c << x, y, z, rad_from_deg(a_deg), rad_from_deg(b_deg), rad_from_deg(c_deg);
-  return pose_from_vector(AngleConvention::abc, c);
-}
-
 Pose rotopod_random_pose(std::mt19937_64& rng, const Pose& around, double mm, double deg) {
   PoseVector c = vector_from_pose(AngleConvention::abc, around);
   for (int k = 0; k < 3; ++k) c[k] += test::uniform(rng, -mm, mm);
@@ -116,7 +110,7 @@ TEST(RotopodProperty, InverseThenForwardRoundTripsOnRandomGeometries) {
 
 TEST(Rotopod, ForwardAcceptsAnglesOfAnyTurn) {
   const Machine m = test::machine_from_example("examples/machines/rotopod.yaml");
-  const Pose truth = abc_pose(15, -10, 330, 2, -3, 8);
+  const Pose truth = test::abc_pose(15, -10, 330, 2, -3, 8);
   auto phi = m.mechanism->inverse(truth);
   ASSERT_TRUE(phi.ok());
   ActuatorVector turned = *phi;
@@ -153,7 +147,7 @@ TEST(Rotopod, JacobianMatchesFiniteDifferencesOfInverse) {
 
 TEST(Rotopod, StrutsThatCannotReachTheCircleAreUnreachable) {
   const Machine m = test::machine_from_example("examples/machines/rotopod.yaml");
-  const auto high = m.mechanism->inverse(abc_pose(0, 0, 900, 0, 0, 0));
+  const auto high = m.mechanism->inverse(test::abc_pose(0, 0, 900, 0, 0, 0));
   ASSERT_FALSE(high.ok());
   EXPECT_EQ(high.error().code, ErrorCode::unreachable);
   EXPECT_NE(high.error().message.find("carriage 1"), std::string::npos) << high.error().message;
@@ -161,12 +155,12 @@ TEST(Rotopod, StrutsThatCannotReachTheCircleAreUnreachable) {
   // Platform joints near the axis, level with the carriages: the struts are longer than the farthest point.
   RotopodGeometry g = as_rotopod(m).geometry();
   for (auto& b : g.platform_joints_mm) b *= 0.1;
-  const Rotopod small(g, AngleConvention::abc, abc_pose(0, 0, 300, 0, 0, 0));
-  const auto low = small.inverse(abc_pose(0, 0, -100, 0, 0, 0));
+  const Rotopod small(g, AngleConvention::abc, test::abc_pose(0, 0, 300, 0, 0, 0));
+  const auto low = small.inverse(test::abc_pose(0, 0, -100, 0, 0, 0));
   ASSERT_FALSE(low.ok());
   EXPECT_EQ(low.error().code, ErrorCode::unreachable);
   EXPECT_NE(low.error().message.find("mm too long"), std::string::npos) << low.error().message;
-  const auto j = m.mechanism->jacobian(abc_pose(0, 0, 900, 0, 0, 0));
+  const auto j = m.mechanism->jacobian(test::abc_pose(0, 0, 900, 0, 0, 0));
   ASSERT_FALSE(j.ok());
   EXPECT_EQ(j.error().code, ErrorCode::unreachable);
 }

@@ -1,0 +1,128 @@
+// Rigid inverse dynamics per servo tick (issue 14: goal ≤ 2 µs on the hexapod, so that a 1 kHz loop can
+// compute feed-forward forces with margin), for docs/PERFORMANCE.md. The planned helix on the ch5 hexapod
+// with the machine file's dynamics section: the motion of every tick (pose, twist and its rate by central
+// differences, as `pkm plan --dynamics` takes them) is made before the timing; one iteration is one
+// dynamics::inverse_dynamics call, timed on its own into a fixed histogram: counters p50_us, p99_us,
+// p99_9_us, max_us beside the mean. BM_InverseKinematicsPerTick times the strut lengths of the same poses
+// through the same interface, in the same run, for the ratio.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <filesystem>
+#include <vector>
+
+#include "core/duration_histogram.hpp"
+#include "core/rotation.hpp"
+#include "dynamics/rigid_dynamics.hpp"
+#include "io/machine_file.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/servo_stream.hpp"
+#include "program/part_program.hpp"
+
+namespace pkm {
+namespace {
+
+const Machine& machine() {
+  static const Machine m = [] {
+    auto loaded = load_machine_file(
+        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/machines/hexapod_ch5.yaml").string());
+    if (!loaded) throw std::runtime_error(loaded.error().message);
+    return std::move(loaded.value());
+  }();
+  return m;
+}
+
+/// The helix's ticks as platform motions (central differences over the 1 ms period).
+const std::vector<dynamics::PlatformMotion>& motions() {
+  static const std::vector<dynamics::PlatformMotion> all = [] {
+    const planning::ProgramStart start = planning::program_start(machine());
+    program::InterpretOptions interpret;
+    interpret.start_mm = start.start_mm;
+    interpret.start_abc_deg = start.start_abc_deg;
+    auto program = program::load_part_program(
+        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/programs/helix.ngc").string(), interpret);
+    if (!program) throw std::runtime_error(program.error().message);
+    auto plan = planning::plan_motion(machine(), *program, planning::PlanOptions{});
+    if (!plan) throw std::runtime_error(plan.error().message);
+    planning::ServoStream stream(*plan, machine());
+    std::vector<Pose> poses;
+    planning::ServoTick tick;
+    while (stream.next(tick)) poses.push_back(tick.pose);
+    std::vector<dynamics::PlatformMotion> out;
+    const double h = plan->period_s;
+    for (std::size_t k = 1; k + 1 < poses.size(); ++k) {
+      dynamics::PlatformMotion m;
+      m.pose = poses[k];
+      m.velocity_mm_s = (poses[k + 1].position_mm - poses[k - 1].position_mm) / (2 * h);
+      m.acceleration_mm_s2 =
+          (poses[k + 1].position_mm - 2 * poses[k].position_mm + poses[k - 1].position_mm) / (h * h);
+      const Eigen::Vector3d in =
+          rotation_vector_from_rotation(poses[k].rotation * poses[k - 1].rotation.transpose());
+      const Eigen::Vector3d out_step =
+          rotation_vector_from_rotation(poses[k + 1].rotation * poses[k].rotation.transpose());
+      m.angular_velocity_rad_s = (in + out_step) / (2 * h);
+      m.angular_acceleration_rad_s2 = (out_step - in) / (h * h);
+      out.push_back(m);
+    }
+    return out;
+  }();
+  return all;
+}
+
+void record(benchmark::State& state, const DurationHistogram& histogram) {
+  const DurationDistribution d = histogram.distribution();
+  state.counters["ticks"] = static_cast<double>(d.count);
+  state.counters["p50_us"] = d.p50_us;
+  state.counters["p99_us"] = d.p99_us;
+  state.counters["p99_9_us"] = d.p99_9_us;
+  state.counters["max_us"] = d.max_us;
+}
+
+void BM_InverseDynamicsPerTick(benchmark::State& state) {
+  const auto& all = motions();
+  const Mechanism& mechanism = *machine().mechanism;
+  const DynamicsParameters& parameters = machine().dynamics;
+  DurationHistogram time(10'000);
+  using Clock = std::chrono::steady_clock;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Clock::time_point started = Clock::now();
+    auto forces = dynamics::inverse_dynamics(mechanism, parameters, all[k]);
+    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
+    if (!forces) {
+      state.SkipWithError(forces.error().message.c_str());
+      break;
+    }
+    benchmark::DoNotOptimize(forces);
+    k = k + 1 == all.size() ? 0 : k + 1;
+  }
+  record(state, time);
+}
+BENCHMARK(BM_InverseDynamicsPerTick)->Unit(benchmark::kMicrosecond);
+
+void BM_InverseKinematicsPerTick(benchmark::State& state) {
+  const auto& all = motions();
+  const Mechanism& mechanism = *machine().mechanism;
+  DurationHistogram time(10'000);
+  using Clock = std::chrono::steady_clock;
+  std::size_t k = 0;
+  double lengths[kMaxActuators];
+  for (auto _ : state) {
+    const Clock::time_point started = Clock::now();
+    const bool ok = mechanism.actuator_values(all[k].pose, lengths);
+    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
+    if (!ok) {
+      state.SkipWithError("inverse kinematics failed");
+      break;
+    }
+    benchmark::DoNotOptimize(lengths);
+    k = k + 1 == all.size() ? 0 : k + 1;
+  }
+  record(state, time);
+}
+BENCHMARK(BM_InverseKinematicsPerTick)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace pkm
+
+BENCHMARK_MAIN();

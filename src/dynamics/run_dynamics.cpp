@@ -1,0 +1,97 @@
+#include "dynamics/run_dynamics.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/rotation.hpp"
+
+namespace pkm::dynamics {
+
+RunDynamics::RunDynamics(const Machine& machine, double period_s,
+                         std::function<Status(const TickDynamics&)> on_tick)
+    : machine_(machine), period_s_(period_s), on_tick_(std::move(on_tick)) {
+  summary_.drives = machine.mechanism->actuator_count();
+}
+
+Status RunDynamics::add(double time_s, int line, const Pose& pose) {
+  window_[0] = window_[1];
+  window_[1] = window_[2];
+  window_[2] = Sample{time_s, line, pose};
+  ++count_;
+  if (count_ == 1) return evaluate(2, true);  // the start, at rest
+  if (count_ >= 3) return evaluate(1, false);
+  return ok_status();
+}
+
+Status RunDynamics::finish() {
+  if (count_ >= 2) return evaluate(2, true);  // the end, at rest
+  return ok_status();
+}
+
+Status RunDynamics::evaluate(int index_in_window, bool at_rest) {
+  const Sample& s = window_[index_in_window];
+  PlatformMotion motion;
+  motion.pose = s.pose;
+  if (!at_rest) {
+    // Central differences over the servo period: velocity and acceleration of the tool point, and the
+    // rotation vectors of the two steps for the angular velocity and acceleration.
+    const double h = period_s_;
+    const Pose& before = window_[0].pose;
+    const Pose& after = window_[2].pose;
+    motion.velocity_mm_s = (after.position_mm - before.position_mm) / (2.0 * h);
+    motion.acceleration_mm_s2 = (after.position_mm - 2.0 * s.pose.position_mm + before.position_mm) / (h * h);
+    const Eigen::Vector3d step_in =
+        rotation_vector_from_rotation(s.pose.rotation * before.rotation.transpose());
+    const Eigen::Vector3d step_out =
+        rotation_vector_from_rotation(after.rotation * s.pose.rotation.transpose());
+    motion.angular_velocity_rad_s = (step_in + step_out) / (2.0 * h);
+    motion.angular_acceleration_rad_s2 = (step_out - step_in) / (h * h);
+  }
+  auto forces = inverse_dynamics(*machine_.mechanism, machine_.dynamics, motion);
+  if (!forces) {
+    return Error{forces.error().code, fmt::format("at {:.3f} s: {}", s.time_s, forces.error().message),
+                 ErrorLocation{"", s.line, 0, ""}};
+  }
+  TickDynamics tick;
+  tick.time_s = s.time_s;
+  tick.line = s.line;
+  tick.forces = *forces;
+  tick.power_W = forces->total.cwiseProduct(forces->actuator_rates) * 1e-3;  // N·mm/s → W
+
+  const int n = summary_.drives;
+  double total_power = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double force = std::abs(forces->total[j]);
+    if (machine_.limits.force_N && force > *machine_.limits.force_N) {
+      return Error{
+          ErrorCode::limit_exceeded,
+          fmt::format("at {:.3f} s: drive {} needs {:.1f} N, above actuator_force_max {:.1f} N ({}:{})",
+                      s.time_s, j + 1, forces->total[j], *machine_.limits.force_N, machine_.source,
+                      machine_.limits.force_line),
+          ErrorLocation{"", s.line, 0, ""}};
+    }
+    if (force > summary_.peak_force_N[j]) {
+      summary_.peak_force_N[j] = force;
+      summary_.peak_force_time_s[j] = s.time_s;
+      summary_.peak_force_line[j] = s.line;
+    }
+    summary_.peak_static_N[j] = std::max(summary_.peak_static_N[j], std::abs(forces->static_part[j]));
+    summary_.peak_dynamic_N[j] = std::max(summary_.peak_dynamic_N[j], std::abs(forces->dynamic_part[j]));
+    summary_.peak_power_W[j] = std::max(summary_.peak_power_W[j], std::abs(tick.power_W[j]));
+    summary_.energy.no_recovery_J += std::abs(tick.power_W[j]) * period_s_;
+    summary_.energy.braking_free_J += std::max(0.0, tick.power_W[j]) * period_s_;
+    total_power += tick.power_W[j];
+  }
+  summary_.energy.recovery_J += std::max(0.0, total_power) * period_s_;
+  if (std::abs(total_power) > summary_.peak_total_power_W) {
+    summary_.peak_total_power_W = std::abs(total_power);
+    summary_.peak_total_power_line = s.line;
+  }
+  ++summary_.ticks;
+  if (on_tick_) return on_tick_(tick);
+  return ok_status();
+}
+
+}  // namespace pkm::dynamics

@@ -1,0 +1,72 @@
+#pragma once
+// Drive forces, power and energy along a run at the servo rate: the commanded poses of consecutive ticks give
+// the platform's twist and its rate by central differences (the motion is jerk-limited and smooth at the
+// servo period), rigid_dynamics gives the forces. One tick behind the stream: tick k is evaluated when tick
+// k + 1 arrives (the first and the last at rest, where every run starts and ends).
+#include <array>
+#include <functional>
+
+#include "dynamics/rigid_dynamics.hpp"
+#include "machine/machine.hpp"
+
+namespace pkm::dynamics {
+
+/// The dynamics of one tick.
+struct TickDynamics {
+  double time_s = 0.0;
+  int line = 0;
+  DriveForces forces;
+  ActuatorVector power_W;  ///< P_j · q̇_j per drive
+};
+
+/// How a drive's energy is counted (as redundancy/law.hpp's accountings, per servo period): no recovery
+/// Σ|P q̇| (a braking drive still draws), braking free Σ max(0, P q̇), recovery max(0, Σ P q̇) (braking drives
+/// feed the others).
+struct EnergyTotals {
+  double no_recovery_J = 0.0;
+  double braking_free_J = 0.0;
+  double recovery_J = 0.0;
+};
+
+struct RunDynamicsSummary {
+  int drives = 0;
+  std::array<double, kMaxActuators> peak_force_N{};  ///< largest |P_j| (N·mm for angular drives)
+  std::array<double, kMaxActuators> peak_force_time_s{};
+  std::array<int, kMaxActuators> peak_force_line{};
+  std::array<double, kMaxActuators> peak_static_N{};
+  std::array<double, kMaxActuators> peak_dynamic_N{};
+  std::array<double, kMaxActuators> peak_power_W{};
+  double peak_total_power_W = 0.0;
+  int peak_total_power_line = 0;
+  EnergyTotals energy;
+  long ticks = 0;
+};
+
+class RunDynamics {
+ public:
+  /// `on_tick` receives every evaluated tick in order (e.g. to write forces.csv); it may be empty.
+  RunDynamics(const Machine& machine, double period_s, std::function<Status(const TickDynamics&)> on_tick);
+  /// The next commanded pose; fails where the forces cannot be computed, or exceed the machine's
+  /// actuator_force_max (the error's location holds the program line, the message the machine file's line).
+  Status add(double time_s, int line, const Pose& pose);
+  /// Evaluates the last tick (at rest); call once after the last add().
+  Status finish();
+  const RunDynamicsSummary& summary() const { return summary_; }
+
+ private:
+  Status evaluate(int index_in_window, bool at_rest);
+
+  const Machine& machine_;
+  double period_s_;
+  std::function<Status(const TickDynamics&)> on_tick_;
+  struct Sample {
+    double time_s = 0.0;
+    int line = 0;
+    Pose pose;
+  };
+  std::array<Sample, 3> window_;  ///< ticks k − 1, k, k + 1
+  long count_ = 0;
+  RunDynamicsSummary summary_;
+};
+
+}  // namespace pkm::dynamics
