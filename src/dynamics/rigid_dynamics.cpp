@@ -5,7 +5,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "dynamics/body_motion.hpp"
+#include "dynamics/equations_of_motion.hpp"
 
 namespace pkm::dynamics {
 namespace {
@@ -15,32 +15,6 @@ constexpr double kJoulesPerKgMm2S2 = 1e-6;  // kg·mm²/s² → J
 /// Smallest/largest pivot of the column-equilibrated J_cᵀ below which the drives cannot hold the platform
 /// (as statics' kSingularPivotRatio).
 constexpr double kSingularPivotRatio = 1e-9;
-
-using SquareMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-
-/// Generalised forces per controlled coordinate: the power of the rates of momentum (dynamic) and of gravity
-/// plus the load (static) in each allowed twist of the basis.
-struct GeneralisedForces {
-  ActuatorVector dynamic;
-  ActuatorVector applied;
-};
-
-GeneralisedForces generalised_forces(const MechanismState& state, const DynamicsParameters& parameters,
-                                     const BodyMotion& motion, const statics::Wrench& load) {
-  const int m = static_cast<int>(state.basis.cols());
-  GeneralisedForces q{ActuatorVector::Zero(m), ActuatorVector::Zero(m)};
-  const Eigen::Vector3d& g = parameters.gravity_mm_s2;
-  const BodyMomentumRates rates = momentum_rates(state, parameters, motion);
-  // The load's moment is in N·mm and its force in N: back to kg·mm/s² units with the rest.
-  Eigen::Matrix<double, 6, 1> wrench;
-  wrench << load.force_N / kNewtonsPerKgMmS2, load.moment_Nmm / kNewtonsPerKgMmS2;
-  for (int k = 0; k < m; ++k) {
-    const BodyMotion virtual_motion = body_velocities(state, parameters, state.basis.col(k));
-    q.dynamic[k] = power(rates, virtual_motion);
-    q.applied[k] = gravity_power(state, parameters, virtual_motion, g) + wrench.dot(state.basis.col(k));
-  }
-  return q;
-}
 
 }  // namespace
 
@@ -59,12 +33,11 @@ Result<DriveForces> inverse_dynamics(const Mechanism& mechanism, const DynamicsP
   Eigen::Matrix<double, 6, 1> twist, twist_rate;
   twist << motion.velocity_mm_s, motion.angular_velocity_rad_s;
   twist_rate << motion.acceleration_mm_s2, motion.angular_acceleration_rad_s2;
-  const BodyMotion bodies = body_motion(state, parameters, twist, twist_rate);
-  const GeneralisedForces q = generalised_forces(state, parameters, bodies, load);
+  const CoordinateForces q = coordinate_forces(state, parameters, state.basis, twist, twist_rate, load);
 
   // J_cᵀ P = Q_dynamic − Q_applied, columns equilibrated so that the singularity test does not depend on
   // units.
-  SquareMatrix jc = state.twist_jacobian * state.basis;
+  CoordinateMatrix jc = state.twist_jacobian * state.basis;
   ActuatorVector column_norm(m);
   for (int c = 0; c < m; ++c) {
     column_norm[c] = jc.col(c).norm();
@@ -74,7 +47,7 @@ Result<DriveForces> inverse_dynamics(const Mechanism& mechanism, const DynamicsP
     }
     jc.col(c) /= column_norm[c];
   }
-  const Eigen::FullPivLU<SquareMatrix> lu(jc.transpose());
+  const Eigen::FullPivLU<CoordinateMatrix> lu(jc.transpose());
   const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
   if (!(pivots.minCoeff() > kSingularPivotRatio * pivots.maxCoeff())) {
     return make_error(ErrorCode::singular,
