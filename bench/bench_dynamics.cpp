@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "core/duration_histogram.hpp"
 #include "core/rotation.hpp"
 #include "dynamics/rigid_dynamics.hpp"
@@ -23,13 +24,7 @@ namespace pkm {
 namespace {
 
 const Machine& machine() {
-  static const Machine m = [] {
-    auto loaded = load_machine_file(
-        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/machines/hexapod_ch5.yaml").string());
-    if (!loaded) throw std::runtime_error(loaded.error().message);
-    return std::move(loaded.value());
-  }();
-  return m;
+  return bench::ch5_hexapod();
 }
 
 /// The helix's ticks as platform motions (central differences over the 1 ms period).

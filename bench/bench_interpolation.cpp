@@ -23,6 +23,7 @@
 #include <map>
 #include <optional>
 
+#include "bench_support.hpp"
 #include "core/duration_histogram.hpp"
 #include "interpolation/methods/carrier_interpolator.hpp"
 #include "interpolation/methods/estimating_function.hpp"
@@ -36,13 +37,7 @@ namespace pkm {
 namespace {
 
 const Machine& machine() {
-  static const Machine m = [] {
-    auto loaded = load_machine_file(
-        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/machines/hexapod_ch5.yaml").string());
-    if (!loaded) throw std::runtime_error(loaded.error().message);
-    return std::move(loaded.value());
-  }();
-  return m;
+  return bench::ch5_hexapod();
 }
 
 /// The 100 mm test line, starting exactly at (−50, 0, 700) (the example puts program Z0 at z = 700), planned

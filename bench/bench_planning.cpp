@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <random>
 
+#include "bench_support.hpp"
 #include "io/machine_file.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
@@ -23,13 +24,7 @@ namespace {
 constexpr int kLines = 100000;
 
 const Machine& machine() {
-  static const Machine m = [] {
-    auto loaded = load_machine_file(
-        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/machines/hexapod_ch5.yaml").string());
-    if (!loaded) throw std::runtime_error(loaded.error().message);
-    return std::move(loaded.value());
-  }();
-  return m;
+  return bench::ch5_hexapod();
 }
 
 /// A deterministic CAM-like program: a random walk of short moves inside ±50 mm (XY) and ±10 mm (Z).

@@ -3,7 +3,7 @@
 # pkmConfig.cmake:
 #   pkm::kinematics  core/ machine/ kinematics/                 needs Eigen only
 #   pkm::io          io/ (machine files and other inputs)       + yaml-cpp, fmt, nlohmann_json
-#   pkm::motion      program/ path/ planning/ redundancy/ interpolation/ statics/   + NLopt
+#   pkm::motion      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/   + NLopt, Boost headers
 # A consumer: find_package(pkm REQUIRED [COMPONENTS kinematics io motion]) and target_link_libraries(app PRIVATE
 # pkm::motion); pkmConfig.cmake looks for the dependencies of the components asked for only (examples/consumer/,
 # docs/libraries.md). The report and the CLI's pipeline stay inside the project.

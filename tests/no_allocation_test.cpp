@@ -10,6 +10,7 @@
 #include <new>
 
 #include "core/units.hpp"
+#include "dynamics/run_elastic.hpp"
 #include "interpolation/interpolate_run.hpp"
 #include "interpolation/methods/carrier_interpolator.hpp"
 #include "interpolation/quantisation/discreteness_corrector.hpp"
@@ -211,6 +212,32 @@ TEST(NoAllocation, ServoStreamTicks) {
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_GT(ticks, 1000);
   EXPECT_FALSE(stream.error().has_value());
+}
+
+// The elastic machine along a planned run (dynamics::RunElastic, as `pkm plan --elastic`): after the first
+// ticks (the model, the modes and the stepper made at the start), every tick's integration and response.
+TEST(NoAllocation, ElasticResponseTicks) {
+  const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  const auto program = test::gcode_for(m, "G0 X-50 Y0 Z0\nG1 X50 F3000\nG2 X50 Y0 I-20 J0 A3\nM2\n");
+  const auto plan = test::plan_or_fail(m, program);
+  planning::ServoStream stream(plan, m);
+  long responses = 0;
+  auto run = dynamics::RunElastic::make(m, plan.period_s, [&responses](const dynamics::ElasticTick&) {
+    ++responses;
+    return ok_status();
+  });
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  planning::ServoTick tick;
+  for (int k = 0; k < 5 && stream.next(tick); ++k)
+    ASSERT_TRUE(run->add(tick.time_s, tick.line, tick.pose, tick.actuators).ok());
+  const long before = g_allocations.load();
+  while (stream.next(tick)) {
+    if (!run->add(tick.time_s, tick.line, tick.pose, tick.actuators).ok()) break;
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  ASSERT_TRUE(run->finish().ok());
+  EXPECT_GT(responses, 1000);
+  EXPECT_EQ(responses, stream.tick_count());
 }
 
 TEST(NoAllocation, StaticsHexapodStrutForces) {

@@ -14,6 +14,7 @@
 #include "number_options.hpp"
 #include "pipeline/plan_program.hpp"
 #include "redundancy_options.hpp"
+#include "statics/load_model.hpp"
 
 namespace pkm::cli {
 
@@ -34,6 +35,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto json = std::make_shared<bool>(false);
   auto no_error = std::make_shared<bool>(false);
   auto with_dynamics = std::make_shared<bool>(false);
+  auto with_elastic = std::make_shared<bool>(false);
   auto options = std::make_shared<planning::PlanOptions>();
   auto tolerance = std::make_shared<double>(0.0);
   auto report_file = std::make_shared<std::string>();
@@ -53,10 +55,14 @@ void add_plan_command(CLI::App& app, int& exit_code) {
           ->check(number_in({0.0, kMaxToleranceMm, true, true, "mm"}));
   cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
   cmd->add_flag("--no-path-error", *no_error, "skip the forward-kinematics check of the path error (faster)");
-  cmd->add_flag(
+  auto* dynamics_flag = cmd->add_flag(
       "--dynamics", *with_dynamics,
       "also the drive forces, power and energy (rigid bodies of the machine file's dynamics: section): "
       "forces.csv and a dynamics block in summary.json");
+  cmd->add_flag("--elastic", *with_elastic,
+                "with --dynamics, also the elastic struts' response to the planned motion: response.csv, "
+                "the lowest natural frequency and the largest dynamic tool error")
+      ->needs(dynamics_flag);
   cmd->add_flag("--json", *json, "print the summary as JSON");
   cmd->add_option("--report", *report_file, "also write the HTML report of the run to this file");
   auto redundancy_arguments = std::make_shared<RedundancyArguments>();
@@ -82,6 +88,16 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     if (tolerance_option->count() > 0) job.plan.path_tolerance_mm = *tolerance;
     job.evaluate_path_error = !*no_error;
     job.dynamics = *with_dynamics;
+    job.elastic = *with_elastic;
+    // --load is the law's process load; with --dynamics the drive forces carry it too.
+    if (job.dynamics && !redundancy_arguments->load.empty()) {
+      auto loads = statics::parse_load_spec(redundancy_arguments->load);
+      if (!loads) {
+        exit_code = report_error("plan", make_error(loads.error().code, "--load: " + loads.error().message));
+        return;
+      }
+      job.dynamics_load = std::move(*loads);
+    }
     if (isatty(STDERR_FILENO)) job.progress = draw_progress;
     job.out_directory = *out_dir;
     job.report_path = *report_file;
@@ -135,8 +151,16 @@ void add_plan_command(CLI::App& app, int& exit_code) {
           "  drive energy      {:.3f} J no recovery, {:.3f} J braking free, {:.3f} J with recovery\n",
           d.energy.no_recovery_J, d.energy.braking_free_J, d.energy.recovery_J);
     }
-    std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}\n", *out_dir,
-                             run.dynamics ? ", forces.csv" : "");
+    if (run.elastic) {
+      const dynamics::ElasticRunSummary& e = *run.elastic;
+      std::cout << fmt::format("  elastic response  lowest natural frequency {:.2f} Hz at the start\n",
+                               e.lowest_frequency_Hz);
+      std::cout << fmt::format(
+          "  dynamic error     max {:.3f} µm at the tool (line {}; static sag {:.3f} µm)\n",
+          e.max_tool_error_mm * 1e3, e.max_tool_error_line, e.start_deflection_mm * 1e3);
+    }
+    std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}{}\n", *out_dir,
+                             run.dynamics ? ", forces.csv" : "", run.elastic ? ", response.csv" : "");
   });
 }
 

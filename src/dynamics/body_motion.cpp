@@ -28,19 +28,22 @@ void combine_platform(const DynamicsParameters& parameters, double& mass_kg, Eig
   }
 }
 
-/// d = B − A and its derivatives → the strut's direction, its rates and its angular velocity and acceleration
-/// (perpendicular to the axis): d = L u ⇒ ḋ = L̇ u + L u̇, d̈ = L̈ u + 2 L̇ u̇ + L ü, ω = u × u̇, α = u × ü.
-StrutMotion strut_motion(const Eigen::Vector3d& d, const Eigen::Vector3d& d_rate,
-                         const Eigen::Vector3d& d_accel) {
+/// d = B − A = L u and its derivatives → the strut's direction rates and its angular velocity and
+/// acceleration (perpendicular to the axis): ḋ = L̇ u + L u̇, d̈ = L̈ u + 2 L̇ u̇ + L ü, ω = u × u̇, α = u × ü.
+/// Without `accelerations` (a virtual motion) only the rates.
+StrutMotion strut_motion(const Eigen::Vector3d& u, double length, const Eigen::Vector3d& d_rate,
+                         const Eigen::Vector3d& d_accel, bool accelerations) {
   StrutMotion s;
-  const double length = d.norm();
-  s.u = d / length;
-  const double length_rate = s.u.dot(d_rate);
-  s.u_rate = (d_rate - length_rate * s.u) / length;
-  const double length_accel = s.u.dot(d_accel) + length * s.u_rate.squaredNorm();
-  s.u_accel = (d_accel - length_accel * s.u - 2.0 * length_rate * s.u_rate) / length;
-  s.omega = s.u.cross(s.u_rate);
-  s.alpha = s.u.cross(s.u_accel);
+  s.u = u;
+  const double inverse_length = 1.0 / length;
+  const double length_rate = u.dot(d_rate);
+  s.u_rate = (d_rate - length_rate * u) * inverse_length;
+  s.omega = u.cross(s.u_rate);
+  if (accelerations) {
+    const double length_accel = u.dot(d_accel) + length * s.u_rate.squaredNorm();
+    s.u_accel = (d_accel - length_accel * u - 2.0 * length_rate * s.u_rate) * inverse_length;
+    s.alpha = u.cross(s.u_accel);
+  }
   return s;
 }
 
@@ -77,7 +80,8 @@ BodyMotion motion_of(const MechanismState& state, const DynamicsParameters& para
         base_a = first * q_accel + state.base_second[j] * q_rate * q_rate;
       }
     }
-    const StrutMotion s = strut_motion(d, b_v - base_v, b_a - base_a);
+    const StrutMotion s =
+        strut_motion(state.strut_u[j], state.strut_length_mm[j], b_v - base_v, b_a - base_a, accelerations);
     m.strut[j] = s;
     m.base_v[j] = base_v;
     m.base_a[j] = base_a;
@@ -108,9 +112,12 @@ Status mechanism_state(const Mechanism& mechanism, const DynamicsParameters& par
     return make_error(ErrorCode::unreachable, "dynamics: the pose is out of reach");
   }
   for (int j = 0; j < state.struts; ++j) {
-    if (!((state.ends.platform_mm[j] - state.ends.base_mm[j]).norm() > 0.0)) {
+    const Eigen::Vector3d d = state.ends.platform_mm[j] - state.ends.base_mm[j];
+    state.strut_length_mm[j] = d.norm();
+    if (!(state.strut_length_mm[j] > 0.0)) {
       return make_error(ErrorCode::singular, fmt::format("dynamics: strut {} has zero length", j + 1));
     }
+    state.strut_u[j] = d / state.strut_length_mm[j];
     mechanism.base_joint_motion(j, state.actuators[j], state.base_first[j], state.base_second[j]);
     state.base_moves[j] = state.base_first[j].squaredNorm() > 0.0;
     if (state.base_moves[j] &&

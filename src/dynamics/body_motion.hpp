@@ -19,6 +19,8 @@ struct MechanismState {
   std::array<Eigen::Vector3d, kMaxActuators> base_first;   ///< ∂A_j/∂q_j
   std::array<Eigen::Vector3d, kMaxActuators> base_second;  ///< ∂²A_j/∂q_j²
   std::array<bool, kMaxActuators> base_moves{};
+  std::array<Eigen::Vector3d, kMaxActuators> strut_u;  ///< unit strut directions A_j → B_j
+  std::array<double, kMaxActuators> strut_length_mm{};
   JacobianMatrix twist_jacobian;
   TwistBasis basis;
   double platform_kg = 0.0;

@@ -10,15 +10,19 @@
 namespace pkm::dynamics {
 
 RunDynamics::RunDynamics(const Machine& machine, double period_s,
-                         std::function<Status(const TickDynamics&)> on_tick)
-    : machine_(machine), period_s_(period_s), on_tick_(std::move(on_tick)) {
+                         std::function<Status(const TickDynamics&)> on_tick, const statics::LoadModel* load)
+    : machine_(machine),
+      period_s_(period_s),
+      on_tick_(std::move(on_tick)),
+      load_(load != nullptr && !load->empty() ? load : nullptr),
+      tool_axis_platform_(machine.mechanism->home().rotation.transpose() * Eigen::Vector3d::UnitZ()) {
   summary_.drives = machine.mechanism->actuator_count();
 }
 
-Status RunDynamics::add(double time_s, int line, const Pose& pose) {
+Status RunDynamics::add(double time_s, int line, const Pose& pose, bool cutting) {
   window_[0] = window_[1];
   window_[1] = window_[2];
-  window_[2] = Sample{time_s, line, pose};
+  window_[2] = Sample{time_s, line, pose, cutting};
   ++count_;
   if (count_ == 1) return evaluate(2, true);  // the start, at rest
   if (count_ >= 3) return evaluate(1, false);
@@ -49,7 +53,17 @@ Status RunDynamics::evaluate(int index_in_window, bool at_rest) {
     motion.angular_velocity_rad_s = (step_in + step_out) / (2.0 * h);
     motion.angular_acceleration_rad_s2 = (step_out - step_in) / (h * h);
   }
-  auto forces = inverse_dynamics(*machine_.mechanism, machine_.dynamics, motion);
+  statics::Wrench load;
+  if (load_ != nullptr) {
+    statics::LoadPoint point;
+    const double speed = motion.velocity_mm_s.norm();
+    point.tangent = speed > 0.0 ? Eigen::Vector3d(motion.velocity_mm_s / speed) : Eigen::Vector3d::Zero();
+    point.tool_axis = s.pose.rotation * tool_axis_platform_;
+    point.line = s.line;
+    point.cutting = s.cutting;
+    load = load_->wrench_at(point);
+  }
+  auto forces = inverse_dynamics(*machine_.mechanism, machine_.dynamics, motion, load);
   if (!forces) {
     return Error{forces.error().code, fmt::format("at {:.3f} s: {}", s.time_s, forces.error().message),
                  ErrorLocation{"", s.line, 0, ""}};

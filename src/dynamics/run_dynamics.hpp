@@ -8,6 +8,7 @@
 
 #include "dynamics/rigid_dynamics.hpp"
 #include "machine/machine.hpp"
+#include "statics/load_model.hpp"
 
 namespace pkm::dynamics {
 
@@ -44,11 +45,15 @@ struct RunDynamicsSummary {
 
 class RunDynamics {
  public:
-  /// `on_tick` receives every evaluated tick in order (e.g. to write forces.csv); it may be empty.
-  RunDynamics(const Machine& machine, double period_s, std::function<Status(const TickDynamics&)> on_tick);
-  /// The next commanded pose; fails where the forces cannot be computed, or exceed the machine's
-  /// actuator_force_max (the error's location holds the program line, the message the machine file's line).
-  Status add(double time_s, int line, const Pose& pose);
+  /// `on_tick` receives every evaluated tick in order (e.g. to write forces.csv); it may be empty. `load`,
+  /// when given, is the process load on the tool along the run (statics/load_model.hpp: the cutting force
+  /// split along the direction of travel, the tool axis being the one that is the base z axis at home).
+  RunDynamics(const Machine& machine, double period_s, std::function<Status(const TickDynamics&)> on_tick,
+              const statics::LoadModel* load = nullptr);
+  /// The next commanded pose (`cutting`: false on rapids, where no cutting load acts); fails where the forces
+  /// cannot be computed, or exceed the machine's actuator_force_max (the error's location holds the program
+  /// line, the message the machine file's line).
+  Status add(double time_s, int line, const Pose& pose, bool cutting = true);
   /// Evaluates the last tick (at rest); call once after the last add().
   Status finish();
   const RunDynamicsSummary& summary() const { return summary_; }
@@ -59,10 +64,13 @@ class RunDynamics {
   const Machine& machine_;
   double period_s_;
   std::function<Status(const TickDynamics&)> on_tick_;
+  const statics::LoadModel* load_;
+  Eigen::Vector3d tool_axis_platform_;
   struct Sample {
     double time_s = 0.0;
     int line = 0;
     Pose pose;
+    bool cutting = true;
   };
   std::array<Sample, 3> window_;  ///< ticks k − 1, k, k + 1
   long count_ = 0;

@@ -88,7 +88,7 @@ struct Machine {
   JointLimits joint_limits;
   PassiveJointAxes joint_axes;
   MotionSettings motion;
-  MassProperties masses;  ///< `masses:` (machine/mass_properties.hpp); no masses by default
+  MassProperties masses;        ///< `masses:` (machine/mass_properties.hpp); no masses by default
   DynamicsParameters dynamics;  ///< `dynamics:` (machine/dynamics_parameters.hpp); not given by default
   DriveSettings drives;
   bool home_given = false;

@@ -30,6 +30,8 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   output.override_pct = job.plan.override_pct;
   output.evaluate_path_error = job.evaluate_path_error;
   output.dynamics = job.dynamics;
+  output.elastic = job.elastic;
+  output.dynamics_load = &job.dynamics_load;
   if (job.progress && plan->duration_s * job.plan.rate_hz > 200000) output.progress = job.progress;
   // The CSVs, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs;

@@ -22,6 +22,9 @@ struct PlanJob {
   std::optional<redundancy::OptimizeOptions> law;  ///< choose the free coordinates first
   bool evaluate_path_error = true;                 ///< FK of the actuators at every mid-period
   bool dynamics = false;  ///< drive forces, power and energy at every tick (forces.csv; docs/dynamics.md)
+  statics::LoadModel dynamics_load;  ///< the process load in the dynamics (empty: gravity only)
+  /// With `dynamics`: the elastic machine's response (response.csv; docs/dynamics_elastic.md)
+  bool elastic = false;
   std::function<void(double)> progress;  ///< fraction written, for runs over 200 000 ticks
   std::string out_directory;
   std::string report_path;  ///< empty: no report

@@ -119,6 +119,15 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
       {"actuators", actuators},
   };
   if (run.dynamics) summary["dynamics"] = dynamics_json(*run.dynamics, angular);
+  if (run.elastic) {
+    nlohmann::json& d = summary["dynamics"];
+    d["lowest_natural_frequency_Hz"] = run.elastic->lowest_frequency_Hz;
+    d["static_deflection_at_start_mm"] = run.elastic->start_deflection_mm;
+    d["max_dynamic_tool_error_mm"] = run.elastic->max_tool_error_mm;
+    d["max_dynamic_tool_error_line"] = run.elastic->max_tool_error_line;
+    d["max_dynamic_tool_error_time_s"] = run.elastic->max_tool_error_time_s;
+    d["max_dynamic_rotation_deg"] = run.elastic->max_rotation_deg;
+  }
   return summary;
 }
 
@@ -170,7 +179,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(forces_csv.buffer), ",power{}_W", j);
     forces_csv.buffer.push_back('\n');
     drive_dynamics.emplace(
-        machine, plan.period_s, [&forces_csv, n](const dynamics::TickDynamics& t) -> Status {
+        machine, plan.period_s,
+        [&forces_csv, n](const dynamics::TickDynamics& t) -> Status {
           auto& b = forces_csv.buffer;
           fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
           for (int j = 0; j < n; ++j) {
@@ -180,7 +190,26 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
           for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.5f}", t.power_W[j]);
           b.push_back('\n');
           return forces_csv.flush_if_large();
+        },
+        options.dynamics_load);
+  }
+
+  PlanOutputFile response_csv;
+  std::optional<dynamics::RunElastic> elastic;
+  if (options.dynamics && options.elastic) {
+    auto made = dynamics::RunElastic::make(
+        machine, plan.period_s, [&response_csv](const dynamics::ElasticTick& t) -> Status {
+          fmt::format_to(std::back_inserter(response_csv.buffer),
+                         "{:.6f},{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e}\n", t.time_s, t.line,
+                         t.deviation_mm.x(), t.deviation_mm.y(), t.deviation_mm.z(), t.rotation_deg,
+                         t.tool_error_mm);
+          return response_csv.flush_if_large();
         });
+    if (!made) return made.error();
+    elastic.emplace(std::move(*made));
+    if (auto opened = response_csv.open(outputs.staged_path("response.csv")); !opened) return opened.error();
+    fmt::format_to(std::back_inserter(response_csv.buffer),
+                   "time_s,line,dx_mm,dy_mm,dz_mm,rotation_deg,tool_error_mm\n");
   }
 
   ServoStream stream(plan, machine);
@@ -191,7 +220,13 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   while (stream.next(tick)) {
     monitor.add(tick);
     if (drive_dynamics) {
-      if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose); !added) {
+      const bool cutting = !plan.path.segments[tick.segment].rapid;
+      if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose, cutting); !added) {
+        return at_program_line(plan, added.error());
+      }
+    }
+    if (elastic) {
+      if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators); !added) {
         return at_program_line(plan, added.error());
       }
     }
@@ -222,6 +257,11 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     if (Status finished = drive_dynamics->finish(); !finished) return at_program_line(plan, finished.error());
     run.dynamics = drive_dynamics->summary();
     if (auto committed = forces_csv.commit(); !committed) return committed.error();
+  }
+  if (elastic) {
+    if (Status finished = elastic->finish(); !finished) return at_program_line(plan, finished.error());
+    run.elastic = elastic->summary();
+    if (auto committed = response_csv.commit(); !committed) return committed.error();
   }
   fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", summary_json(plan, machine, run).dump(2));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {

@@ -1,7 +1,8 @@
 #pragma once
 // Writing a planned run: DIR/actuators.csv (time and every actuator position per servo tick), DIR/path.csv
 // (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json, and with
-// OutputOptions::dynamics DIR/forces.csv (drive forces: total, static, dynamic; drive power).
+// OutputOptions::dynamics DIR/forces.csv (drive forces: total, static, dynamic; drive power), and with
+// OutputOptions::elastic DIR/response.csv (the elastic machine's deviation from the commanded pose).
 // The files join an OutputSet (io/output_set.hpp): they replace the previous run's only together, when the
 // whole run succeeded, so a failed run leaves the previous run complete and nothing of its own.
 #include <functional>
@@ -13,6 +14,7 @@
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/run_monitor.hpp"
+#include "statics/load_model.hpp"
 
 namespace pkm::planning {
 
@@ -22,6 +24,12 @@ struct OutputOptions {
   /// Also the rigid-body drive forces, power and energy at every tick (the machine file's `dynamics:`):
   /// DIR/forces.csv and a "dynamics" block in the summary (src/dynamics, docs/dynamics.md).
   bool dynamics = false;
+  /// With `dynamics`, also the elastic machine's response to the planned actuator motion (the struts'
+  /// stiffness_N_mm; src/dynamics/run_elastic.hpp, docs/dynamics_elastic.md): DIR/response.csv and the lowest
+  /// natural frequency and the largest dynamic tool error in the summary's dynamics block.
+  bool elastic = false;
+  /// The process load on the tool for the dynamics (nullptr: gravity only).
+  const statics::LoadModel* dynamics_load = nullptr;
   /// Called now and then with the fraction done (0…1), e.g. to draw a progress bar.
   std::function<void(double)> progress;
 };

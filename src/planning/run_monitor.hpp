@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "dynamics/run_dynamics.hpp"
+#include "dynamics/run_elastic.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
@@ -18,6 +19,8 @@ namespace pkm::planning {
 struct RunSummary {
   /// Drive forces, power and energy (OutputOptions::dynamics), when asked for.
   std::optional<dynamics::RunDynamicsSummary> dynamics;
+  /// The elastic machine's response to the run (OutputOptions::elastic), when asked for.
+  std::optional<dynamics::ElasticRunSummary> elastic;
   double duration_s = 0.0;
   long ticks = 0;
   double rate_hz = 0.0;

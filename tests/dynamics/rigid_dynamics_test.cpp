@@ -16,6 +16,7 @@
 
 #include "core/rotation.hpp"
 #include "core/units.hpp"
+#include "dynamics/dynamics_test_support.hpp"
 #include "statics/actuator_forces.hpp"
 #include "test_support.hpp"
 
@@ -23,57 +24,6 @@ namespace pkm {
 namespace {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
-
-/// Random masses and inertias of every body (inertia tensors of real bodies: principal moments obeying the
-/// triangle inequality, random axes).
-DynamicsParameters random_parameters(std::mt19937_64& rng, int struts) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  auto tensor = [&](double scale) {
-    const double a = scale * (0.5 + unit(rng)), b = scale * (0.5 + unit(rng));
-    const double c = std::abs(a - b) + (a + b - std::abs(a - b)) * unit(rng);  // |a − b| ≤ c ≤ a + b
-    const Eigen::Matrix3d axes =
-        Eigen::AngleAxisd(2 * kPi * unit(rng), Eigen::Vector3d(unit(rng), unit(rng), 1).normalized())
-            .toRotationMatrix();
-    return Eigen::Matrix3d(axes * Eigen::Vector3d(a, b, c).asDiagonal() * axes.transpose());
-  };
-  DynamicsParameters p;
-  p.platform.mass_kg = 20 + 60 * unit(rng);
-  p.platform.com_mm = Eigen::Vector3d(40 * unit(rng) - 20, 40 * unit(rng) - 20, -150 * unit(rng));
-  p.platform.inertia_kg_mm2 = tensor(5e5);
-  p.payload.mass_kg = 5 * unit(rng);
-  p.payload.com_mm = Eigen::Vector3d(0, 0, 50 * unit(rng));
-  p.payload.inertia_kg_mm2 = tensor(1e4);
-  p.strut_count = struts;
-  for (int j = 0; j < struts; ++j) {
-    StrutDynamics& s = p.struts[j];
-    s.lower = {5 + 15 * unit(rng), 50 + 200 * unit(rng), 1e5 + 4e5 * unit(rng)};
-    s.upper = {2 + 10 * unit(rng), 50 + 200 * unit(rng), 1e5 + 3e5 * unit(rng)};
-    s.carriage_kg = 10 * unit(rng);
-  }
-  p.gravity_mm_s2 = Eigen::Vector3d(300 * unit(rng) - 150, 300 * unit(rng) - 150, -9810);
-  return p;
-}
-
-/// A hexapod with joints scattered around two circles, its home 500–800 mm up.
-Machine random_hexapod(std::mt19937_64& rng, int index) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::string text = "name: random\ntype: hexapod\nangles: krylov\nbase_joints:\n";
-  const double base_r = 300 + 300 * unit(rng), platform_r = 100 + 150 * unit(rng);
-  for (int j = 0; j < 6; ++j) {
-    const double angle = 2 * kPi * j / 6 + 0.3 * (unit(rng) - 0.5);
-    text +=
-        fmt::format("  - [{}, {}, {}]\n", base_r * std::cos(angle), base_r * std::sin(angle), 20 * unit(rng));
-  }
-  text += "platform_joints:\n";
-  for (int j = 0; j < 6; ++j) {
-    const double angle = 2 * kPi * (j / 2) / 3 + (j % 2 == 0 ? -0.3 : 0.3) + 0.2 * (unit(rng) - 0.5);
-    text += fmt::format("  - [{}, {}, {}]\n", platform_r * std::cos(angle), platform_r * std::sin(angle),
-                        10 * unit(rng));
-  }
-  text += fmt::format("tool: [0, 0, {}]\nhome: [0, 0, {}, 0, 0, 0]\n", 50 + 150 * unit(rng),
-                      500 + 300 * unit(rng));
-  return test::machine_from_text(text, fmt::format("random_hexapod_{}.yaml", index));
-}
 
 /// A smooth trajectory through home in the controlled coordinates: q(t) = q₀ + A ∘ sin(Ω t + φ).
 struct Trajectory {
@@ -146,7 +96,8 @@ struct Case {
 std::vector<Case> cases() {
   std::vector<Case> out;
   std::mt19937_64 rng(2026);
-  for (int i = 0; i < 5; ++i) out.push_back({fmt::format("random hexapod {}", i), random_hexapod(rng, i)});
+  for (int i = 0; i < 5; ++i)
+    out.push_back({fmt::format("random hexapod {}", i), test::random_hexapod_machine(rng, i)});
   for (const char* file :
        {"hexapod_ch5.yaml", "hexapod_refined.yaml", "planar2.yaml", "planar3.yaml", "tripod.yaml",
         "tricept.yaml", "hexaglide.yaml", "triglide.yaml", "rotopod.yaml"}) {
@@ -161,7 +112,7 @@ TEST(RigidDynamics, DrivePowerIsTheRateOfKineticAndPotentialEnergyPlusTheLoad) {
     const Mechanism& mech = *c.machine.mechanism;
     for (int trial = 0; trial < 3; ++trial) {
       SCOPED_TRACE(fmt::format("{} trial {}", c.label, trial));
-      const DynamicsParameters p = random_parameters(rng, mech.actuator_count());
+      const DynamicsParameters p = test::random_dynamics_parameters(rng, mech.actuator_count());
       const Trajectory tr = random_trajectory(rng, mech);
       statics::Wrench load{Eigen::Vector3d(200, -100, 300), Eigen::Vector3d(1e4, -5e3, 2e3)};
       if (mech.is_planar()) load = {Eigen::Vector3d(200, -100, 0), Eigen::Vector3d(0, 0, 2e3)};
@@ -193,7 +144,7 @@ TEST(RigidDynamics, AtRestTheForcesAreStaticAndMatchStatics) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.label);
     const Mechanism& mech = *c.machine.mechanism;
-    DynamicsParameters p = random_parameters(rng, mech.actuator_count());
+    DynamicsParameters p = test::random_dynamics_parameters(rng, mech.actuator_count());
     // statics carries the platform's weight; struts massless here, so both models are the same bodies.
     for (int j = 0; j < p.strut_count; ++j) p.struts[j] = StrutDynamics{};
     p.payload = BodyInertia{};
@@ -221,7 +172,7 @@ TEST(RigidDynamics, TheDynamicPartScalesWithTheSquareOfTheSpeedAlongAPath) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.label);
     const Mechanism& mech = *c.machine.mechanism;
-    const DynamicsParameters p = random_parameters(rng, mech.actuator_count());
+    const DynamicsParameters p = test::random_dynamics_parameters(rng, mech.actuator_count());
     const Trajectory tr = random_trajectory(rng, mech);
     const dynamics::PlatformMotion m = motion_at(tr, 0.29);
     dynamics::PlatformMotion faster = m;
@@ -250,7 +201,7 @@ TEST(RigidDynamics, AgreesWithLagrangesEquations) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.label);
     const Mechanism& mech = *c.machine.mechanism;
-    const DynamicsParameters p = random_parameters(rng, mech.actuator_count());
+    const DynamicsParameters p = test::random_dynamics_parameters(rng, mech.actuator_count());
     const Trajectory tr = random_trajectory(rng, mech);
     const AxisMask mask = mech.controlled_axes();
     std::vector<int> axes;

@@ -1,0 +1,127 @@
+// pkm modes --machine M.yaml --pose P [--json]: the natural frequencies and mode shapes of the machine's
+// elastic struts at a pose (the drives clamped there, about the static equilibrium under gravity;
+// src/dynamics/natural_frequencies.hpp, docs/dynamics_elastic.md).
+#include <fmt/format.h>
+
+#include <array>
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "core/rotation.hpp"
+#include "core/units.hpp"
+#include "dynamics/natural_frequencies.hpp"
+#include "io/pose_input.hpp"
+
+namespace pkm::cli {
+namespace {
+
+/// The name of each basis coordinate: the twist component it moves (tool point mm, rotation rad).
+std::vector<std::string> mode_coordinate_names(const TwistBasis& basis) {
+  static const std::array<const char*, 6> kNames = {"x_mm", "y_mm", "z_mm", "rx_rad", "ry_rad", "rz_rad"};
+  std::vector<std::string> names;
+  for (int k = 0; k < basis.cols(); ++k) {
+    int row = 0;
+    basis.col(k).cwiseAbs().maxCoeff(&row);
+    names.emplace_back(kNames[row]);
+  }
+  return names;
+}
+
+}  // namespace
+
+void add_modes_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "modes", "natural frequencies and mode shapes of the elastic struts at a pose (dynamics: section)");
+  auto machine_path = std::make_shared<std::string>();
+  auto pose_text = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("--machine", *machine_path, "machine file (YAML) with stiffness_N_mm for every strut")
+      ->required();
+  cmd->add_option("--pose", *pose_text, "pose, as for pkm ik (planar: x,y[,phi])")->required();
+  cmd->add_flag("--json", *json, "print JSON");
+  cmd->callback([=, &exit_code] {
+    auto machine = load_machine_or_report(*machine_path);
+    if (!machine) {
+      exit_code = report_error("modes", machine.error());
+      return;
+    }
+    const Mechanism& mech = *machine->mechanism;
+    auto values = parse_number_list(*pose_text, "--pose");
+    if (!values) {
+      exit_code = report_error("modes", values.error());
+      return;
+    }
+    auto pose = pose_from_user(mech, *values, "--pose");
+    if (!pose) {
+      exit_code = report_error("modes", pose.error());
+      return;
+    }
+    // The drives must be able to hold the pose: their range, as every other command checks it.
+    auto actuators = mech.inverse(*pose);
+    Status in_range = actuators ? check_actuator_range(*machine, *actuators) : Status(actuators.error());
+    if (!in_range) {
+      Error e = in_range.error();
+      e.message = fmt::format("--pose {}: {}", *pose_text, e.message);
+      exit_code = report_error("modes", e);
+      return;
+    }
+    auto model = dynamics::make_elastic_model(*machine);
+    if (!model) {
+      exit_code = report_error("modes", model.error());
+      return;
+    }
+    auto modes = dynamics::natural_modes(*model, *pose);
+    if (!modes) {
+      Error e = modes.error();
+      e.message = fmt::format("--pose {}: {}", *pose_text, e.message);
+      exit_code = report_error("modes", e);
+      return;
+    }
+    const std::vector<std::string> names = mode_coordinate_names(model->basis);
+    const Eigen::Vector3d sag_mm = modes->equilibrium.pose.position_mm - pose->position_mm;
+    const double tilt_deg = deg_from_rad(
+        rotation_vector_from_rotation(modes->equilibrium.pose.rotation * pose->rotation.transpose()).norm());
+    if (*json) {
+      nlohmann::json shapes = nlohmann::json::array();
+      for (int i = 0; i < modes->count; ++i) {
+        nlohmann::json shape = nlohmann::json::object();
+        for (int k = 0; k < modes->count; ++k) shape[names[k]] = modes->shape(k, i);
+        shapes.push_back({{"frequency_Hz", modes->frequency_Hz[i]}, {"shape", shape}});
+      }
+      std::vector<double> forces(
+          modes->equilibrium.strut_force_N.data(),
+          modes->equilibrium.strut_force_N.data() + modes->equilibrium.strut_force_N.size());
+      print_json({{"machine", machine->source},
+                  {"pose", user_from_pose(mech, *pose)},
+                  {"frequencies_Hz", std::vector<double>(modes->frequency_Hz.data(),
+                                                         modes->frequency_Hz.data() + modes->count)},
+                  {"modes", shapes},
+                  {"static_deflection_mm", {sag_mm.x(), sag_mm.y(), sag_mm.z()}},
+                  {"static_rotation_deg", tilt_deg},
+                  {"strut_tension_N", forces},
+                  {"geometric_stiffness_share", modes->geometric_share},
+                  {"units",
+                   "shapes: twist coordinates of the platform about the tool point, base frame (mm, rad), "
+                   "scaled to a largest platform-joint motion of 1 mm"}});
+      exit_code = 0;
+      return;
+    }
+    std::cout << fmt::format("{} ({}) at {}: drives clamped, about the static equilibrium under gravity\n",
+                             machine->name, machine->source, *pose_text);
+    std::cout << fmt::format(
+        "  static deflection of the tool point {:.4f} µm (x {:.4f}, y {:.4f}, z {:.4f} µm), "
+        "rotation {:.3g}°\n",
+        sag_mm.norm() * 1e3, sag_mm.x() * 1e3, sag_mm.y() * 1e3, sag_mm.z() * 1e3, tilt_deg);
+    std::cout << fmt::format("  mode  frequency Hz  shape (largest platform-joint motion 1 mm): {}\n",
+                             fmt::join(names, " "));
+    for (int i = 0; i < modes->count; ++i) {
+      std::cout << fmt::format("  {:4d}  {:12.3f} ", i + 1, modes->frequency_Hz[i]);
+      for (int k = 0; k < modes->count; ++k) std::cout << fmt::format(" {:10.6f}", modes->shape(k, i));
+      std::cout << "\n";
+    }
+    exit_code = 0;
+  });
+}
+
+}  // namespace pkm::cli

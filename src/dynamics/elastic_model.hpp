@@ -1,0 +1,118 @@
+#pragma once
+// The elastic-dissipative machine (spec ch4 §4 model P2 for the planar biped, §6 model S2 for the hexapod),
+// for every mechanism whose platform moves freely in a twist basis (platform_twist_basis): the drives hold
+// the actuator coordinates q_j(t) (kinematic excitation, §4.4 / §6.7), and an elastic element in series with
+// each strut carries the axial force
+//   F_j = c_j (a_j − q_j) + D_j(ȧ_j − q̇_j),    a_j = the actuator value of the platform's actual pose,
+// with a_j = |B_j − A_j| for struts whose actuators are their lengths (the seed's δl = L* − q, eqs.
+// (137)-(139) and §4.3) and D the element's friction: viscous β·ẋ, quadratic β·ẋ·|ẋ| (the seed's "true
+// friction", §4.5, §6.5, with the sign that dissipates: errata 9), Coulomb β·tanh(ẋ/v_ε) (sign() smoothed
+// over v_ε). F > 0 stretches the element and pulls the platform joint towards the base: with the rigid terms
+// of equations_of_motion.hpp and J_B the drive Jacobian in the basis,
+//   M(pose) c̈ = applied(pose) − bias(pose, ċ) − J_Bᵀ F · 10³          (kg·mm/s², F in N)
+// which is Lagrange's (109) with Π = ½ Σ c_j (a_j − q_j)², ∂Π/∂c = J_Bᵀ c (a − q), and the friction's
+// generalised force −J_Bᵀ D (errata 9, 17: signs from the Lagrangian, not from the printed (141)).
+//
+// The platform's coordinates are its pose (tool point and rotation matrix, integrated as a rotation,
+// elastic_simulation.hpp) and the rates ċ of the basis coordinates (twist t = B ċ), so no small-angle
+// assumption enters (the seed's 10° limit of (138) is lifted). The moving bodies are those of
+// body_motion.hpp: each strut's parts move with its joints A_j and B_j (docs/dynamics_elastic.md says what
+// this lumps relative to S2's twelve coordinates). Units: mm, kg, s; forces leave in N, energies in J.
+#include <Eigen/Core>
+
+#include "core/result.hpp"
+#include "dynamics/body_motion.hpp"
+#include "dynamics/equations_of_motion.hpp"
+#include "dynamics/rigid_terms.hpp"
+#include "machine/machine.hpp"
+
+namespace pkm::dynamics {
+
+/// The equations' force unit per newton: N → kg·mm/s².
+inline constexpr double kKgMmS2PerN = 1e3;
+
+/// Rates or accelerations of the basis coordinates (mm/s and rad/s, or their rates); at most six.
+using CoordinateVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+
+/// Where the drives hold the actuator coordinates at one instant, and how fast they move them.
+struct DriveSetpoint {
+  ActuatorVector position_mm;
+  ActuatorVector rate_mm_s;
+};
+
+/// Settings of the elastic model that are not machine data.
+struct ElasticModelOptions {
+  /// Coulomb friction β·sign(ẋ) is smoothed to β·tanh(ẋ / v_ε): a discontinuous force would stall an
+  /// adaptive integrator at every reversal. Below v_ε the element acts as a viscous one of β / v_ε.
+  double coulomb_smoothing_mm_s = 0.01;
+};
+
+/// The immutable model: the mechanism, its dynamics parameters and the platform's twist basis.
+struct ElasticModel {
+  const Mechanism* mechanism = nullptr;
+  const DynamicsParameters* parameters = nullptr;
+  TwistBasis basis;
+  int coordinates = 0;
+  int struts = 0;
+  ElasticModelOptions options;
+  /// The platform with its payload as one body (tool frame: centre of mass mm, inertia about it kg·mm²),
+  /// combined once instead of at every evaluation.
+  double platform_kg = 0.0;
+  Eigen::Vector3d platform_com_mm = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d platform_inertia_kg_mm2 = Eigen::Matrix3d::Zero();
+};
+
+/// Builds the model, or says why the machine cannot have one: no dynamics section, a strut without
+/// stiffness_N_mm, angular actuators, or a platform without a free twist basis (tripod, tricept). Errors name
+/// the machine file, the line of its `dynamics:` section and the key. The machine must outlive the model; its
+/// struts' parameters are read at every evaluation, the platform and payload only here.
+Result<ElasticModel> make_elastic_model(const Machine& machine, const ElasticModelOptions& options = {});
+/// The same from parts (the checks without a file to name; for tests and library callers).
+Result<ElasticModel> make_elastic_model(const Mechanism& mechanism, const DynamicsParameters& parameters,
+                                        const ElasticModelOptions& options = {});
+
+/// Preallocated per-evaluation storage (the right-hand side runs several times per integration step).
+struct ElasticWorkspace {
+  MechanismState state;
+  RigidTerms rigid;
+};
+
+/// What the right-hand side needs of the mechanism at a pose, through the interface: the completed pose, the
+/// struts' ends, the actuator values, the base joints' motion, the twist Jacobian and the platform body
+/// (mechanism_state less the controlled twists, which a fixed basis does not need). Never allocates on
+/// success.
+Status elastic_state(const ElasticModel& model, const Pose& pose, MechanismState& state);
+
+/// The elastic elements' state at a pose moving with rates ċ under a drive setpoint.
+struct StrutForces {
+  ActuatorVector elongation_mm;         ///< a_j − q_j
+  ActuatorVector elongation_rate_mm_s;  ///< ȧ_j − q̇_j = (J_B ċ)_j − q̇_j
+  ActuatorVector force_N;               ///< c (a − q) + D(ȧ − q̇), positive in tension
+};
+
+/// The elastic element's friction force for an elongation rate, N (positive opposes stretching).
+double damping_force_N(const StrutDynamics& strut, double elongation_rate_mm_s,
+                       const ElasticModelOptions& options);
+
+/// The coordinate accelerations c̈ at `pose` (complete) moving with `rates` under `drives`, plus the strut
+/// forces when `forces` is given. Fails (ErrorCode::unreachable / singular) where the pose leaves the
+/// mechanism's reach or the mass matrix is not positive definite. Never allocates.
+Status elastic_accelerations(const ElasticModel& model, const Pose& pose, const CoordinateVector& rates,
+                             const DriveSetpoint& drives, ElasticWorkspace& workspace,
+                             CoordinateVector& accelerations, StrutForces* forces = nullptr);
+
+/// The energies of the elastic machine: kinetic T, elastic Π = ½ Σ c (a − q)², gravity V = −Σ m g·c.
+struct ElasticEnergy {
+  double kinetic_J = 0.0;
+  double elastic_J = 0.0;
+  double gravity_J = 0.0;
+  double total_J() const { return kinetic_J + elastic_J + gravity_J; }
+};
+Result<ElasticEnergy> elastic_energy(const ElasticModel& model, const Pose& pose,
+                                     const CoordinateVector& rates, const ActuatorVector& drive_position_mm);
+
+/// The stiffness of the elastic elements in the basis coordinates at a state: J_Bᵀ diag(c) J_B, with c in
+/// kg/s² (N/mm × 10³), so that with M in kg and kg·mm² the eigenvalues are ω² in 1/s².
+CoordinateMatrix material_stiffness(const ElasticModel& model, const MechanismState& state);
+
+}  // namespace pkm::dynamics
