@@ -30,21 +30,11 @@ const Machine& machine() {
 /// The helix's ticks as platform motions (central differences over the 1 ms period).
 const std::vector<dynamics::PlatformMotion>& motions() {
   static const std::vector<dynamics::PlatformMotion> all = [] {
-    const planning::ProgramStart start = planning::program_start(machine());
-    program::InterpretOptions interpret;
-    interpret.start_mm = start.start_mm;
-    interpret.start_abc_deg = start.start_abc_deg;
-    auto program = program::load_part_program(
-        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/programs/helix.ngc").string(), interpret);
-    if (!program) throw std::runtime_error(program.error().message);
-    auto plan = planning::plan_motion(machine(), *program, planning::PlanOptions{});
-    if (!plan) throw std::runtime_error(plan.error().message);
-    planning::ServoStream stream(*plan, machine());
+    const bench::PlannedTicks& run = bench::ch5_helix_ticks();
     std::vector<Pose> poses;
-    planning::ServoTick tick;
-    while (stream.next(tick)) poses.push_back(tick.pose);
+    for (const planning::ServoTick& tick : run.ticks) poses.push_back(tick.pose);
     std::vector<dynamics::PlatformMotion> out;
-    const double h = plan->period_s;
+    const double h = run.period_s;
     for (std::size_t k = 1; k + 1 < poses.size(); ++k) {
       dynamics::PlatformMotion m;
       m.pose = poses[k];

@@ -25,32 +25,10 @@ const Machine& elastic_machine() {
   return bench::ch5_hexapod();
 }
 
-struct PlannedRun {
-  double period_s = 0.0;
-  std::vector<planning::ServoTick> ticks;
-};
+using PlannedRun = bench::PlannedTicks;
 
-/// The helix planned at the machine's servo rate (1 kHz), every tick kept.
 const PlannedRun& helix_run() {
-  static const PlannedRun run = [] {
-    const Machine& machine = elastic_machine();
-    const planning::ProgramStart start = planning::program_start(machine);
-    program::InterpretOptions interpret;
-    interpret.start_mm = start.start_mm;
-    interpret.start_abc_deg = start.start_abc_deg;
-    auto program = program::load_part_program(
-        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/programs/helix.ngc").string(), interpret);
-    if (!program) throw std::runtime_error(program.error().message);
-    auto plan = planning::plan_motion(machine, *program, planning::PlanOptions{});
-    if (!plan) throw std::runtime_error(plan.error().message);
-    PlannedRun r;
-    r.period_s = plan->period_s;
-    planning::ServoStream stream(*plan, machine);
-    planning::ServoTick tick;
-    while (stream.next(tick)) r.ticks.push_back(tick);
-    return r;
-  }();
-  return run;
+  return bench::ch5_helix_ticks();
 }
 
 void BM_ElasticHelixRun(benchmark::State& state) {

@@ -2,8 +2,12 @@
 // What the benchmarks share: the ch5 hexapod of the shipped examples, loaded once.
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 #include "io/machine_file.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/servo_stream.hpp"
+#include "program/part_program.hpp"
 
 namespace pkm::bench {
 
@@ -16,6 +20,35 @@ inline const Machine& ch5_hexapod() {
     return std::move(loaded.value());
   }();
   return m;
+}
+
+/// A shipped program planned on the ch5 hexapod at its servo rate, with every tick of the stream.
+struct PlannedTicks {
+  double period_s = 0.0;
+  std::vector<planning::ServoTick> ticks;
+};
+
+/// examples/programs/helix.ngc, planned once at the first call.
+inline const PlannedTicks& ch5_helix_ticks() {
+  static const PlannedTicks run = [] {
+    const Machine& machine = ch5_hexapod();
+    const planning::ProgramStart start = planning::program_start(machine);
+    program::InterpretOptions interpret;
+    interpret.start_mm = start.start_mm;
+    interpret.start_abc_deg = start.start_abc_deg;
+    auto program = program::load_part_program(
+        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/programs/helix.ngc").string(), interpret);
+    if (!program) throw std::runtime_error(program.error().message);
+    auto plan = planning::plan_motion(machine, *program, planning::PlanOptions{});
+    if (!plan) throw std::runtime_error(plan.error().message);
+    PlannedTicks r;
+    r.period_s = plan->period_s;
+    planning::ServoStream stream(*plan, machine);
+    planning::ServoTick tick;
+    while (stream.next(tick)) r.ticks.push_back(tick);
+    return r;
+  }();
+  return run;
 }
 
 }  // namespace pkm::bench

@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -135,7 +137,15 @@ inline void set_strut_damping(std::mt19937_64& rng, DynamicsParameters& p, Strut
 /// The shipped ch5 hexapod and planar biped with their files' parameters, and `random` random hexapods with
 /// random inertial and elastic parameters; every strut's friction `damping`. Make models only after the
 /// vector is complete (they keep pointers into it).
-inline std::vector<ElasticCase> elastic_cases(StrutDamping damping, int random = 5, unsigned seed = 2027) {
+/// How many random hexapods the elastic tests take: 5, or PKM_RANDOM_GEOMETRIES (the sanitizer run of
+/// `make sanitize` takes 1: its simulations are 20× slower, and the shipped machines stay in every run).
+inline int random_geometry_count() {
+  const char* value = std::getenv("PKM_RANDOM_GEOMETRIES");
+  return value != nullptr ? std::max(1, std::atoi(value)) : 5;
+}
+
+inline std::vector<ElasticCase> elastic_cases(StrutDamping damping, int random = -1, unsigned seed = 2027) {
+  if (random < 0) random = random_geometry_count();
   std::vector<ElasticCase> cases;
   std::mt19937_64 rng(seed);
   for (const char* file : {"hexapod_ch5.yaml", "planar2.yaml"}) {
