@@ -46,7 +46,7 @@ Result<CoordinateVector> rest_generalised_force(const ElasticModel& model, const
                                                 const statics::Wrench& load, ActuatorVector* strut_force_N,
                                                 const ActuatorVector* fixed_strut_force_N) {
   MechanismState state;
-  if (Status s = elastic_state(model, pose, state); !s) return s.error();
+  if (Status s = free_platform_state(model, pose, state); !s) return s.error();
   RigidTerms rigid;
   rigid_terms(state, *model.parameters, model.basis, Twist::Zero(), load, rigid);
   const int n = model.struts;
@@ -69,7 +69,7 @@ Result<StaticEquilibrium> static_equilibrium(const ElasticModel& model,
   e.drive_position_mm = drive_position_mm;
   for (e.iterations = 0; e.iterations < options.max_iterations; ++e.iterations) {
     MechanismState state;
-    if (Status s = elastic_state(model, e.pose, state); !s) return s.error();
+    if (Status s = free_platform_state(model, e.pose, state); !s) return s.error();
     auto force = rest_generalised_force(model, e.pose, drive_position_mm, load, &e.strut_force_N);
     if (!force) return force.error();
     RigidTerms rigid;

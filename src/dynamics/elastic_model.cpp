@@ -12,22 +12,9 @@ namespace {
 
 constexpr double kJoulePerKgMm2S2 = 1e-6;  // kg·mm²/s² → J
 
-Status check_parts(const Mechanism& mechanism, const DynamicsParameters& parameters,
-                   const ElasticModel& model, const std::string& where) {
-  if (mechanism.actuators_are_angles()) {
-    return make_error(
-        ErrorCode::unsupported,
-        fmt::format("{}the elastic model needs actuators that are lengths or carriage positions "
-                    "in mm; this {} turns its carriages by angles",
-                    where, to_string(mechanism.type())));
-  }
-  if (model.struts == 0) {
-    return make_error(
-        ErrorCode::unsupported,
-        fmt::format("{}a {} has no platform that moves freely in a fixed twist basis (its allowed "
-                    "twists turn with the pose): the elastic model needs one",
-                    where, to_string(mechanism.type())));
-  }
+// What the elastic model needs beyond a free platform: every strut's elastic element.
+Status check_struts(const DynamicsParameters& parameters, const ElasticModel& model,
+                    const std::string& where) {
   if (parameters.strut_count != model.struts) {
     return make_error(
         ErrorCode::bad_input,
@@ -50,21 +37,10 @@ Status check_parts(const Mechanism& mechanism, const DynamicsParameters& paramet
 Result<ElasticModel> make_model(const Mechanism& mechanism, const DynamicsParameters& parameters,
                                 const ElasticModelOptions& options, const std::string& where) {
   ElasticModel model;
-  model.mechanism = &mechanism;
-  model.parameters = &parameters;
   model.options = options;
-  if (platform_twist_basis(mechanism, model.basis)) {
-    model.coordinates = static_cast<int>(model.basis.cols());
-    model.struts = mechanism.actuator_count();
-  }
-  if (Status checked = check_parts(mechanism, parameters, model, where); !checked) return checked.error();
-  // The platform body as body_motion combines it, read back into the tool frame from its state at home.
-  MechanismState home;
-  if (Status s = mechanism_state(mechanism, parameters, mechanism.home(), home); !s) return s.error();
-  model.platform_kg = home.platform_kg;
-  const Eigen::Matrix3d& r = home.pose.rotation;
-  model.platform_com_mm = r.transpose() * home.platform_arm_mm;
-  model.platform_inertia_kg_mm2 = r.transpose() * home.platform_inertia_kg_mm2 * r;
+  if (Status s = make_free_platform_model(mechanism, parameters, where, "the elastic model", model); !s)
+    return s.error();
+  if (Status checked = check_struts(parameters, model, where); !checked) return checked.error();
   if (!(options.coulomb_smoothing_mm_s > 0.0)) {
     return make_error(
         ErrorCode::bad_input,
@@ -115,38 +91,11 @@ double damping_force_N(const StrutDynamics& strut, double rate_mm_s, const Elast
   return 0.0;
 }
 
-Status elastic_state(const ElasticModel& model, const Pose& pose, MechanismState& state) {
-  const Mechanism& mechanism = *model.mechanism;
-  auto completed = mechanism.complete_pose(pose);
-  if (!completed) return completed.error();
-  state.pose = *completed;
-  state.struts = mechanism.strut_ends(state.pose, state.ends);
-  if (state.struts != model.struts || !mechanism.actuator_values(state.pose, state.actuators.data()) ||
-      !mechanism.twist_jacobian(state.pose, state.twist_jacobian)) {
-    return make_error(ErrorCode::unreachable, "elastic model: the platform left the mechanism's reach");
-  }
-  for (int j = 0; j < state.struts; ++j) {
-    const Eigen::Vector3d d = state.ends.platform_mm[j] - state.ends.base_mm[j];
-    mechanism.base_joint_motion(j, state.actuators[j], state.base_first[j], state.base_second[j]);
-    state.base_moves[j] = state.base_first[j].squaredNorm() > 0.0;
-    if (!(d.squaredNorm() > 0.0) || (state.base_moves[j] && !(std::abs(d.dot(state.base_first[j])) > 0.0))) {
-      return make_error(
-          ErrorCode::singular,
-          fmt::format("elastic model: strut {} has zero length or is across its carriage's path", j + 1));
-    }
-  }
-  const Eigen::Matrix3d& r = state.pose.rotation;
-  state.platform_kg = model.platform_kg;
-  state.platform_arm_mm = r * model.platform_com_mm;
-  state.platform_inertia_kg_mm2 = r * model.platform_inertia_kg_mm2 * r.transpose();
-  return ok_status();
-}
-
 Status elastic_accelerations(const ElasticModel& model, const Pose& pose, const CoordinateVector& rates,
                              const DriveSetpoint& drives, ElasticWorkspace& workspace,
                              CoordinateVector& accelerations, StrutForces* forces) {
   const DynamicsParameters& parameters = *model.parameters;
-  if (Status s = elastic_state(model, pose, workspace.state); !s) return s;
+  if (Status s = free_platform_state(model, pose, workspace.state); !s) return s;
   const MechanismState& state = workspace.state;
   const Twist twist = model.basis * rates;
   rigid_terms(state, parameters, model.basis, twist, {}, workspace.rigid);
@@ -176,17 +125,7 @@ Status elastic_accelerations(const ElasticModel& model, const Pose& pose, const 
   const CoordinateVector generalised =
       workspace.rigid.applied - workspace.rigid.bias -
       model.basis.transpose() * (state.twist_jacobian.transpose() * force_kg_mm_s2);
-  // The free platform's 6 × 6 by the fixed-size solve (fixed_cholesky.hpp), the planar ones by Eigen's.
-  bool positive = false;
-  if (model.coordinates == 6) {
-    Eigen::Matrix<double, 6, 1> solution;
-    positive = cholesky_solve<6>(workspace.rigid.mass, generalised, solution);
-    accelerations = solution;
-  } else {
-    const Eigen::LLT<CoordinateMatrix> mass(workspace.rigid.mass);
-    positive = mass.info() == Eigen::Success;
-    accelerations = mass.solve(generalised);
-  }
+  const bool positive = solve_mass(model, workspace.rigid.mass, generalised, accelerations);
   if (!positive) {
     return make_error(
         ErrorCode::singular,

@@ -23,16 +23,11 @@
 #include "core/result.hpp"
 #include "dynamics/body_motion.hpp"
 #include "dynamics/equations_of_motion.hpp"
+#include "dynamics/free_platform.hpp"
 #include "dynamics/rigid_terms.hpp"
 #include "machine/machine.hpp"
 
 namespace pkm::dynamics {
-
-/// The equations' force unit per newton: N → kg·mm/s².
-inline constexpr double kKgMmS2PerN = 1e3;
-
-/// Rates or accelerations of the basis coordinates (mm/s and rad/s, or their rates); at most six.
-using CoordinateVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 
 /// Where the drives hold the actuator coordinates at one instant, and how fast they move them.
 struct DriveSetpoint {
@@ -47,19 +42,9 @@ struct ElasticModelOptions {
   double coulomb_smoothing_mm_s = 0.01;
 };
 
-/// The immutable model: the mechanism, its dynamics parameters and the platform's twist basis.
-struct ElasticModel {
-  const Mechanism* mechanism = nullptr;
-  const DynamicsParameters* parameters = nullptr;
-  TwistBasis basis;
-  int coordinates = 0;
-  int struts = 0;
+/// The immutable model: the free platform (free_platform.hpp) with the elastic model's settings.
+struct ElasticModel : FreePlatformModel {
   ElasticModelOptions options;
-  /// The platform with its payload as one body (tool frame: centre of mass mm, inertia about it kg·mm²),
-  /// combined once instead of at every evaluation.
-  double platform_kg = 0.0;
-  Eigen::Vector3d platform_com_mm = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d platform_inertia_kg_mm2 = Eigen::Matrix3d::Zero();
 };
 
 /// Builds the model, or says why the machine cannot have one: no dynamics section, a strut without
@@ -76,12 +61,6 @@ struct ElasticWorkspace {
   MechanismState state;
   RigidTerms rigid;
 };
-
-/// What the right-hand side needs of the mechanism at a pose, through the interface: the completed pose, the
-/// struts' ends, the actuator values, the base joints' motion, the twist Jacobian and the platform body
-/// (mechanism_state less the controlled twists, which a fixed basis does not need). Never allocates on
-/// success.
-Status elastic_state(const ElasticModel& model, const Pose& pose, MechanismState& state);
 
 /// The elastic elements' state at a pose moving with rates ċ under a drive setpoint.
 struct StrutForces {

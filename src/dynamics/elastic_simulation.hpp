@@ -1,22 +1,13 @@
 #pragma once
 // Time integration of the elastic machine (elastic_model.hpp) under kinematic excitation (spec ch4 §4.4,
 // §6.7): the drives' positions q(t) and rates q̇(t) are given, the platform's pose and twist coordinates are
-// integrated. Boost.Odeint's Dormand–Prince 5(4) with step-size control (the seed names no integrator, no
-// step and no tolerance: errata 21, so both tolerances are parameters here).
-//
-// The state is the pose and the coordinate rates, the rotation integrated as a rotation: a unit quaternion
-// with q̇ = ½ (0, ω) ⊗ q, the quaternion form of Ṙ = [ω]× R, never Euler angles (no small-angle assumption,
-// no angle singularity). So that one absolute and one relative tolerance make sense for every component, all
-// are lengths: the tool point's displacement from the start (mm), the quaternion times the platform's size
-// L (Mechanism::platform_size_mm: a rotation error ε then moves a platform joint ≈ ε·L), and each rate times
-// a time scale τ (and times L for angular rates: the distance it covers in τ). τ defaults to 1/ω of the
-// fastest vibration at the start, so a rate error counts as much as the position error it makes within a
-// radian of that vibration.
-//
-// Integrating never allocates after start(); the right-hand side runs 6 times per accepted step (FSAL).
+// integrated by platform_integrator.hpp, whose rate time scale τ defaults here to 1/ω of the fastest
+// vibration at the start, so a rate error counts as much as the position error it makes within a radian of
+// that vibration.
 #include <memory>
 
 #include "dynamics/elastic_model.hpp"
+#include "dynamics/platform_integrator.hpp"
 
 namespace pkm::dynamics {
 
@@ -43,26 +34,8 @@ class HeldDrives final : public DriveMotion {
   ActuatorVector rate_mm_s_;
 };
 
-struct ElasticIntegration {
-  /// Absolute tolerance of each length-scaled state component (see above), mm.
-  double abs_tolerance_mm = 1e-7;
-  /// Relative tolerance of each component.
-  double rel_tolerance = 1e-9;
-  /// τ of the rates' scaling, s; 0: 1/ω_max at the start pose (from the material stiffness).
-  double rate_time_scale_s = 0.0;
-  /// Longest step, s (0: no limit). Steps run past the time asked for by up to this much (the state there
-  /// is interpolated), so drives known only up to some time need it (RunElastic: the servo period).
-  double max_step_s = 0.0;
-  /// Steps one advance_to() may take before it gives up.
-  long max_steps_per_advance = 5'000'000;
-};
-
-/// Counters of the integration, for tests and the benchmark.
-struct IntegrationCounters {
-  long accepted_steps = 0;
-  long evaluations =
-      0;  ///< right-hand side evaluations (6 per accepted or rejected step, first same as last)
-};
+/// The integrator's settings; rate_time_scale_s 0 means 1/ω_max at the start pose.
+using ElasticIntegration = PlatformIntegration;
 
 class ElasticSimulator {
  public:
