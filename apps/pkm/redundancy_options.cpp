@@ -33,6 +33,11 @@ void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, b
                   "energy law: no-recovery (seeds) | braking-free | recovery")
       ->capture_default_str();
   command
+      .add_option("--force-model", arguments.force_model,
+                  "forces the laws see: statics (ch3: load and weights) | dynamics (the rigid dynamics "
+                  "at the programmed feed; needs the machine's dynamics: section)")
+      ->capture_default_str();
+  command
       .add_option("--force-limit", arguments.force_limit_N,
                   "drive force limit, N: candidates over it are not admissible (0: none)")
       ->check(number_in({0.0, 1e9, true, true, "N"}));
@@ -78,6 +83,12 @@ Result<redundancy::OptimizeOptions> redundancy_options(const RedundancyArguments
                                   arguments.energy_accounting));
   }
   options.law.energy = *accounting;
+  auto force_model = redundancy::force_model_from_string(arguments.force_model);
+  if (!force_model) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--force-model {}: expected statics or dynamics", arguments.force_model));
+  }
+  options.law.forces = *force_model;
   if (!arguments.bounds.empty()) {
     const auto comma = arguments.bounds.find(',');
     std::array<double, 2> bounds{};

@@ -17,6 +17,7 @@ struct RedundancyArguments {
   std::string load;
   std::string solver = "greedy";
   std::string energy_accounting = "no-recovery";
+  std::string force_model = "statics";
   double force_limit_N = 0.0;
   double max_rate_deg_per_mm = 0.0;
 };

@@ -39,6 +39,9 @@ struct PathPoint {
   int line = 0;                                       ///< source line of the move this point belongs to
   int move_index = -1;   ///< index of that move in the program (-1: the start point)
   bool cutting = false;  ///< a feed move (cutting loads apply), not a rapid
+  /// The move's programmed feed, mm/s (0 on rapids): the tool's speed along the step under the dynamic force
+  /// model (LawOptions::forces).
+  double feed_mm_s = 0.0;
 };
 
 class FreeCoordinates {

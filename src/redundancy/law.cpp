@@ -1,9 +1,11 @@
 #include "redundancy/law.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
 #include <limits>
 
+#include "dynamics/rigid_dynamics.hpp"
 #include "statics/actuator_forces.hpp"
 #include "statics/gravity.hpp"
 
@@ -45,6 +47,16 @@ std::string_view to_string(EnergyAccounting accounting) {
       return "recovery";
   }
   return "no-recovery";
+}
+
+std::optional<ForceModel> force_model_from_string(std::string_view name) {
+  if (name == "statics") return ForceModel::statics;
+  if (name == "dynamics") return ForceModel::dynamics;
+  return std::nullopt;
+}
+
+std::string_view to_string(ForceModel model) {
+  return model == ForceModel::dynamics ? "dynamics" : "statics";
 }
 
 LawEvaluator::LawEvaluator(const Machine& machine, const FreeCoordinates& free, const LawOptions& options,
@@ -111,7 +123,19 @@ bool LawEvaluator::evaluate(const PathPoint& point, const statics::Wrench& load,
   }
   if (check_branch && branch_sign_ != 0 && branch_sign(pose) != branch_sign_) return false;
   node.forces.setZero(n);
-  if (need_forces_) {
+  if (need_forces_ && options_.forces == ForceModel::dynamics) {
+    // The static part of the rigid dynamics (every body's weight and the load); the step adds the motion.
+    auto complete = machine_.mechanism->complete_pose(pose);
+    if (!complete) return false;
+    node.pose = *complete;
+    node.load = load;
+    node.step_s = point.feed_mm_s > 0.0 && point.step_mm > 0.0 ? point.step_mm / point.feed_mm_s : 0.0;
+    dynamics::PlatformMotion rest;
+    rest.pose = node.pose;
+    auto forces = dynamics::inverse_dynamics(*machine_.mechanism, machine_.dynamics, rest, load);
+    if (!forces) return false;
+    node.forces = forces->total;
+  } else if (need_forces_) {
     statics::Wrench wrench = load;
     if (machine_.masses.has_mass()) {
       // The weight of the moving parts is a load like the cut (ch3 §2.7).
@@ -136,13 +160,26 @@ bool LawEvaluator::evaluate(const PathPoint& point, const statics::Wrench& load,
   return true;
 }
 
+ActuatorVector LawEvaluator::step_forces(const Node& from, const Node& to) const noexcept {
+  if (options_.forces != ForceModel::dynamics || !(to.step_s > 0.0)) return to.forces;
+  // The platform moving from `from` to `to` in the step's time: the twist of the step, about the tool point.
+  dynamics::PlatformMotion motion;
+  motion.pose = to.pose;
+  motion.velocity_mm_s = (to.pose.position_mm - from.pose.position_mm) / to.step_s;
+  const Eigen::AngleAxisd turn(to.pose.rotation * from.pose.rotation.transpose());
+  motion.angular_velocity_rad_s = turn.angle() / to.step_s * turn.axis();
+  auto forces = dynamics::inverse_dynamics(*machine_.mechanism, machine_.dynamics, motion, to.load);
+  return forces ? forces->total : to.forces;
+}
+
 double LawEvaluator::step_energy_Nmm(const Node& from, const Node& to) const noexcept {
   // Forces at the end of the step: the law chooses the end pose with the loads known there (ch3 §2.6).
+  const ActuatorVector forces = step_forces(from, to);
   const int n = static_cast<int>(to.lengths.size());
   double total = 0.0;
   double signed_total = 0.0;
   for (int j = 0; j < n; ++j) {
-    const double work = (to.lengths[j] - from.lengths[j]) * to.forces[j];
+    const double work = (to.lengths[j] - from.lengths[j]) * forces[j];
     signed_total += work;
     switch (options_.energy) {
       case EnergyAccounting::no_recovery:

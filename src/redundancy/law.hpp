@@ -30,9 +30,20 @@ enum class EnergyAccounting {
 std::optional<EnergyAccounting> energy_accounting_from_string(std::string_view name);
 std::string_view to_string(EnergyAccounting accounting);
 
+/// Which forces the laws see (spec ch4 §4.4, §7.2): the statics of ch3 (the load and the weights, (91)), or
+/// the rigid inverse dynamics at the programmed feed (src/dynamics/rigid_dynamics.hpp: every body's weight
+/// and inertia; the machine file's dynamics: section). Under the dynamic model a step's forces are those of
+/// the platform moving from the step's start pose to its end pose at the feed (the twist of the step over
+/// its time, without acceleration: the step alone does not know the next one), so the energy law weighs the
+/// velocity terms the faster feeds bring (the seed's Table 3).
+enum class ForceModel { statics, dynamics };
+std::optional<ForceModel> force_model_from_string(std::string_view name);
+std::string_view to_string(ForceModel model);
+
 struct LawOptions {
   Law law = Law::increment;
   EnergyAccounting energy = EnergyAccounting::no_recovery;
+  ForceModel forces = ForceModel::statics;
   /// Drive force limit |P_j| ≤ this (N); candidates above it are not admissible (ch3 §3.3 recommendation).
   std::optional<double> force_limit_N;
   /// Keep-out margin round singular positions (ch3 §4), as a share of the start pose's normalised Jacobian
@@ -45,8 +56,12 @@ struct LawOptions {
 
 struct Node {
   ActuatorVector lengths;  ///< mm (or rad for angular actuators)
-  ActuatorVector forces;   ///< N; zero when the law needs no forces
+  ActuatorVector forces;   ///< N; zero when the law needs no forces (dynamic model: the static part)
   bool valid = false;
+  // Under the dynamic force model, what the step into this node needs to move the platform:
+  Pose pose;             ///< complete
+  statics::Wrench load;  ///< the process load here
+  double step_s = 0.0;   ///< the step's time at the feed (0: a rapid or the start, forces at rest)
 };
 
 class LawEvaluator {
@@ -77,6 +92,9 @@ class LawEvaluator {
   double step_cost(const Node& from, const Node& to) const noexcept;
   /// Σ_j |ΔL_j P_j| in the chosen accounting, N·mm.
   double step_energy_Nmm(const Node& from, const Node& to) const noexcept;
+  /// The drive forces of the step from → to (N): the statics' at `to`, or under the dynamic model those of
+  /// the platform moving through the step at the feed.
+  ActuatorVector step_forces(const Node& from, const Node& to) const noexcept;
 
  private:
   const Machine& machine_;

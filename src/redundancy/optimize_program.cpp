@@ -114,6 +114,13 @@ program::CanonicalProgram rebuild_program(const program::CanonicalProgram& progr
 
 Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program, const Machine& machine,
                                         const OptimizeOptions& options) {
+  if (options.law.forces == ForceModel::dynamics && !machine.dynamics.given()) {
+    return Error{ErrorCode::bad_input,
+                 fmt::format("{}: the dynamic force model needs the machine file's dynamics: section (masses "
+                             "and inertias of the platform and the struts, docs/machine-file.md)",
+                             machine.source),
+                 ErrorLocation{machine.source, 0, 0, "dynamics"}};
+  }
   auto sampled = sample_program(program, machine, options.step_mm);
   if (!sampled) return sampled.error();
   OptimizeResult result;
@@ -201,6 +208,7 @@ nlohmann::json optimize_summary_json(const OptimizeResult& result, const Optimiz
   json["law"] = to_string(options.law.law);
   if (options.law.law == Law::energy) json["energy_accounting"] = to_string(options.law.energy);
   json["solver"] = options.solver == Solver::global ? "global" : "greedy";
+  json["force_model"] = to_string(options.law.forces);
   json["free"] = to_string(options.free);
   json["free_coordinates"] = result.free_names;
   nlohmann::json start = nlohmann::json::array();

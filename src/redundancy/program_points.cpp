@@ -122,6 +122,7 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
       point.line = move.line;
       point.move_index = m;
       point.cutting = move.kind != MoveKind::rapid;
+      point.feed_mm_s = point.cutting ? move.feed_mm_min / 60.0 : 0.0;
       out.points.push_back(point);
       previous = point.position_mm;
     }

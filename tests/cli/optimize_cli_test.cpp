@@ -63,6 +63,8 @@ TEST(OptimizeCli, BadArgumentsFailWithoutOutput) {
       {" --law increment --bounds 20,30", "outside the bounds 20,30"},
       {" --law force --load tangential=abc", "tangential"},
       {" --law increment --solver quantum", "--solver quantum"},
+      {" --law energy --force-model newton", "--force-model newton"},
+      {" --law energy --force-model dynamics", "dynamics: section"},  // planar3.yaml has none
   };
   for (const Case& c : cases) {
     const auto run = test::run_pkm("optimize " + planar_args() + c.args + " --out " + out);
@@ -92,6 +94,25 @@ TEST(OptimizeCli, PlanWithLawReportsTheLaw) {
   EXPECT_LT(summary["redundancy"]["opt_sum_mm"].get<double>(),
             summary["redundancy"]["const_sum_mm"].get<double>());
   EXPECT_TRUE(fs::exists(fs::path(dir) / "actuators.csv"));
+}
+
+TEST(OptimizeCli, TheDynamicForceModelIsReportedAndChangesTheLaw) {
+  const std::string program =
+      test::write_temp_file("optimize_e1.ngc", "G21 G90 G17 G94\nG0 X-50 Y0 Z700\nG1 X50 Y0 F3000\nM2\n");
+  const std::string args = "optimize " + program + " --machine " +
+                           test::source_path("examples/machines/hexapod_ch3.yaml") +
+                           " --law energy --free all --load tangential=707.1,normal=707.1 --json --out ";
+  const auto statics = test::run_pkm(args + fresh_path("e1_statics.ngc"), false);
+  const auto dynamics =
+      test::run_pkm(args + fresh_path("e1_dynamics.ngc") + " --force-model dynamics", false);
+  ASSERT_EQ(statics.exit_code, 0) << statics.out;
+  ASSERT_EQ(dynamics.exit_code, 0) << dynamics.out;
+  const auto s = nlohmann::json::parse(statics.out), d = nlohmann::json::parse(dynamics.out);
+  EXPECT_EQ(s["force_model"], "statics");
+  EXPECT_EQ(d["force_model"], "dynamics");
+  // The dynamic model adds the struts' and platform's weights and inertia: other forces, other energies.
+  EXPECT_GT(std::abs(d["energy_const_J"].get<double>() - s["energy_const_J"].get<double>()), 0.1);
+  EXPECT_LT(d["energy_opt_J"].get<double>(), d["energy_const_J"].get<double>());
 }
 
 }  // namespace
