@@ -1,5 +1,7 @@
 // The report of a `pkm plan` run: actuator positions, speeds and accelerations against their limits, path
-// speed against the programmed feed, the path error, and the 3-D animation, from actuators.csv and path.csv.
+// speed against the programmed feed, the path error, and the 3-D animation, from actuators.csv and path.csv;
+// with --dynamics also the drive forces, power and energy (forces.csv) and the dynamic tool error
+// (response.csv), and struts that can be coloured by force.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -9,6 +11,8 @@
 #include "core/rotation.hpp"
 #include "core/units.hpp"
 #include "report/csv_table.hpp"
+#include "report/dynamics_table.hpp"
+#include "report/dynamics_trace.hpp"
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
 
@@ -97,6 +101,10 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   const double duration = value_or_nan(files.summary, "duration_s");
   SceneBuilder scene(machine, std::isfinite(duration) ? duration : 0.0, expected, options.frames,
                      options.path_points);
+  DynamicsTrace dynamics;
+  if (Status opened = dynamics.open(files.directory, files.summary, n, expected, options.chart_buckets);
+      !opened)
+    return opened.error();
 
   std::vector<double> prow, arow;
   std::vector<double> q(static_cast<std::size_t>(n)), q_prev(q.size()), v(q.size()), v_prev(q.size()),
@@ -142,6 +150,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     path_speed.add(t, s, speed_feed);
     const double error = column[11] >= 0 ? prow[static_cast<std::size_t>(column[11])] : nan;
     path_error.add(t, s, &error);
+    if (Status read = dynamics.next(t, s); !read) return read.error();
 
     pose.position_mm =
         Eigen::Vector3d(prow[static_cast<std::size_t>(column[3])], prow[static_cast<std::size_t>(column[4])],
@@ -156,6 +165,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
       // The orientation only matters for the frames (a rotation per tick would cost as much as the parsing).
       pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
       scene.add_frame(t, line, pose, closeness);
+      if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
       last_frame_time = t;
     }
     q_prev = q;
@@ -167,7 +177,10 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   if (t > last_frame_time) {  // the end of the run is a frame
     pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
     scene.add_frame(t, line, pose, closeness);
+    if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
   }
+  if (Status finished = dynamics.finish(); !finished) return finished.error();
+  scene.set_force_scale(dynamics.peak_force(), dynamics.force_unit());
   for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
 
   const std::vector<std::string> names = actuator_names(n);
@@ -184,6 +197,11 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     charts.push_back(chart_json("contour_error", "Path error (tool from the programmed path, mid-period)",
                                 "error", "mm", path_error, {"path error"}, true));
   }
+
+  // The force limit is in N; angular drives give N·mm, so no line is drawn for them.
+  const std::optional<double> force_limit =
+      machine.mechanism->actuators_are_angles() ? std::nullopt : machine.limits.force_N;
+  for (auto& chart : dynamics.charts(force_limit)) charts.push_back(std::move(chart));
 
   const nlohmann::json& sm = files.summary;
   const std::string u = unit;
@@ -213,6 +231,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   table.push_back(table_row("Max condition number", with_unit(value_or_nan(sm, "max_condition_number"), "")));
   table.push_back(table_row("Time limited by the actuators",
                             fmt::format("{:.1f} %", 100.0 * value_or_nan(sm, "actuator_limited_fraction"))));
+  for (auto& row : dynamics_table_rows(sm)) table.push_back(std::move(row));
   table.push_back(table_row("Program", files.program));
   table.push_back(table_row("Machine file", machine.source));
 
@@ -220,6 +239,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   add_limit_entry(reached, speed_peak, "speed", u + "/s");
   add_limit_entry(reached, accel_peak, "acceleration", u + "/s²");
   add_limit_entry(reached, position_peak, "position", u);
+  for (auto& entry : dynamics_limit_entries(sm, force_limit)) reached.push_back(std::move(entry));
 
   ReportParts parts;
   parts.kind = "plan";

@@ -100,6 +100,13 @@ void SceneBuilder::add_frame(double time_s, int line, const Pose& pose,
   frame_closeness_.push_back(std::move(near));
 }
 
+void SceneBuilder::add_frame_forces(const std::vector<double>& force) {
+  nlohmann::json row = nlohmann::json::array();
+  // Four digits tell a colour apart far better than the eye can; more would only grow the page.
+  for (double f : force) row.push_back(json_number(f, 4));
+  frame_force_.push_back(std::move(row));
+}
+
 void SceneBuilder::add_path_point(const Eigen::Vector3d& programmed_mm, const Eigen::Vector3d& executed_mm,
                                   double error_mm) {
   if (in_path_bucket_ == 0) {
@@ -134,18 +141,25 @@ nlohmann::json SceneBuilder::json() {
     executed_error_.push_back(json_number(last_error_, 3));
   }
   const double scale = error_scale_mm_ > 0.0 ? error_scale_mm_ : max_error_;
-  return {{"base_polygon", base_outline(machine_)},
-          {"programmed_path", programmed_},
-          {"executed_path", executed_},
-          {"executed_error_mm", executed_error_},
-          {"error_scale_mm", json_number(scale > 0.0 ? scale : 1e-3, 3)},
-          {"frames",
-           {{"time_s", frame_time_},
-            {"line", frame_line_},
-            {"tool", frame_tool_},
-            {"tool_axis", frame_axis_},
-            {"struts", frame_struts_},
-            {"strut_closeness", frame_closeness_}}}};
+  nlohmann::json scene = {{"base_polygon", base_outline(machine_)},
+                          {"programmed_path", programmed_},
+                          {"executed_path", executed_},
+                          {"executed_error_mm", executed_error_},
+                          {"error_scale_mm", json_number(scale > 0.0 ? scale : 1e-3, 3)},
+                          {"frames",
+                           {{"time_s", frame_time_},
+                            {"line", frame_line_},
+                            {"tool", frame_tool_},
+                            {"tool_axis", frame_axis_},
+                            {"struts", frame_struts_},
+                            {"strut_closeness", frame_closeness_}}}};
+  // Only a run with drive forces at every frame gets them: the page offers force colouring when they exist.
+  if (!frame_force_.empty() && frame_force_.size() == frame_time_.size()) {
+    scene["frames"]["drive_force"] = frame_force_;
+    scene["drive_force_scale"] = json_number(force_scale_ > 0.0 ? force_scale_ : 1.0, 4);
+    scene["drive_force_unit"] = force_unit_;
+  }
+  return scene;
 }
 
 }  // namespace pkm::report

@@ -4,6 +4,7 @@
 // paths, decimated to what a browser draws smoothly. Poses are in the machine's base frame.
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "machine/machine.hpp"
@@ -28,6 +29,14 @@ class SceneBuilder {
   bool frame_due(double time_s) const { return frames_ == 0 || time_s >= next_frame_s_; }
   /// A frame at `pose`; `closeness` per actuator (limit_closeness()).
   void add_frame(double time_s, int line, const Pose& pose, const std::vector<double>& closeness);
+  /// The drive forces at the frame just added (plans with --dynamics): the 3-D view can colour the struts by
+  /// them. Either every frame gets them or none does.
+  void add_frame_forces(const std::vector<double>& force);
+  /// The force that gets the ends of the force colour scale (the run's peak |force|), and its unit.
+  void set_force_scale(double peak_force, const std::string& unit) {
+    force_scale_ = peak_force;
+    force_unit_ = unit;
+  }
   /// One point of the tool path: the programmed point, the executed one, and the contour error there.
   void add_path_point(const Eigen::Vector3d& programmed_mm, const Eigen::Vector3d& executed_mm,
                       double error_mm);
@@ -49,10 +58,13 @@ class SceneBuilder {
   Eigen::Vector3d bucket_programmed_, bucket_executed_, last_programmed_, last_executed_;
   double bucket_error_ = 0.0, last_error_ = 0.0, max_error_ = 0.0;
   double error_scale_mm_ = 0.0;
+  double force_scale_ = 0.0;
+  std::string force_unit_;
   std::set<int> lines_;
   nlohmann::json frame_time_ = nlohmann::json::array(), frame_line_ = nlohmann::json::array(),
                  frame_tool_ = nlohmann::json::array(), frame_axis_ = nlohmann::json::array(),
-                 frame_struts_ = nlohmann::json::array(), frame_closeness_ = nlohmann::json::array();
+                 frame_struts_ = nlohmann::json::array(), frame_closeness_ = nlohmann::json::array(),
+                 frame_force_ = nlohmann::json::array();
   nlohmann::json programmed_ = nlohmann::json::array(), executed_ = nlohmann::json::array(),
                  executed_error_ = nlohmann::json::array();
 };

@@ -4,7 +4,10 @@
 //   - pkmReport.ready comes, the 3-D canvas and every plot canvas have drawn pixels;
 //   - scrubbing (the range input, as a user drags it) moves the animation, and #current-line shows the program
 //     line that the run's own file (path.csv / contour.csv) gives for that moment, with its source text;
-//   - play advances the animation and pause stops it.
+//   - play advances the animation and pause stops it;
+//   - a plan with --dynamics --elastic has its force, power, energy and dynamic-error plots, and the
+//     #strut-colour switch colours the struts by drive force (redder the harder a drive pushes, bluer the harder
+//     it pulls), following the animation; reports without drive forces have no such switch.
 // Usage: node tests/browser/report_browser_test.mjs --pkm build/pkm --out build/browser-test
 //                                                   [--screenshots docs/images] [--chromium /usr/bin/chromium]
 import { execFileSync } from 'node:child_process';
@@ -57,11 +60,89 @@ const cases = [
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier-corrected'] },
   { name: 'plan-planar-circle', command: 'plan', program: 'examples/programs/planar_circle.ngc',
     machine: 'examples/machines/planar3.yaml', rows: 'path.csv', extra: [] },
+  { name: 'plan-helix-dynamics', command: 'plan', program: 'examples/programs/helix.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: ['--dynamics', '--elastic'], dynamics: true },
   // optimize writes a program, not a run directory: its frames' lines are checked against the report's own data.
   { name: 'optimize-planar-circle', command: 'optimize', program: 'examples/programs/planar_circle.ngc',
     machine: 'examples/machines/planar3.yaml', rows: null,
     extra: ['--law', 'increment', '--step-mm', '0.6981'] },
 ];
+
+/** '#rrggbb' → redness r − b in 0..1 units: rises monotonically from full tension to full compression. */
+function redness(hex) {
+  return (parseInt(hex.slice(1, 3), 16) - parseInt(hex.slice(5, 7), 16)) / 255;
+}
+
+/**
+ * The struts' colours against the frame's drive forces: wherever two drives' forces differ by more than 5 % of
+ * the scale the larger force is the redder strut, and a strut pushing (pulling) with more than 10 % of the
+ * scale is red (blue).
+ */
+function checkColoursFollowForces(colours, forces, scale, where, fail) {
+  if (colours.length !== forces.length) return fail(`${where}: ${colours.length} strut colours for ${forces.length} drives`);
+  let compared = 0;
+  for (let a = 0; a < forces.length; a++) {
+    if (forces[a] > 0.1 * scale && !(redness(colours[a]) > 0)) fail(`${where}: drive ${a + 1} pushes ${forces[a]} but is ${colours[a]}`);
+    if (forces[a] < -0.1 * scale && !(redness(colours[a]) < 0)) fail(`${where}: drive ${a + 1} pulls ${forces[a]} but is ${colours[a]}`);
+    for (let b = 0; b < forces.length; b++) {
+      if (forces[a] - forces[b] > 0.05 * scale) {
+        compared++;
+        if (!(redness(colours[a]) > redness(colours[b])))
+          fail(`${where}: drive ${a + 1} (${forces[a]}) is not redder than drive ${b + 1} (${forces[b]}): ${colours[a]} vs ${colours[b]}`);
+      }
+    }
+  }
+  return compared;
+}
+
+/** The dynamics plots are there and the struts can be coloured by drive force, in step with the animation. */
+async function checkForceColouring(page, data, fail) {
+  const ids = data.charts.map((ch) => ch.id);
+  for (const id of ['drive_forces', 'drive_forces_static', 'drive_forces_dynamic', 'drive_power', 'drive_energy', 'dynamic_error'])
+    if (!ids.includes(id)) fail(`no ${id} plot (plots: ${ids.join(', ')})`);
+  if (!(await page.evaluate(() => document.querySelector('#chart-drive_forces canvas') !== null))) fail('the drive force plot has no canvas');
+  const frames = data.scene.frames;
+  const scale = data.scene.drive_force_scale;
+  if (!Array.isArray(frames.drive_force) || frames.drive_force.length !== frames.time_s.length) return fail('frames lack drive_force');
+  if (!(scale > 0)) return fail(`drive_force_scale ${scale}`);
+
+  const k0 = Math.floor(0.2 * (frames.time_s.length - 1));
+  await page.evaluate((i) => window.pkmReport.setFrame(i), k0);
+  const before = await page.evaluate(() => ({ mode: window.pkmReport.strutColoring(), colours: window.pkmReport.strutColors() }));
+  if (before.mode !== 'limits') fail(`strut colouring starts as ${before.mode}, not limits`);
+  await page.click('#strut-colour');
+  const after = await page.evaluate(() => ({
+    mode: window.pkmReport.strutColoring(),
+    colours: window.pkmReport.strutColors(),
+    legend: getComputedStyle(document.getElementById('legend-strut-force')).display !== 'none',
+    limitsLegend: getComputedStyle(document.getElementById('legend-strut-limits')).display !== 'none',
+  }));
+  if (after.mode !== 'force') fail(`clicking #strut-colour gave ${after.mode}, not force`);
+  if (!after.legend || after.limitsLegend) fail('the legend does not show the force scale alone');
+  if (after.colours.join() === before.colours.join()) fail('force colouring did not change the strut colours');
+  let compared = checkColoursFollowForces(after.colours, frames.drive_force[k0], scale, `frame ${k0}`, fail);
+  if (!(await page.evaluate(() => window.pkmReport.canvasHasPixels()))) fail('the 3-D canvas is empty with force colouring');
+
+  // The frame of the largest force of the run, and the colours after playing: they follow the animation.
+  let peakFrame = 0;
+  frames.drive_force.forEach((f, i) => { if (Math.max(...f.map(Math.abs)) > Math.max(...frames.drive_force[peakFrame].map(Math.abs))) peakFrame = i; });
+  const atPeak = await page.evaluate((i) => { window.pkmReport.setFrame(i); return window.pkmReport.strutColors(); }, peakFrame);
+  compared += checkColoursFollowForces(atPeak, frames.drive_force[peakFrame], scale, `frame ${peakFrame}`, fail);
+  if (atPeak.join() === after.colours.join()) fail(`the strut colours at frames ${k0} and ${peakFrame} are the same`);
+  await page.click('#play');
+  await page.waitForTimeout(500);
+  await page.click('#play');
+  const played = await page.evaluate(() => ({ frame: window.pkmReport.currentFrame(), colours: window.pkmReport.strutColors() }));
+  compared += checkColoursFollowForces(played.colours, frames.drive_force[played.frame], scale, `played frame ${played.frame}`, fail);
+  if (compared === 0) fail('no two drives differed enough to compare their colours');
+
+  await page.click('#strut-colour');
+  await page.evaluate((i) => window.pkmReport.setFrame(i), k0);
+  const back = await page.evaluate(() => ({ mode: window.pkmReport.strutColoring(), colours: window.pkmReport.strutColors() }));
+  if (back.mode !== 'limits' || back.colours.join() !== before.colours.join()) fail('switching back does not restore the limit colours');
+  // Screenshots show the force colouring.
+  await page.evaluate(() => window.pkmReport.setStrutColoring('force'));
+}
 
 const failures = [];
 const browser = await chromium.launch({ executablePath: args.chromium, headless: true, args: CHROMIUM_ARGS });
@@ -126,6 +207,10 @@ try {
     const held = await page.evaluate(() => window.pkmReport.currentFrame());
     if (!(played > 0)) fail('play did not advance the animation');
     if (held !== played) fail(`pause did not hold the animation (${played} → ${held})`);
+
+    if (c.dynamics) await checkForceColouring(page, data, fail);
+    else if (await page.evaluate(() => document.getElementById('strut-colour') !== null || window.pkmReport.strutColoring() !== null))
+      fail('a report without drive forces offers force colouring');
 
     if (args.screenshots) {
       mkdirSync(args.screenshots, { recursive: true });

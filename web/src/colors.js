@@ -1,4 +1,5 @@
-// Colour maps: series palette, strut closeness (green-yellow-red), path error (blue-red).
+// Colour maps: series palette, strut closeness (green-yellow-red), path error (blue-red), drive force
+// (diverging: tension blue, no force grey, compression red).
 
 /** Distinct series colours (Tableau 10, reordered so the first few differ most). */
 export const SERIES_COLORS = [
@@ -20,6 +21,13 @@ const ERROR_STOPS = [
   [0, [0.16, 0.42, 0.86]],
   [0.5, [0.6, 0.36, 0.72]],
   [1, [0.86, 0.13, 0.12]],
+];
+
+// Grey at zero force, so that a strut that carries little stays neutral whichever way it is loaded.
+const FORCE_STOPS = [
+  [0, [0.13, 0.36, 0.8]],
+  [0.5, [0.78, 0.8, 0.82]],
+  [1, [0.82, 0.14, 0.1]],
 ];
 
 function ramp(stops, t, out) {
@@ -45,6 +53,14 @@ export function errorRgb(t, out = [0, 0, 0]) {
   return ramp(ERROR_STOPS, t, out);
 }
 
+/**
+ * sRGB [r,g,b] in 0..1 for a drive force as a fraction of the scale, −1 (tension: the drive pulls) .. 0 ..
+ * +1 (compression: the drive pushes, pkm's positive force); beyond ±1 the ends.
+ */
+export function forceRgb(f, out = [0, 0, 0]) {
+  return ramp(FORCE_STOPS, Number.isFinite(f) ? (f + 1) / 2 : 0.5, out);
+}
+
 function cssGradient(stops) {
   const parts = stops.map(([t, c]) => `rgb(${c.map((v) => Math.round(v * 255)).join(',')}) ${t * 100}%`);
   return `linear-gradient(to right, ${parts.join(', ')})`;
@@ -52,3 +68,4 @@ function cssGradient(stops) {
 
 export const CLOSENESS_GRADIENT = cssGradient(CLOSENESS_STOPS);
 export const ERROR_GRADIENT = cssGradient(ERROR_STOPS);
+export const FORCE_GRADIENT = cssGradient(FORCE_STOPS);

@@ -72,6 +72,10 @@ export function normalize(raw) {
       executed_path: arr(scene.executed_path),
       executed_error_mm: arr(scene.executed_error_mm),
       error_scale_mm: Number(scene.error_scale_mm) > 0 ? Number(scene.error_scale_mm) : 0,
+      // Drive forces per frame (plans with --dynamics): only when every frame has them, so that the page
+      // either offers force colouring throughout or not at all.
+      drive_force_scale: Number(scene.drive_force_scale) > 0 ? Number(scene.drive_force_scale) : 0,
+      drive_force_unit: String(scene.drive_force_unit ?? 'N'),
       frames: {
         count: n,
         time_s: time,
@@ -80,6 +84,7 @@ export function normalize(raw) {
         tool_axis: perFrame(frames.tool_axis, null),
         struts: perFrame(frames.struts, []).map(arr),
         strut_closeness: perFrame(frames.strut_closeness, []).map(arr),
+        drive_force: n > 0 && arr(frames.drive_force).length === n ? arr(frames.drive_force).map(arr) : null,
       },
     },
   };

@@ -1,6 +1,6 @@
 // window.pkmReport: the hooks the browser test uses.
 
-export function installHooks({ player, sceneView, charts, transport }) {
+export function installHooks({ player, sceneView, charts, transport, scenePanel }) {
   const hooks = {
     ready: false,
     frameCount: player.count,
@@ -21,6 +21,15 @@ export function installHooks({ player, sceneView, charts, transport }) {
     canvasHasPixels: () => {
       const v = sceneView();
       return v ? v.hasPixels() : false;
+    },
+    /** 'limits' or 'force'; null without drive forces (the switch is absent) or without WebGL. */
+    strutColoring: () => scenePanel.strutColoring(),
+    /** Switches the strut colours as the #strut-colour switch does; returns the mode shown (null: none). */
+    setStrutColoring: (mode) => scenePanel.setStrutColoring(mode),
+    /** The struts' colours in the 3-D view now ('#rrggbb'). */
+    strutColors: () => {
+      const v = sceneView();
+      return v ? v.strutColors() : [];
     },
     builtCharts: () => charts.builtCount,
     chartScales: () => charts.debugScales(),

@@ -45,7 +45,7 @@ function init() {
   );
   document.body.appendChild(root);
 
-  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport });
+  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel });
   marks.dom = performance.now();
   const hasScene = scenePanel.start();
   marks.scene = performance.now();

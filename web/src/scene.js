@@ -1,5 +1,6 @@
-// The 3-D view (three.js): base outline, struts coloured by closeness to their limits, platform polygon, tool,
-// programmed path (grey) and executed path (coloured by error). Renders on demand only.
+// The 3-D view (three.js): base outline, struts coloured by closeness to their limits or (runs with drive
+// forces) by force, platform polygon, tool, programmed path (grey) and executed path (coloured by error).
+// Renders on demand only.
 import {
   AxesHelper,
   Box3,
@@ -29,7 +30,7 @@ import {
   WebGLRenderer,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { closenessRgb, errorRgb } from './colors.js';
+import { closenessRgb, errorRgb, forceRgb } from './colors.js';
 
 export const BACKGROUND = '#f4f6f8';
 const NEUTRAL_STRUT = '#8a97a3';
@@ -231,6 +232,11 @@ export function createSceneView(container, data) {
   const neutral = new Color(NEUTRAL_STRUT);
   const rgb = [0, 0, 0];
   const zero = new Matrix4().makeScale(0, 0, 0);
+  // What the strut colours show: 'limits' (closeness) or 'force' (only when every frame has drive forces).
+  const forces = frames.drive_force;
+  const forceScale = sd.drive_force_scale > 0 ? sd.drive_force_scale : 1;
+  let coloring = 'limits';
+  let current = 0;
 
   /** Places a unit cylinder (along y, centred) between a and b. */
   function segmentMatrix(pa, pb, out) {
@@ -245,6 +251,8 @@ export function createSceneView(container, data) {
     if (n === 0) return;
     const fs = frames.struts[i] || [];
     const cl = frames.strut_closeness[i] || [];
+    const fr = coloring === 'force' && forces ? forces[i] || [] : null;
+    current = i;
     let centroid = null;
     if (struts) {
       const ends = [];
@@ -264,8 +272,14 @@ export function createSceneView(container, data) {
         struts.setMatrixAt(k, segmentMatrix(pa, pb, m4));
         joints.setMatrixAt(2 * k, m4.makeTranslation(pa.x, pa.y, pa.z));
         joints.setMatrixAt(2 * k + 1, m4.makeTranslation(pb.x, pb.y, pb.z));
-        const c = cl[k];
-        struts.setColorAt(k, Number.isFinite(c) ? srgbColor(closenessRgb(c, rgb), col) : neutral);
+        if (fr) {
+          // Scaled to the run's peak |force|, so the colours compare across the whole animation.
+          const f = fr[k];
+          struts.setColorAt(k, Number.isFinite(f) ? srgbColor(forceRgb(f / forceScale, rgb), col) : neutral);
+        } else {
+          const c = cl[k];
+          struts.setColorAt(k, Number.isFinite(c) ? srgbColor(closenessRgb(c, rgb), col) : neutral);
+        }
       }
       struts.instanceMatrix.needsUpdate = true;
       joints.instanceMatrix.needsUpdate = true;
@@ -416,6 +430,26 @@ export function createSceneView(container, data) {
     },
     render,
     invalidate,
+    /** 'limits' or 'force' (force only where the run has drive forces); recolours the current frame. */
+    setStrutColoring(mode) {
+      const next = mode === 'force' && forces ? 'force' : 'limits';
+      if (next === coloring) return coloring;
+      coloring = next;
+      setFrame(current);
+      invalidate();
+      return coloring;
+    },
+    strutColoring: () => coloring,
+    /** The struts' colours now, as '#rrggbb' in sRGB (for tests). */
+    strutColors() {
+      if (!struts) return [];
+      const out = [];
+      for (let k = 0; k < maxStruts; k++) {
+        struts.getColorAt(k, col);
+        out.push(`#${col.getHexString()}`);
+      }
+      return out;
+    },
     setView(name) {
       if (!VIEWS[name]) return;
       view = name;
