@@ -1,6 +1,7 @@
 // pkm modes --machine M.yaml --pose P [--json]: the natural frequencies and mode shapes of the machine's
 // elastic struts at a pose (the drives clamped there, about the static equilibrium under gravity;
-// src/dynamics/natural_frequencies.hpp, docs/dynamics_elastic.md).
+// src/dynamics/natural_frequencies.hpp, docs/dynamics_elastic.md). With --map instead of --pose, the lowest
+// frequency over a plane grid of poses (modes_map.cpp).
 #include <fmt/format.h>
 
 #include <array>
@@ -12,6 +13,8 @@
 #include "core/units.hpp"
 #include "dynamics/natural_frequencies.hpp"
 #include "io/pose_input.hpp"
+#include "modes_map.hpp"
+#include "number_options.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -36,11 +39,50 @@ void add_modes_command(CLI::App& app, int& exit_code) {
   auto machine_path = std::make_shared<std::string>();
   auto pose_text = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
+  auto map = std::make_shared<bool>(false);
+  auto map_arguments = std::make_shared<ModesMapArguments>();
   cmd->add_option("--machine", *machine_path, "machine file (YAML) with stiffness_N_mm for every strut")
       ->required();
-  cmd->add_option("--pose", *pose_text, "pose, as for pkm ik (planar: x,y[,phi])")->required();
+  auto* pose_option = cmd->add_option("--pose", *pose_text, "pose, as for pkm ik (planar: x,y[,phi])");
+  auto* map_flag =
+      cmd->add_flag("--map", *map,
+                    "instead of --pose: the lowest frequency over a plane grid of poses, to --out")
+          ->excludes(pose_option);
+  auto* out_option =
+      cmd->add_option("--out", map_arguments->out_path, "with --map: the map's CSV file")->needs(map_flag);
+  map_flag->needs(out_option);
+  // Kept as text: modes_map.cpp reads it against the mechanism, as --pose is read.
+  cmd->add_option("--centre,--center", map_arguments->centre_text,
+                  "with --map: the grid's centre pose, as --pose (default: the machine's home)")
+      ->needs(map_flag);
+  // Like pkm check's sample: beyond 10 m no machine pkm models moves.
+  cmd->add_option("--range-mm", map_arguments->half_range_mm,
+                  "with --map: the grid covers the centre ± this along both axes, mm")
+      ->capture_default_str()
+      ->check(number_in({0.0, 10000.0, true, true, "mm"}))
+      ->needs(map_flag);
+  cmd->add_option("--step-mm", map_arguments->step_mm, "with --map: the grid's step, mm")
+      ->capture_default_str()
+      ->check(number_in({0.0, 10000.0, false, true, "mm"}))
+      ->needs(map_flag);
+  cmd->add_option("--plane", map_arguments->plane,
+                  "with --map: the grid's plane through the centre, xy|xz|yz")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"xy", "xz", "yz"}))
+      ->needs(map_flag);
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
+    if (*map) {
+      map_arguments->machine_path = *machine_path;
+      map_arguments->json = *json;
+      exit_code = run_modes_map(*map_arguments);
+      return;
+    }
+    if (pose_text->empty()) {
+      exit_code = report_error(
+          "modes", make_error(ErrorCode::bad_input, "give --pose P (one pose), or --map --out FILE (a map)"));
+      return;
+    }
     auto machine = load_machine_or_report(*machine_path);
     if (!machine) {
       exit_code = report_error("modes", machine.error());
