@@ -98,7 +98,7 @@ Status elastic_accelerations(const ElasticModel& model, const Pose& pose, const 
   if (Status s = free_platform_state(model, pose, workspace.state); !s) return s;
   const MechanismState& state = workspace.state;
   const Twist twist = model.basis * rates;
-  rigid_terms(state, parameters, model.basis, twist, {}, workspace.rigid);
+  rigid_terms(state, parameters, model.basis, twist, drives.load, workspace.rigid);
   const int n = model.struts;
   // J_B row j · ċ = ȧ_j: the twist Jacobian is the actuators' gradient along twists (mechanism.hpp).
   const ActuatorVector actuator_rates = state.twist_jacobian * twist;

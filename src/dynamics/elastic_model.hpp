@@ -33,6 +33,9 @@ namespace pkm::dynamics {
 struct DriveSetpoint {
   ActuatorVector position_mm;
   ActuatorVector rate_mm_s;
+  /// The process load on the platform at that instant (the cut: N, N·mm about the tool point), zero
+  /// unless given.
+  statics::Wrench load;
 };
 
 /// Settings of the elastic model that are not machine data.

@@ -19,6 +19,7 @@ void RunElastic::TickHistory::setpoint(double time_s, DriveSetpoint& out) const 
     const Tick& held = time_s < oldest.time_s ? oldest : newest;  // at rest before the start, after the end
     out.position_mm = held.actuators;
     out.rate_mm_s = ActuatorVector::Zero(held.actuators.size());
+    out.load = held.load;
     return;
   }
   // The interval holding time_s among the ticks with known slopes (beyond the last: its extrapolation, which
@@ -34,18 +35,34 @@ void RunElastic::TickHistory::setpoint(double time_s, DriveSetpoint& out) const 
   const double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -6 * s2 + 6 * s, d11 = 3 * s2 - 2 * s;
   out.position_mm = h00 * a.actuators + (h10 * h) * a.slope + h01 * b.actuators + (h11 * h) * b.slope;
   out.rate_mm_s = (d00 / h) * a.actuators + d10 * a.slope + (d01 / h) * b.actuators + d11 * b.slope;
+  out.load.force_N = (1.0 - s) * a.load.force_N + s * b.load.force_N;
+  out.load.moment_Nmm = (1.0 - s) * a.load.moment_Nmm + s * b.load.moment_Nmm;
 }
 
 RunElastic::RunElastic(std::unique_ptr<ElasticModel> model, std::function<Status(const ElasticTick&)> on_tick,
-                       const ElasticIntegration& integration)
+                       const ElasticIntegration& integration, const statics::LoadModel* load)
     : model_(std::move(model)),
       history_(std::make_unique<TickHistory>()),
       on_tick_(std::move(on_tick)),
+      load_(load),
+      tool_axis_platform_(model_->mechanism->home().rotation.transpose() * Eigen::Vector3d::UnitZ()),
       simulator_(*model_, integration) {}
+
+statics::Wrench RunElastic::load_at(const Tick& tick, const Eigen::Vector3d& velocity_mm_s) const {
+  if (load_ == nullptr) return {};
+  // As run_dynamics.cpp: the cut's direction of travel and the tool axis at the tick.
+  statics::LoadPoint point;
+  const double speed = velocity_mm_s.norm();
+  point.tangent = speed > 0.0 ? Eigen::Vector3d(velocity_mm_s / speed) : Eigen::Vector3d::Zero();
+  point.tool_axis = tick.pose.rotation * tool_axis_platform_;
+  point.line = tick.line;
+  point.cutting = tick.cutting;
+  return load_->wrench_at(point);
+}
 
 Result<RunElastic> RunElastic::make(const Machine& machine, double period_s,
                                     std::function<Status(const ElasticTick&)> on_tick,
-                                    ElasticIntegration integration) {
+                                    ElasticIntegration integration, const statics::LoadModel* load) {
   if (!(period_s > 0.0)) {
     return make_error(ErrorCode::bad_input,
                       fmt::format("elastic run: period {} s is not positive", period_s));
@@ -55,22 +72,28 @@ Result<RunElastic> RunElastic::make(const Machine& machine, double period_s,
   // A step may pass the tick reported by at most one period: the drives are known that far (see above).
   integration.max_step_s =
       integration.max_step_s > 0.0 ? std::min(integration.max_step_s, period_s) : period_s;
-  return RunElastic(std::make_unique<ElasticModel>(*model), std::move(on_tick), integration);
+  return RunElastic(std::make_unique<ElasticModel>(*model), std::move(on_tick), integration, load);
 }
 
-Status RunElastic::add(double time_s, int line, const Pose& commanded, const ActuatorVector& actuators) {
+Status RunElastic::add(double time_s, int line, const Pose& commanded, const ActuatorVector& actuators,
+                       bool cutting) {
   TickHistory& h = *history_;
   const long k = h.count;
   Tick& t = h.at(k);
-  t = Tick{time_s, line, commanded, actuators, ActuatorVector::Zero(actuators.size())};
+  t = Tick{time_s, line, commanded, actuators, ActuatorVector::Zero(actuators.size()), cutting, {}};
   ++h.count;
   if (k == 0) {
     h.with_slope = 1;  // at rest
+    t.load = load_at(t, Eigen::Vector3d::Zero());
     return begin(t);
   }
   if (k >= 2) {
     // The central difference at tick k − 1: q(t) is now known up to it.
-    h.at(k - 1).slope = (actuators - h.at(k - 2).actuators) / (time_s - h.at(k - 2).time_s);
+    Tick& middle = h.at(k - 1);
+    const Tick& before = h.at(k - 2);
+    middle.slope = (actuators - before.actuators) / (time_s - before.time_s);
+    middle.load =
+        load_at(middle, (commanded.position_mm - before.pose.position_mm) / (time_s - before.time_s));
     h.with_slope = k;
     return report_until(k - 2);  // its steps may reach one period past it, to tick k − 1
   }
@@ -80,7 +103,9 @@ Status RunElastic::add(double time_s, int line, const Pose& commanded, const Act
 Status RunElastic::finish() {
   TickHistory& h = *history_;
   if (h.count == 0) return ok_status();
-  h.at(h.count - 1).slope.setZero();  // the end, at rest
+  Tick& last = h.at(h.count - 1);
+  last.slope.setZero();  // the end, at rest
+  last.load = load_at(last, Eigen::Vector3d::Zero());
   h.with_slope = h.count;
   h.finished = true;
   return report_until(h.count - 1);

@@ -9,12 +9,16 @@
 // drive positions, so the error holds the static sag under gravity (a few µm on the shipped machines) plus
 // the vibration the motion excites. Steps are at most one servo period long and may pass the tick reported
 // (dense output), so the response of tick k is reported when tick k + 2 arrives, the last two at finish().
+// With a process load (statics/load_model.hpp), the cut acts on the platform as in run_dynamics.hpp, its
+// direction of travel from the same central differences, linear between ticks: the response then holds the
+// deflection under the cut as well.
 #include <array>
 #include <functional>
 #include <memory>
 
 #include "dynamics/elastic_simulation.hpp"
 #include "machine/machine.hpp"
+#include "statics/load_model.hpp"
 
 namespace pkm::dynamics {
 
@@ -43,11 +47,15 @@ class RunElastic {
   /// `period_s`: the ticks' spacing, the longest integration step. `on_tick` receives every tick's response
   /// in order (e.g. to write response.csv); it may be empty. Fails as make_elastic_model does (no dynamics
   /// section, a strut without stiffness: the machine file's key).
+  /// `load`, when given, must outlive the run.
   static Result<RunElastic> make(const Machine& machine, double period_s,
                                  std::function<Status(const ElasticTick&)> on_tick,
-                                 ElasticIntegration integration = {});
-  /// The next tick: commanded pose and the drives' positions for it (IK of the pose).
-  Status add(double time_s, int line, const Pose& commanded, const ActuatorVector& actuators);
+                                 ElasticIntegration integration = {},
+                                 const statics::LoadModel* load = nullptr);
+  /// The next tick: commanded pose and the drives' positions for it (IK of the pose); `cutting` false on
+  /// rapids, where no cutting load acts.
+  Status add(double time_s, int line, const Pose& commanded, const ActuatorVector& actuators,
+             bool cutting = true);
   /// Reports the last ticks (the drives at rest from the last tick on); call once after the last add().
   Status finish();
   const ElasticRunSummary& summary() const { return summary_; }
@@ -59,6 +67,8 @@ class RunElastic {
     Pose pose;
     ActuatorVector actuators;
     ActuatorVector slope;  ///< q̇ at the tick (known once the next tick is)
+    bool cutting = true;
+    statics::Wrench load;  ///< the process load at the tick (known with the slope)
   };
 
   /// The last ticks, and the drives through them: cubic Hermite between ticks whose slopes are known, held
@@ -79,7 +89,9 @@ class RunElastic {
   };
 
   RunElastic(std::unique_ptr<ElasticModel> model, std::function<Status(const ElasticTick&)> on_tick,
-             const ElasticIntegration& integration);
+             const ElasticIntegration& integration, const statics::LoadModel* load);
+  /// The process load at tick `index`, travelling along `velocity_mm_s` (zero: at rest).
+  statics::Wrench load_at(const Tick& tick, const Eigen::Vector3d& velocity_mm_s) const;
   Status begin(const Tick& first);
   Status report_until(long last_index);
 
@@ -87,6 +99,8 @@ class RunElastic {
   std::unique_ptr<ElasticModel> model_;
   std::unique_ptr<TickHistory> history_;
   std::function<Status(const ElasticTick&)> on_tick_;
+  const statics::LoadModel* load_ = nullptr;
+  Eigen::Vector3d tool_axis_platform_ = Eigen::Vector3d::UnitZ();
   ElasticSimulator simulator_;
   long reported_ = 0;  ///< ticks reported
   ElasticRunSummary summary_;

@@ -198,13 +198,15 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   std::optional<dynamics::RunElastic> elastic;
   if (options.dynamics && options.elastic) {
     auto made = dynamics::RunElastic::make(
-        machine, plan.period_s, [&response_csv](const dynamics::ElasticTick& t) -> Status {
+        machine, plan.period_s,
+        [&response_csv](const dynamics::ElasticTick& t) -> Status {
           fmt::format_to(std::back_inserter(response_csv.buffer),
                          "{:.6f},{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e}\n", t.time_s, t.line,
                          t.deviation_mm.x(), t.deviation_mm.y(), t.deviation_mm.z(), t.rotation_deg,
                          t.tool_error_mm);
           return response_csv.flush_if_large();
-        });
+        },
+        {}, options.dynamics_load);
     if (!made) return made.error();
     elastic.emplace(std::move(*made));
     if (auto opened = response_csv.open(outputs.staged_path("response.csv")); !opened) return opened.error();
@@ -226,7 +228,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
       }
     }
     if (elastic) {
-      if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators); !added) {
+      const bool cutting = !plan.path.segments[tick.segment].rapid;
+      if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators, cutting); !added) {
         return at_program_line(plan, added.error());
       }
     }

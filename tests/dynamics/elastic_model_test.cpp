@@ -80,7 +80,7 @@ TEST(ElasticModel, AStretchedStrutPullsItsPlatformJointTowardsTheBase) {
   ASSERT_EQ(machine.mechanism->strut_ends(pose, ends), 6);
   for (int j = 0; j < 6; ++j) {
     SCOPED_TRACE(fmt::format("strut {}", j + 1));
-    dynamics::DriveSetpoint drives{lengths, ActuatorVector::Zero(6)};
+    dynamics::DriveSetpoint drives{lengths, ActuatorVector::Zero(6), {}};
     drives.position_mm[j] -= 0.01;  // the drive holds it 10 µm short: the element is stretched by 10 µm
     dynamics::ElasticWorkspace workspace;
     CoordinateVector accel;
