@@ -3,17 +3,15 @@
 // and the platform, a free platform of free_platform.hpp, moves as
 //   M(pose) c̈ = applied(pose) − bias(pose, ċ) + J_Bᵀ P · 10³          (kg·mm/s², P in N)
 // (equations_of_motion.hpp with the drives' forces; the inverse problem is rigid_dynamics.hpp). The drive
-// turns its command u_j (N) into its force by the machine file's drive model (§3.6):
-//   ideal                  P = u
-//   static characteristic  P = u − k_v q̇        (the force falls with the speed)
-//   first-order lag        τ Ṗ + P = u          (P becomes a state of the integration)
-// Integrated by platform_integrator.hpp. Commanding the inverse dynamics' forces along a planned motion
-// (feed-forward without feedback) reproduces that motion with ideal drives; what a lag or a speed-dependent
-// force makes of it is the motion's open-loop error (docs/dynamics.md): there is no feedback here, so the
-// error grows without bound where the command is wrong (a servo closes the loop).
+// turns its command u_j (N) into its force by the machine file's drive model (drive_model.hpp). Integrated by
+// platform_integrator.hpp. Commanding the inverse dynamics' forces along a planned motion (feed-forward
+// without feedback) reproduces that motion with ideal drives; what a lag or a speed-dependent force makes of
+// it is the motion's open-loop error (docs/dynamics.md): there is no feedback here, so the error grows
+// without bound where the command is wrong (a servo closes the loop).
 #include <memory>
 #include <vector>
 
+#include "dynamics/drive_model.hpp"
 #include "dynamics/platform_integrator.hpp"
 
 namespace pkm::dynamics {
@@ -38,23 +36,6 @@ class SampledDriveCommand final : public DriveCommand {
   std::vector<double> times_s_;
   std::vector<ActuatorVector> forces_N_;
 };
-
-/// The drive's force for its command, speed and, under a lag, its force state (spec ch4 §3.6): the force
-/// itself for ideal and static drives, the force's rate Ṗ = (u − P)/τ for the lag.
-struct DriveResponse {
-  ActuatorVector force_N;
-  ActuatorVector force_rate_N_s;  ///< zero unless lagging
-};
-void drive_response(const DynamicsParameters& parameters, const ActuatorVector& command_N,
-                    const ActuatorVector& actuator_rates_mm_s, const ActuatorVector& lag_state_N,
-                    DriveResponse& out);
-
-/// The drive command that makes the drive model give `force_N` while the actuators move at
-/// `actuator_rates_mm_s` with the force changing at `force_rate_N_s`: the model's inverse, to pre-compensate
-/// a feed-forward command (u = P + k_v q̇, or u = P + τ Ṗ).
-ActuatorVector command_for_force(const DynamicsParameters& parameters, const ActuatorVector& force_N,
-                                 const ActuatorVector& actuator_rates_mm_s,
-                                 const ActuatorVector& force_rate_N_s);
 
 class RigidSimulator {
  public:

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/rotation.hpp"
+#include "dynamics/drive_model.hpp"
 
 namespace pkm::dynamics {
 
@@ -30,7 +31,28 @@ Status RunDynamics::add(double time_s, int line, const Pose& pose, bool cutting)
 }
 
 Status RunDynamics::finish() {
-  if (count_ >= 2) return evaluate(2, true);  // the end, at rest
+  if (count_ >= 2) {
+    if (Status last = evaluate(2, true); !last) return last;  // the end, at rest
+  }
+  return has_pending_ ? hand_on(nullptr) : ok_status();
+}
+
+Status RunDynamics::hand_on(const TickDynamics* next) {
+  TickDynamics& tick = pending_;
+  // Ṗ by the central difference of the forces either side, one-sided at the ends.
+  const double before_s = has_handed_ ? handed_time_s_ : tick.time_s;
+  const ActuatorVector& before_N = has_handed_ ? handed_force_N_ : tick.forces.total;
+  const double after_s = next != nullptr ? next->time_s : tick.time_s;
+  const ActuatorVector& after_N = next != nullptr ? next->forces.total : tick.forces.total;
+  ActuatorVector force_rate_N_s = ActuatorVector::Zero(tick.forces.total.size());
+  if (after_s > before_s) force_rate_N_s = (after_N - before_N) / (after_s - before_s);
+  tick.command_N =
+      command_for_force(machine_.dynamics, tick.forces.total, tick.forces.actuator_rates, force_rate_N_s);
+  handed_time_s_ = tick.time_s;
+  handed_force_N_ = tick.forces.total;
+  has_handed_ = true;
+  has_pending_ = false;
+  if (on_tick_) return on_tick_(tick);
   return ok_status();
 }
 
@@ -104,7 +126,11 @@ Status RunDynamics::evaluate(int index_in_window, bool at_rest) {
     summary_.peak_total_power_line = s.line;
   }
   ++summary_.ticks;
-  if (on_tick_) return on_tick_(tick);
+  if (has_pending_) {
+    if (Status handed = hand_on(&tick); !handed) return handed;
+  }
+  pending_ = tick;
+  has_pending_ = true;
   return ok_status();
 }
 

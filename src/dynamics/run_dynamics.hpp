@@ -2,7 +2,9 @@
 // Drive forces, power and energy along a run at the servo rate: the commanded poses of consecutive ticks give
 // the platform's twist and its rate by central differences (the motion is jerk-limited and smooth at the
 // servo period), rigid_dynamics gives the forces. One tick behind the stream: tick k is evaluated when tick
-// k + 1 arrives (the first and the last at rest, where every run starts and ends).
+// k + 1 arrives (the first and the last at rest, where every run starts and ends), and handed on when tick
+// k + 2 is, with the drive command its drive model needs (drive_model.hpp: u = P + τ Ṗ under a lag, Ṗ by the
+// central difference of the forces).
 #include <array>
 #include <functional>
 
@@ -17,7 +19,8 @@ struct TickDynamics {
   double time_s = 0.0;
   int line = 0;
   DriveForces forces;
-  ActuatorVector power_W;  ///< P_j · q̇_j per drive
+  ActuatorVector power_W;    ///< P_j · q̇_j per drive
+  ActuatorVector command_N;  ///< the drive command u_j that gives forces.total (= it for ideal drives)
 };
 
 /// How a drive's energy is counted (as redundancy/law.hpp's accountings, per servo period): no recovery
@@ -54,12 +57,14 @@ class RunDynamics {
   /// cannot be computed, or exceed the machine's actuator_force_max (the error's location holds the program
   /// line, the message the machine file's line).
   Status add(double time_s, int line, const Pose& pose, bool cutting = true);
-  /// Evaluates the last tick (at rest); call once after the last add().
+  /// Evaluates the last tick (at rest) and hands on the last two; call once after the last add().
   Status finish();
   const RunDynamicsSummary& summary() const { return summary_; }
 
  private:
   Status evaluate(int index_in_window, bool at_rest);
+  /// Hands on the pending tick with its command, Ṗ from the ticks either side (one side at the ends).
+  Status hand_on(const TickDynamics* next);
 
   const Machine& machine_;
   double period_s_;
@@ -75,6 +80,11 @@ class RunDynamics {
   std::array<Sample, 3> window_;  ///< ticks k − 1, k, k + 1
   long count_ = 0;
   RunDynamicsSummary summary_;
+  TickDynamics pending_;  ///< evaluated, waiting for the next tick's forces
+  bool has_pending_ = false;
+  double handed_time_s_ = 0.0;  ///< the tick handed on last (before pending_)
+  ActuatorVector handed_force_N_;
+  bool has_handed_ = false;
 };
 
 }  // namespace pkm::dynamics

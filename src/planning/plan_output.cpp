@@ -177,10 +177,14 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
                      force_unit);
     }
     for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(forces_csv.buffer), ",power{}_W", j);
+    // A drive that is not ideal needs another command than the force: u_j, what to feed forward.
+    const bool commands = machine.dynamics.drive != DriveModel::ideal;
+    for (int j = 1; j <= n && commands; ++j)
+      fmt::format_to(std::back_inserter(forces_csv.buffer), ",u{}_{}", j, force_unit);
     forces_csv.buffer.push_back('\n');
     drive_dynamics.emplace(
         machine, plan.period_s,
-        [&forces_csv, n](const dynamics::TickDynamics& t) -> Status {
+        [&forces_csv, n, commands](const dynamics::TickDynamics& t) -> Status {
           auto& b = forces_csv.buffer;
           fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
           for (int j = 0; j < n; ++j) {
@@ -188,6 +192,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
                            t.forces.static_part[j], t.forces.dynamic_part[j]);
           }
           for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.5f}", t.power_W[j]);
+          for (int j = 0; j < n && commands; ++j)
+            fmt::format_to(std::back_inserter(b), ",{:.4f}", t.command_N[j]);
           b.push_back('\n');
           return forces_csv.flush_if_large();
         },

@@ -3,10 +3,13 @@
 // nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "cli/cli_support.hpp"
 
@@ -89,6 +92,53 @@ TEST(PlanDynamicsCli, AForceAboveTheDrivesLimitNamesTheLineAndWritesNothing) {
   EXPECT_NE(run.out.find("above actuator_force_max 250.0 N (" + machine_path + ":"), std::string::npos)
       << run.out;
   EXPECT_FALSE(fs::exists(fs::path(out) / "forces.csv"));
+}
+
+TEST(PlanDynamicsCli, ALaggingDriveGetsTheCommandThatGivesItsForce) {
+  std::string machine = text_of(test::source_path("examples/machines/hexapod_ch5.yaml"));
+  const std::string key = "  drive: {model: ideal}\n";
+  ASSERT_NE(machine.find(key), std::string::npos);
+  machine.replace(machine.find(key), key.size(), "  drive: {model: lag, tau_s: 0.005}\n");
+  const std::string machine_path = test::write_temp_file("lagging_drives.yaml", machine);
+  const std::string out = fresh_dynamics_dir("lag");
+  const auto run = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
+                                 machine_path + " --dynamics --out " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  std::ifstream forces(fs::path(out) / "forces.csv");
+  std::string header;
+  std::getline(forces, header);
+  ASSERT_NE(header.find(",power6_W,u1_N,u2_N,u3_N,u4_N,u5_N,u6_N"), std::string::npos) << header;
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(forces, line);) {
+    std::stringstream fields(line);
+    std::vector<double> v;
+    for (std::string field; std::getline(fields, field, ',');) v.push_back(std::stod(field));
+    ASSERT_EQ(v.size(), 2u + 6 * 3 + 6 + 6) << line;
+    rows.push_back(std::move(v));
+  }
+  ASSERT_GT(rows.size(), 100u);
+  // u = P + τ Ṗ, Ṗ the central difference of the rows either side; the rows print 4 decimals.
+  double largest_lead = 0.0;
+  for (std::size_t k = 1; k + 1 < rows.size(); ++k) {
+    for (int j = 0; j < 6; ++j) {
+      const double force = rows[k][2 + 3 * j];
+      const double rate =
+          (rows[k + 1][2 + 3 * j] - rows[k - 1][2 + 3 * j]) / (rows[k + 1][0] - rows[k - 1][0]);
+      const double command = rows[k][2 + 24 + j];
+      EXPECT_NEAR(command, force + 0.005 * rate, 2e-3) << "row " << k << " drive " << j + 1;
+      largest_lead = std::max(largest_lead, std::abs(command - force));
+    }
+  }
+  EXPECT_GT(largest_lead, 0.1);  // the lag matters somewhere along the circle
+  // Ideal drives: no command columns (the command is the force).
+  const std::string ideal_out = fresh_dynamics_dir("ideal");
+  const auto ideal = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") +
+                                   " --machine " + test::source_path("examples/machines/hexapod_ch5.yaml") +
+                                   " --dynamics --out " + ideal_out);
+  ASSERT_EQ(ideal.exit_code, 0) << ideal.out;
+  const std::string ideal_forces = text_of((fs::path(ideal_out) / "forces.csv").string());
+  EXPECT_NE(ideal_forces.find("power6_W\n"), std::string::npos);
+  EXPECT_EQ(ideal_forces.find("u1_N"), std::string::npos);
 }
 
 }  // namespace
