@@ -54,15 +54,6 @@ const std::vector<dynamics::PlatformMotion>& motions() {
   return all;
 }
 
-void record(benchmark::State& state, const DurationHistogram& histogram) {
-  const DurationDistribution d = histogram.distribution();
-  state.counters["ticks"] = static_cast<double>(d.count);
-  state.counters["p50_us"] = d.p50_us;
-  state.counters["p99_us"] = d.p99_us;
-  state.counters["p99_9_us"] = d.p99_9_us;
-  state.counters["max_us"] = d.max_us;
-}
-
 void BM_InverseDynamicsPerTick(benchmark::State& state) {
   const auto& all = motions();
   const Mechanism& mechanism = *machine().mechanism;
@@ -81,7 +72,7 @@ void BM_InverseDynamicsPerTick(benchmark::State& state) {
     benchmark::DoNotOptimize(forces);
     k = k + 1 == all.size() ? 0 : k + 1;
   }
-  record(state, time);
+  bench::record_distribution(state, time);
 }
 BENCHMARK(BM_InverseDynamicsPerTick)->Unit(benchmark::kMicrosecond);
 
@@ -103,7 +94,7 @@ void BM_InverseKinematicsPerTick(benchmark::State& state) {
     benchmark::DoNotOptimize(lengths);
     k = k + 1 == all.size() ? 0 : k + 1;
   }
-  record(state, time);
+  bench::record_distribution(state, time);
 }
 BENCHMARK(BM_InverseKinematicsPerTick)->Unit(benchmark::kMicrosecond);
 

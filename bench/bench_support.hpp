@@ -1,9 +1,12 @@
 #pragma once
 // What the benchmarks share: the ch5 hexapod of the shipped examples, loaded once.
+#include <benchmark/benchmark.h>
+
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
 
+#include "core/duration_histogram.hpp"
 #include "io/machine_file.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
@@ -49,6 +52,17 @@ inline const PlannedTicks& ch5_helix_ticks() {
     return r;
   }();
   return run;
+}
+
+/// The per-call times of a servo-rate function as counters beside the mean: calls, p50_us, p99_us,
+/// p99_9_us, max_us.
+inline void record_distribution(benchmark::State& state, const DurationHistogram& histogram) {
+  const DurationDistribution d = histogram.distribution();
+  state.counters["ticks"] = static_cast<double>(d.count);
+  state.counters["p50_us"] = d.p50_us;
+  state.counters["p99_us"] = d.p99_us;
+  state.counters["p99_9_us"] = d.p99_9_us;
+  state.counters["max_us"] = d.max_us;
 }
 
 }  // namespace pkm::bench

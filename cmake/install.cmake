@@ -3,7 +3,7 @@
 # pkmConfig.cmake:
 #   pkm::kinematics  core/ machine/ kinematics/                 needs Eigen only
 #   pkm::io          io/ (machine files and other inputs)       + yaml-cpp, fmt, nlohmann_json
-#   pkm::motion      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/   + NLopt, Boost headers
+#   pkm::motion      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/ stiffness/   + NLopt, Boost headers
 # A consumer: find_package(pkm REQUIRED [COMPONENTS kinematics io motion]) and target_link_libraries(app PRIVATE
 # pkm::motion); pkmConfig.cmake looks for the dependencies of the components asked for only (examples/consumer/,
 # docs/libraries.md). The report and the CLI's pipeline stay inside the project.
@@ -12,7 +12,7 @@ set(PKM_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/pkm)
 
 install(TARGETS pkm_kinematics pkm_io pkm_motion EXPORT pkmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(folder core machine kinematics io program path planning redundancy interpolation statics dynamics)
+foreach(folder core machine kinematics io program path planning redundancy interpolation statics dynamics stiffness)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/${folder} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pkm
           FILES_MATCHING PATTERN "*.hpp")
 endforeach()

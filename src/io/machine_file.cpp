@@ -48,8 +48,9 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
-  std::vector<std::string_view> allowed = {"name",   "description", "type",     "angles", "tool", "limits",
-                                           "motion", "masses",      "dynamics", "drives", "home"};
+  std::vector<std::string_view> allowed = {"name",     "description", "type",   "angles",
+                                           "tool",     "limits",      "motion", "masses",
+                                           "dynamics", "drives",      "home",   "stiffness"};
   // Planar pin joints have no neutral axis to give.
   if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
@@ -137,6 +138,9 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   auto dynamics = read_dynamics(root, reader, *machine.mechanism, is_planar(entry->type));
   if (!dynamics) return dynamics.error();
   machine.dynamics = *dynamics;
+  auto stiffness = read_stiffness(root, reader, *machine.mechanism);
+  if (!stiffness) return stiffness.error();
+  machine.stiffness = *stiffness;
   machine.home_given = home.has_value();
 
   // The home pose must itself be a valid configuration of the machine.

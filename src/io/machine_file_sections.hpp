@@ -41,6 +41,11 @@ Result<MassProperties> read_mass_properties(const YAML::Node& root, const YamlRe
 Result<DynamicsParameters> read_dynamics(const YAML::Node& root, const YamlReader& reader,
                                          const Mechanism& mechanism, bool planar);
 
+/// `stiffness:` (optional; docs/machine-file.md): `struts:` as one mapping for every strut or a list of one
+/// per actuator, each with `stiffness_N_mm` > 0, or `modulus_N_mm2` and `area_mm2` > 0 (E·A/L).
+Result<StiffnessParameters> read_stiffness(const YAML::Node& root, const YamlReader& reader,
+                                           const Mechanism& mechanism);
+
 /// The neutral axes of the mechanism's passive joints: `base_joint_axes` / `platform_joint_axes` if given,
 /// otherwise the strut directions at the mechanism's home. Errors if a key is given for a mechanism without
 /// swing joints, or a given axis has zero length.

@@ -1,0 +1,77 @@
+// The strut-only tool compliance per path point (issue 15: goal ≤ 1 µs on the hexapod), for
+// docs/PERFORMANCE.md: the ch5 hexapod with its struts' stiffness along the planned helix, every tick's pose
+// made before the timing; one iteration is one stiffness::strut_compliance call, timed on its own into a
+// fixed histogram (p50, p99, p99.9, worst beside the mean). BM_StrutLinesInverseKinematics times the strut
+// lengths of the same poses through the same interface, in the same run, for the ratio.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "stiffness/strut_compliance.hpp"
+
+namespace pkm {
+namespace {
+
+const std::vector<Pose>& helix_poses() {
+  static const std::vector<Pose> poses = [] {
+    std::vector<Pose> out;
+    for (const planning::ServoTick& tick : bench::ch5_helix_ticks().ticks) out.push_back(tick.pose);
+    return out;
+  }();
+  return poses;
+}
+
+void BM_StrutCompliancePerPoint(benchmark::State& state) {
+  const auto& poses = helix_poses();
+  const Machine& machine = bench::ch5_hexapod();
+  auto parameters = stiffness::strut_stiffness_of(machine);
+  if (!parameters) {
+    state.SkipWithError(parameters.error().message.c_str());
+    return;
+  }
+  DurationHistogram time(10'000);
+  using Clock = std::chrono::steady_clock;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Clock::time_point started = Clock::now();
+    auto compliance = stiffness::strut_compliance(*machine.mechanism, *parameters, poses[k]);
+    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
+    if (!compliance) {
+      state.SkipWithError(compliance.error().message.c_str());
+      break;
+    }
+    benchmark::DoNotOptimize(compliance);
+    k = k + 1 == poses.size() ? 0 : k + 1;
+  }
+  bench::record_distribution(state, time);
+}
+BENCHMARK(BM_StrutCompliancePerPoint)->Unit(benchmark::kMicrosecond);
+
+void BM_StrutLinesInverseKinematics(benchmark::State& state) {
+  const auto& poses = helix_poses();
+  const Mechanism& mechanism = *bench::ch5_hexapod().mechanism;
+  DurationHistogram time(10'000);
+  using Clock = std::chrono::steady_clock;
+  std::size_t k = 0;
+  double lengths[kMaxActuators];
+  for (auto _ : state) {
+    const Clock::time_point started = Clock::now();
+    const bool ok = mechanism.actuator_values(poses[k], lengths);
+    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
+    if (!ok) {
+      state.SkipWithError("inverse kinematics failed");
+      break;
+    }
+    benchmark::DoNotOptimize(lengths);
+    k = k + 1 == poses.size() ? 0 : k + 1;
+  }
+  bench::record_distribution(state, time);
+}
+BENCHMARK(BM_StrutLinesInverseKinematics)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace pkm
+
+BENCHMARK_MAIN();
