@@ -36,6 +36,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto no_error = std::make_shared<bool>(false);
   auto with_dynamics = std::make_shared<bool>(false);
   auto with_elastic = std::make_shared<bool>(false);
+  auto with_stiffness = std::make_shared<bool>(false);
   auto options = std::make_shared<planning::PlanOptions>();
   auto tolerance = std::make_shared<double>(0.0);
   auto report_file = std::make_shared<std::string>();
@@ -63,6 +64,9 @@ void add_plan_command(CLI::App& app, int& exit_code) {
                 "with --dynamics, also the elastic struts' response to the planned motion: response.csv, "
                 "the lowest natural frequency and the largest dynamic tool error")
       ->needs(dynamics_flag);
+  cmd->add_flag("--stiffness", *with_stiffness,
+                "also the tool's deflection under --load with the struts as springs (the machine file's "
+                "stiffness: section): deflection.csv and a stiffness block in summary.json");
   cmd->add_flag("--json", *json, "print the summary as JSON");
   cmd->add_option("--report", *report_file, "also write the HTML report of the run to this file");
   auto redundancy_arguments = std::make_shared<RedundancyArguments>();
@@ -89,8 +93,15 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     job.evaluate_path_error = !*no_error;
     job.dynamics = *with_dynamics;
     job.elastic = *with_elastic;
-    // --load is the law's process load; with --dynamics the drive forces carry it too.
-    if (job.dynamics && !redundancy_arguments->load.empty()) {
+    job.stiffness = *with_stiffness;
+    if (job.stiffness && redundancy_arguments->load.empty()) {
+      exit_code = report_error(
+          "plan", make_error(ErrorCode::bad_input, "--stiffness needs --load: the deflection is the load's"));
+      return;
+    }
+    // --load is the law's process load; with --dynamics the drive forces carry it too, with --stiffness the
+    // struts.
+    if ((job.dynamics || job.stiffness) && !redundancy_arguments->load.empty()) {
       auto loads = statics::parse_load_spec(redundancy_arguments->load);
       if (!loads) {
         exit_code = report_error("plan", make_error(loads.error().code, "--load: " + loads.error().message));
@@ -159,8 +170,17 @@ void add_plan_command(CLI::App& app, int& exit_code) {
           "  dynamic error     max {:.3f} µm at the tool (line {}; static sag {:.3f} µm)\n",
           e.max_tool_error_mm * 1e3, e.max_tool_error_line, e.start_deflection_mm * 1e3);
     }
-    std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}{}\n", *out_dir,
-                             run.dynamics ? ", forces.csv" : "", run.elastic ? ", response.csv" : "");
+    if (run.deflection) {
+      const stiffness::DeflectionSummary& f = *run.deflection;
+      std::cout << fmt::format(
+          "  tool deflection   max {:.3f} µm along the tool axis (line {}), rms {:.3f} µm; max {:.3f} µm "
+          "(line {})\n",
+          f.max_normal_mm * 1e3, f.max_normal_line, f.rms_normal_mm * 1e3, f.max_deflection_mm * 1e3,
+          f.max_deflection_line);
+    }
+    std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}{}{}\n", *out_dir,
+                             run.dynamics ? ", forces.csv" : "", run.elastic ? ", response.csv" : "",
+                             run.deflection ? ", deflection.csv" : "");
   });
 }
 

@@ -77,13 +77,8 @@ Status RunDynamics::evaluate(int index_in_window, bool at_rest) {
   }
   statics::Wrench load;
   if (load_ != nullptr) {
-    statics::LoadPoint point;
-    const double speed = motion.velocity_mm_s.norm();
-    point.tangent = speed > 0.0 ? Eigen::Vector3d(motion.velocity_mm_s / speed) : Eigen::Vector3d::Zero();
-    point.tool_axis = s.pose.rotation * tool_axis_platform_;
-    point.line = s.line;
-    point.cutting = s.cutting;
-    load = load_->wrench_at(point);
+    load = load_->wrench_at(
+        statics::travel_load_point(s.pose, motion.velocity_mm_s, tool_axis_platform_, s.line, s.cutting));
   }
   auto forces = inverse_dynamics(*machine_.mechanism, machine_.dynamics, motion, load);
   if (!forces) {

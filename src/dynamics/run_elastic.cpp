@@ -50,14 +50,8 @@ RunElastic::RunElastic(std::unique_ptr<ElasticModel> model, std::function<Status
 
 statics::Wrench RunElastic::load_at(const Tick& tick, const Eigen::Vector3d& velocity_mm_s) const {
   if (load_ == nullptr) return {};
-  // As run_dynamics.cpp: the cut's direction of travel and the tool axis at the tick.
-  statics::LoadPoint point;
-  const double speed = velocity_mm_s.norm();
-  point.tangent = speed > 0.0 ? Eigen::Vector3d(velocity_mm_s / speed) : Eigen::Vector3d::Zero();
-  point.tool_axis = tick.pose.rotation * tool_axis_platform_;
-  point.line = tick.line;
-  point.cutting = tick.cutting;
-  return load_->wrench_at(point);
+  return load_->wrench_at(
+      statics::travel_load_point(tick.pose, velocity_mm_s, tool_axis_platform_, tick.line, tick.cutting));
 }
 
 Result<RunElastic> RunElastic::make(const Machine& machine, double period_s,

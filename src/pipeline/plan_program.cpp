@@ -31,6 +31,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   output.evaluate_path_error = job.evaluate_path_error;
   output.dynamics = job.dynamics;
   output.elastic = job.elastic;
+  output.stiffness = job.stiffness;
   output.dynamics_load = &job.dynamics_load;
   if (job.progress && plan->duration_s * job.plan.rate_hz > 200000) output.progress = job.progress;
   // The CSVs, the summary and the report replace the previous run's together or not at all.

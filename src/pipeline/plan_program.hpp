@@ -25,6 +25,8 @@ struct PlanJob {
   statics::LoadModel dynamics_load;  ///< the process load in the dynamics (empty: gravity only)
   /// With `dynamics`: the elastic machine's response (response.csv; docs/dynamics_elastic.md)
   bool elastic = false;
+  /// The tool's deflection under `dynamics_load`, the struts as springs (deflection.csv; docs/stiffness.md)
+  bool stiffness = false;
   std::function<void(double)> progress;  ///< fraction written, for runs over 200 000 ticks
   std::string out_directory;
   std::string report_path;  ///< empty: no report

@@ -128,6 +128,16 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
     d["max_dynamic_tool_error_time_s"] = run.elastic->max_tool_error_time_s;
     d["max_dynamic_rotation_deg"] = run.elastic->max_rotation_deg;
   }
+  if (run.deflection) {
+    const stiffness::DeflectionSummary& f = *run.deflection;
+    summary["stiffness"] = {{"model", "struts"},
+                            {"max_normal_deflection_mm", f.max_normal_mm},
+                            {"max_normal_deflection_line", f.max_normal_line},
+                            {"max_normal_deflection_time_s", f.max_normal_time_s},
+                            {"rms_normal_deflection_mm", f.rms_normal_mm},
+                            {"max_deflection_mm", f.max_deflection_mm},
+                            {"max_deflection_line", f.max_deflection_line}};
+  }
   return summary;
 }
 
@@ -220,6 +230,27 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
                    "time_s,line,dx_mm,dy_mm,dz_mm,rotation_deg,tool_error_mm\n");
   }
 
+  PlanOutputFile deflection_csv;
+  std::optional<stiffness::RunDeflection> deflection;
+  if (options.stiffness) {
+    static const statics::LoadModel kNoLoad;
+    auto made = stiffness::RunDeflection::make(
+        machine, options.dynamics_load != nullptr ? *options.dynamics_load : kNoLoad,
+        [&deflection_csv](const stiffness::DeflectionTick& t) -> Status {
+          fmt::format_to(std::back_inserter(deflection_csv.buffer),
+                         "{:.6f},{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e}\n", t.time_s, t.line,
+                         t.deflection_mm.x(), t.deflection_mm.y(), t.deflection_mm.z(), t.normal_mm,
+                         t.rotation_rad);
+          return deflection_csv.flush_if_large();
+        });
+    if (!made) return made.error();
+    deflection.emplace(std::move(*made));
+    if (auto opened = deflection_csv.open(outputs.staged_path("deflection.csv")); !opened)
+      return opened.error();
+    fmt::format_to(std::back_inserter(deflection_csv.buffer),
+                   "time_s,line,dx_mm,dy_mm,dz_mm,normal_mm,rotation_rad\n");
+  }
+
   ServoStream stream(plan, machine);
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
   const long total = stream.tick_count();
@@ -236,6 +267,12 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     if (elastic) {
       const bool cutting = !plan.path.segments[tick.segment].rapid;
       if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators, cutting); !added) {
+        return at_program_line(plan, added.error());
+      }
+    }
+    if (deflection) {
+      const bool cutting = !plan.path.segments[tick.segment].rapid;
+      if (Status added = deflection->add(tick.time_s, tick.line, tick.pose, cutting); !added) {
         return at_program_line(plan, added.error());
       }
     }
@@ -271,6 +308,11 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     if (Status finished = elastic->finish(); !finished) return at_program_line(plan, finished.error());
     run.elastic = elastic->summary();
     if (auto committed = response_csv.commit(); !committed) return committed.error();
+  }
+  if (deflection) {
+    if (Status finished = deflection->finish(); !finished) return at_program_line(plan, finished.error());
+    run.deflection = deflection->summary();
+    if (auto committed = deflection_csv.commit(); !committed) return committed.error();
   }
   fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", summary_json(plan, machine, run).dump(2));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {

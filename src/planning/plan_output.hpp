@@ -2,7 +2,8 @@
 // Writing a planned run: DIR/actuators.csv (time and every actuator position per servo tick), DIR/path.csv
 // (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json, and with
 // OutputOptions::dynamics DIR/forces.csv (drive forces: total, static, dynamic; drive power), and with
-// OutputOptions::elastic DIR/response.csv (the elastic machine's deviation from the commanded pose).
+// OutputOptions::elastic DIR/response.csv (the elastic machine's deviation from the commanded pose), and with
+// OutputOptions::stiffness DIR/deflection.csv (the tool's deflection under the process load).
 // The files join an OutputSet (io/output_set.hpp): they replace the previous run's only together, when the
 // whole run succeeded, so a failed run leaves the previous run complete and nothing of its own.
 #include <functional>
@@ -28,7 +29,11 @@ struct OutputOptions {
   /// stiffness_N_mm; src/dynamics/run_elastic.hpp, docs/dynamics_elastic.md): DIR/response.csv and the lowest
   /// natural frequency and the largest dynamic tool error in the summary's dynamics block.
   bool elastic = false;
-  /// The process load on the tool for the dynamics (nullptr: gravity only).
+  /// The tool's deflection under `dynamics_load` with the struts as springs
+  /// (src/stiffness/run_deflection.hpp, docs/stiffness.md): DIR/deflection.csv and a "stiffness" block in the
+  /// summary.
+  bool stiffness = false;
+  /// The process load on the tool, for the dynamics (nullptr: gravity only) and the deflection.
   const statics::LoadModel* dynamics_load = nullptr;
   /// Called now and then with the fraction done (0…1), e.g. to draw a progress bar.
   std::function<void(double)> progress;

@@ -13,6 +13,7 @@
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
+#include "stiffness/run_deflection.hpp"
 
 namespace pkm::planning {
 
@@ -21,6 +22,8 @@ struct RunSummary {
   std::optional<dynamics::RunDynamicsSummary> dynamics;
   /// The elastic machine's response to the run (OutputOptions::elastic), when asked for.
   std::optional<dynamics::ElasticRunSummary> elastic;
+  /// The tool's deflection under the process load (OutputOptions::stiffness), when asked for.
+  std::optional<stiffness::DeflectionSummary> deflection;
   double duration_s = 0.0;
   long ticks = 0;
   double rate_hz = 0.0;

@@ -16,6 +16,17 @@ const CuttingLoad& LoadModel::load_for_line(int line) const {
   return default_load;
 }
 
+LoadPoint travel_load_point(const Pose& pose, const Eigen::Vector3d& velocity_mm_s,
+                            const Eigen::Vector3d& tool_axis_platform, int line, bool cutting) {
+  LoadPoint point;
+  const double speed = velocity_mm_s.norm();
+  point.tangent = speed > 0.0 ? Eigen::Vector3d(velocity_mm_s / speed) : Eigen::Vector3d::Zero();
+  point.tool_axis = pose.rotation * tool_axis_platform;
+  point.line = line;
+  point.cutting = cutting;
+  return point;
+}
+
 Wrench LoadModel::wrench_at(const LoadPoint& point) const {
   return cutting_wrench(load_for_line(point.line), point);
 }

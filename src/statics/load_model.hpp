@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/pose.hpp"
 #include "core/result.hpp"
 #include "statics/wrench.hpp"
 
@@ -22,6 +23,11 @@ struct LoadPoint {
   int line = 0;         ///< program line, to pick a BlockLoad
   bool cutting = true;  ///< false on rapids: no cutting load, only the constant one
 };
+
+/// The load point of a platform at `pose` travelling with the tool point's `velocity_mm_s` (zero: at rest,
+/// no direction of travel): the tool axis is `tool_axis_platform` (platform frame) turned with the pose.
+LoadPoint travel_load_point(const Pose& pose, const Eigen::Vector3d& velocity_mm_s,
+                            const Eigen::Vector3d& tool_axis_platform, int line, bool cutting);
 
 /// One load case, all forces acting on the tool (so on the platform), base frame.
 /// With t the tangent, a the tool axis and n = unit(a × t) (to the left of travel seen from the spindle):
