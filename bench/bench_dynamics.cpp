@@ -77,24 +77,12 @@ void BM_InverseDynamicsPerTick(benchmark::State& state) {
 BENCHMARK(BM_InverseDynamicsPerTick)->Unit(benchmark::kMicrosecond);
 
 void BM_InverseKinematicsPerTick(benchmark::State& state) {
-  const auto& all = motions();
-  const Mechanism& mechanism = *machine().mechanism;
-  DurationHistogram time(10'000);
-  using Clock = std::chrono::steady_clock;
-  std::size_t k = 0;
-  double lengths[kMaxActuators];
-  for (auto _ : state) {
-    const Clock::time_point started = Clock::now();
-    const bool ok = mechanism.actuator_values(all[k].pose, lengths);
-    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
-    if (!ok) {
-      state.SkipWithError("inverse kinematics failed");
-      break;
-    }
-    benchmark::DoNotOptimize(lengths);
-    k = k + 1 == all.size() ? 0 : k + 1;
-  }
-  bench::record_distribution(state, time);
+  static const std::vector<Pose> poses = [] {
+    std::vector<Pose> out;
+    for (const auto& m : motions()) out.push_back(m.pose);
+    return out;
+  }();
+  bench::time_inverse_kinematics(state, *machine().mechanism, poses);
 }
 BENCHMARK(BM_InverseKinematicsPerTick)->Unit(benchmark::kMicrosecond);
 

@@ -50,24 +50,7 @@ void BM_StrutCompliancePerPoint(benchmark::State& state) {
 BENCHMARK(BM_StrutCompliancePerPoint)->Unit(benchmark::kMicrosecond);
 
 void BM_StrutLinesInverseKinematics(benchmark::State& state) {
-  const auto& poses = helix_poses();
-  const Mechanism& mechanism = *bench::ch5_hexapod().mechanism;
-  DurationHistogram time(10'000);
-  using Clock = std::chrono::steady_clock;
-  std::size_t k = 0;
-  double lengths[kMaxActuators];
-  for (auto _ : state) {
-    const Clock::time_point started = Clock::now();
-    const bool ok = mechanism.actuator_values(poses[k], lengths);
-    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
-    if (!ok) {
-      state.SkipWithError("inverse kinematics failed");
-      break;
-    }
-    benchmark::DoNotOptimize(lengths);
-    k = k + 1 == poses.size() ? 0 : k + 1;
-  }
-  bench::record_distribution(state, time);
+  bench::time_inverse_kinematics(state, *bench::ch5_hexapod().mechanism, helix_poses());
 }
 BENCHMARK(BM_StrutLinesInverseKinematics)->Unit(benchmark::kMicrosecond);
 

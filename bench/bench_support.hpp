@@ -2,6 +2,7 @@
 // What the benchmarks share: the ch5 hexapod of the shipped examples, loaded once.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -63,6 +64,28 @@ inline void record_distribution(benchmark::State& state, const DurationHistogram
   state.counters["p99_us"] = d.p99_us;
   state.counters["p99_9_us"] = d.p99_9_us;
   state.counters["max_us"] = d.max_us;
+}
+
+/// Times the hot IK (`actuator_values`) of `poses` in turn, every call on its own: the yardstick the
+/// per-tick benchmarks report their ratio to, in the same run.
+inline void time_inverse_kinematics(benchmark::State& state, const Mechanism& mechanism,
+                                    const std::vector<Pose>& poses) {
+  DurationHistogram time(10'000);
+  using Clock = std::chrono::steady_clock;
+  std::size_t k = 0;
+  double lengths[kMaxActuators];
+  for (auto _ : state) {
+    const Clock::time_point started = Clock::now();
+    const bool ok = mechanism.actuator_values(poses[k], lengths);
+    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
+    if (!ok) {
+      state.SkipWithError("inverse kinematics failed");
+      break;
+    }
+    benchmark::DoNotOptimize(lengths);
+    k = k + 1 == poses.size() ? 0 : k + 1;
+  }
+  record_distribution(state, time);
 }
 
 }  // namespace pkm::bench

@@ -8,6 +8,7 @@
 #include <array>
 #include <functional>
 
+#include "core/tick_window.hpp"
 #include "dynamics/rigid_dynamics.hpp"
 #include "machine/machine.hpp"
 #include "statics/load_model.hpp"
@@ -77,8 +78,7 @@ class RunDynamics {
     Pose pose;
     bool cutting = true;
   };
-  std::array<Sample, 3> window_;  ///< ticks k − 1, k, k + 1
-  long count_ = 0;
+  TickWindow<Sample> window_;
   RunDynamicsSummary summary_;
   TickDynamics pending_;  ///< evaluated, waiting for the next tick's forces
   bool has_pending_ = false;

@@ -25,18 +25,13 @@ RunDeflection::RunDeflection(const Machine& machine, const statics::LoadModel& l
       tool_axis_platform_(machine.mechanism->home().rotation.transpose() * Eigen::Vector3d::UnitZ()) {}
 
 Status RunDeflection::add(double time_s, int line, const Pose& pose, bool cutting) {
-  window_[0] = window_[1];
-  window_[1] = window_[2];
-  window_[2] = Sample{time_s, line, pose, cutting};
-  ++count_;
-  if (count_ == 1) return evaluate(2, true);  // the start, at rest
-  if (count_ >= 3) return evaluate(1, false);
-  return ok_status();
+  const auto due = window_.add(Sample{time_s, line, pose, cutting});
+  return due.index >= 0 ? evaluate(due.index, due.at_rest) : ok_status();
 }
 
 Status RunDeflection::finish() {
-  if (count_ >= 2) {
-    if (Status last = evaluate(2, true); !last) return last;  // the end, at rest
+  if (const auto due = window_.finish(); due.index >= 0) {
+    if (Status last = evaluate(due.index, due.at_rest); !last) return last;  // the end, at rest
   }
   if (summary_.cutting_ticks > 0)
     summary_.rms_normal_mm = std::sqrt(normal_square_sum_ / summary_.cutting_ticks);

@@ -10,6 +10,7 @@
 #include <array>
 #include <functional>
 
+#include "core/tick_window.hpp"
 #include "machine/machine.hpp"
 #include "statics/load_model.hpp"
 #include "stiffness/strut_compliance.hpp"
@@ -65,8 +66,7 @@ class RunDeflection {
     Pose pose;
     bool cutting = true;
   };
-  std::array<Sample, 3> window_;  ///< ticks k − 1, k, k + 1
-  long count_ = 0;
+  TickWindow<Sample> window_;
   double normal_square_sum_ = 0.0;
   DeflectionSummary summary_;
 };
