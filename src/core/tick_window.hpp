@@ -4,7 +4,17 @@
 // tick at once and the last at the end, both at rest (every run starts and ends there).
 #include <array>
 
+#include "core/pose.hpp"
+
 namespace pkm {
+
+/// A commanded tick of a planned run: when, from which program line, where, and whether it cuts.
+struct CommandedTick {
+  double time_s = 0.0;
+  int line = 0;
+  Pose pose;
+  bool cutting = true;  ///< false on rapids
+};
 
 template <class Sample>
 class TickWindow {

@@ -72,12 +72,7 @@ class RunDynamics {
   std::function<Status(const TickDynamics&)> on_tick_;
   const statics::LoadModel* load_;
   Eigen::Vector3d tool_axis_platform_;
-  struct Sample {
-    double time_s = 0.0;
-    int line = 0;
-    Pose pose;
-    bool cutting = true;
-  };
+  using Sample = CommandedTick;
   TickWindow<Sample> window_;
   RunDynamicsSummary summary_;
   TickDynamics pending_;  ///< evaluated, waiting for the next tick's forces

@@ -60,12 +60,7 @@ class RunDeflection {
   StiffnessParameters stiffness_;
   std::function<Status(const DeflectionTick&)> on_tick_;
   Eigen::Vector3d tool_axis_platform_;
-  struct Sample {
-    double time_s = 0.0;
-    int line = 0;
-    Pose pose;
-    bool cutting = true;
-  };
+  using Sample = CommandedTick;
   TickWindow<Sample> window_;
   double normal_square_sum_ = 0.0;
   DeflectionSummary summary_;
