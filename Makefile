@@ -36,7 +36,7 @@ run: configure
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-# Under the sanitizers the generated-program suite runs 4 programs per machine (make test: 16; make nightly: 300).
+# Under the sanitizers the generated-program suite runs 3 programs per machine (make test: 16; make nightly: 300).
 # Built as on a machine without Node.js (PKM_NODE not found): the library, CLI and tests must configure and build
 # without the report page, and configuring must say so in one line (the Release build of make test has the page).
 sanitize: deps
@@ -44,7 +44,7 @@ sanitize: deps
 	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DPKM_SANITIZE=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
 	@grep "building without the HTML report page: Node.js or npm not found" build-asan/configure.log
 	@cmake --build build-asan -j $(JOBS)
-	cd build-asan && PKM_GENERATED_PROGRAMS=4 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
+	cd build-asan && PKM_GENERATED_PROGRAMS=3 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
 # Formatting must match .clang-format; cppcheck must find nothing.
 lint: deps

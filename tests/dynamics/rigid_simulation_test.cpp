@@ -43,7 +43,9 @@ std::vector<RigidCase> rigid_simulation_cases() {
     c.parameters = test::random_dynamics_parameters(rng, c.machine.mechanism->actuator_count());
     cases.push_back(std::move(c));
   }
-  for (int i = 0; i < 5; ++i) {
+  // Five random hexapods, or PKM_RANDOM_GEOMETRIES (the sanitizer run takes one: its simulations are 20×
+  // slower, and the shipped machines stay in every run).
+  for (int i = 0; i < test::random_geometry_count(); ++i) {
     RigidCase c{fmt::format("random hexapod {}", i), test::random_hexapod_machine(rng, i), {}};
     c.parameters = test::random_dynamics_parameters(rng, 6, false);
     cases.push_back(std::move(c));
