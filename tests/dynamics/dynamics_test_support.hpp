@@ -52,6 +52,23 @@ inline DynamicsParameters random_dynamics_parameters(std::mt19937_64& rng, int s
   return p;
 }
 
+/// A friction coefficient for `damping` that damps a 10 µm vibration by a few per cent (one draw unless
+/// none).
+inline double random_damping_coefficient(std::mt19937_64& rng, StrutDamping damping) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  switch (damping) {
+    case StrutDamping::none:
+      return 0.0;
+    case StrutDamping::viscous:
+      return 20 + 40 * unit(rng);  // N·s/mm
+    case StrutDamping::quadratic:
+      return 0.2 + 0.4 * unit(rng);  // N·s²/mm²
+    case StrutDamping::coulomb:
+      return 20 + 30 * unit(rng);  // N
+  }
+  return 0.0;
+}
+
 /// The same with an elastic element in every strut: stiffness 20…400 N/µm, and `damping` with a coefficient
 /// that damps a 10 µm vibration by a few per cent.
 inline DynamicsParameters random_elastic_parameters(std::mt19937_64& rng, int struts,
@@ -63,20 +80,7 @@ inline DynamicsParameters random_elastic_parameters(std::mt19937_64& rng, int st
     StrutDynamics& s = p.struts[j];
     s.stiffness_N_mm = 2e4 + 3.8e5 * unit(rng);
     s.damping = damping;
-    switch (damping) {
-      case StrutDamping::none:
-        s.damping_coefficient = 0.0;
-        break;
-      case StrutDamping::viscous:
-        s.damping_coefficient = 20 + 40 * unit(rng);
-        break;  // N·s/mm
-      case StrutDamping::quadratic:
-        s.damping_coefficient = 0.2 + 0.4 * unit(rng);
-        break;  // N·s²/mm²
-      case StrutDamping::coulomb:
-        s.damping_coefficient = 20 + 30 * unit(rng);
-        break;  // N
-    }
+    s.damping_coefficient = random_damping_coefficient(rng, damping);
   }
   return p;
 }
@@ -112,25 +116,11 @@ struct ElasticCase {
 /// Sets every strut's friction to `damping` (coefficients as random_elastic_parameters draws them, the
 /// file's own where it has that model).
 inline void set_strut_damping(std::mt19937_64& rng, DynamicsParameters& p, StrutDamping damping) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int j = 0; j < p.strut_count; ++j) {
     StrutDynamics& s = p.struts[j];
     if (s.damping == damping) continue;
     s.damping = damping;
-    switch (damping) {
-      case StrutDamping::none:
-        s.damping_coefficient = 0.0;
-        break;
-      case StrutDamping::viscous:
-        s.damping_coefficient = 20 + 40 * unit(rng);
-        break;
-      case StrutDamping::quadratic:
-        s.damping_coefficient = 0.2 + 0.4 * unit(rng);
-        break;
-      case StrutDamping::coulomb:
-        s.damping_coefficient = 20 + 30 * unit(rng);
-        break;
-    }
+    s.damping_coefficient = random_damping_coefficient(rng, damping);
   }
 }
 
