@@ -46,6 +46,12 @@ Result<DynamicsParameters> read_dynamics(const YAML::Node& root, const YamlReade
 Result<StiffnessParameters> read_stiffness(const YAML::Node& root, const YamlReader& reader,
                                            const Mechanism& mechanism);
 
+/// `stiffness.frame` (optional; docs/stiffness_frame.md) of the mapping `stiffness`: named `sections`,
+/// `nodes` (name, position_mm, fixed), `beams` (from, to, section name or mapping, section_x) and
+/// `base_joint_nodes` (one node name per strut). Moduli and section constants > 0, node names unique and
+/// known, beams of non-zero length with section_x not along them; unknown keys refused.
+Result<FrameParameters> read_frame(const YAML::Node& stiffness, const YamlReader& reader, int strut_count);
+
 /// The neutral axes of the mechanism's passive joints: `base_joint_axes` / `platform_joint_axes` if given,
 /// otherwise the strut directions at the mechanism's home. Errors if a key is given for a mechanism without
 /// swing joints, or a given axis has zero length.
