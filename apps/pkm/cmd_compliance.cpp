@@ -1,13 +1,18 @@
 // pkm compliance --machine M.yaml --pose P [--json]: the tool's compliance at a pose when the struts are the
 // elastic parts (src/stiffness/strut_compliance.hpp, docs/stiffness.md): the 6 × 6 matrix about the tool
-// point, the principal stiffness in N/µm with its directions, and the struts' stiffness used.
+// point, the principal stiffness in N/µm with its directions, and the struts' stiffness used. With
+// --bode FILE also the dynamic compliance's natural frequencies and Bode data (compliance_bode_cli.cpp,
+// docs/dynamic_compliance.md); with --map --out FILE instead of --pose the lowest stiffness over a plane grid
+// of poses (compliance_map_cli.cpp).
 #include <fmt/format.h>
 
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "compliance_cli.hpp"
 #include "io/pose_input.hpp"
 #include "number_options.hpp"
 #include "stiffness/strut_compliance.hpp"
@@ -31,14 +36,66 @@ nlohmann::json stiffness_json(double value, double unit) {
 
 void add_compliance_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
-      "compliance", "the tool's compliance and principal stiffness at a pose, the struts as the springs");
+      "compliance",
+      "the tool's compliance and principal stiffness at a pose, the struts as the springs; its dynamic "
+      "compliance (--bode); the lowest stiffness over a plane of poses (--map)");
   auto machine_path = std::make_shared<std::string>();
   auto pose_text = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
+  auto bode = std::make_shared<ComplianceBodeArguments>();
+  auto map = std::make_shared<bool>(false);
+  auto map_arguments = std::make_shared<ComplianceMapArguments>();
   cmd->add_option("--machine", *machine_path, "machine file (YAML) with a stiffness: section")->required();
-  cmd->add_option("--pose", *pose_text, "pose, as for pkm ik (planar: x,y[,phi])")->required();
+  auto* pose_option = cmd->add_option("--pose", *pose_text, "pose, as for pkm ik (planar: x,y[,phi])");
   cmd->add_flag("--json", *json, "print JSON");
+  auto* bode_option = cmd->add_option(
+      "--bode", bode->path,
+      "with --pose: write the dynamic compliance's Bode data to this CSV (needs a dynamics: section)");
+  bode_option->needs(pose_option);
+  // Beyond 1 MHz no structural mode of a machine tool lives, and a log sweep needs positive ends.
+  cmd->add_option("--f-min-hz", bode->f_min_Hz, "with --bode: the lowest frequency, Hz")
+      ->capture_default_str()
+      ->check(number_in({0.0, 1e6, false, true, "Hz"}))
+      ->needs(bode_option);
+  cmd->add_option("--f-max-hz", bode->f_max_Hz, "with --bode: the highest frequency, Hz")
+      ->capture_default_str()
+      ->check(number_in({0.0, 1e6, false, true, "Hz"}))
+      ->needs(bode_option);
+  cmd->add_option("--points", bode->points, "with --bode: frequencies, log-spaced, both ends included")
+      ->capture_default_str()
+      ->check(number_in({2.0, 100000.0, true, true, "", true}))
+      ->needs(bode_option);
+  auto* ratio_option = cmd->add_option("--damping-ratio", bode->damping_ratio,
+                                       "with --bode: the modal damping ratio ζ assumed for every mode")
+                           ->capture_default_str()
+                           ->check(number_in({0.0, 10.0, true, true, ""}))
+                           ->needs(bode_option);
+  cmd->add_option("--rayleigh", bode->rayleigh_text,
+                  "with --bode, instead of --damping-ratio: Rayleigh damping C = α·M + β·K, as α,β (1/s, s)")
+      ->needs(bode_option)
+      ->excludes(ratio_option);
+  auto* map_flag =
+      cmd->add_flag("--map", *map,
+                    "instead of --pose: the lowest translational stiffness over a plane grid of poses, to "
+                    "--out")
+          ->excludes(pose_option);
+  auto* out_option =
+      cmd->add_option("--out", map_arguments->out_path, "with --map: the map's CSV file")->needs(map_flag);
+  map_flag->needs(out_option);
+  add_map_grid_options(*cmd, map_arguments->grid, map_flag);
   cmd->callback([=, &exit_code] {
+    if (*map) {
+      map_arguments->machine_path = *machine_path;
+      map_arguments->json = *json;
+      exit_code = run_compliance_map(*map_arguments);
+      return;
+    }
+    if (pose_text->empty()) {
+      exit_code = report_error(
+          "compliance",
+          make_error(ErrorCode::bad_input, "give --pose P (one pose), or --map --out FILE (a map)"));
+      return;
+    }
     auto machine = load_machine_or_report(*machine_path);
     if (!machine) {
       exit_code = report_error("compliance", machine.error());
@@ -63,6 +120,25 @@ void add_compliance_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("compliance", e);
       return;
     }
+    std::optional<stiffness::BodeData> bode_data;
+    if (!bode->path.empty()) {
+      // Everything is computed before anything is printed or written: a failure leaves no file behind.
+      auto data = compliance_bode(*machine, *pose, *bode);
+      if (!data) {
+        Error e = data.error();
+        if (e.location.file.empty() && e.code != ErrorCode::bad_input)
+          e.message = fmt::format("--pose {}: {}", *pose_text, e.message);
+        exit_code = report_error("compliance", e);
+        return;
+      }
+      if (Status written = stiffness::write_bode_csv(bode->path, *data); !written) {
+        Error e = written.error();
+        e.message = "--bode: " + e.message;
+        exit_code = report_error("compliance", e);
+        return;
+      }
+      bode_data = std::move(*data);
+    }
     const auto translation = stiffness::principal_stiffness(*compliance, false);
     const auto rotation = stiffness::principal_stiffness(*compliance, true);
     const stiffness::Matrix6& c = compliance->compliance;
@@ -84,17 +160,19 @@ void add_compliance_command(CLI::App& app, int& exit_code) {
             {{"stiffness_Nm_mrad", stiffness_json(rotation.stiffness[i], kNmPerMradPerNmmPerRad)},
              {"axis", vector_of(rotation.directions.col(i))}});
       }
-      print_json(
-          {{"machine", machine->source},
-           {"pose", user_from_pose(mech, *pose)},
-           {"dof", compliance->dof},
-           {"compliance", matrix},
-           {"compliance_units", "rows dx dy dz (mm), rx ry rz (rad); columns fx fy fz (N), mx my mz (N·mm)"},
-           {"translational", principal},
-           {"rotational", turning},
-           {"strut_stiffness_N_mm", std::vector<double>(compliance->strut_stiffness_N_mm.data(),
-                                                        compliance->strut_stiffness_N_mm.data() +
-                                                            compliance->strut_stiffness_N_mm.size())}});
+      nlohmann::json out = {
+          {"machine", machine->source},
+          {"pose", user_from_pose(mech, *pose)},
+          {"dof", compliance->dof},
+          {"compliance", matrix},
+          {"compliance_units", "rows dx dy dz (mm), rx ry rz (rad); columns fx fy fz (N), mx my mz (N·mm)"},
+          {"translational", principal},
+          {"rotational", turning},
+          {"strut_stiffness_N_mm", std::vector<double>(compliance->strut_stiffness_N_mm.data(),
+                                                       compliance->strut_stiffness_N_mm.data() +
+                                                           compliance->strut_stiffness_N_mm.size())}};
+      if (bode_data) out["dynamic"] = compliance_bode_json(*bode_data, *bode);
+      print_json(out);
       return;
     }
     std::cout << fmt::format("{} ({}) at {}: the struts as the springs, {} allowed motions\n", machine->name,
@@ -126,6 +204,7 @@ void add_compliance_command(CLI::App& app, int& exit_code) {
     for (int j = 0; j < compliance->strut_stiffness_N_mm.size(); ++j)
       std::cout << fmt::format(" {:.3f}", compliance->strut_stiffness_N_mm[j] * 1e-3);
     std::cout << '\n';
+    if (bode_data) print_compliance_bode(*bode_data, *bode);
   });
 }
 

@@ -7,40 +7,25 @@
 #include "cli_common.hpp"
 #include "dynamics/frequency_map.hpp"
 #include "dynamics/pose_grid.hpp"
+#include "dynamics/pose_grid_columns.hpp"
 #include "io/atomic_file.hpp"
 #include "io/pose_input.hpp"
 
 namespace pkm::cli {
 namespace {
 
-/// The CSV's pose columns: the numbers `pkm modes --pose` takes (x_mm … and the angles in degrees, named
-/// in the machine's convention; planar machines their controlled coordinates only).
-std::vector<std::string> map_pose_columns(const Mechanism& mech) {
-  const auto names = pose_coordinate_names(mech);
-  const AxisMask mask = mech.controlled_axes();
-  std::vector<std::string> columns;
-  for (int i = 0; i < 6; ++i) {
-    if (mech.is_planar() && !mask.controlled[i]) continue;  // as user_from_pose
-    columns.push_back(names[i] + (i < 3 ? "_mm" : "_deg"));
-  }
-  return columns;
-}
-
 /// One row per grid point; the frequency is empty where the point has none, and `status` says why.
 std::string frequency_map_csv(const Mechanism& mech, const std::vector<Pose>& poses,
                               const std::vector<dynamics::FrequencyMapPoint>& points) {
-  std::string csv = fmt::format("{},lowest_frequency_Hz,status\n", fmt::join(map_pose_columns(mech), ","));
+  std::string csv =
+      fmt::format("{},lowest_frequency_Hz,status\n", fmt::join(dynamics::grid_pose_columns(mech), ","));
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    for (double v : user_from_pose(mech, poses[i])) csv += fmt::format("{:.6f},", v);
+    csv += dynamics::grid_pose_cells(mech, poses[i]);
     if (points[i].status == dynamics::MapPointStatus::ok)
       csv += fmt::format("{:.6f}", points[i].lowest_frequency_Hz);
     csv += fmt::format(",{}\n", to_string(points[i].status));
   }
   return csv;
-}
-
-std::string map_pose_text(const Mechanism& mech, const Pose& pose) {
-  return fmt::format("{:g}", fmt::join(user_from_pose(mech, pose), ", "));
 }
 
 int modes_map_error(const std::string& prefix, const Error& error) {
@@ -58,35 +43,13 @@ int run_modes_map(const ModesMapArguments& arguments) {
   // The model first: a machine without stiffness is refused before any grid is looked at.
   auto model = dynamics::make_elastic_model(*machine);
   if (!model) return modes_map_error("", model.error());
-  dynamics::PlaneGrid grid;
-  grid.centre = mech.home();
-  if (!arguments.centre_text.empty()) {
-    auto values = parse_number_list(arguments.centre_text, "--centre");
-    if (!values) return modes_map_error("", values.error());
-    auto centre = pose_from_user(mech, *values, "--centre");
-    if (!centre) return modes_map_error("", centre.error());
-    grid.centre = *centre;
-  }
-  auto plane = dynamics::grid_plane_from_string(arguments.plane);
-  if (!plane) return modes_map_error("--plane", plane.error());
-  if (mech.is_planar() && *plane != dynamics::GridPlane::xy) {
-    return modes_map_error("--plane " + arguments.plane,
-                           make_error(ErrorCode::bad_input, "a planar machine moves in the xy plane only"));
-  }
-  grid.plane = *plane;
-  grid.half_range_mm = arguments.half_range_mm;
-  grid.step_mm = arguments.step_mm;
-  const double side = dynamics::grid_points_per_axis(grid.half_range_mm, grid.step_mm);
-  if (side * side > kMaxModesMapPoints) {
-    return modes_map_error(
-        "", make_error(
-                ErrorCode::bad_input,
-                fmt::format("--step-mm {:g} with --range-mm {:g} gives {:.0f} × {:.0f} = {:.3g} grid "
-                            "points, more than {:.0f}; take a larger --step-mm or a smaller --range-mm",
-                            grid.step_mm, grid.half_range_mm, side, side, side * side, kMaxModesMapPoints)));
-  }
-  auto poses = dynamics::plane_grid_poses(grid, kMaxModesMapPoints);
-  if (!poses) return modes_map_error("", poses.error());
+  const MapGridArguments grid_arguments{arguments.centre_text, arguments.plane, arguments.half_range_mm,
+                                        arguments.step_mm};
+  auto map_grid = map_grid_poses(mech, grid_arguments);
+  if (!map_grid) return modes_map_error("", map_grid.error());
+  const dynamics::PlaneGrid& grid = map_grid->grid;
+  const double side = map_grid->points_per_axis;
+  const std::vector<Pose>* poses = &map_grid->poses;
   const auto points = dynamics::frequency_map(*machine, *model, *poses);
   const auto s = dynamics::summarise_frequency_map(points);
   if (Status written = write_file_atomically(arguments.out_path, frequency_map_csv(mech, *poses, points));

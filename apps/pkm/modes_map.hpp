@@ -1,14 +1,14 @@
 #pragma once
 // pkm modes --map: the lowest natural frequency over a plane grid of poses, written as a CSV, with a summary
-// on stdout (src/dynamics/frequency_map.hpp does the work; this parses and prints).
+// on stdout (src/dynamics/frequency_map.hpp does the work; map_grid.hpp reads the grid; this prints).
 #include <string>
+
+#include "map_grid.hpp"
 
 namespace pkm::cli {
 
-/// The most grid points a map may have: ~30 µs each on the ch5 hexapod (and ~80 bytes of CSV), so the cap
-/// is about half a minute and 80 MB; more is almost always a mistyped step. The message names --step-mm and
-/// --range-mm.
-inline constexpr double kMaxModesMapPoints = 1'000'000;
+/// The most grid points a map may have (map_grid.hpp: shared with `pkm compliance --map`).
+inline constexpr double kMaxModesMapPoints = kMaxMapGridPoints;
 
 struct ModesMapArguments {
   std::string machine_path;

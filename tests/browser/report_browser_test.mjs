@@ -7,7 +7,9 @@
 //   - play advances the animation and pause stops it;
 //   - a plan with --dynamics --elastic has its force, power, energy and dynamic-error plots, and the
 //     #strut-colour switch colours the struts by drive force (redder the harder a drive pushes, bluer the harder
-//     it pulls), following the animation; reports without drive forces have no such switch.
+//     it pulls), following the animation; reports without drive forces have no such switch;
+//   - a run directory with bode.csv and stiffness_map.csv (pkm compliance --bode / --map) gets the Bode plot and
+//     the stiffness map, drawn, with the files' frequencies and cells; reports without them have neither.
 // Usage: node tests/browser/report_browser_test.mjs --pkm build/pkm --out build/browser-test
 //                                                   [--screenshots docs/images] [--chromium /usr/bin/chromium]
 import { execFileSync } from 'node:child_process';
@@ -60,6 +62,8 @@ const cases = [
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier-corrected'] },
   { name: 'plan-planar-circle', command: 'plan', program: 'examples/programs/planar_circle.ngc',
     machine: 'examples/machines/planar3.yaml', rows: 'path.csv', extra: [] },
+  { name: 'plan-circle-stiffness', command: 'plan', program: 'examples/programs/circle.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], stiffness: true },
   { name: 'plan-helix-dynamics', command: 'plan', program: 'examples/programs/helix.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: ['--dynamics', '--elastic'], dynamics: true },
   // optimize writes a program, not a run directory: its frames' lines are checked against the report's own data.
@@ -93,6 +97,32 @@ function checkColoursFollowForces(colours, forces, scale, where, fail) {
     }
   }
   return compared;
+}
+
+/** Writes the stiffness plots' files into a run's directory and the run's report again (as `pkm report`). */
+function addStiffnessFiles(c, dir, page_file) {
+  const machine = join(root, c.machine);
+  execFileSync(args.pkm, ['compliance', '--machine', machine, '--pose', '0,0,700,0,0,0', '--bode', join(dir, 'bode.csv'),
+                          '--points', '120'], { stdio: 'pipe' });
+  execFileSync(args.pkm, ['compliance', '--machine', machine, '--map', '--plane', 'xz', '--range-mm', '400', '--step-mm', '40',
+                          '--out', join(dir, 'stiffness_map.csv')], { stdio: 'pipe' });
+  execFileSync(args.pkm, ['report', dir, '--out', page_file], { stdio: 'pipe' });
+}
+
+/** The Bode plot and the stiffness map are there, drawn, with the files' frequencies and cells. */
+async function checkStiffnessPlots(page, data, dir, fail) {
+  const plots = await page.evaluate(() => window.pkmReport.stiffnessPlots());
+  const bode = readCsv(join(dir, 'bode.csv'));
+  const map = readCsv(join(dir, 'stiffness_map.csv'));
+  if (!data.frequency_response || data.frequency_response.frequency_Hz.length !== bode.length)
+    fail(`frequency_response has ${data.frequency_response?.frequency_Hz.length} frequencies, bode.csv ${bode.length}`);
+  if (plots.bode.length !== 2 || !plots.bode.every((b) => b.drawn)) fail(`Bode plots ${JSON.stringify(plots.bode)}`);
+  if (!plots.map || !plots.map.drawn) fail(`stiffness map ${JSON.stringify(plots.map)}`);
+  else if (plots.map.cells !== map.length) fail(`the stiffness map has ${plots.map.cells} cells, stiffness_map.csv ${map.length} rows`);
+  // Some cells are beyond the drives' range: null in the data, grey on the page.
+  const empty = data.stiffness_map.values.flat().filter((v) => v === null).length;
+  const outside = map.filter((r) => !(r.lowest_stiffness_N_um > 0)).length;
+  if (empty !== outside || outside === 0) fail(`${empty} empty cells in the data, ${outside} rows without a value`);
 }
 
 /** The dynamics plots are there and the struts can be coloured by drive force, in step with the animation. */
@@ -154,6 +184,7 @@ try {
     const out = c.command === 'optimize' ? join(dir, 'optimized.ngc') : dir;
     execFileSync(args.pkm, [c.command, join(root, c.program), '--machine', join(root, c.machine), '--out', out,
                             '--report', page_file, ...c.extra], { stdio: 'pipe' });
+    if (c.stiffness) addStiffnessFiles(c, dir, page_file);
     const rows = c.rows ? readCsv(join(dir, c.rows)) : null;
     const fail = (what) => failures.push(`${c.name}: ${what}`);
 
@@ -207,6 +238,10 @@ try {
     const held = await page.evaluate(() => window.pkmReport.currentFrame());
     if (!(played > 0)) fail('play did not advance the animation');
     if (held !== played) fail(`pause did not hold the animation (${played} → ${held})`);
+
+    if (c.stiffness) await checkStiffnessPlots(page, data, dir, fail);
+    else if (data.frequency_response || data.stiffness_map || (await page.evaluate(() => document.getElementById('stiffness-plots') !== null)))
+      fail('a report without bode.csv or stiffness_map.csv has stiffness plots');
 
     if (c.dynamics) await checkForceColouring(page, data, fail);
     else if (await page.evaluate(() => document.getElementById('strut-colour') !== null || window.pkmReport.strutColoring() !== null))

@@ -4,6 +4,37 @@
 const arr = (v) => (Array.isArray(v) ? v : []);
 const obj = (v) => (v && typeof v === 'object' && !Array.isArray(v) ? v : {});
 
+/** The Bode data (`frequency_response`), or null when absent or malformed. */
+function normalizeResponse(raw) {
+  const r = obj(raw);
+  const f = arr(r.frequency_Hz).map(Number);
+  if (!f.length) return null;
+  const entries = arr(r.entries)
+    .map(obj)
+    .map((e, k) => ({ name: String(e.name ?? `entry ${k + 1}`), magnitude_um_N: arr(e.magnitude_um_N), phase_deg: arr(e.phase_deg) }))
+    .filter((e) => e.magnitude_um_N.length === f.length && e.phase_deg.length === f.length);
+  return entries.length ? { file: String(r.file ?? ''), frequency_Hz: f, entries } : null;
+}
+
+/** The stiffness map (`stiffness_map`), or null when absent or malformed; null cells become NaN. */
+function normalizeMap(raw) {
+  const m = obj(raw);
+  const x = arr(m.x).map(Number);
+  const y = arr(m.y).map(Number);
+  const values = arr(m.values).map(arr);
+  if (!x.length || !y.length || values.length !== y.length || values.some((row) => row.length !== x.length)) return null;
+  return {
+    file: String(m.file ?? ''),
+    x_label: String(m.x_label ?? 'x'),
+    y_label: String(m.y_label ?? 'y'),
+    value_label: String(m.value_label ?? ''),
+    value_unit: String(m.value_unit ?? ''),
+    x,
+    y,
+    values: values.map((row) => row.map((v) => (v == null ? NaN : Number(v)))),
+  };
+}
+
 export function readData(doc = document) {
   const el = doc.getElementById('pkm-report-data');
   if (!el) throw new Error('no report data in this page (script#pkm-report-data is missing)');
@@ -66,6 +97,8 @@ export function normalize(raw) {
     limits_reached: arr(d.limits_reached).map(obj),
     summary: d.summary,
     charts,
+    frequency_response: normalizeResponse(d.frequency_response),
+    stiffness_map: normalizeMap(d.stiffness_map),
     scene: {
       base_polygon: arr(scene.base_polygon),
       programmed_path: arr(scene.programmed_path),

@@ -1,6 +1,6 @@
 // window.pkmReport: the hooks the browser test uses.
 
-export function installHooks({ player, sceneView, charts, transport, scenePanel }) {
+export function installHooks({ player, sceneView, charts, transport, scenePanel, stiffness }) {
   const hooks = {
     ready: false,
     frameCount: player.count,
@@ -33,6 +33,8 @@ export function installHooks({ player, sceneView, charts, transport, scenePanel 
     },
     builtCharts: () => charts.builtCount,
     chartScales: () => charts.debugScales(),
+    /** The stiffness plots: {bode: [{which, drawn}], map: {drawn, cells} | null}; drawn = has pixels. */
+    stiffnessPlots: () => stiffness.state(),
   };
   window.pkmReport = hooks;
   return hooks;

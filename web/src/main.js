@@ -6,6 +6,7 @@ import { createPlayer } from './player.js';
 import { createTransport } from './transport.js';
 import { createScenePanel } from './scene-panel.js';
 import { createCharts } from './charts.js';
+import { createStiffnessPlots } from './stiffness.js';
 import { installHooks } from './hooks.js';
 
 function init() {
@@ -28,6 +29,7 @@ function init() {
     player.seekTime(t);
   };
   const charts = createCharts(data, { onSeekTime: seekTime });
+  const stiffness = createStiffnessPlots(data);
   const transport = createTransport(player, data, [charts.toggle]);
   const summary = renderSummary(data, { frameOf: player.frameOfLine, onLine: seekLine, onTime: seekTime });
 
@@ -40,12 +42,12 @@ function init() {
     { class: 'pkm-report' },
     renderHeader(data),
     transport.element,
-    h('main', null, h('div', { class: 'top-grid' }, h('section', { class: 'panel summary-panel' }, summary), scenePanel.element), chartsSection),
+    h('main', null, h('div', { class: 'top-grid' }, h('section', { class: 'panel summary-panel' }, summary), scenePanel.element), chartsSection, stiffness.element),
     h('footer', { class: 'page-footer' }, [data.generated_by, data.format].filter(Boolean).join(' · ')),
   );
   document.body.appendChild(root);
 
-  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel });
+  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel, stiffness });
   marks.dom = performance.now();
   const hasScene = scenePanel.start();
   marks.scene = performance.now();
@@ -59,6 +61,7 @@ function init() {
   transport.showFrame(player.frame);
 
   charts.start();
+  stiffness.start();
   marks.charts = performance.now();
   if (hasScene) view.render();
   marks.render = performance.now();
