@@ -34,10 +34,12 @@ inline bool run_machine(std::string_view bytes) {
   return pkm::parse_machine_text(std::string(bytes), "fuzz.yaml").ok();
 }
 
-/// `--load @FILE.yaml` (parse_load_yaml on the file's text) and, for the same bytes, the `--load key=value`
-/// text form; a leading '@' would make the latter read a file, so that case is left to the YAML reader.
+/// `--load @FILE.yaml` (parse_load_yaml on the file's text), `--load @FILE.csv` (parse_load_csv) and, for the
+/// same bytes, the `--load key=value` text form; a leading '@' would make the latter read a file, so that
+/// case is left to the file readers.
 inline bool run_load(std::string_view bytes) {
-  const bool yaml = pkm::statics::parse_load_yaml(std::string(bytes), "fuzz.yaml").ok();
+  const bool csv = pkm::statics::parse_load_csv(bytes, "fuzz.csv").ok();
+  const bool yaml = pkm::statics::parse_load_yaml(std::string(bytes), "fuzz.yaml").ok() || csv;
   if (!bytes.empty() && bytes.front() == '@') return yaml;
   const bool text = pkm::statics::parse_load_spec(bytes).ok();
   return yaml || text;

@@ -10,6 +10,7 @@ void add_check_command(CLI::App& app, int& exit_code);
 void add_jacobian_command(CLI::App& app, int& exit_code);
 void add_modes_command(CLI::App& app, int& exit_code);
 void add_compliance_command(CLI::App& app, int& exit_code);
+void add_stiffness_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_demo_command(CLI::App& app, int& exit_code);
 void add_interpret_command(CLI::App& app, int& exit_code);
@@ -18,5 +19,6 @@ void add_optimize_command(CLI::App& app, int& exit_code);
 void add_play_command(CLI::App& app, int& exit_code);
 void add_interpolate_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
+void add_strategies_command(CLI::App& app, int& exit_code);
 
 }  // namespace pkm::cli

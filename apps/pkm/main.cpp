@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_jacobian_command(app, exit_code);
   pkm::cli::add_modes_command(app, exit_code);
   pkm::cli::add_compliance_command(app, exit_code);
+  pkm::cli::add_stiffness_command(app, exit_code);
   pkm::cli::add_bench_command(app, exit_code);
   pkm::cli::add_demo_command(app, exit_code);
   pkm::cli::add_interpret_command(app, exit_code);
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_interpolate_command(app, exit_code);
   pkm::cli::add_play_command(app, exit_code);
   pkm::cli::add_report_command(app, exit_code);
+  pkm::cli::add_strategies_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -11,33 +11,13 @@
 #include "core/units.hpp"
 #include "dynamics/run_dynamics.hpp"
 #include "io/atomic_file.hpp"
+#include "io/buffered_file.hpp"
 
 namespace pkm::planning {
 
 namespace {
 
-constexpr std::size_t kPlanOutputChunk = std::size_t{1} << 20;
-
-// One output file of the run: text gathers in a buffer and goes to the staged file a megabyte at a time.
-struct PlanOutputFile {
-  StagedFile file;
-  fmt::memory_buffer buffer;
-
-  Status open(const std::string& path) {
-    buffer.reserve(kPlanOutputChunk);
-    return file.open(path);
-  }
-  Status flush() {
-    const Status written = file.write(std::string_view(buffer.data(), buffer.size()));
-    buffer.clear();
-    return written;
-  }
-  Status flush_if_large() { return buffer.size() > kPlanOutputChunk ? flush() : ok_status(); }
-  Status commit() {
-    if (auto flushed = flush(); !flushed) return flushed;
-    return file.commit();
-  }
-};
+using PlanOutputFile = BufferedStagedFile;
 
 /// The program file and line of an error at a program line, for messages ("FILE:LINE: …").
 Error at_program_line(const MotionPlan& plan, const Error& error) {
@@ -130,13 +110,16 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
   }
   if (run.deflection) {
     const stiffness::DeflectionSummary& f = *run.deflection;
-    summary["stiffness"] = {{"model", "struts"},
+    summary["stiffness"] = {{"model", std::string(stiffness::to_string(f.model))},
                             {"max_normal_deflection_mm", f.max_normal_mm},
                             {"max_normal_deflection_line", f.max_normal_line},
                             {"max_normal_deflection_time_s", f.max_normal_time_s},
                             {"rms_normal_deflection_mm", f.rms_normal_mm},
                             {"max_deflection_mm", f.max_deflection_mm},
-                            {"max_deflection_line", f.max_deflection_line}};
+                            {"max_deflection_line", f.max_deflection_line},
+                            {"max_strut_force_N", f.max_strut_force_N},
+                            {"max_strut_force_strut", f.max_strut_force_strut},
+                            {"max_strut_force_line", f.max_strut_force_line}};
   }
   return summary;
 }

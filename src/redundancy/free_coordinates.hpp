@@ -34,6 +34,9 @@ struct PathPoint {
   Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();  ///< tool point
   /// The rotation that puts the tool axis where the program wants it, spin at the reference (R_axis above).
   Eigen::Matrix3d axis_rotation = Eigen::Matrix3d::Identity();
+  /// The rotation the program itself gives here (its spin included), as the planner moves: for analyses that
+  /// take the program as it is (pkm stiffness).
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d tangent = Eigen::Vector3d::Zero();  ///< unit direction of travel into this point (0: none)
   double step_mm = 0.0;                               ///< tool-point path length from the previous point
   int line = 0;                                       ///< source line of the move this point belongs to

@@ -24,16 +24,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A B C (degrees) of a rotation, each of A and C turned by whole turns to lie nearest the previous value, so
-// a controller's rotary axes never spin round between two parts of a move.
-Eigen::Vector3d continuous_abc_deg(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& previous_deg,
-                                   bool planar) {
-  Eigen::Vector3d abc = deg_from_rad(1.0) * angles_from_rotation(AngleConvention::abc, rotation);
-  if (planar) abc = {0.0, 0.0, deg_from_rad(std::atan2(rotation(1, 0), rotation(0, 0)))};
-  for (int i : {0, 2}) abc[i] = previous_deg[i] + std::remainder(abc[i] - previous_deg[i], 360.0);
-  return abc;
-}
-
 // The trajectory's nodes evaluated again with forces, for the report.
 Trajectory with_forces(const Problem& report, const Trajectory& trajectory) {
   Trajectory out = trajectory;
@@ -65,51 +55,9 @@ std::vector<statics::Wrench> point_loads(const ProgramPoints& points, const stat
 program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program,
                                           const ProgramPoints& points, const Trajectory& trajectory,
                                           const FreeCoordinates& free) {
-  program::CanonicalProgram out = program;
-  out.moves.assign(program.moves.begin(), program.moves.begin() + points.first_move);
-  const bool planar = points.frame.planar;
-  const Eigen::Vector3d origin = points.frame.program_origin_mm;
-  Eigen::Vector3d abc = continuous_abc_deg(
-      free.pose(points.points[0], trajectory.values[0]).rotation,
-      points.first_move > 0 ? program.moves[points.first_move - 1].end_abc_deg : program.start_abc_deg,
-      planar);
-  if (points.first_move > 0) {
-    // The leading rapid ends where the optimisation starts: with the start values of the free coordinates.
-    out.moves.back().end_abc_deg = abc;
-    out.moves.back().orientation = program::OrientationSource::abc;
-  }
-  Eigen::Vector3d start_mm = points.points[0].position_mm - origin;
-  std::size_t k = 1;
-  for (int m = points.first_move; m < static_cast<int>(program.moves.size()); ++m) {
-    const CanonicalMove& move = program.moves[m];
-    if (move.kind == MoveKind::dwell) {
-      CanonicalMove dwell = move;
-      dwell.end_mm = start_mm;
-      dwell.end_abc_deg = abc;
-      dwell.orientation = program::OrientationSource::abc;
-      out.moves.push_back(dwell);
-      continue;
-    }
-    const int parts = points.parts[m];
-    if (parts == 0) continue;  // a pure turn: the law owns the orientation now
-    const double axial_total = move.kind == MoveKind::arc ? move.normal.dot(move.end_mm - (start_mm)) : 0.0;
-    for (int i = 1; i <= parts; ++i, ++k) {
-      CanonicalMove part = move;
-      part.end_mm = points.points[k].position_mm - origin;
-      abc = continuous_abc_deg(free.pose(points.points[k], trajectory.values[k]).rotation, abc, planar);
-      part.end_abc_deg = abc;
-      part.orientation = program::OrientationSource::abc;
-      if (move.kind == MoveKind::arc) {
-        // The centre is given at the start's height along the axis: each part starts higher on a helix.
-        part.center_mm = move.center_mm + move.normal * (axial_total * (i - 1) / parts);
-        part.turns = 1;
-      }
-      if (move.inverse_time) part.inverse_time_per_min = move.inverse_time_per_min * parts;
-      out.moves.push_back(part);
-    }
-    start_mm = out.moves.back().end_mm;
-  }
-  return out;
+  std::vector<Pose> poses(points.points.size());
+  for (std::size_t k = 0; k < poses.size(); ++k) poses[k] = free.pose(points.points[k], trajectory.values[k]);
+  return program_through_poses(program, points, poses, false);
 }
 
 Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program, const Machine& machine,

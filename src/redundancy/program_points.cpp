@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/rotation.hpp"
+#include "core/units.hpp"
 #include "path/curve.hpp"
 
 namespace pkm::redundancy {
@@ -43,7 +45,82 @@ Eigen::Matrix3d axis_rotation_for(const Eigen::Vector3d& axis, const path::PathF
   return (swing * frame.reference_rotation).normalized().toRotationMatrix();
 }
 
+// A B C (degrees) of a rotation, each of A and C turned by whole turns to lie nearest the previous value, so
+// a controller's rotary axes never spin round between two parts of a move.
+Eigen::Vector3d continuous_abc_deg(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& previous_deg,
+                                   bool planar) {
+  Eigen::Vector3d abc = deg_from_rad(1.0) * angles_from_rotation(AngleConvention::abc, rotation);
+  if (planar) abc = {0.0, 0.0, deg_from_rad(std::atan2(rotation(1, 0), rotation(0, 0)))};
+  for (int i : {0, 2}) abc[i] = previous_deg[i] + std::remainder(abc[i] - previous_deg[i], 360.0);
+  return abc;
+}
+
+// Sets the orientation of `move` to `rotation`: the tool axis where asked and the move gave one, else A B C.
+void set_orientation(CanonicalMove& move, const Eigen::Matrix3d& rotation, Eigen::Vector3d& abc, bool planar,
+                     bool tool_axis, const Eigen::Vector3d& tool_axis_platform) {
+  abc = continuous_abc_deg(rotation, abc, planar);
+  if (tool_axis && move.orientation == program::OrientationSource::tool_axis) {
+    move.tool_axis = (rotation * tool_axis_platform).normalized();
+    return;
+  }
+  move.end_abc_deg = abc;
+  move.orientation = program::OrientationSource::abc;
+}
+
 }  // namespace
+
+program::CanonicalProgram program_through_poses(const program::CanonicalProgram& program,
+                                                const ProgramPoints& points, const std::vector<Pose>& poses,
+                                                bool keep_tool_axes, bool arcs_as_lines) {
+  program::CanonicalProgram out = program;
+  out.moves.assign(program.moves.begin(), program.moves.begin() + points.first_move);
+  const bool planar = points.frame.planar;
+  const Eigen::Vector3d origin = points.frame.program_origin_mm;
+  const Eigen::Vector3d tool_axis_platform =
+      points.frame.reference_rotation.conjugate() * Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d abc =
+      points.first_move > 0 ? program.moves[points.first_move - 1].end_abc_deg : program.start_abc_deg;
+  abc = continuous_abc_deg(poses[0].rotation, abc, planar);
+  if (points.first_move > 0) {
+    // The leading rapid ends where the points start.
+    out.moves.back().end_mm = poses[0].position_mm - origin;
+    set_orientation(out.moves.back(), poses[0].rotation, abc, planar, keep_tool_axes, tool_axis_platform);
+  }
+  Eigen::Vector3d start_mm = poses[0].position_mm - origin;
+  std::size_t k = 1;
+  for (int m = points.first_move; m < static_cast<int>(program.moves.size()); ++m) {
+    const CanonicalMove& move = program.moves[m];
+    if (move.kind == MoveKind::dwell) {
+      CanonicalMove dwell = move;
+      dwell.end_mm = start_mm;
+      dwell.end_abc_deg = abc;
+      dwell.orientation = program::OrientationSource::abc;
+      out.moves.push_back(dwell);
+      continue;
+    }
+    const int parts = points.parts[m];
+    if (parts == 0) continue;  // a pure turn: the poses own the orientation
+    const double axial_total = move.kind == MoveKind::arc ? move.normal.dot(move.end_mm - (start_mm)) : 0.0;
+    for (int i = 1; i <= parts; ++i, ++k) {
+      CanonicalMove part = move;
+      part.end_mm = poses[k].position_mm - origin;
+      set_orientation(part, poses[k].rotation, abc, planar, keep_tool_axes, tool_axis_platform);
+      if (move.kind == MoveKind::arc) {
+        if (arcs_as_lines) {
+          part.kind = MoveKind::line;
+        } else {
+          // The centre is given at the start's height along the axis: each part starts higher on a helix.
+          part.center_mm = move.center_mm + move.normal * (axial_total * (i - 1) / parts);
+          part.turns = 1;
+        }
+      }
+      if (move.inverse_time) part.inverse_time_per_min = move.inverse_time_per_min * parts;
+      out.moves.push_back(part);
+    }
+    start_mm = out.moves.back().end_mm;
+  }
+  return out;
+}
 
 Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, const Machine& machine,
                                      double step_mm) {
@@ -64,8 +141,8 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
     if (move.tool_length_mm != 0.0) {
       return points_line_error(
           program, move.line,
-          "tool-length offsets (G43) are not supported by the redundancy laws; program the "
-          "tool point (G49) instead");
+          "tool-length offsets (G43) are not supported by the redundancy laws and pkm stiffness; "
+          "program the tool point (G49) instead");
     }
     if (frame.planar && (std::abs(move.end_abc_deg.x()) > 1e-9 || std::abs(move.end_abc_deg.y()) > 1e-9)) {
       return points_line_error(program, move.line,
@@ -95,6 +172,7 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
   PathPoint start;
   start.position_mm = position;
   start.axis_rotation = axis_rotation_for(rotation * tool_axis_platform, frame);
+  start.rotation = rotation.toRotationMatrix();
   start.line = program.moves[first_feed].line;
   out.points.push_back(start);
   out.start_rotation = rotation.toRotationMatrix();
@@ -118,7 +196,9 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
       const Eigen::Vector3d step = point.position_mm - previous;
       point.step_mm = step.norm();
       if (point.step_mm > 0.0) point.tangent = step / point.step_mm;
-      point.axis_rotation = axis_rotation_for(curve.rotation(f) * tool_axis_platform, frame);
+      const Eigen::Quaterniond programmed = curve.rotation(f);
+      point.axis_rotation = axis_rotation_for(programmed * tool_axis_platform, frame);
+      point.rotation = programmed.toRotationMatrix();
       point.line = move.line;
       point.move_index = m;
       point.cutting = move.kind != MoveKind::rapid;

@@ -34,4 +34,15 @@ path::PathFrame program_frame(const Machine& machine);
 Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, const Machine& machine,
                                      double step_mm);
 
+/// The program again, through `poses` (one per point of `points`, base frame; the tool point and the
+/// platform's rotation): the moves before `points.first_move` as programmed (the last of them ending at
+/// poses[0]), every other move cut into its parts, each part ending at its pose; dwells kept in place; moves
+/// that only turn left out (the poses own the orientation). Each part states its orientation as A B C
+/// (planar: C = φ), continuous from part to part, or, with `keep_tool_axes`, as the tool axis where the move
+/// gave one (CL data: the spin stays free). Arcs stay arcs when the poses keep the points on them (a law
+/// choosing only the rotation); `arcs_as_lines` writes each part as a line (poses moved off the arc).
+program::CanonicalProgram program_through_poses(const program::CanonicalProgram& program,
+                                                const ProgramPoints& points, const std::vector<Pose>& poses,
+                                                bool keep_tool_axes, bool arcs_as_lines = false);
+
 }  // namespace pkm::redundancy

@@ -11,6 +11,7 @@
 #include "report/report_html.hpp"
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
+#include "report/stiffness_plots.hpp"
 
 namespace pkm::report {
 
@@ -150,13 +151,15 @@ Result<nlohmann::json> report_from_directory(const std::string& directory, const
                       fmt::format("{}: not valid JSON: {}", summary_path.string(), e.what()));
   }
   const bool planned = fs::exists(dir / "actuators.csv") && fs::exists(dir / "path.csv");
+  // pkm stiffness: its points and a summary that names the stiffness model.
+  const bool deflected =
+      fs::exists(dir / "points.csv") && summary.contains("model") && summary.contains("points");
   const bool interpolated = fs::exists(dir / "steps.csv") && fs::exists(dir / "contour.csv");
-  if (!planned && !interpolated) {
-    return make_error(
-        ErrorCode::bad_input,
-        fmt::format("{}: neither actuators.csv + path.csv (pkm plan) nor steps.csv + contour.csv "
-                    "(pkm interpolate)",
-                    directory));
+  if (!planned && !interpolated && !deflected) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}: neither actuators.csv + path.csv (pkm plan), steps.csv + contour.csv "
+                                  "(pkm interpolate) nor points.csv (pkm stiffness)",
+                                  directory));
   }
   std::string machine_file = options.machine_file;
   if (machine_file.empty()) {
@@ -181,6 +184,12 @@ Result<nlohmann::json> report_from_directory(const std::string& directory, const
                  options.program_file.empty() && summary.contains("program")
                      ? summary["program"].get<std::string>()
                      : options.program_file};
+  if (deflected && !planned && !interpolated) {
+    auto report = stiffness_report(*machine, files, options);
+    if (!report) return report;
+    if (Status added = add_stiffness_plots(directory, *report); !added) return added.error();
+    return report;
+  }
   // Both runs may share a directory; the summary says which came last.
   const bool interpolation_summary = summary.contains("method");
   if (interpolation_summary && !interpolated) {
@@ -194,8 +203,12 @@ Result<nlohmann::json> report_from_directory(const std::string& directory, const
         ErrorCode::bad_input,
         fmt::format("{}: the summary is pkm plan's, but actuators.csv or path.csv is missing", directory));
   }
-  return interpolation_summary ? interpolate_report(*machine, files, options)
-                               : plan_report(*machine, files, options);
+  auto report = interpolation_summary ? interpolate_report(*machine, files, options)
+                                      : plan_report(*machine, files, options);
+  if (!report) return report;
+  // The stiffness plots, when the run's directory holds their files (stiffness_plots.hpp).
+  if (Status added = add_stiffness_plots(directory, *report); !added) return added.error();
+  return report;
 }
 
 Status write_directory_report(const std::string& directory, const std::string& file,

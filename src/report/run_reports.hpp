@@ -22,6 +22,10 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
 Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles& files,
                                           const ReportOptions& options);
 
+/// `pkm stiffness`: points.csv (the deflection at every point of a program).
+Result<nlohmann::json> stiffness_report(const Machine& machine, const RunFiles& files,
+                                        const ReportOptions& options);
+
 /// "12.3 s", "4.56e-05 mm": a value with a unit for the summary table.
 std::string with_unit(double value, const std::string& unit);
 

@@ -1,6 +1,7 @@
 #include "statics/load_model.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
 namespace pkm::statics {
 
@@ -10,6 +11,13 @@ bool CuttingLoad::is_zero() const {
 }
 
 const CuttingLoad& LoadModel::load_for_line(int line) const {
+  if (blocks_ascending) {
+    const auto after = std::upper_bound(blocks.begin(), blocks.end(), line,
+                                        [](int l, const BlockLoad& b) { return l < b.first_line; });
+    if (after == blocks.begin()) return default_load;
+    const BlockLoad& block = *(after - 1);
+    return line <= block.last_line ? block.load : default_load;
+  }
   for (auto it = blocks.rbegin(); it != blocks.rend(); ++it) {
     if (it->first_line <= line && line <= it->last_line) return it->load;
   }

@@ -59,6 +59,9 @@ class LoadModel {
  public:
   CuttingLoad default_load;
   std::vector<BlockLoad> blocks;  ///< later entries win where line ranges overlap
+  /// The blocks are disjoint and in ascending line order (a per-line CSV file): looked up by bisection, so
+  /// that a load per line of a 100 000-line program costs no more than one per block.
+  bool blocks_ascending = false;
 
   /// The load case of a program line: the last block containing it, else default_load.
   const CuttingLoad& load_for_line(int line) const;
@@ -76,6 +79,11 @@ Wrench cutting_wrench(const CuttingLoad& load, const LoadPoint& point);
 /// (the default load; e.g. "tangential=1000,normal=100,cutter_radius=5"), or "@FILE" for a YAML load file
 /// (parse_load_yaml). Errors (bad_input; io for an unreadable file) quote the offending text.
 Result<LoadModel> parse_load_spec(std::string_view spec);
+
+/// A per-line CSV load file (ending in .csv; docs/statics.md): a header `line,` then any of fx_N fy_N fz_N
+/// mx_Nmm my_Nmm mz_Nmm tangential_N normal_N axial_N, one row per program line in ascending order. Errors
+/// name source:line:column and the column.
+Result<LoadModel> parse_load_csv(std::string_view text, const std::string& source_name);
 
 /// A YAML load file:  default: {KEY: VALUE, ...}  and  blocks: [{lines: [FIRST, LAST], KEY: VALUE, ...}, ...]
 /// with the keys of parse_load_spec (force and moment as [x, y, z], contact as left or right). A block starts

@@ -1,4 +1,5 @@
-// The CLI's --load text: "key=value,key=value" for one load case, or "@FILE" for a load file.
+// The CLI's --load text: "key=value,key=value" for one load case, or "@FILE" for a load file (YAML, or CSV
+// per program line when FILE ends in .csv).
 #include <fmt/format.h>
 
 #include <charconv>
@@ -83,6 +84,7 @@ Result<LoadModel> load_spec_file(const std::string& path) {
   if (path.empty()) return make_error(ErrorCode::bad_input, "'@' must be followed by a file name");
   auto text = read_text_input(path, "load file");
   if (!text) return text.error();
+  if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".csv") == 0) return parse_load_csv(*text, path);
   return parse_load_yaml(*text, path);
 }
 

@@ -2,27 +2,23 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-
-#include "core/rotation.hpp"
-
 namespace pkm::stiffness {
 
 Result<RunDeflection> RunDeflection::make(const Machine& machine, const statics::LoadModel& load,
                                           std::function<Status(const DeflectionTick&)> on_tick) {
-  auto stiffness = strut_stiffness_of(machine);
-  if (!stiffness) return stiffness.error();
-  return RunDeflection(machine, load, *stiffness, std::move(on_tick));
+  auto model = ComplianceModel::make(machine);
+  if (!model) return model.error();
+  return RunDeflection(machine, load, std::move(*model), std::move(on_tick));
 }
 
-RunDeflection::RunDeflection(const Machine& machine, const statics::LoadModel& load,
-                             StiffnessParameters stiffness,
+RunDeflection::RunDeflection(const Machine& machine, const statics::LoadModel& load, ComplianceModel model,
                              std::function<Status(const DeflectionTick&)> on_tick)
-    : machine_(&machine),
-      load_(&load),
-      stiffness_(stiffness),
+    : load_(&load),
+      model_(std::move(model)),
       on_tick_(std::move(on_tick)),
-      tool_axis_platform_(machine.mechanism->home().rotation.transpose() * Eigen::Vector3d::UnitZ()) {}
+      tool_axis_platform_(machine.mechanism->home().rotation.transpose() * Eigen::Vector3d::UnitZ()) {
+  summary_.model = model_.model();
+}
 
 Status RunDeflection::add(double time_s, int line, const Pose& pose, bool cutting) {
   const auto due = window_.add(Sample{time_s, line, pose, cutting});
@@ -33,8 +29,7 @@ Status RunDeflection::finish() {
   if (const auto due = window_.finish(); due.index >= 0) {
     if (Status last = evaluate(due.index, due.at_rest); !last) return last;  // the end, at rest
   }
-  if (summary_.cutting_ticks > 0)
-    summary_.rms_normal_mm = std::sqrt(normal_square_sum_ / summary_.cutting_ticks);
+  summary_.finish();
   return ok_status();
 }
 
@@ -50,33 +45,20 @@ Status RunDeflection::evaluate(int index_in_window, bool at_rest) {
   tick.line = s.line;
   tick.load =
       load_->wrench_at(statics::travel_load_point(s.pose, velocity, tool_axis_platform_, s.line, s.cutting));
-  auto compliance = strut_compliance(*machine_->mechanism, stiffness_, s.pose);
+  auto compliance = model_.at(s.pose);
   if (!compliance) {
     return Error{compliance.error().code,
                  fmt::format("at {:.3f} s: {}", s.time_s, compliance.error().message),
                  ErrorLocation{"", s.line, 0, ""}};
   }
-  Eigen::Matrix<double, 6, 1> wrench;
-  wrench << tick.load.force_N, tick.load.moment_Nmm;
-  const Eigen::Matrix<double, 6, 1> displacement = compliance->compliance * wrench;
-  tick.deflection_mm = displacement.head<3>();
-  tick.rotation_rad = displacement.tail<3>().norm();
-  tick.normal_mm = tick.deflection_mm.dot(compliance->pose.rotation * tool_axis_platform_);
-
-  ++summary_.ticks;
-  if (s.cutting) {
-    ++summary_.cutting_ticks;
-    normal_square_sum_ += tick.normal_mm * tick.normal_mm;
-  }
-  if (std::abs(tick.normal_mm) > summary_.max_normal_mm) {
-    summary_.max_normal_mm = std::abs(tick.normal_mm);
-    summary_.max_normal_line = s.line;
-    summary_.max_normal_time_s = s.time_s;
-  }
-  if (tick.deflection_mm.norm() > summary_.max_deflection_mm) {
-    summary_.max_deflection_mm = tick.deflection_mm.norm();
-    summary_.max_deflection_line = s.line;
-  }
+  const ToolDeflection deflection =
+      deflect(*compliance, tick.load, compliance->pose.rotation * tool_axis_platform_);
+  tick.deflection_mm = deflection.displacement_mm;
+  tick.rotation_rad = deflection.rotation_rad.norm();
+  tick.normal_mm = deflection.normal_mm;
+  const double before = summary_.max_normal_mm;
+  summary_.add(summary_.points, s.line, s.cutting, deflection);
+  if (summary_.max_normal_mm != before) summary_.max_normal_time_s = s.time_s;
   if (on_tick_) return on_tick_(tick);
   return ok_status();
 }

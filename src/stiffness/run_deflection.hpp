@@ -1,19 +1,20 @@
 #pragma once
 // The tool's deflection under the process load along a planned run (issue 15: "how far will this program's
-// surface be off"): at every servo tick the strut-only compliance of the commanded pose
-// (strut_compliance.hpp) times the cutting load there (statics/load_model.hpp, its direction of travel from
-// the ticks' central differences, as the dynamics take it) gives the tool point's displacement and the
-// platform's turn. The surface error is the displacement along the surface normal, taken as the tool axis
-// (the seed's setting: a ball-end mill with its axis on the surface normal). One tick behind the stream: tick
-// k is evaluated when tick k + 1 arrives. Quasi-static: no inertia, the drives hold their positions, the
-// joints and frame rigid.
+// surface be off"): at every servo tick the compliance of the commanded pose (compliance_model.hpp, the
+// machine file's stiffness model) times the cutting load there (statics/load_model.hpp, its direction of
+// travel from the ticks' central differences, as the dynamics take it) gives the tool point's displacement
+// and the platform's turn. The surface error is the displacement along the surface normal, taken as the tool
+// axis (the seed's setting: a ball-end mill with its axis on the surface normal). One tick behind the stream:
+// tick k is evaluated when tick k + 1 arrives. Quasi-static: no inertia, the drives hold their positions, the
+// frame's nodes and the struts' ends moving with it statically.
 #include <array>
 #include <functional>
 
 #include "core/tick_window.hpp"
 #include "machine/machine.hpp"
 #include "statics/load_model.hpp"
-#include "stiffness/strut_compliance.hpp"
+#include "stiffness/compliance_model.hpp"
+#include "stiffness/tool_deflection.hpp"
 
 namespace pkm::stiffness {
 
@@ -26,15 +27,10 @@ struct DeflectionTick {
   statics::Wrench load;       ///< the load that caused it
 };
 
-struct DeflectionSummary {
-  double max_normal_mm = 0.0;  ///< largest |normal deflection|
-  int max_normal_line = 0;
+/// The statistics over the ticks (points = ticks), the time of the largest normal error and the model.
+struct DeflectionSummary : DeflectionStatistics {
   double max_normal_time_s = 0.0;
-  double rms_normal_mm = 0.0;      ///< over the cutting ticks
-  double max_deflection_mm = 0.0;  ///< largest |deflection|
-  int max_deflection_line = 0;
-  long ticks = 0;
-  long cutting_ticks = 0;
+  StiffnessModel model = StiffnessModel::struts;
 };
 
 class RunDeflection {
@@ -51,18 +47,16 @@ class RunDeflection {
   const DeflectionSummary& summary() const { return summary_; }
 
  private:
-  RunDeflection(const Machine& machine, const statics::LoadModel& load, StiffnessParameters stiffness,
+  RunDeflection(const Machine& machine, const statics::LoadModel& load, ComplianceModel model,
                 std::function<Status(const DeflectionTick&)> on_tick);
   Status evaluate(int index_in_window, bool at_rest);
 
-  const Machine* machine_;
   const statics::LoadModel* load_;
-  StiffnessParameters stiffness_;
+  ComplianceModel model_;
   std::function<Status(const DeflectionTick&)> on_tick_;
   Eigen::Vector3d tool_axis_platform_;
   using Sample = CommandedTick;
   TickWindow<Sample> window_;
-  double normal_square_sum_ = 0.0;
   DeflectionSummary summary_;
 };
 

@@ -4,6 +4,8 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -41,7 +43,32 @@ Status invert_stiffness(const Matrix& k, Matrix& inverse) {
   return ok_status();
 }
 
+// True when some carriage is compliant: only then is the carriages' motion needed.
+bool has_compliant_carriages(const StiffnessParameters& stiffness) {
+  for (int j = 0; j < stiffness.strut_count; ++j) {
+    const CarriageCompliance& c = stiffness.carriages[j];
+    if (c.drive_stiffness_N_mm > 0.0 || c.guide_mm_N > 0.0) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+double series_compliance_mm_N(const StiffnessParameters& stiffness, int strut, const Eigen::Vector3d& u,
+                              const Eigen::Vector3d& carriage_motion) {
+  if (stiffness.model == StiffnessModel::struts) return 0.0;
+  const JointCompliance& joint = stiffness.joints[strut];
+  double compliance = joint.base_mm_N + joint.platform_mm_N;
+  const double reach = carriage_motion.norm();
+  if (reach > 0.0) {
+    const CarriageCompliance& carriage = stiffness.carriages[strut];
+    const double along = u.dot(carriage_motion);  // strut-end travel per unit drive value, along the strut
+    if (carriage.drive_stiffness_N_mm > 0.0) compliance += along * along / carriage.drive_stiffness_N_mm;
+    const double cosine = along / reach;
+    compliance += carriage.guide_mm_N * std::max(0.0, 1.0 - cosine * cosine);
+  }
+  return compliance;
+}
 
 Result<StiffnessParameters> strut_stiffness_of(const Machine& machine) {
   if (machine.stiffness.given()) return machine.stiffness;
@@ -77,9 +104,15 @@ Result<ToolCompliance> strut_compliance(const Mechanism& mechanism, const Stiffn
                       fmt::format("the {} has {} struts, the stiffness parameters {}",
                                   to_string(mechanism.type()), struts, stiffness.strut_count));
   }
-  Eigen::Matrix<double, Eigen::Dynamic, 6, 0, kMaxActuators, 6> lines(struts, 6);
+  auto& lines = out.strut_lines;
+  lines.resize(struts, 6);
   out.strut_stiffness_N_mm.resize(struts);
   out.strut_length_mm.resize(struts);
+  // The carriages' positions, only when their drives or guides give way (glide machines).
+  std::array<double, kMaxActuators> actuators{};
+  const bool carriages = stiffness.model != StiffnessModel::struts && has_compliant_carriages(stiffness);
+  if (carriages && !mechanism.actuator_values(out.pose, actuators.data()))
+    return make_error(ErrorCode::unreachable, "the pose is out of the mechanism's reach");
   for (int j = 0; j < struts; ++j) {
     const Eigen::Vector3d d = ends.platform_mm[j] - ends.base_mm[j];
     const double length = d.norm();
@@ -89,7 +122,10 @@ Result<ToolCompliance> strut_compliance(const Mechanism& mechanism, const Stiffn
     lines.row(j).head<3>() = u.transpose();
     lines.row(j).tail<3>() = (ends.platform_mm[j] - out.pose.position_mm).cross(u).transpose();
     out.strut_length_mm[j] = length;
-    out.strut_stiffness_N_mm[j] = stiffness.struts[j].at_length(length);
+    Eigen::Vector3d carriage_motion = Eigen::Vector3d::Zero(), unused;
+    if (carriages) mechanism.base_joint_motion(j, actuators[j], carriage_motion, unused);
+    const double series = series_compliance_mm_N(stiffness, j, u, carriage_motion);
+    out.strut_stiffness_N_mm[j] = 1.0 / (1.0 / stiffness.struts[j].at_length(length) + series);
   }
   // A platform that controls all six coordinates moves freely: its allowed twists are all twists, so no
   // projection (and no angle convention's own singularity in it), and fixed-size 6 × 6 algebra (Eigen's

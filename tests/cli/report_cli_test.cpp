@@ -56,6 +56,32 @@ const nlohmann::json* chart(const nlohmann::json& data, const std::string& id) {
   return nullptr;
 }
 
+// pkm stiffness --report: the page of the deflection along a program, its charts' peaks the summary's.
+TEST(ReportCli, StiffnessReportShowsTheDeflectionAlongTheProgram) {
+  const std::string out = fresh_report_dir("stiffness");
+  const std::string page = out + "/report.html";
+  const auto run = test::run_pkm("stiffness " + test::source_path("examples/programs/ball_end_5axis.cl") +
+                                 " --machine " + test::source_path("examples/machines/hexapod_ch5.yaml") +
+                                 " --load tangential=600,normal=150 --out " + out + " --report " + page);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const nlohmann::json data = page_data(file_text(page));
+  ASSERT_TRUE(data.is_object());
+  EXPECT_EQ(data["kind"], "stiffness");
+  const nlohmann::json summary = nlohmann::json::parse(file_text(out + "/summary.json"));
+  EXPECT_EQ(data["summary"], summary);
+  const nlohmann::json* normal = chart(data, "normal_deflection");
+  ASSERT_NE(normal, nullptr);
+  double peak = 0.0;
+  for (const auto& v : (*normal)["series"][0]["values"])
+    if (v.is_number()) peak = std::max(peak, std::abs(v.get<double>()));
+  // The chart keeps every bucket's extremes: its peak is the summary's largest error, in µm.
+  EXPECT_NEAR(peak, 1e3 * summary["max_normal_deflection_mm"].get<double>(), 1e-5 * peak);
+  const nlohmann::json* forces = chart(data, "strut_forces");
+  ASSERT_NE(forces, nullptr);
+  EXPECT_EQ((*forces)["series"].size(), 6u);
+  EXPECT_GT(data["scene"]["frames"].size(), 1u);
+}
+
 TEST(ReportCli, PlanReportHoldsTheBundleAndWhatTheRunWrote) {
   const std::string out = fresh_report_dir("plan");
   const std::string page = out + "/view/report.html";
