@@ -20,15 +20,6 @@
 namespace pkm {
 namespace {
 
-const std::vector<Pose>& frame_helix_poses() {
-  static const std::vector<Pose> poses = [] {
-    std::vector<Pose> out;
-    for (const planning::ServoTick& tick : bench::ch5_helix_ticks().ticks) out.push_back(tick.pose);
-    return out;
-  }();
-  return poses;
-}
-
 const Machine& frame_machine() {
   static const Machine m = [] {
     auto loaded = load_machine_file(
@@ -81,7 +72,7 @@ stiffness::FrameModel& bench_frame_model() {
 }
 
 void BM_FrameCompliancePerPoint(benchmark::State& state) {
-  const auto& poses = frame_helix_poses();
+  const auto& poses = bench::ch5_helix_poses();
   stiffness::FrameModel& model = bench_frame_model();
   DurationHistogram time(1'000'000);
   using Clock = std::chrono::steady_clock;
@@ -105,7 +96,7 @@ void BM_FrameCompliancePerPoint(benchmark::State& state) {
 BENCHMARK(BM_FrameCompliancePerPoint)->Unit(benchmark::kMicrosecond);
 
 void BM_FrameDeflectionPerPoint(benchmark::State& state) {
-  const auto& poses = frame_helix_poses();
+  const auto& poses = bench::ch5_helix_poses();
   stiffness::FrameModel& model = bench_frame_model();
   stiffness::FrameDeflection deflection = model.make_deflection();
   const statics::Wrench load{Eigen::Vector3d(300, -200, 500), Eigen::Vector3d(1e4, 0, -2e4)};

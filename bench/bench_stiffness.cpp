@@ -14,17 +14,8 @@
 namespace pkm {
 namespace {
 
-const std::vector<Pose>& helix_poses() {
-  static const std::vector<Pose> poses = [] {
-    std::vector<Pose> out;
-    for (const planning::ServoTick& tick : bench::ch5_helix_ticks().ticks) out.push_back(tick.pose);
-    return out;
-  }();
-  return poses;
-}
-
 void BM_StrutCompliancePerPoint(benchmark::State& state) {
-  const auto& poses = helix_poses();
+  const auto& poses = bench::ch5_helix_poses();
   const Machine& machine = bench::ch5_hexapod();
   auto parameters = stiffness::strut_stiffness_of(machine);
   if (!parameters) {
@@ -50,7 +41,7 @@ void BM_StrutCompliancePerPoint(benchmark::State& state) {
 BENCHMARK(BM_StrutCompliancePerPoint)->Unit(benchmark::kMicrosecond);
 
 void BM_StrutLinesInverseKinematics(benchmark::State& state) {
-  bench::time_inverse_kinematics(state, *bench::ch5_hexapod().mechanism, helix_poses());
+  bench::time_inverse_kinematics(state, *bench::ch5_hexapod().mechanism, bench::ch5_helix_poses());
 }
 BENCHMARK(BM_StrutLinesInverseKinematics)->Unit(benchmark::kMicrosecond);
 

@@ -55,6 +55,17 @@ inline const PlannedTicks& ch5_helix_ticks() {
   return run;
 }
 
+/// The poses of every tick of ch5_helix_ticks(), made once: the path points the per-point benchmarks
+/// (stiffness, frame) run along.
+inline const std::vector<Pose>& ch5_helix_poses() {
+  static const std::vector<Pose> poses = [] {
+    std::vector<Pose> out;
+    for (const planning::ServoTick& tick : ch5_helix_ticks().ticks) out.push_back(tick.pose);
+    return out;
+  }();
+  return poses;
+}
+
 /// The per-call times of a servo-rate function as counters beside the mean: calls, p50_us, p99_us,
 /// p99_9_us, max_us.
 inline void record_distribution(benchmark::State& state, const DurationHistogram& histogram) {

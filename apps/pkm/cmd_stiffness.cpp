@@ -1,5 +1,5 @@
 // pkm stiffness PROGRAM --machine M.yaml --load LOAD --out DIR [--model M] [--step-mm S]
-//   [--compliance-matrices] [--compensate FILE] [--report FILE] [--json]:
+//   [--compliance-matrices] [--compensate FILE] [--frequency-response] [--report FILE] [--json]:
 // the tool's deflection under the cutting load at every point of a part program (points.csv, summary.json;
 // src/pipeline/stiffness_program.hpp, docs/stiffness.md), and, with --compensate, the program pre-compensated
 // for it.
@@ -44,6 +44,9 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--compensate", job->compensated_path,
                   "also write the program pre-compensated for the deflection here (CL data for .cl/.cls/.apt "
                   "or tool-axis programs, else G-code)");
+  cmd->add_flag("--frequency-response", job->frequency_response,
+                "also bode.csv: the tool's dynamic compliance at the point of the largest error (dynamics: "
+                "section), a Bode plot in the report");
   cmd->add_option("--report", job->report_path, "also write the HTML report of the run to this file");
   cmd->add_flag("--json", *json, "print the summary as JSON");
   cmd->callback([=, &exit_code] {
@@ -95,8 +98,9 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
           job->compensated_path, k.max_correction_mm * 1e3, k.max_correction_line, k.max_residual_mm * 1e3,
           k.max_iterations);
     }
-    std::cout << fmt::format("  written              {}/points.csv, summary.json{}\n", job->out_directory,
-                             job->compliance_matrices ? ", compliance.csv" : "");
+    std::cout << fmt::format("  written              {}/points.csv, summary.json{}{}\n", job->out_directory,
+                             job->compliance_matrices ? ", compliance.csv" : "",
+                             job->frequency_response ? ", bode.csv" : "");
   });
 }
 

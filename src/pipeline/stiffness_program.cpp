@@ -16,6 +16,8 @@
 #include "program/gcode_writer.hpp"
 #include "program/part_program.hpp"
 #include "redundancy/program_points.hpp"
+#include "report/stiffness_plots.hpp"
+#include "stiffness/compliance_bode.hpp"
 #include "stiffness/nc_compensation.hpp"
 #include "stiffness/program_deflection.hpp"
 
@@ -191,6 +193,23 @@ Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const S
     result.compensation = compensation;
   }
 
+  // The dynamic compliance where the error along the tool axis is largest (the report's Bode plot).
+  nlohmann::json frequency_response;
+  if (job.frequency_response) {
+    const std::size_t at = static_cast<std::size_t>(std::max(0L, result.statistics.max_normal_index));
+    const redundancy::PathPoint& point = points->points[at];
+    auto bode = stiffness::machine_bode(machine, Pose{point.position_mm, point.rotation}, {});
+    if (!bode) return bode.error();
+    if (Status written = stiffness::write_bode_csv(outputs.staged_path(report::kBodeCsv), *bode); !written)
+      return written.error();
+    frequency_response = {
+        {"file", report::kBodeCsv},
+        {"index", at},
+        {"line", point.line},
+        {"natural_frequency_Hz",
+         std::vector<double>(bode->natural_frequency_Hz.data(),
+                             bode->natural_frequency_Hz.data() + bode->natural_frequency_Hz.size())}};
+  }
   const stiffness::DeflectionStatistics& s = result.statistics;
   nlohmann::json summary = {{"program", job.program_path},
                             {"machine", machine.source},
@@ -220,6 +239,7 @@ Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const S
                                {"max_correction_mm", k.max_correction_mm},
                                {"max_correction_line", k.max_correction_line}};
   }
+  if (job.frequency_response) summary["frequency_response"] = std::move(frequency_response);
   if (Status written = write_file_atomically(outputs.staged_path("summary.json"), summary.dump(2) + "\n");
       !written)
     return written.error();

@@ -23,6 +23,9 @@ struct StiffnessJob {
   /// Where to write the pre-compensated program ("": none): CL data when the path is .cl/.cls/.apt or the
   /// program states tool axes, else G-code with A B C.
   std::string compensated_path;
+  /// Also DIR/bode.csv: the tool's dynamic compliance (the dynamics: section's masses and springs,
+  /// docs/dynamic_compliance.md) at the point of the largest error along the tool axis.
+  bool frequency_response = false;
   std::string out_directory;
   std::string report_path;  ///< the HTML report of the run ("": none)
 };

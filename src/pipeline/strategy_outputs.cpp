@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "report/csv_table.hpp"
+#include "report/report_html.hpp"
 
 namespace pkm::pipeline {
 namespace {
@@ -25,29 +26,6 @@ std::string strategy_error_colour(double t) {
   return fmt::format("#{:02x}{:02x}{:02x}", mix(r0), mix(g0), mix(b0));
 }
 
-std::string strategy_svg_escaped(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // One panel: the map's points from above, scaled to fit the box with x and y at the same scale.
 void svg_map_panel(std::string& out, const StrategyScore& score, const std::vector<ErrorMapPoint>& map,
                    double left, double top, double width, double height, double scale_mm) {
@@ -55,7 +33,7 @@ void svg_map_panel(std::string& out, const StrategyScore& score, const std::vect
   fmt::format_to(add, "<rect x='{}' y='{}' width='{}' height='{}' fill='none' stroke='#999'/>\n", left, top,
                  width, height);
   fmt::format_to(add, "<text x='{}' y='{}' font-size='13' font-weight='bold'>{}. {}</text>\n", left + 6,
-                 top + 16, score.rank, strategy_svg_escaped(score.name));
+                 top + 16, score.rank, report::html_escape(score.name));
   fmt::format_to(add, "<text x='{}' y='{}' font-size='11'>rms {:.4f} µm, max {:.4f} µm</text>\n", left + 6,
                  top + 30, score.rms_normal_mm * kStrategyUmPerMm, score.max_normal_mm * kStrategyUmPerMm);
   if (map.empty()) return;
@@ -102,13 +80,13 @@ void svg_bar_chart(std::string& out, const std::vector<StrategyScore>& scores, d
                  "<text x='{}' y='{}' font-size='13' font-weight='bold'>normal error per strategy, µm "
                  "(dark: rms, light: max with its line), best first</text>\n<text x='{}' y='{}' "
                  "font-size='11'>ranked by the {}</text>\n",
-                 left, top - 22, left, top - 8, strategy_svg_escaped(kStrategyCriterion));
+                 left, top - 22, left, top - 8, report::html_escape(kStrategyCriterion));
   for (std::size_t i = 0; i < scores.size(); ++i) {
     const StrategyScore& s = scores[i];
     const double y = top + row * static_cast<double>(i);
     const double bar = std::max(4.0, row / 2 - 3);
     fmt::format_to(add, "<text x='{}' y='{}' font-size='12'>{}. {}</text>\n", left, y + bar + 2, s.rank,
-                   strategy_svg_escaped(s.name));
+                   report::html_escape(s.name));
     const double x = left + label_width;
     const double rms_width = plot_width * s.rms_normal_mm / largest,
                  max_width = plot_width * s.max_normal_mm / largest;

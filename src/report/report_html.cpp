@@ -26,7 +26,9 @@ std::string script_safe_json(const nlohmann::json& data) {
   return out;
 }
 
-std::string html_escape(const std::string& text) {
+}  // namespace
+
+std::string html_escape(std::string_view text) {
   std::string out;
   for (char ch : text) {
     switch (ch) {
@@ -48,8 +50,6 @@ std::string html_escape(const std::string& text) {
   }
   return out;
 }
-
-}  // namespace
 
 std::string report_html(const nlohmann::json& data) {
   const std::string title =

@@ -59,7 +59,7 @@ struct FrameModel::Impl {
   class PreorderedLdlt
       : public Eigen::SimplicialLDLT<SparseUpper, Eigen::Upper, Eigen::NaturalOrdering<int>> {
    public:
-    void factorize_in_place(const SparseUpper& k) { this->template factorize_preordered<true>(k); }
+    void factorize_in_place(const SparseUpper& matrix) { this->template factorize_preordered<true>(matrix); }
   };
 
   // Where strut j's bar adds to the matrix: its unknowns (the node's six in the original numbering, if the

@@ -62,11 +62,14 @@ TEST(ReportCli, StiffnessReportShowsTheDeflectionAlongTheProgram) {
   const std::string page = out + "/report.html";
   const auto run = test::run_pkm("stiffness " + test::source_path("examples/programs/ball_end_5axis.cl") +
                                  " --machine " + test::source_path("examples/machines/hexapod_ch5.yaml") +
-                                 " --load tangential=600,normal=150 --out " + out + " --report " + page);
+                                 " --load tangential=600,normal=150 --frequency-response --out " + out +
+                                 " --report " + page);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const nlohmann::json data = page_data(file_text(page));
   ASSERT_TRUE(data.is_object());
   EXPECT_EQ(data["kind"], "stiffness");
+  // The Bode plot of the point with the largest error, from bode.csv.
+  EXPECT_TRUE(data.contains("frequency_response"));
   const nlohmann::json summary = nlohmann::json::parse(file_text(out + "/summary.json"));
   EXPECT_EQ(data["summary"], summary);
   const nlohmann::json* normal = chart(data, "normal_deflection");

@@ -13,19 +13,11 @@
 
 #include "core/rotation.hpp"
 #include "dynamics/dynamics_test_support.hpp"
+#include "stiffness/stiffness_test_support.hpp"
 #include "stiffness/tool_deflection.hpp"
 
 namespace pkm {
 namespace {
-
-StiffnessParameters compensation_strut_stiffness(std::mt19937_64& rng, int struts) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  StiffnessParameters p;
-  p.strut_count = struts;
-  p.line = 1;
-  for (int j = 0; j < struts; ++j) p.struts[j].stiffness_N_mm = 2e4 + 2e5 * unit(rng);
-  return p;
-}
 
 statics::Wrench random_cutting_wrench(std::mt19937_64& rng) {
   std::normal_distribution<double> gauss(0.0, 1.0);
@@ -50,7 +42,8 @@ TEST(ToolDeflection, StrutTensionsBalanceTheLoad) {
   for (int trial = 0; trial < 8; ++trial) {
     const Machine machine = test::random_hexapod_machine(rng, trial);
     const Mechanism& mech = *machine.mechanism;
-    const StiffnessParameters parameters = compensation_strut_stiffness(rng, mech.actuator_count());
+    const StiffnessParameters parameters =
+        test::random_strut_stiffness(rng, mech.actuator_count(), 2e4, 2.2e5);
     auto compliance = stiffness::strut_compliance(mech, parameters, random_pose_near_home(mech, rng));
     ASSERT_TRUE(compliance.ok()) << compliance.error().message;
     const statics::Wrench w = random_cutting_wrench(rng);
@@ -92,7 +85,8 @@ TEST(NcCompensation, TheStrutModelConvergesWithinFiveIterations) {
   for (int trial = 0; trial < 8; ++trial) {
     const Machine machine = test::random_hexapod_machine(rng, trial);
     const Mechanism& mech = *machine.mechanism;
-    const StiffnessParameters parameters = compensation_strut_stiffness(rng, mech.actuator_count());
+    const StiffnessParameters parameters =
+        test::random_strut_stiffness(rng, mech.actuator_count(), 2e4, 2.2e5);
     const Pose nominal = *mech.complete_pose(random_pose_near_home(mech, rng));
     const statics::Wrench w = random_cutting_wrench(rng);
     stiffness::Vector6 wrench;

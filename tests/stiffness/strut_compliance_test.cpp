@@ -16,6 +16,7 @@
 #include "core/rotation.hpp"
 #include "dynamics/dynamics_test_support.hpp"
 #include "statics/actuator_forces.hpp"
+#include "stiffness/stiffness_test_support.hpp"
 
 namespace pkm {
 namespace {
@@ -38,12 +39,7 @@ std::vector<ComplianceCase> compliance_cases() {
 
 /// Random strut stiffness 50…400 N/µm.
 StiffnessParameters random_strut_stiffness(std::mt19937_64& rng, int struts) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  StiffnessParameters p;
-  p.strut_count = struts;
-  p.line = 1;
-  for (int j = 0; j < struts; ++j) p.struts[j].stiffness_N_mm = 5e4 + 3.5e5 * unit(rng);
-  return p;
+  return test::random_strut_stiffness(rng, struts, 5e4, 4e5);
 }
 
 TEST(StrutCompliance, ForwardKinematicsOfTheShortenedStrutsMovesThePlatformByCw) {
