@@ -22,10 +22,8 @@ deps:
 
 # The library and the tests compile as unity builds (batches of 8 files): on CI's 2 cores that halves the build
 # time. The benchmarks build in their own directory (make bench), so that make test does not wait for them.
-# -O2 rather than CMake's -O3: the same results (no fast-math; the golden outputs hold at -O1 too) for less
-# compile time on CI's 2 cores; make bench keeps -O3 (build-bench) for the figures of docs/PERFORMANCE.md.
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_BUILD_BENCH=OFF > /dev/null
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_BUILD_BENCH=OFF > /dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
