@@ -133,3 +133,22 @@ Result<JacobianMatrix> Hexapod::jacobian(const Pose& pose) const {
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+std::vector<GeometryGroup> Hexapod::geometry_parameters() const {
+  return {point_group("base_joints", "A", geometry_.base_joints_mm.data(), 6),
+          point_group("platform_joints_from_tool", "B", geometry_.platform_joints_mm.data(), 6)};
+}
+
+Result<std::unique_ptr<Mechanism>> Hexapod::with_geometry(const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  HexapodGeometry geometry;
+  for (int j = 0; j < 6; ++j) {
+    geometry.base_joints_mm[j] = group_point(groups[0], j);
+    geometry.platform_joints_mm[j] = group_point(groups[1], j);
+  }
+  return std::unique_ptr<Mechanism>(std::make_unique<Hexapod>(geometry, convention_, home_));
+}
+
+}  // namespace pkm

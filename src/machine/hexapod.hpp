@@ -58,6 +58,9 @@ class Hexapod final : public Mechanism {
     return true;
   }
   bool has_distance_actuators() const override { return true; }
+  /// base_joints A1..A6 (base frame) and platform_joints_from_tool B1..B6 (tool frame), 6 × 3 mm each.
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
   /// 6 × (U, P, S); base + platform + 12 strut parts.
   MechanismStructure structure() const override { return {"6-UPS", false, 14, {6, 6, 6, 0, 0}, 0}; }
 

@@ -142,3 +142,49 @@ std::vector<std::string> controlled_coordinate_names(const Mechanism& mechanism)
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+Result<std::unique_ptr<Mechanism>> Mechanism::with_geometry(const std::vector<GeometryGroup>& /*groups*/) const {
+  return make_error(ErrorCode::unsupported,
+                    fmt::format("a {} has no geometric parameters to calibrate", to_string(type())));
+}
+
+Status check_geometry_groups(const std::vector<GeometryGroup>& expected,
+                             const std::vector<GeometryGroup>& groups) {
+  if (groups.size() != expected.size()) {
+    return make_error(ErrorCode::bad_input, fmt::format("{} geometry groups given where the mechanism has {}",
+                                                        groups.size(), expected.size()));
+  }
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const auto& want = expected[g];
+    const auto& got = groups[g];
+    if (got.key != want.key || got.rows != want.rows || got.columns() != want.columns() ||
+        got.values.size() != want.values.size()) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("geometry group {} is '{}' ({} × {}) where '{}' ({} × {}) is expected", g + 1,
+                                    got.key, got.rows, got.columns(), want.key, want.rows, want.columns()));
+    }
+    for (double v : got.values) {
+      if (!std::isfinite(v)) {
+        return make_error(ErrorCode::bad_input, fmt::format("geometry group '{}' has a value that is not finite",
+                                                            got.key));
+      }
+    }
+  }
+  return ok_status();
+}
+
+Eigen::Vector3d group_point(const GeometryGroup& group, int row) {
+  const auto* v = group.values.data() + static_cast<std::size_t>(row) * 3;
+  return {v[0], v[1], v[2]};
+}
+
+GeometryGroup point_group(std::string key, std::string row_symbol, const Eigen::Vector3d* points, int count) {
+  GeometryGroup group{std::move(key), std::move(row_symbol), {"x", "y", "z"}, "mm", count, {}};
+  group.values.reserve(static_cast<std::size_t>(count) * 3);
+  for (int i = 0; i < count; ++i) group.values.insert(group.values.end(), {points[i].x(), points[i].y(), points[i].z()});
+  return group;
+}
+
+}  // namespace pkm
