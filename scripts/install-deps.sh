@@ -10,7 +10,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libnlopt-cxx-dev libboost-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libnlopt-cxx-dev libboost-dev libtbb-dev
   clang-format cppcheck
 )
 if [ "${1:-}" = "--with-linuxcnc" ]; then packages+=(linuxcnc-uspace); fi
