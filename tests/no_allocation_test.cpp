@@ -15,6 +15,7 @@
 #include "interpolation/methods/carrier_interpolator.hpp"
 #include "interpolation/quantisation/discreteness_corrector.hpp"
 #include "interpolation/quantisation/remainder_quantizer.hpp"
+#include "machine/actuator_offsets.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
 #include "planning/plan_test_support.hpp"
@@ -149,6 +150,49 @@ TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
     }
     workspace->forget_path();
     workspace->reset();
+    EXPECT_EQ(g_allocations.load() - before, 0) << file;
+  }
+}
+
+// The drive-offset decorator (machine/actuator_offsets.hpp) on the servo-loop path: the readings plus the
+// offsets are a fixed-capacity vector, and the inner mechanism's workspace is used as it is.
+TEST(NoAllocation, WarmForwardAndHotInverseThroughActuatorOffsets) {
+  for (const char* file :
+       {"hexapod_ch5.yaml", "hexapod_refined.yaml", "planar3.yaml", "tricept.yaml", "rotopod.yaml"}) {
+    const Machine m = test::machine_from_example(std::string("examples/machines/") + file);
+    auto clone = m.mechanism->with_geometry(m.mechanism->geometry_parameters());
+    ASSERT_TRUE(clone.ok()) << file;
+    const int n = m.mechanism->actuator_count();
+    ActuatorVector offsets(n);
+    for (int j = 0; j < n; ++j)
+      offsets[j] = (m.mechanism->actuators_are_angles() ? 1e-3 : 0.5) * (j % 2 ? 1 : -1);
+    const auto decorated = with_actuator_offsets(std::move(clone.value()), offsets);
+    const Mechanism& mech = *decorated;
+    const AxisMask mask = mech.controlled_axes();
+    constexpr int kPoses = 20;
+    std::vector<Pose> poses;
+    std::vector<ActuatorVector> values;
+    for (int i = 0; i < kPoses; ++i) {
+      PoseVector c = vector_from_pose(mech.convention(), mech.home());
+      for (int axis = 0; axis < 6; ++axis) {
+        if (mask.controlled[axis]) c[axis] += (axis < 3 ? 0.1 : 0.0005) * i;
+      }
+      poses.push_back(*mech.complete_pose(pose_from_vector(mech.convention(), c)));
+      values.push_back(*mech.inverse(poses.back()));
+    }
+    auto workspace = mech.make_fk_workspace();
+    const FkOptions options;
+    std::array<double, kMaxActuators> hot{};
+    const long before = g_allocations.load();
+    Pose previous = mech.home();
+    for (int i = 0; i < kPoses; ++i) {
+      auto fk = mech.forward_warm(values[i], previous, options, *workspace);
+      ASSERT_TRUE(fk.ok()) << file << " pose " << i;
+      ASSERT_LT((fk->pose.position_mm - poses[i].position_mm).norm(), 1e-7) << file << " pose " << i;
+      previous = fk->pose;
+      ASSERT_TRUE(mech.actuator_values(poses[i], hot.data())) << file;
+      for (int j = 0; j < n; ++j) ASSERT_NEAR(hot[j], values[i][j], 1e-12) << file;
+    }
     EXPECT_EQ(g_allocations.load() - before, 0) << file;
   }
 }

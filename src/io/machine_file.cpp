@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/units.hpp"
+#include "io/calibration_file.hpp"
 #include "io/input_file.hpp"
 #include "io/machine_file_sections.hpp"
 #include "machine/joint_limits.hpp"
@@ -48,9 +49,9 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
-  std::vector<std::string_view> allowed = {"name",     "description", "type",   "angles",
-                                           "tool",     "limits",      "motion", "masses",
-                                           "dynamics", "drives",      "home",   "stiffness"};
+  std::vector<std::string_view> allowed = {"name",   "description", "type",       "angles",   "tool",
+                                           "limits", "motion",      "masses",     "dynamics", "drives",
+                                           "home",   "stiffness",   "calibration"};
   // Planar pin joints have no neutral axis to give.
   if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
@@ -119,7 +120,10 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
 
   const MechanismSpec spec{root, reader, convention, tool, home, limits->actuators};
-  auto mechanism = entry->build(spec);
+  auto drawn = entry->build(spec);
+  if (!drawn) return drawn.error();
+  // The calibrated values replace the drawing's before anything checks the machine at its home.
+  auto mechanism = apply_calibration_section(root, reader, std::move(drawn.value()));
   if (!mechanism) return mechanism.error();
 
   Machine machine;

@@ -279,3 +279,29 @@ Result<Pose> glide_default_home(const GlideGeometry& geometry, AngleConvention c
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+std::vector<GeometryGroup> Glide::geometry_parameters() const {
+  const int n = geometry_.count;
+  GeometryGroup lengths{"strut_lengths", "L", {""}, "mm", n, {}};
+  lengths.values.assign(geometry_.strut_lengths_mm.begin(), geometry_.strut_lengths_mm.begin() + n);
+  return {point_group("guide_points", "P", geometry_.guide_points_mm.data(), n), std::move(lengths),
+          point_group("platform_joints_from_tool", "B", geometry_.platform_joints_mm.data(), n)};
+}
+
+Result<std::unique_ptr<Mechanism>> Glide::with_geometry(const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  GlideGeometry geometry = geometry_;  // count, guide directions and branches are kept
+  for (int j = 0; j < geometry.count; ++j) {
+    geometry.guide_points_mm[j] = group_point(groups[0], j);
+    geometry.strut_lengths_mm[j] = groups[1].values[static_cast<std::size_t>(j)];
+    geometry.platform_joints_mm[j] = group_point(groups[2], j);
+    if (!(geometry.strut_lengths_mm[j] > 0.0)) {
+      return make_error(ErrorCode::bad_input, fmt::format("strut length L{} must be positive", j + 1));
+    }
+  }
+  return std::unique_ptr<Mechanism>(std::make_unique<Glide>(geometry, convention_, home_));
+}
+
+}  // namespace pkm

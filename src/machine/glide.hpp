@@ -56,6 +56,11 @@ class Glide final : public Mechanism {
   /// columns meet twists it can make.
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
   MechanismStructure structure() const override;
+  /// guide_points P1..Pn (base frame, n × 3 mm), strut_lengths L1..Ln (n × 1 mm) and
+  /// platform_joints_from_tool B1..Bn (tool frame, n × 3 mm). The guide directions stay fixed (directions,
+  /// not points); so do the branches.
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
 
   bool rotates() const { return geometry_.count == 6; }
   const GlideGeometry& geometry() const { return geometry_; }

@@ -268,3 +268,36 @@ Result<JacobianMatrix> HexapodRefined::jacobian(const Pose& pose) const {
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+std::vector<GeometryGroup> HexapodRefined::geometry_parameters() const {
+  std::vector<GeometryGroup> groups = ideal_.geometry_parameters();
+  std::array<Eigen::Vector3d, 6> offset1, offset2, strut_offset;
+  for (int j = 0; j < 6; ++j) {
+    offset1[j] = joints_[j].offset1_mm;
+    offset2[j] = joints_[j].offset2_mm;
+    strut_offset[j] = joints_[j].strut_offset_mm;
+  }
+  groups.push_back(point_group("cardan_offset1", "R'", offset1.data(), 6));
+  groups.push_back(point_group("cardan_offset2", "R''", offset2.data(), 6));
+  groups.push_back(point_group("cardan_strut_offset", "R*", strut_offset.data(), 6));
+  return groups;
+}
+
+Result<std::unique_ptr<Mechanism>> HexapodRefined::with_geometry(
+    const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  HexapodGeometry geometry;
+  std::array<CardanJoint, 6> joints = joints_;  // the axes are kept
+  for (int j = 0; j < 6; ++j) {
+    geometry.base_joints_mm[j] = group_point(groups[0], j);
+    geometry.platform_joints_mm[j] = group_point(groups[1], j);
+    joints[j].offset1_mm = group_point(groups[2], j);
+    joints[j].offset2_mm = group_point(groups[3], j);
+    joints[j].strut_offset_mm = group_point(groups[4], j);
+  }
+  return std::unique_ptr<Mechanism>(std::make_unique<HexapodRefined>(geometry, joints, convention_, home_));
+}
+
+}  // namespace pkm

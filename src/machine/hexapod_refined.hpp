@@ -99,6 +99,12 @@ class HexapodRefined final : public Mechanism {
   bool has_distance_actuators() const override { return true; }
   /// As the hexapod: 6 × (U, P or H, S); base + platform + 12 strut parts.
   MechanismStructure structure() const override { return {"6-UPS", false, 14, {6, 6, 6, 0, 0}, 0}; }
+  /// The hexapod's base_joints A1..A6 and platform_joints_from_tool B1..B6, then the joints' offsets
+  /// cardan_offset1 (R'), cardan_offset2 (R'') and cardan_strut_offset (R*), 6 × 3 mm each. The axes stay
+  /// fixed: with them known, at most 60 of these and the drive offsets are identifiable (the calibration's
+  /// SVD finds which).
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
 
   const HexapodGeometry& geometry() const { return geometry_; }
   const std::array<CardanJoint, 6>& joints() const { return joints_; }

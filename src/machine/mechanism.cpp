@@ -145,7 +145,8 @@ std::vector<std::string> controlled_coordinate_names(const Mechanism& mechanism)
 
 namespace pkm {
 
-Result<std::unique_ptr<Mechanism>> Mechanism::with_geometry(const std::vector<GeometryGroup>& /*groups*/) const {
+Result<std::unique_ptr<Mechanism>> Mechanism::with_geometry(
+    const std::vector<GeometryGroup>& /*groups*/) const {
   return make_error(ErrorCode::unsupported,
                     fmt::format("a {} has no geometric parameters to calibrate", to_string(type())));
 }
@@ -161,14 +162,15 @@ Status check_geometry_groups(const std::vector<GeometryGroup>& expected,
     const auto& got = groups[g];
     if (got.key != want.key || got.rows != want.rows || got.columns() != want.columns() ||
         got.values.size() != want.values.size()) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("geometry group {} is '{}' ({} × {}) where '{}' ({} × {}) is expected", g + 1,
-                                    got.key, got.rows, got.columns(), want.key, want.rows, want.columns()));
+      return make_error(
+          ErrorCode::bad_input,
+          fmt::format("geometry group {} is '{}' ({} × {}) where '{}' ({} × {}) is expected", g + 1, got.key,
+                      got.rows, got.columns(), want.key, want.rows, want.columns()));
     }
     for (double v : got.values) {
       if (!std::isfinite(v)) {
-        return make_error(ErrorCode::bad_input, fmt::format("geometry group '{}' has a value that is not finite",
-                                                            got.key));
+        return make_error(ErrorCode::bad_input,
+                          fmt::format("geometry group '{}' has a value that is not finite", got.key));
       }
     }
   }
@@ -183,7 +185,8 @@ Eigen::Vector3d group_point(const GeometryGroup& group, int row) {
 GeometryGroup point_group(std::string key, std::string row_symbol, const Eigen::Vector3d* points, int count) {
   GeometryGroup group{std::move(key), std::move(row_symbol), {"x", "y", "z"}, "mm", count, {}};
   group.values.reserve(static_cast<std::size_t>(count) * 3);
-  for (int i = 0; i < count; ++i) group.values.insert(group.values.end(), {points[i].x(), points[i].y(), points[i].z()});
+  for (int i = 0; i < count; ++i)
+    group.values.insert(group.values.end(), {points[i].x(), points[i].y(), points[i].z()});
   return group;
 }
 

@@ -74,13 +74,13 @@ struct StrutJointPoints {
 
 /// A group of geometric constants of a mechanism that calibration can identify (issue 16): `rows` × `columns`
 /// numbers, row-major, e.g. the six base joints, 6 × 3 mm. `key` is also the key that carries the group in a
-/// machine file's `calibration:` section (io/calibration_file.cpp), so a calibrated machine file is the drawing
-/// plus the identified groups.
+/// machine file's `calibration:` section (io/calibration_file.cpp), so a calibrated machine file is the
+/// drawing plus the identified groups.
 struct GeometryGroup {
-  std::string key;          ///< e.g. "base_joints"; unique within a mechanism
-  std::string row_symbol;   ///< how rows are named in messages: "A" → A1, A2, …
+  std::string key;                        ///< e.g. "base_joints"; unique within a mechanism
+  std::string row_symbol;                 ///< how rows are named in messages: "A" → A1, A2, …
   std::vector<std::string> column_names;  ///< e.g. {"x", "y", "z"}; {""} for one number per row
-  std::string unit;         ///< "mm", "rad", …
+  std::string unit;                       ///< "mm", "rad", …
   int rows = 0;
   std::vector<double> values;  ///< rows × column_names.size(), row-major
   int columns() const { return static_cast<int>(column_names.size()); }
@@ -187,11 +187,13 @@ class Mechanism {
     second.setZero();
   }
 
-  /// The geometric constants calibration may identify, in a fixed order (empty: none). Values are in the frames
-  /// the mechanism computes in (platform-side points: the tool frame, from the tool point, platform axes).
+  /// The geometric constants calibration may identify, in a fixed order (empty: none). Values are in the
+  /// frames the mechanism computes in (platform-side points: the tool frame, from the tool point, platform
+  /// axes).
   virtual std::vector<GeometryGroup> geometry_parameters() const { return {}; }
-  /// The same mechanism (convention, home, assembly mode) with other values of geometry_parameters(): `groups`
-  /// has the same keys and shapes in the same order. Fails for a mismatch and for mechanisms without groups.
+  /// The same mechanism (convention, home, assembly mode) with other values of geometry_parameters():
+  /// `groups` has the same keys and shapes in the same order. Fails for a mismatch and for mechanisms without
+  /// groups.
   virtual Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const;
 
   // Queries that replace tests of the mechanism's type: the stages ask what they need, not what it is.
@@ -246,9 +248,10 @@ bool joint_gradient_twist_jacobian(const Pose& pose, int count, const Joints& pl
 /// angular-velocity matrix of the convention. For Mechanism::controlled_twists overrides.
 Eigen::Matrix<double, 6, 6> coordinate_twists(AngleConvention convention, const Pose& pose) noexcept;
 
-/// Checks that `groups` have the keys and shapes of `expected` (for with_geometry overrides): an error naming the
-/// first group that differs, or success.
-Status check_geometry_groups(const std::vector<GeometryGroup>& expected, const std::vector<GeometryGroup>& groups);
+/// Checks that `groups` have the keys and shapes of `expected` (for with_geometry overrides): an error naming
+/// the first group that differs, or success.
+Status check_geometry_groups(const std::vector<GeometryGroup>& expected,
+                             const std::vector<GeometryGroup>& groups);
 /// Row `row` of a group as a 3-vector (groups with three columns).
 Eigen::Vector3d group_point(const GeometryGroup& group, int row);
 /// A group of `points` with symbol `row_symbol`, columns x, y, z, in mm.

@@ -185,3 +185,25 @@ Result<std::vector<FkSolution>> Planar2::forward_all(const ActuatorVector& actua
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+std::vector<GeometryGroup> Planar2::geometry_parameters() const {
+  GeometryGroup base{"base_joints", "A", {"x", "y"}, "mm", 2, {}};
+  for (const Eigen::Vector2d& a : geometry_.base_joints_mm)
+    base.values.insert(base.values.end(), {a.x(), a.y()});
+  return {base};
+}
+
+Result<std::unique_ptr<Mechanism>> Planar2::with_geometry(const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  Planar2Geometry geometry;
+  const std::vector<double>& v = groups[0].values;
+  for (std::size_t j = 0; j < 2; ++j) geometry.base_joints_mm[j] = Eigen::Vector2d(v[2 * j], v[2 * j + 1]);
+  if (!((geometry.base_joints_mm[1] - geometry.base_joints_mm[0]).norm() > 0.0)) {
+    return make_error(ErrorCode::bad_input, "base joints A1 and A2 coincide");
+  }
+  return std::unique_ptr<Mechanism>(std::make_unique<Planar2>(geometry, home_.position_mm.head<2>()));
+}
+
+}  // namespace pkm

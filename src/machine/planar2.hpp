@@ -49,6 +49,10 @@ class Planar2 final : public Mechanism {
   MechanismStructure structure() const override {
     return {"2-RPR (planar, one output joint)", true, 5, {5, 0, 0, 0, 0}, 0};
   }
+  /// base_joints A1, A2 (base frame, 2 × [x, y] mm).
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  /// Keeps the home point B; its side of line A1A2 stays the assembly mode.
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
 
   /// Hot path: strut lengths for B, no checks, no allocation.
   void strut_lengths(const Eigen::Vector2d& b_mm, double* lengths_mm) const noexcept {

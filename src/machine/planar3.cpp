@@ -244,3 +244,37 @@ Result<FkSolution> Planar3::forward(const ActuatorVector& actuators, const Pose&
 }
 
 }  // namespace pkm
+
+namespace pkm {
+namespace {
+
+// Planar points as a group of [x, y] rows, mm.
+GeometryGroup planar3_point_group(std::string key, std::string row_symbol,
+                                  const std::array<Eigen::Vector2d, 3>& points) {
+  GeometryGroup group{std::move(key), std::move(row_symbol), {"x", "y"}, "mm", 3, {}};
+  for (const Eigen::Vector2d& p : points) group.values.insert(group.values.end(), {p.x(), p.y()});
+  return group;
+}
+
+Eigen::Vector2d planar3_group_point(const GeometryGroup& group, std::size_t row) {
+  return {group.values[2 * row], group.values[2 * row + 1]};
+}
+
+}  // namespace
+
+std::vector<GeometryGroup> Planar3::geometry_parameters() const {
+  return {planar3_point_group("base_joints", "A", geometry_.base_joints_mm),
+          planar3_point_group("platform_joints_from_tool", "B", geometry_.platform_joints_mm)};
+}
+
+Result<std::unique_ptr<Mechanism>> Planar3::with_geometry(const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  Planar3Geometry geometry;
+  for (std::size_t j = 0; j < 3; ++j) {
+    geometry.base_joints_mm[j] = planar3_group_point(groups[0], j);
+    geometry.platform_joints_mm[j] = planar3_group_point(groups[1], j);
+  }
+  return std::unique_ptr<Mechanism>(std::make_unique<Planar3>(geometry, planar_coordinates(home_)));
+}
+
+}  // namespace pkm

@@ -58,6 +58,10 @@ class Planar3 final : public Mechanism {
   double platform_size_mm() const override { return platform_radius_mm_; }
   /// Base, platform, three two-part struts; 9 one-DOF pairs.
   MechanismStructure structure() const override { return {"3-RPR (planar)", true, 8, {9, 0, 0, 0, 0}, 0}; }
+  /// base_joints A1..A3 (base frame) and platform_joints_from_tool B1..B3 (tool frame), 3 × [x, y] mm each.
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  /// Keeps the home (x, y, φ); the sign of det J there stays the assembly mode.
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
 
   /// Hot path: strut lengths at planar coordinates, no checks, no allocation.
   void strut_lengths(const Eigen::Vector3d& xyphi, double* lengths_mm) const noexcept;

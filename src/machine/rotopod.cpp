@@ -233,3 +233,46 @@ Pose rotopod_default_home(const RotopodGeometry& geometry) {
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+std::vector<GeometryGroup> Rotopod::geometry_parameters() const {
+  const Eigen::Vector2d& o = geometry_.circle_center_mm;
+  GeometryGroup center{"circle_center", "O", {"x", "y"}, "mm", 1, {o.x(), o.y()}};
+  GeometryGroup radius{"circle_radius", "R", {""}, "mm", 1, {geometry_.circle_radius_mm}};
+  GeometryGroup heights{"joint_heights",
+                        "z",
+                        {""},
+                        "mm",
+                        6,
+                        {geometry_.joint_heights_mm.begin(), geometry_.joint_heights_mm.end()}};
+  GeometryGroup lengths{"strut_lengths",
+                        "L",
+                        {""},
+                        "mm",
+                        6,
+                        {geometry_.strut_lengths_mm.begin(), geometry_.strut_lengths_mm.end()}};
+  return {std::move(center), std::move(radius), std::move(heights), std::move(lengths),
+          point_group("platform_joints_from_tool", "B", geometry_.platform_joints_mm.data(), 6)};
+}
+
+Result<std::unique_ptr<Mechanism>> Rotopod::with_geometry(const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  RotopodGeometry geometry = geometry_;  // branches are kept
+  geometry.circle_center_mm = Eigen::Vector2d(groups[0].values[0], groups[0].values[1]);
+  geometry.circle_radius_mm = groups[1].values[0];
+  if (!(geometry.circle_radius_mm > 0.0))
+    return make_error(ErrorCode::bad_input, "the circle radius must be positive");
+  for (int j = 0; j < 6; ++j) {
+    const auto row = static_cast<std::size_t>(j);
+    geometry.joint_heights_mm[row] = groups[2].values[row];
+    geometry.strut_lengths_mm[row] = groups[3].values[row];
+    geometry.platform_joints_mm[row] = group_point(groups[4], j);
+    if (!(geometry.strut_lengths_mm[row] > 0.0)) {
+      return make_error(ErrorCode::bad_input, fmt::format("strut length L{} must be positive", j + 1));
+    }
+  }
+  return std::unique_ptr<Mechanism>(std::make_unique<Rotopod>(geometry, convention_, home_));
+}
+
+}  // namespace pkm

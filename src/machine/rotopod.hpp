@@ -55,6 +55,11 @@ class Rotopod final : public Mechanism {
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override;
   /// 6 × (carriage R on the circle, U, S) with constant-length struts.
   MechanismStructure structure() const override { return {"6-RUS (rotopod)", false, 14, {6, 6, 6, 0, 0}, 0}; }
+  /// circle_center O (1 × [x, y] mm), circle_radius R (1 × 1 mm), joint_heights z1..z6 and strut_lengths
+  /// L1..L6 (6 × 1 mm each), platform_joints_from_tool B1..B6 (tool frame, 6 × 3 mm). The branches stay.
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  /// Keeps the home pose; the angle windows are centred on the new home angles.
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
 
   const RotopodGeometry& geometry() const { return geometry_; }
   /// Carriage joint A_j at angle φ (rad).

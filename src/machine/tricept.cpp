@@ -233,3 +233,26 @@ Result<FkSolution> Tricept::forward(const ActuatorVector& q, const Pose& guess,
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+std::vector<GeometryGroup> Tricept::geometry_parameters() const {
+  return {point_group("base_joints", "A", geometry_.base_joints_mm.data(), 3),
+          point_group("platform_joints", "B", geometry_.platform_joints_mm.data(), 3),
+          point_group("center_joint", "O", &geometry_.center_joint_mm, 1)};
+}
+
+Result<std::unique_ptr<Mechanism>> Tricept::with_geometry(const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  TriceptGeometry geometry = geometry_;
+  for (int j = 0; j < 3; ++j) {
+    geometry.base_joints_mm[j] = group_point(groups[0], j);
+    geometry.platform_joints_mm[j] = group_point(groups[1], j);
+  }
+  geometry.center_joint_mm = group_point(groups[2], 0);
+  auto tricept = Tricept::create(geometry, convention_, home_.position_mm);
+  if (!tricept) return tricept.error();
+  return std::unique_ptr<Mechanism>(std::make_unique<Tricept>(std::move(tricept.value())));
+}
+
+}  // namespace pkm

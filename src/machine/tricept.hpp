@@ -59,6 +59,11 @@ class Tricept final : public Mechanism {
   bool controlled_twists(const Pose& pose, TwistBasis& out) const noexcept override;
   /// 3 × (U, P, S) + central leg (U, P) fixed to the flange.
   MechanismStructure structure() const override { return {"3-UPS + UP", false, 9, {4, 4, 3, 0, 0}, 0}; }
+  /// base_joints A1..A3 (base frame), platform_joints B1..B3 (flange frame, as in the machine file), 3 × 3
+  /// mm, and center_joint O (1 × 3 mm). The tool offset is left out: moving it along the axis is the same as
+  /// moving all three flange joints along it, so it is not identifiable beside them.
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
 
   const TriceptGeometry& geometry() const { return geometry_; }
   /// The manipulator axis through a tool point; false when the point is out of reach (see complete_pose).

@@ -356,3 +356,24 @@ Result<JacobianMatrix> Tripod::jacobian(const Pose& pose) const {
 }
 
 }  // namespace pkm
+
+namespace pkm {
+
+std::vector<GeometryGroup> Tripod::geometry_parameters() const {
+  return {point_group("base_joints", "A", geometry_.base_joints_mm.data(), 3),
+          point_group("platform_joints_from_tool", "B", geometry_.platform_joints_mm.data(), 3)};
+}
+
+Result<std::unique_ptr<Mechanism>> Tripod::with_geometry(const std::vector<GeometryGroup>& groups) const {
+  if (auto ok = check_geometry_groups(geometry_parameters(), groups); !ok) return ok.error();
+  TripodGeometry geometry = geometry_;
+  for (int j = 0; j < 3; ++j) {
+    geometry.base_joints_mm[j] = group_point(groups[0], j);
+    geometry.platform_joints_mm[j] = group_point(groups[1], j);
+  }
+  auto tripod = Tripod::create(geometry, convention_, vector_from_pose(convention_, home_));
+  if (!tripod) return tripod.error();
+  return std::unique_ptr<Mechanism>(std::make_unique<Tripod>(std::move(tripod.value())));
+}
+
+}  // namespace pkm

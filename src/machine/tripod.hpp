@@ -60,6 +60,11 @@ class Tripod final : public Mechanism {
   bool controlled_twists(const Pose& pose, TwistBasis& out) const noexcept override;
   /// 3 × (R, P, S).
   MechanismStructure structure() const override { return {"3-RPS", false, 8, {6, 0, 3, 0, 0}, 0}; }
+  /// base_joints A1..A3 (base frame) and platform_joints_from_tool B1..B3 (tool frame), 3 × 3 mm each. The
+  /// revolute axes stay fixed: they are directions, and constraint (31) needs them horizontal.
+  std::vector<GeometryGroup> geometry_parameters() const override;
+  /// Through create() from the home's controlled coordinates and yaw, so the yaw branch stays the home's.
+  Result<std::unique_ptr<Mechanism>> with_geometry(const std::vector<GeometryGroup>& groups) const override;
 
   const TripodGeometry& geometry() const { return geometry_; }
   /// Strut lengths of a complete pose, no completion, no checks.
