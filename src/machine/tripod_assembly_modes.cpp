@@ -53,14 +53,14 @@ Result<std::vector<FkSolution>> Tripod::forward_all(const ActuatorVector& q, con
   };
 
   std::vector<FkSolution> solutions;
-  constexpr int kSamples = 2880;
+  constexpr int kTripodScanSamples = 2880;
   FkOptions polish = options;
   polish.require_same_branch = false;
   for (int b2 : {-1, 1}) {
     for (int b3 : {-1, 1}) {
       std::array<Eigen::Vector3d, 3> joints;
       auto branch_residual = [&](double t1) { return residual(t1, b2, b3, joints); };
-      scan_roots(branch_residual, -kPi, kPi, kSamples, [&](double) {
+      scan_roots(branch_residual, -kPi, kPi, kTripodScanSamples, [&](double) {
         auto polished = forward(q, pose_from_joints(joints), polish);
         if (polished && !contains_solution(solutions, polished->pose)) solutions.push_back(*polished);
       });
