@@ -14,7 +14,7 @@ build=${1:?usage: fuzz/run.sh [--long] BUILD SECONDS [NAME...]}
 seconds=${2:?usage: fuzz/run.sh [--long] BUILD SECONDS [NAME...]}
 shift 2
 names=("$@")
-if [ "${#names[@]}" -eq 0 ]; then names=(gcode cl machine load steps_csv steps_bin); fi
+if [ "${#names[@]}" -eq 0 ]; then names=(gcode cl machine load steps_csv steps_bin measurements); fi
 
 # The seeds of a harness (globs relative to the repository), and the longest input worth trying: a little
 # above the largest seed, so that mutations can grow it but time is not spent on megabytes of one format.

@@ -1,8 +1,8 @@
 #pragma once
 // What a calibration is identified from (issue 16; spec ch5 §9.2): the drives' readings at a number of poses,
 // and at each pose what was measured of the platform — positions of targets fixed to it (a laser tracker, a
-// CMM touching the vertices of the dissertation's triangular plate), or the length of a ballbar between the tool
-// point and a ball fixed to the table. Read from CSV by io/measurement_file.hpp; made by simulation in
+// CMM touching the vertices of the dissertation's triangular plate), or the length of a ballbar between the
+// tool point and a ball fixed to the table. Read from CSV by io/measurement_file.hpp; made by simulation in
 // calibration/simulate.hpp.
 #include <Eigen/Core>
 #include <string>
@@ -33,13 +33,14 @@ struct DistanceObservation {
   int line = 0;
 };
 
-/// One pose of the machine: the drive readings (mm, or rad for angular actuators) and what was measured there.
+/// One pose of the machine: the drive readings (mm, or rad for angular actuators) and what was measured
+/// there.
 struct MeasuredPose {
   std::string id;
   ActuatorVector readings;
-  std::vector<TargetObservation> targets;     ///< tracker / CMM
+  std::vector<TargetObservation> targets;      ///< tracker / CMM
   std::vector<DistanceObservation> distances;  ///< ballbar
-  int line = 0;  ///< first line of the pose in the source file (0: simulated)
+  int line = 0;                                ///< first line of the pose in the source file (0: simulated)
 };
 
 enum class MeasurementKind { targets, ballbar };
@@ -47,8 +48,8 @@ enum class MeasurementKind { targets, ballbar };
 struct MeasurementSet {
   std::string source;  ///< file name (or "simulated")
   MeasurementKind kind = MeasurementKind::targets;
-  std::vector<FixtureTarget> fixture;                               ///< targets (kind targets)
-  Eigen::Vector3d ballbar_centre_mm = Eigen::Vector3d::Zero();      ///< ball on the table (kind ballbar)
+  std::vector<FixtureTarget> fixture;                           ///< targets (kind targets)
+  Eigen::Vector3d ballbar_centre_mm = Eigen::Vector3d::Zero();  ///< ball on the table (kind ballbar)
   std::vector<MeasuredPose> poses;
 };
 

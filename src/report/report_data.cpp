@@ -7,11 +7,13 @@
 
 #include "io/input_file.hpp"
 #include "io/machine_file.hpp"
+#include "report/calibration_report.hpp"
 #include "report/csv_table.hpp"
 #include "report/report_html.hpp"
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
 #include "report/stiffness_plots.hpp"
+#include "report/workspace_report.hpp"
 
 namespace pkm::report {
 
@@ -150,6 +152,10 @@ Result<nlohmann::json> report_from_directory(const std::string& directory, const
     return make_error(ErrorCode::bad_input,
                       fmt::format("{}: not valid JSON: {}", summary_path.string(), e.what()));
   }
+  if (summary.is_object() && summary.value("kind", "") == "workspace")
+    return workspace_report(directory, summary, options);
+  if (summary.is_object() && summary.value("command", "") == "calibrate identify")
+    return calibration_report(directory, summary, options);
   const bool planned = fs::exists(dir / "actuators.csv") && fs::exists(dir / "path.csv");
   // pkm stiffness: its points and a summary that names the stiffness model.
   const bool deflected =

@@ -9,7 +9,9 @@
 //     #strut-colour switch colours the struts by drive force (redder the harder a drive pushes, bluer the harder
 //     it pulls), following the animation; reports without drive forces have no such switch;
 //   - a run directory with bode.csv and stiffness_map.csv (pkm compliance --bode / --map) gets the Bode plot and
-//     the stiffness map, drawn, with the files' frequencies and cells; reports without them have neither.
+//     the stiffness map, drawn, with the files' frequencies and cells; reports without them have neither;
+//   - a `pkm workspace` report has its heat map, drawn for every layer with the colour each cell's value
+//     should get, with workspace.csv's cells and statuses, and a 3-D grid's slices can be stepped through.
 // Usage: node tests/browser/report_browser_test.mjs --pkm build/pkm --out build/browser-test
 //                                                   [--screenshots docs/images] [--chromium /usr/bin/chromium]
 import { execFileSync } from 'node:child_process';
@@ -70,6 +72,11 @@ const cases = [
   { name: 'optimize-planar-circle', command: 'optimize', program: 'examples/programs/planar_circle.ngc',
     machine: 'examples/machines/planar3.yaml', rows: null,
     extra: ['--law', 'increment', '--step-mm', '0.6981'] },
+  // pkm workspace: a map, not a run; one frame (the machine at the grid's centre), nothing to scrub or play.
+  { name: 'workspace-ch5-xz', command: 'workspace', machine: 'examples/machines/hexapod_ch5.yaml', rows: null,
+    extra: ['--plane', 'xz', '--range-mm', '400', '--step-mm', '40', '--stiffness'], workspace: true },
+  { name: 'workspace-triglide-3d', command: 'workspace', machine: 'examples/machines/triglide.yaml', rows: null,
+    extra: ['--grid3d', '--range-mm', '400', '--step-mm', '40'], workspace: true },
 ];
 
 /** '#rrggbb' → redness r − b in 0..1 units: rises monotonically from full tension to full compression. */
@@ -123,6 +130,55 @@ async function checkStiffnessPlots(page, data, dir, fail) {
   const empty = data.stiffness_map.values.flat().filter((v) => v === null).length;
   const outside = map.filter((r) => !(r.lowest_stiffness_N_um > 0)).length;
   if (empty !== outside || outside === 0) fail(`${empty} empty cells in the data, ${outside} rows without a value`);
+}
+
+/** Runs `pkm workspace` for a case (its own command line: no program, no animation to scrub). */
+function runWorkspace(c, dir, page_file) {
+  execFileSync(args.pkm, ['workspace', '--machine', join(root, c.machine), '--out', dir, '--report', page_file, ...c.extra],
+               { stdio: 'pipe' });
+}
+
+/** The workspace heat map: drawn for every layer, each cell in the colour of its value, workspace.csv's cells. */
+async function checkWorkspaceMap(page, data, dir, fail) {
+  const state = await page.evaluate(() => window.pkmReport.workspaceMap());
+  if (!state || !state.drawn) return fail(`workspace map ${JSON.stringify(state)}`);
+  const header = readFileSync(join(dir, 'workspace.csv'), 'utf8').split('\n')[0].split(',');
+  const statusColumn = header.indexOf('status');
+  const rows = readFileSync(join(dir, 'workspace.csv'), 'utf8').trim().split('\n').slice(1).map((r) => r.split(','));
+  const map = data.workspace_map;
+  const slices = map.slices.length || 1;
+  if (state.cells * slices !== rows.length) fail(`the map shows ${state.cells} × ${slices} cells, workspace.csv has ${rows.length} rows`);
+  for (const id of ['status', 'delta_rho', 'condition_number', 'S_x', 'S_y', 'S_z']) {
+    if (!state.layers.includes(id)) fail(`no ${id} layer (layers: ${state.layers.join(', ')})`);
+  }
+  // Statuses: the data's are the file's, cell by cell (x fastest, then y, then the slices).
+  const statusLayer = map.layers.find((l) => l.id === 'status');
+  const counts = {};
+  rows.forEach((r, k) => {
+    const i = k % map.x.length;
+    const j = Math.floor(k / map.x.length) % map.y.length;
+    const s = Math.floor(k / (map.x.length * map.y.length));
+    const shown = map.status_names[statusLayer.values[s][j][i]];
+    if (shown !== r[statusColumn]) fail(`cell ${k}: the map says ${shown}, workspace.csv ${r[statusColumn]}`);
+    counts[r[statusColumn]] = (counts[r[statusColumn]] ?? 0) + 1;
+  });
+  if (!counts.ok || !counts.actuator_range) fail(`the case should have ok and actuator_range cells: ${JSON.stringify(counts)}`);
+  // Every layer draws, and a sample of cells has the colour of its value.
+  for (const id of state.layers) {
+    if ((await page.evaluate((l) => window.pkmReport.setWorkspaceLayer(l), id)) !== id) fail(`cannot show layer ${id}`);
+    const shown = await page.evaluate(() => window.pkmReport.workspaceMap());
+    if (shown.layer !== id || !shown.drawn) fail(`layer ${id}: ${JSON.stringify(shown)}`);
+    for (const [i, j] of [[0, 0], [Math.floor(map.x.length / 2), Math.floor(map.y.length / 2)], [map.x.length - 1, map.y.length - 1], [1, map.y.length - 2]]) {
+      const c = await page.evaluate(([a, b]) => window.pkmReport.workspaceCellColour(a, b), [i, j]);
+      if (!c || c.drawn !== c.expected) fail(`layer ${id}, cell [${i}, ${j}]: drawn ${c?.drawn}, its value's colour ${c?.expected}`);
+    }
+  }
+  if (slices > 1) {
+    const last = await page.evaluate((k) => window.pkmReport.setWorkspaceSlice(k), slices - 1);
+    const shown = await page.evaluate(() => window.pkmReport.workspaceMap());
+    if (last !== slices - 1 || shown.slice !== slices - 1 || !shown.drawn) fail(`slice ${slices - 1}: ${JSON.stringify(shown)}`);
+  }
+  await page.evaluate(() => window.pkmReport.setWorkspaceLayer('status'));
 }
 
 /** The dynamics plots are there and the struts can be coloured by drive force, in step with the animation. */
@@ -182,8 +238,9 @@ try {
     const page_file = join(dir, 'report.html');
     mkdirSync(dir, { recursive: true });
     const out = c.command === 'optimize' ? join(dir, 'optimized.ngc') : dir;
-    execFileSync(args.pkm, [c.command, join(root, c.program), '--machine', join(root, c.machine), '--out', out,
-                            '--report', page_file, ...c.extra], { stdio: 'pipe' });
+    if (c.workspace) runWorkspace(c, dir, page_file);
+    else execFileSync(args.pkm, [c.command, join(root, c.program), '--machine', join(root, c.machine), '--out', out,
+                                 '--report', page_file, ...c.extra], { stdio: 'pipe' });
     if (c.stiffness) addStiffnessFiles(c, dir, page_file);
     const rows = c.rows ? readCsv(join(dir, c.rows)) : null;
     const fail = (what) => failures.push(`${c.name}: ${what}`);
@@ -211,8 +268,18 @@ try {
     if (plots.length < data.charts.length) fail(`${plots.length} plot canvases for ${data.charts.length} charts`);
     plots.forEach((inked, k) => { if (inked < 50) fail(`plot ${k} has only ${inked} drawn pixels`); });
 
-    // Scrub as a user does: move the range input and let it fire its input event.
     const frames = data.scene.frames;
+    if (c.workspace) {
+      await checkWorkspaceMap(page, data, dir, fail);
+      if (data.charts.length || data.stiffness_map) fail('a workspace report has time plots or a stiffness map');
+      if (args.screenshots) await page.screenshot({ path: join(args.screenshots, `report-${c.name}.png`), fullPage: true });
+      await page.close();
+      console.log(`${c.name}: workspace map checked`);
+      continue;
+    }
+    if (data.workspace_map || (await page.evaluate(() => document.getElementById('workspace-map') !== null)))
+      fail('a report of a run has a workspace map');
+    // Scrub as a user does: move the range input and let it fire its input event.
     for (const fraction of [0.3, 0.75]) {
       const k = Math.floor(fraction * (frames.time_s.length - 1));
       const shown = await page.evaluate((i) => {

@@ -231,9 +231,9 @@ TEST(ComplianceCli, TheStiffnessMapHasARowPerPointAndItsCentreIsThePosesWeakestS
   EXPECT_NEAR(std::stod(centre[6]), weakest, 1e-8 * weakest);
   EXPECT_NEAR(
       summary["min_stiffness_N_um"].get<double>(),
-      [&] {
+      [&map_rows = rows] {  // named capture: clang 14 cannot capture a structured binding
         double lowest = 1e300;
-        for (const auto& row : rows)
+        for (const auto& row : map_rows)
           if (row[10] == "ok") lowest = std::min(lowest, std::stod(row[6]));
         return lowest;
       }(),

@@ -35,6 +35,40 @@ function normalizeMap(raw) {
   };
 }
 
+/** The workspace map (`workspace_map`, docs/workspace.md), or null when absent or malformed; null cells become NaN. */
+function normalizeWorkspace(raw) {
+  const m = obj(raw);
+  const x = arr(m.x).map(Number);
+  const y = arr(m.y).map(Number);
+  const slices = arr(m.slices).map(Number);
+  const depth = slices.length || 1;
+  const fits = (values) =>
+    values.length === depth && values.every((s) => arr(s).length === y.length && arr(s).every((row) => arr(row).length === x.length));
+  const layers = arr(m.layers)
+    .map(obj)
+    .filter((l) => fits(arr(l.values)))
+    .map((l) => ({
+      id: String(l.id ?? ''),
+      label: String(l.label ?? l.id ?? ''),
+      unit: String(l.unit ?? ''),
+      categorical: !!l.categorical,
+      hot: l.hot === 'low' ? 'low' : 'high',
+      values: arr(l.values).map((s) => arr(s).map((row) => arr(row).map((v) => (v == null ? NaN : Number(v))))),
+    }));
+  if (!x.length || !y.length || !layers.length) return null;
+  return {
+    file: String(m.file ?? ''),
+    x_label: String(m.x_label ?? 'x'),
+    y_label: String(m.y_label ?? 'y'),
+    slice_label: String(m.slice_label ?? ''),
+    x,
+    y,
+    slices,
+    status_names: arr(m.status_names).map(String),
+    layers,
+  };
+}
+
 export function readData(doc = document) {
   const el = doc.getElementById('pkm-report-data');
   if (!el) throw new Error('no report data in this page (script#pkm-report-data is missing)');
@@ -99,6 +133,8 @@ export function normalize(raw) {
     charts,
     frequency_response: normalizeResponse(d.frequency_response),
     stiffness_map: normalizeMap(d.stiffness_map),
+    workspace_map: normalizeWorkspace(d.workspace_map),
+    calibration: d.calibration ?? null,
     scene: {
       base_polygon: arr(scene.base_polygon),
       programmed_path: arr(scene.programmed_path),

@@ -1,6 +1,6 @@
 // window.pkmReport: the hooks the browser test uses.
 
-export function installHooks({ player, sceneView, charts, transport, scenePanel, stiffness }) {
+export function installHooks({ player, sceneView, charts, transport, scenePanel, stiffness, workspace, calibration }) {
   const hooks = {
     ready: false,
     frameCount: player.count,
@@ -35,6 +35,16 @@ export function installHooks({ player, sceneView, charts, transport, scenePanel,
     chartScales: () => charts.debugScales(),
     /** The stiffness plots: {bode: [{which, drawn}], map: {drawn, cells} | null}; drawn = has pixels. */
     stiffnessPlots: () => stiffness.state(),
+    /** The workspace map: {layers, layer, slice, slices, cells, drawn} | null; drawn = has pixels. */
+    workspaceMap: () => workspace.state(),
+    /** Shows a layer of the workspace map (its id, e.g. 'status', 'delta_rho'); returns the id, null if none. */
+    setWorkspaceLayer: (id) => workspace.setLayer(id),
+    /** Shows slice k of a 3-D workspace map; returns k, null if out of range. */
+    setWorkspaceSlice: (k) => workspace.setSlice(k),
+    /** {drawn, expected}: the colour at the centre of cell [i, j] of the workspace map and the one it should have. */
+    workspaceCellColour: (i, j) => workspace.cellColour(i, j),
+    /** The calibration plots: {residuals, parameters, drawn} | null; drawn = the residual chart has pixels. */
+    calibrationPlots: () => calibration.state(),
   };
   window.pkmReport = hooks;
   return hooks;

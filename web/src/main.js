@@ -7,6 +7,8 @@ import { createTransport } from './transport.js';
 import { createScenePanel } from './scene-panel.js';
 import { createCharts } from './charts.js';
 import { createStiffnessPlots } from './stiffness.js';
+import { createWorkspaceMap } from './workspace.js';
+import { createCalibrationPlots } from './calibration.js';
 import { installHooks } from './hooks.js';
 
 function init() {
@@ -30,6 +32,8 @@ function init() {
   };
   const charts = createCharts(data, { onSeekTime: seekTime });
   const stiffness = createStiffnessPlots(data);
+  const workspace = createWorkspaceMap(data);
+  const calibration = createCalibrationPlots(data);
   const transport = createTransport(player, data, [charts.toggle]);
   const summary = renderSummary(data, { frameOf: player.frameOfLine, onLine: seekLine, onTime: seekTime });
 
@@ -42,12 +46,12 @@ function init() {
     { class: 'pkm-report' },
     renderHeader(data),
     transport.element,
-    h('main', null, h('div', { class: 'top-grid' }, h('section', { class: 'panel summary-panel' }, summary), scenePanel.element), chartsSection, stiffness.element),
+    h('main', null, h('div', { class: 'top-grid' }, h('section', { class: 'panel summary-panel' }, summary), scenePanel.element), chartsSection, stiffness.element, workspace.element, calibration.element),
     h('footer', { class: 'page-footer' }, [data.generated_by, data.format].filter(Boolean).join(' · ')),
   );
   document.body.appendChild(root);
 
-  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel, stiffness });
+  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel, stiffness, workspace, calibration });
   marks.dom = performance.now();
   const hasScene = scenePanel.start();
   marks.scene = performance.now();
@@ -62,6 +66,8 @@ function init() {
 
   charts.start();
   stiffness.start();
+  workspace.start();
+  calibration.start();
   marks.charts = performance.now();
   if (hasScene) view.render();
   marks.render = performance.now();

@@ -1,0 +1,99 @@
+// `pkm calibrate plan` (calibration_run.hpp): the poses to measure and what measuring them with the
+// instrument would identify, written as plan.csv and summary.json.
+#include "pipeline/calibration_run.hpp"
+
+#include <fmt/format.h>
+
+#include <iterator>
+
+#include "calibration/plan_prediction.hpp"
+#include "io/atomic_file.hpp"
+#include "io/output_set.hpp"
+#include "pipeline/calibration_setup.hpp"
+
+namespace pkm::pipeline {
+
+Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const CalibrationPlanJob& job) {
+  auto model = calibration_model(machine);
+  if (!model) return model.error();
+  auto setup = calibration_setup(job.instrument);
+  if (!setup) return setup.error();
+  auto plan = calibration_pose_plan(machine, **model, job.plan, *setup);
+  if (!plan) return plan.error();
+  auto held_out = calibration_held_out(machine, **model, job.plan);
+  if (!held_out) return held_out.error();
+  auto prediction = calibration::predict_plan(**model, plan->poses, *setup, *held_out);
+  if (!prediction) return prediction.error();
+  const calibration::Identifiability& id = prediction->identifiability;
+  if (job.strict && !id.full_rank()) {
+    return make_error(ErrorCode::singular,
+                      fmt::format("the {} plan of {} poses identifies {} of {} parameter directions (strict)",
+                                  to_string(job.plan.method), plan->poses.size(), id.rank, id.parameters));
+  }
+
+  OutputSet outputs;
+  if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
+  const Mechanism& mechanism = **model;
+  const int n = mechanism.actuator_count();
+  std::string csv =
+      fmt::format("pose_id,{}{}\n", calibration_pose_header(mechanism), calibration_reading_header(n));
+  const int count = static_cast<int>(plan->poses.size());
+  for (int p = 0; p < count; ++p) {
+    const Pose& pose = plan->poses[static_cast<std::size_t>(p)];
+    auto readings = mechanism.inverse(pose);
+    if (!readings) return readings.error();
+    fmt::format_to(std::back_inserter(csv), "{},{}{}\n", calibration_pose_id(p, count),
+                   calibration_pose_fields(mechanism, pose),
+                   calibration_reading_fields(mechanism, *readings));
+  }
+  if (Status written = write_file_atomically(outputs.staged_path("plan.csv"), csv); !written)
+    return written.error();
+
+  std::vector<std::string> warnings = id.warnings;
+  if (!id.full_rank()) {
+    warnings.insert(
+        warnings.begin(),
+        fmt::format("not identifiable: the plan determines {} of {} parameter directions; the others "
+                    "would stay at the drawing",
+                    id.rank, id.parameters));
+  }
+  nlohmann::json sd = nlohmann::json::array();
+  auto layout = calibration::parameter_layout(mechanism);
+  if (!layout) return layout.error();
+  for (int i = 0; i < layout->size(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    sd.push_back({{"name", layout->names[k]},
+                  {"unit", layout->units[k]},
+                  {"predicted_sd", i < id.standard_deviation.size() ? id.standard_deviation[i] : 0.0}});
+  }
+  nlohmann::json summary = {
+      {"command", "calibrate plan"},
+      {"machine", machine.source},
+      {"method", std::string(to_string(job.plan.method))},
+      {"poses", count},
+      {"angles", std::string(to_string(mechanism.convention()))},
+      {"instrument", calibration_instrument_json(job.instrument, *setup)},
+      {"box", {{"translation_mm", job.plan.box_mm}, {"angle_deg", job.plan.box_deg}}},
+      {"seed", job.plan.seed},
+      {"identifiability", calibration_identifiability_json(id)},
+      {"predicted_tool_error_mm",
+       {{"held_out_poses", held_out->size()},
+        {"rms", prediction->tool_rms_mm},
+        {"p90", prediction->tool_p90_mm},
+        {"max", prediction->tool_max_mm},
+        {"note", "from measurement noise alone; what the plan cannot identify adds its own error"}}},
+      {"parameters", sd},
+      {"warnings", warnings}};
+  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), summary.dump(2) + "\n");
+      !written)
+    return written.error();
+  if (Status committed = outputs.commit(); !committed) return committed.error();
+  CalibrationPlanResult result;
+  result.plan = std::move(*plan);
+  result.prediction = std::move(*prediction);
+  result.parameters = id.parameters;
+  result.summary = std::move(summary);
+  return result;
+}
+
+}  // namespace pkm::pipeline
