@@ -40,9 +40,11 @@ test: build
 # -g0: function names in the sanitizers' stack traces, no line tables (CI's compile time).
 # Built as on a machine without Node.js (PKM_NODE not found): the library, CLI and tests must configure and build
 # without the report page, and configuring must say so in one line (the Release build of make test has the page).
-sanitize: deps
+# Built with clang (installed with the fuzzing tools): it compiles the instrumented code about 1.5x faster than GCC.
+sanitize:
+	@bash scripts/install-deps.sh --with-fuzz
 	@mkdir -p build-asan
-	@cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g0" -DPKM_SANITIZE=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
+	@cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g0" -DPKM_SANITIZE=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
 	@grep "building without the HTML report page: Node.js or npm not found" build-asan/configure.log
 	@cmake --build build-asan -j $(JOBS)
 	cd build-asan && PKM_GENERATED_PROGRAMS=2 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
