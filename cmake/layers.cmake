@@ -4,7 +4,7 @@
 #   pkm_kinematics (pkm::kinematics)  core/ machine/ kinematics/   PUBLIC Eigen (fmt header-only, PRIVATE)
 #   pkm_io         (pkm::io)          io/                          PUBLIC kinematics, yaml-cpp, fmt, nlohmann_json
 #   pkm_motion     (pkm::motion)      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/ stiffness/
-#                                     calibration/ workspace/      PUBLIC io; PRIVATE NLopt, Boost (headers), TBB
+#                                     calibration/ workspace/ servo/ PUBLIC io; PRIVATE NLopt, Boost (headers), TBB
 #   pkm_report     (pkm::report)      report/ (+ pkm_report_assets) PUBLIC motion
 #   pkm_pipeline   (pkm::pipeline)    pipeline/                    PUBLIC report
 #   pkm_lib        INTERFACE: all of them (the CLI, tests, bench and fuzz link this)
@@ -56,7 +56,7 @@ target_precompile_headers(pkm_io PRIVATE ${PKM_LIB_PCH})
 # From part program to drive output.
 pkm_layer(pkm_motion motion program path planning redundancy interpolation interpolation/methods
           interpolation/quantisation interpolation/contour interpolation/drive_output statics dynamics
-          stiffness calibration workspace)
+          stiffness calibration workspace servo)
 # Boost.Odeint, headers only and only in .cpp files (elastic_simulation.cpp): no installed header needs it.
 target_link_libraries(pkm_motion PUBLIC pkm_io PRIVATE NLopt::nlopt Boost::headers TBB::tbb)
 target_precompile_headers(pkm_motion REUSE_FROM pkm_io)

@@ -5,9 +5,13 @@
 // new. This file owns the replacement for pkm_tests.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <filesystem>
+#include <limits>
 #include <new>
+#include <random>
 
 #include "core/units.hpp"
 #include "dynamics/run_elastic.hpp"
@@ -19,6 +23,7 @@
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
 #include "planning/plan_test_support.hpp"
+#include "servo/servo_simulator.hpp"
 #include "statics/actuator_forces.hpp"
 #include "stiffness/strut_compliance.hpp"
 #include "test_support.hpp"
@@ -397,6 +402,156 @@ TEST(NoAllocation, InterpolateRunPeriodsAfterWarmUp) {
     EXPECT_GT(seen, 1000) << name;
     EXPECT_EQ(sink.periods, seen) << name;
   }
+}
+
+}  // namespace
+}  // namespace pkm
+
+namespace pkm {
+namespace {
+
+// Every machine file of examples/machines, in name order.
+std::vector<std::string> hotik_shipped_machines() {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(test::source_path("examples/machines"))) {
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path().filename().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Poses from home to far out of reach: each controlled coordinate moved alone by small to absurd amounts,
+// the pose that puts the first platform-side joint onto its base joint (a strut of zero length, up to
+// rounding), and last a pose of NaNs (unreachable for every mechanism).
+std::vector<Pose> hotik_probe_poses(const Mechanism& mech) {
+  const PoseVector home = vector_from_pose(mech.convention(), mech.home());
+  const AxisMask mask = mech.controlled_axes();
+  std::vector<Pose> poses{mech.home()};
+  for (int axis = 0; axis < 6; ++axis) {
+    if (!mask.controlled[axis]) continue;
+    const std::vector<double> steps = axis < 3 ? std::vector<double>{1.0, 50.0, 400.0, 3000.0, 1e5}
+                                               : std::vector<double>{0.05, 0.8, 1.5, 3.0};
+    for (double step : steps) {
+      for (double sign : {-1.0, 1.0}) {
+        PoseVector c = home;
+        c[axis] += sign * step;
+        poses.push_back(pose_from_vector(mech.convention(), c));
+      }
+    }
+  }
+  StrutJointPoints ends;
+  if (mech.strut_ends(mech.home(), ends) > 0) {
+    Pose folded = mech.home();
+    folded.position_mm += ends.base_mm[0] - ends.platform_mm[0];
+    poses.push_back(folded);
+  }
+  Pose nan = mech.home();
+  nan.position_mm.setConstant(std::numeric_limits<double>::quiet_NaN());
+  poses.push_back(nan);
+  return poses;
+}
+
+// The hot inverse kinematics of every shipped machine allocates nothing, whether the pose is reachable or
+// not (no message is built), and says what inverse() says: false where it fails, its values where not.
+TEST(NoAllocation, HotInverseOfReachableAndUnreachablePosesOfEveryShippedMachine) {
+  const std::vector<std::string> files = hotik_shipped_machines();
+  ASSERT_GE(files.size(), 10u);
+  for (const std::string& file : files) {
+    const Machine m = test::machine_from_example("examples/machines/" + file);
+    const Mechanism& mech = *m.mechanism;
+    const int n = mech.actuator_count();
+    const std::vector<Pose> poses = hotik_probe_poses(mech);
+    std::vector<std::array<double, kMaxActuators>> values(poses.size());
+    std::vector<char> reached(poses.size(), 0);
+    const long before = g_allocations.load();
+    for (std::size_t i = 0; i < poses.size(); ++i)
+      reached[i] = mech.actuator_values(poses[i], values[i].data());
+    EXPECT_EQ(g_allocations.load() - before, 0) << file;
+    int reachable = 0, unreachable = 0;  // NaN pose aside
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const auto ik = mech.inverse(poses[i]);
+      ASSERT_EQ(ik.ok(), reached[i] != 0)
+          << file << " pose " << i << (ik.ok() ? "" : ": " + ik.error().message);
+      if (!ik.ok()) {
+        unreachable += i + 1 < poses.size();
+        continue;
+      }
+      ++reachable;
+      for (int j = 0; j < n; ++j)
+        EXPECT_NEAR(values[i][static_cast<std::size_t>(j)], (*ik)[j],
+                    1e-12 * std::max(1.0, std::abs((*ik)[j])))
+            << file << " pose " << i << " actuator " << j + 1;
+    }
+    EXPECT_GT(reachable, 0) << file;
+    EXPECT_FALSE(reached.back()) << file << ": the NaN pose";
+    // Hexapods, planar machines and the symmetric tripod (whose yaw equation has a solution at any tilt)
+    // reach every pose but those with a strut of zero length; the others have a reach of their own: the
+    // guides, the carriage circle, the tricept's axis, the cardan joints' ±90°.
+    const MechanismType type = mech.type();
+    if (type == MechanismType::glide || type == MechanismType::rotopod || type == MechanismType::tricept ||
+        type == MechanismType::hexapod_refined) {
+      EXPECT_GT(unreachable, 0) << file;
+    }
+  }
+}
+
+// actuator_values and inverse agree on random poses about home (±100 mm, ±15° on the controlled
+// coordinates), per mechanism: the same values where inverse() succeeds, false where it fails.
+TEST(HotInverse, AgreesWithInverseOnRandomPosesOfEveryShippedMachine) {
+  for (const std::string& file : hotik_shipped_machines()) {
+    const Machine m = test::machine_from_example("examples/machines/" + file);
+    const Mechanism& mech = *m.mechanism;
+    const int n = mech.actuator_count();
+    const PoseVector home = vector_from_pose(mech.convention(), mech.home());
+    const AxisMask mask = mech.controlled_axes();
+    std::mt19937_64 random(20261126);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    int reachable = 0;
+    for (int k = 0; k < 300; ++k) {
+      PoseVector c = home;
+      for (int axis = 0; axis < 6; ++axis) {
+        if (mask.controlled[axis]) c[axis] += unit(random) * (axis < 3 ? 100.0 : rad_from_deg(15.0));
+      }
+      const auto pose = mech.complete_pose(pose_from_vector(mech.convention(), c));
+      if (!pose) continue;
+      std::array<double, kMaxActuators> hot{};
+      const bool reached = mech.actuator_values(*pose, hot.data());
+      const auto ik = mech.inverse(*pose);
+      ASSERT_EQ(ik.ok(), reached) << file << " pose " << k;
+      if (!ik.ok()) continue;
+      ++reachable;
+      for (int j = 0; j < n; ++j)
+        ASSERT_NEAR(hot[static_cast<std::size_t>(j)], (*ik)[j], 1e-12 * std::max(1.0, std::abs((*ik)[j])))
+            << file << " pose " << k << " actuator " << j + 1;
+    }
+    EXPECT_GE(reachable, 50) << file;
+  }
+}
+
+TEST(NoAllocation, ServoLoopPeriods) {
+  servo::LoopDesign design;
+  design.drives = 6;
+  for (int j = 0; j < 6; ++j) {
+    servo::ChannelGains& g = design.channels[j];
+    g.lag_s = 1e-3;
+    g.inertia = 0.05;
+    g.force_per_command = 3000.0;
+    g.command_max = 9000.0;
+    g.error_max = 2.0;
+    g.speed_gain = g.inertia / (2.0 * g.lag_s);
+    g.position_gain_per_s = 250.0;
+  }
+  servo::ServoSimulator simulator(design, 2.5e-4);
+  simulator.reset(servo::DriveVector::Constant(500.0));
+  servo::DriveVector reference = servo::DriveVector::Constant(500.0),
+                     rate = servo::DriveVector::Constant(20.0);
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1000; ++k) {
+    reference += rate * 2.5e-4;
+    simulator.step(reference, rate);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_TRUE(simulator.finite());
 }
 
 }  // namespace

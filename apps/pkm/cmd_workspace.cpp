@@ -1,19 +1,23 @@
 // pkm workspace --machine M.yaml [--plane xy|xz|yz|U,V] [--centre P] [--range-mm R] [--step-mm S]
-//   [--range-deg R] [--step-deg S] [--grid3d] [--stiffness] [--frequencies] [--threads N] --out DIR
-//   [--report FILE.html] [--json]:
+//   [--range-deg R] [--step-deg S] [--grid3d] [--stiffness] [--frequencies] [--calibration-plan DIR]
+//   [--threads N] --out DIR [--report FILE.html] [--json]:
 // the workspace map (src/workspace/, docs/workspace.md): per cell of a section or a 3-D grid whether the
 // machine can stand there or which limit stops it, sign of det J, condition number, δρ and S_x, S_y, S_z
-// (spec ch5 eq. 144–146), and on request the lowest stiffness and natural frequency. Writes DIR/workspace.csv
-// and DIR/summary.json as one output set, with the HTML report as one more member; prints the summary.
+// (spec ch5 eq. 144–146), and on request the lowest stiffness, the lowest natural frequency and the tool
+// error predicted after measuring a calibration plan (pipeline/calibration_workspace.hpp). Writes
+// DIR/workspace.csv and DIR/summary.json as one output set, with the HTML report as one more member; prints
+// the summary.
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "cmd_workspace_grid.hpp"
 #include "commands.hpp"
 #include "io/pose_input.hpp"
 #include "number_options.hpp"
+#include "pipeline/calibration_workspace.hpp"
 #include "pipeline/run_report.hpp"
 #include "workspace/workspace_output.hpp"
 
@@ -22,13 +26,24 @@ namespace {
 
 struct WorkspaceArguments {
   std::string machine_path, out_dir, report_path;
+  std::string calibration_plan;  ///< the directory of `pkm calibrate plan` ("": no such layer)
   WorkspaceGridArguments grid;
   workspace::WorkspaceMapOptions options;
   bool json = false;
 };
 
+// "calibration plan DIR: 12 d-optimal poses, σ 0.01 mm; rank 42 of 42, condition 5.6e+03".
+std::string workspace_calibration_text(const pipeline::CalibrationWorkspaceLayer& layer) {
+  const calibration::Identifiability& id = layer.prediction->identifiability();
+  return fmt::format("calibration plan {}: {} {}{}poses, σ {} mm; rank {} of {}, condition {:.3g}",
+                     layer.plan.directory, layer.plan.poses.size(), layer.plan.method,
+                     layer.plan.method.empty() ? "" : " ", layer.plan.instrument.sigma_mm, id.rank,
+                     id.parameters, id.identifiable_condition_number);
+}
+
 void print_workspace_summary(const Machine& machine, const workspace::WorkspaceMap& map,
-                             const workspace::WorkspaceMapSummary& s, const WorkspaceArguments& a) {
+                             const workspace::WorkspaceMapSummary& s, const WorkspaceArguments& a,
+                             const std::optional<pipeline::CalibrationWorkspaceLayer>& calibration_layer) {
   using workspace::CellStatus;
   const Mechanism& mech = *machine.mechanism;
   const auto count = [&](CellStatus status) { return s.status_cells[static_cast<std::size_t>(status)]; };
@@ -48,6 +63,7 @@ void print_workspace_summary(const Machine& machine, const workspace::WorkspaceM
     if (n > 0) fmt::format_to(std::back_inserter(stopping), " q{} {}", j + 1, n);
   }
   if (!stopping.empty()) std::cout << fmt::format("  stopped by actuator:{}\n", stopping);
+  if (calibration_layer) std::cout << "  " << workspace_calibration_text(*calibration_layer) << "\n";
   if (ok > 0) {
     std::cout << fmt::format("  det J over the ok cells: {} positive, {} negative\n", s.determinant_positive,
                              s.determinant_negative);
@@ -70,7 +86,16 @@ int run_workspace(const WorkspaceArguments& a) {
   if (!machine) return report_error("workspace", machine.error());
   auto grid = workspace_grid_from(*machine->mechanism, a.grid);
   if (!grid) return report_error("workspace", grid.error());
-  auto map = workspace::workspace_map(*machine, *grid, a.options);
+  workspace::WorkspaceMapOptions options = a.options;
+  std::optional<pipeline::CalibrationWorkspaceLayer> calibration_layer;
+  if (!a.calibration_plan.empty()) {
+    auto layer = pipeline::calibration_workspace_layer(*machine, a.calibration_plan);
+    if (!layer) return report_error("workspace", layer.error());
+    for (const std::string& warning : layer->plan.warnings) std::cerr << "warning: " << warning << "\n";
+    options.calibrated_error = layer->error_at_pose;
+    calibration_layer = std::move(*layer);
+  }
+  auto map = workspace::workspace_map(*machine, *grid, options);
   if (!map) return report_error("workspace", map.error());
   const workspace::WorkspaceMapSummary summary = workspace::summarise_workspace_map(*map);
   // Everything is computed before DIR is touched: a failure above leaves no directory behind.
@@ -86,10 +111,18 @@ int run_workspace(const WorkspaceArguments& a) {
     nlohmann::json j = workspace::workspace_summary_json(*machine, *map, summary);
     j["out"] = a.out_dir;
     if (!a.report_path.empty()) j["report"] = a.report_path;
+    if (calibration_layer) {
+      const calibration::Identifiability& id = calibration_layer->prediction->identifiability();
+      j["calibration_plan"] = {{"directory", calibration_layer->plan.directory},
+                               {"poses", calibration_layer->plan.poses.size()},
+                               {"sigma_mm", calibration_layer->plan.instrument.sigma_mm},
+                               {"rank", id.rank},
+                               {"parameters", id.parameters}};
+    }
     print_json(j);
     return 0;
   }
-  print_workspace_summary(*machine, *map, summary, a);
+  print_workspace_summary(*machine, *map, summary, a, calibration_layer);
   return 0;
 }
 
@@ -99,8 +132,8 @@ void add_workspace_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "workspace",
       "workspace map over a section or a 3-D grid: reachable or which limit stops it, det J sign, condition "
-      "number, error amplification δρ and S_x, S_y, S_z (spec ch5 eq. 144–146), optional stiffness and "
-      "natural frequency");
+      "number, error amplification δρ and S_x, S_y, S_z (spec ch5 eq. 144–146), optional stiffness, "
+      "natural frequency and predicted error after calibration");
   auto a = std::make_shared<WorkspaceArguments>();
   MapGridArguments& section = a->grid.section;
   cmd->add_option("--machine", a->machine_path, "machine file (YAML)")->required();
@@ -132,6 +165,9 @@ void add_workspace_command(CLI::App& app, int& exit_code) {
                 "also the lowest translational stiffness, N/µm (stiffness: or the dynamics: springs)");
   cmd->add_flag("--frequencies", a->options.frequencies,
                 "also the lowest natural frequency, Hz (dynamics: with strut stiffness)");
+  cmd->add_option("--calibration-plan", a->calibration_plan,
+                  "also the tool error predicted after measuring this plan, mm: the directory `pkm calibrate "
+                  "plan --out` wrote (plan.csv, summary.json)");
   cmd->add_option("--threads", a->options.threads, "worker threads (0: every core)")
       ->capture_default_str()
       ->check(number_in({0.0, 1024.0, true, true, "", true}));

@@ -13,9 +13,9 @@
 
 #include "calibration/calibration_parameters.hpp"
 #include "calibration/identifiability.hpp"
-#include "calibration/measurements.hpp"
 #include "calibration/residuals.hpp"
 #include "core/result.hpp"
+#include "io/measurements.hpp"
 #include "machine/mechanism.hpp"
 
 namespace pkm::calibration {

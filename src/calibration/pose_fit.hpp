@@ -7,9 +7,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "calibration/measurements.hpp"
 #include "core/pose.hpp"
 #include "core/result.hpp"
+#include "io/measurements.hpp"
 
 namespace pkm::calibration {
 

@@ -15,9 +15,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "calibration/measurements.hpp"
 #include "core/pose.hpp"
 #include "core/result.hpp"
+#include "io/measurements.hpp"
 #include "machine/mechanism.hpp"
 
 namespace pkm::calibration {

@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
-#include "calibration/measurements.hpp"
 #include "core/pose.hpp"
 #include "core/result.hpp"
+#include "io/measurements.hpp"
 #include "machine/mechanism.hpp"
 
 namespace pkm::calibration {

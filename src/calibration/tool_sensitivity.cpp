@@ -6,64 +6,81 @@
 #include <optional>
 
 namespace pkm::calibration {
-
 namespace {
 
-Result<std::vector<Eigen::Vector3d>> tool_points(const Mechanism& model, const ParameterLayout& layout,
-                                                 const Eigen::VectorXd& parameters,
-                                                 const std::vector<ActuatorVector>& readings,
-                                                 const std::vector<Pose>& guesses, const FkOptions& fk) {
-  auto mechanism = mechanism_with_parameters(model, layout, parameters);
-  if (!mechanism) return mechanism.error();
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(readings.size());
-  for (std::size_t p = 0; p < readings.size(); ++p) {
-    auto solution = (*mechanism)->forward(readings[p], guesses[p], fk);
-    if (!solution) {
-      return make_error(solution.error().code, fmt::format("pose {}: {}", p + 1, solution.error().message));
-    }
-    points.push_back(solution->pose.position_mm);
-  }
-  return points;
+Error tool_derivative_error(const std::string& parameter, const Error& error) {
+  return make_error(error.code,
+                    fmt::format("the tool point's derivative by {}: {}", parameter, error.message));
 }
 
 }  // namespace
+
+Result<ToolSensitivityModel> ToolSensitivityModel::make(const Mechanism& model, const ParameterLayout& layout,
+                                                        const Eigen::VectorXd& parameters,
+                                                        const ResidualOptions& options) {
+  ToolSensitivityModel out;
+  auto base = mechanism_with_parameters(model, layout, parameters);
+  if (!base) return base.error();
+  out.base_ = std::move(*base);
+  out.fk_ = options.fk;
+  const int n = layout.size();
+  out.plus_.reserve(static_cast<std::size_t>(n));
+  out.minus_.reserve(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double step = options.derivative_step_mm * layout.scale[i];
+    Eigen::VectorXd stepped = parameters;
+    stepped[i] += step;
+    auto plus = mechanism_with_parameters(model, layout, stepped);
+    if (!plus) return tool_derivative_error(layout.names[static_cast<std::size_t>(i)], plus.error());
+    stepped[i] = parameters[i] - step;
+    auto minus = mechanism_with_parameters(model, layout, stepped);
+    if (!minus) return tool_derivative_error(layout.names[static_cast<std::size_t>(i)], minus.error());
+    out.plus_.push_back(std::move(*plus));
+    out.minus_.push_back(std::move(*minus));
+    out.steps_.push_back(step);
+    out.names_.push_back(layout.names[static_cast<std::size_t>(i)]);
+  }
+  return out;
+}
+
+Result<ToolSensitivity> ToolSensitivityModel::at(const Pose& pose) const {
+  auto readings = base_->inverse(pose);
+  if (!readings) return readings.error();
+  const int n = parameters();
+  ToolSensitivity g = ToolSensitivity::Zero(3, n);
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    auto plus = plus_[k]->forward(*readings, pose, fk_);
+    if (!plus) return tool_derivative_error(names_[k], plus.error());
+    auto minus = minus_[k]->forward(*readings, pose, fk_);
+    if (!minus) return tool_derivative_error(names_[k], minus.error());
+    g.col(i) = (plus->pose.position_mm - minus->pose.position_mm) / (2.0 * steps_[k]);
+  }
+  return g;
+}
 
 Result<std::vector<ToolSensitivity>> tool_point_sensitivities(const Mechanism& model,
                                                               const ParameterLayout& layout,
                                                               const Eigen::VectorXd& parameters,
                                                               const std::vector<Pose>& poses,
                                                               const ResidualOptions& options) {
-  auto base = mechanism_with_parameters(model, layout, parameters);
-  if (!base) return base.error();
-  std::vector<ActuatorVector> readings;
-  readings.reserve(poses.size());
-  for (std::size_t p = 0; p < poses.size(); ++p) {
-    auto r = (*base)->inverse(poses[p]);
-    if (!r) return make_error(r.error().code, fmt::format("pose {}: {}", p + 1, r.error().message));
-    readings.push_back(*r);
-  }
-  const int n = layout.size();
-  std::vector<ToolSensitivity> g(poses.size(), ToolSensitivity::Zero(3, n));
-  std::vector<std::optional<Error>> errors(static_cast<std::size_t>(n));
-  tbb::parallel_for(0, n, [&](int i) {
-    const double step = options.derivative_step_mm * layout.scale[i];
-    Eigen::VectorXd stepped = parameters;
-    stepped[i] += step;
-    auto plus = tool_points(model, layout, stepped, readings, poses, options.fk);
-    stepped[i] = parameters[i] - step;
-    auto minus = plus ? tool_points(model, layout, stepped, readings, poses, options.fk) : plus;
-    if (!plus || !minus) {
-      errors[static_cast<std::size_t>(i)] = !plus ? plus.error() : minus.error();
-      return;
+  auto sensitivity = ToolSensitivityModel::make(model, layout, parameters, options);
+  if (!sensitivity) return sensitivity.error();
+  const int count = static_cast<int>(poses.size());
+  std::vector<ToolSensitivity> g(poses.size());
+  std::vector<std::optional<Error>> errors(poses.size());
+  tbb::parallel_for(0, count, [&](int p) {
+    const auto k = static_cast<std::size_t>(p);
+    auto g_at = sensitivity->at(poses[k]);
+    if (g_at) {
+      g[k] = std::move(*g_at);
+    } else {
+      errors[k] = g_at.error();
     }
-    for (std::size_t p = 0; p < poses.size(); ++p) g[p].col(i) = ((*plus)[p] - (*minus)[p]) / (2.0 * step);
   });
-  for (int i = 0; i < n; ++i) {
-    if (const auto& e = errors[static_cast<std::size_t>(i)]) {
-      return make_error(e->code, fmt::format("the tool point's derivative by {}: {}",
-                                             layout.names[static_cast<std::size_t>(i)], e->message));
-    }
+  for (int p = 0; p < count; ++p) {
+    if (const auto& e = errors[static_cast<std::size_t>(p)])
+      return make_error(e->code, fmt::format("pose {}: {}", p + 1, e->message));
   }
   return g;
 }

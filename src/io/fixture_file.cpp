@@ -12,7 +12,7 @@
 namespace pkm {
 namespace {
 
-namespace csv = calibration_csv;
+namespace csv = csv_text;
 
 constexpr std::array<std::string_view, 4> kFixtureColumns = {"target", "x", "y", "z"};
 

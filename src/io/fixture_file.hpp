@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "calibration/measurements.hpp"
 #include "core/result.hpp"
+#include "io/measurements.hpp"
 
 namespace pkm {
 

@@ -49,9 +49,9 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   }
 
   // Unknown keys are errors: a misspelt key must not silently fall back to a default.
-  std::vector<std::string_view> allowed = {"name",   "description", "type",       "angles",   "tool",
-                                           "limits", "motion",      "masses",     "dynamics", "drives",
-                                           "home",   "stiffness",   "calibration"};
+  std::vector<std::string_view> allowed = {"name",   "description", "type",   "angles",     "tool",
+                                           "limits", "motion",      "masses", "dynamics",   "drives",
+                                           "home",   "stiffness",   "servo",  "calibration"};
   // Planar pin joints have no neutral axis to give.
   if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
   allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
@@ -145,6 +145,9 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   auto stiffness = read_stiffness(root, reader, *machine.mechanism);
   if (!stiffness) return stiffness.error();
   machine.stiffness = *stiffness;
+  auto servo = read_servo(root, reader, *machine.mechanism);
+  if (!servo) return servo.error();
+  machine.servo = *servo;
   machine.home_given = home.has_value();
 
   // The home pose must itself be a valid configuration of the machine.

@@ -46,6 +46,16 @@ Result<DynamicsParameters> read_dynamics(const YAML::Node& root, const YamlReade
 Result<StiffnessParameters> read_stiffness(const YAML::Node& root, const YamlReader& reader,
                                            const Mechanism& mechanism);
 
+/// `servo:` (optional; docs/machine-file.md): the tuning (technical_optimum, symmetric_optimum or explicit),
+/// the drives' loop period (> 0, ≤ 20 ms; not given: the servo period), the velocity feedforward (0…1) and
+/// `drives:` as one mapping for every drive or a list of one per actuator of `mechanism`: the current loop's
+/// time constant, the base speed and force, the motor inertia with the screw's lead (or gear ratio), the
+/// clamps, and the gains with tuning: explicit only (required there, refused otherwise). The unit keys follow
+/// the actuators' kind (mm, mm/s, N; angular actuators deg, deg/s, N·mm, kept in rad); the other kind's key
+/// is an error naming the one to give. Every number finite, unknown keys refused.
+Result<ServoParameters> read_servo(const YAML::Node& root, const YamlReader& reader,
+                                   const Mechanism& mechanism);
+
 /// `stiffness.frame` (optional; docs/stiffness_frame.md) of the mapping `stiffness`: named `sections`,
 /// `nodes` (name, position_mm, fixed), `beams` (from, to, section name or mapping, section_x) and
 /// `base_joint_nodes` (one node name per strut). Moduli and section constants > 0, node names unique and

@@ -9,7 +9,7 @@
 
 #include "io/printable_text.hpp"
 
-namespace pkm::calibration_csv {
+namespace pkm::csv_text {
 
 bool Lines::next(std::string_view& line) {
   if (done_) return false;
@@ -100,4 +100,4 @@ Result<double> number(const std::string& source, int line, const Field& field, s
   return value;
 }
 
-}  // namespace pkm::calibration_csv
+}  // namespace pkm::csv_text

@@ -1,15 +1,15 @@
 #pragma once
-// The pieces the calibration CSV readers share (io/measurement_file.hpp, io/fixture_file.hpp): lines with
-// their numbers, fields with their columns, `# key: value` header lines, numbers that must be finite and of a
-// sane size, and errors that name "FILE:LINE:COLUMN: KEY: reason" with the place also as ErrorLocation
-// fields.
+// The pieces the CSV readers share (io/measurement_file.hpp, io/fixture_file.hpp, statics/load_csv.cpp):
+// lines with their numbers, fields with their columns, `# key: value` header lines, numbers that must be
+// finite and of a sane size, and errors that name "FILE:LINE:COLUMN: KEY: reason" with the place also as
+// ErrorLocation fields.
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/result.hpp"
 
-namespace pkm::calibration_csv {
+namespace pkm::csv_text {
 
 /// Largest magnitude of any number in a calibration file: 1 km in mm (or 10⁶ degrees). A value beyond it is a
 /// typing error or a unit mix-up, and would wreck the identification's conditioning if taken.
@@ -59,4 +59,4 @@ Error error_at(const std::string& source, int line, int column, std::string_view
 Result<double> number(const std::string& source, int line, const Field& field, std::string_view key,
                       std::string_view unit);
 
-}  // namespace pkm::calibration_csv
+}  // namespace pkm::csv_text

@@ -16,7 +16,7 @@
 namespace pkm {
 namespace {
 
-namespace csv = calibration_csv;
+namespace csv = csv_text;
 using calibration::MeasuredPose;
 using calibration::MeasurementKind;
 using calibration::MeasurementSet;

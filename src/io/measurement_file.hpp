@@ -21,8 +21,8 @@
 #include <string_view>
 #include <vector>
 
-#include "calibration/measurements.hpp"
 #include "core/result.hpp"
+#include "io/measurements.hpp"
 #include "machine/machine.hpp"
 
 namespace pkm {

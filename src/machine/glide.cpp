@@ -60,23 +60,34 @@ bool Glide::leg_value(int j, const Eigen::Vector3d& joint, double& q, Eigen::Vec
   return true;
 }
 
-Result<ActuatorVector> Glide::inverse(const Pose& pose) const {
+int Glide::carriage_positions(const Pose& pose, double* out) const noexcept {
   const Pose p = fixed_orientation(pose);
-  ActuatorVector s(geometry_.count);
   for (int j = 0; j < geometry_.count; ++j) {
     const Eigen::Vector3d b = p.to_base(geometry_.platform_joints_mm[j]);
-    const double length = geometry_.strut_lengths_mm[j];
-    const SphereLine x = sphere_line(b - geometry_.guide_points_mm[j], geometry_.guide_directions[j], length);
-    if (x.discriminant_mm2 < 0.0) {
-      return make_error(
-          ErrorCode::unreachable,
-          fmt::format("carriage {}: its {:.3f} mm strut cannot reach guide {}: the platform joint is "
-                      "{:.3f} mm from the guide line, {:.3f} mm too far",
-                      j + 1, length, j + 1, x.distance_mm, x.distance_mm - length));
-    }
-    s[j] = x.along_mm + geometry_.branches[j] * std::sqrt(x.discriminant_mm2);
+    const SphereLine x = sphere_line(b - geometry_.guide_points_mm[j], geometry_.guide_directions[j],
+                                     geometry_.strut_lengths_mm[j]);
+    if (!(x.discriminant_mm2 >= 0.0)) return j;  // also a NaN pose
+    out[j] = x.along_mm + geometry_.branches[j] * std::sqrt(x.discriminant_mm2);
   }
-  return s;
+  return -1;
+}
+
+Result<ActuatorVector> Glide::inverse(const Pose& pose) const {
+  ActuatorVector s(geometry_.count);
+  const int j = carriage_positions(pose, s.data());
+  if (j < 0) return s;
+  const Eigen::Vector3d b = fixed_orientation(pose).to_base(geometry_.platform_joints_mm[j]);
+  const double length = geometry_.strut_lengths_mm[j];
+  const SphereLine x = sphere_line(b - geometry_.guide_points_mm[j], geometry_.guide_directions[j], length);
+  return make_error(
+      ErrorCode::unreachable,
+      fmt::format("carriage {}: its {:.3f} mm strut cannot reach guide {}: the platform joint is "
+                  "{:.3f} mm from the guide line, {:.3f} mm too far",
+                  j + 1, length, j + 1, x.distance_mm, x.distance_mm - length));
+}
+
+bool Glide::actuator_values(const Pose& pose, double* out) const noexcept {
+  return carriage_positions(pose, out) < 0;
 }
 
 int Glide::strut_joints(const Pose& pose, StrutJointPoints& out) const {

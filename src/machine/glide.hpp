@@ -39,6 +39,8 @@ class Glide final : public Mechanism {
   /// Three-guide machines keep the platform parallel to the base frame: the rotation becomes the identity.
   Result<Pose> complete_pose(const Pose& pose) const override;
   Result<ActuatorVector> inverse(const Pose& pose) const override;
+  /// Hot IK: inverse() without its Result, false where inverse() fails; never allocates.
+  bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
@@ -86,6 +88,8 @@ class Glide final : public Mechanism {
 
  private:
   Pose fixed_orientation(const Pose& pose) const;
+  /// The carriage positions into `out`: −1, or the first carriage whose strut cannot reach its guide.
+  int carriage_positions(const Pose& pose, double* out) const noexcept;
 
   GlideGeometry geometry_;
   AngleConvention convention_;

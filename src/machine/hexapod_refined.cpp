@@ -180,6 +180,17 @@ Result<ActuatorVector> HexapodRefined::inverse(const Pose& pose) const {
   return lengths;
 }
 
+bool HexapodRefined::actuator_values(const Pose& pose, double* out) const noexcept {
+  for (int j = 0; j < 6; ++j) {
+    CardanLegState state;
+    const Eigen::Vector3d b = pose.to_base(geometry_.platform_joints_mm[j]);
+    if (solve_cardan_leg(joints_[j], geometry_.base_joints_mm[j], b, state) != CardanLegStatus::ok)
+      return false;
+    out[j] = state.length_mm;
+  }
+  return true;
+}
+
 Result<Eigen::Matrix<double, 6, 6>> HexapodRefined::twist_jacobian(const Pose& pose) const {
   Eigen::Matrix<double, 6, 6> jacobian;
   for (int j = 0; j < 6; ++j) {

@@ -79,6 +79,8 @@ class HexapodRefined final : public Mechanism {
   AxisMask controlled_axes() const override { return AxisMask::all(); }
 
   Result<ActuatorVector> inverse(const Pose& pose) const override;
+  /// Hot IK: inverse() without its Result, false where inverse() fails; never allocates.
+  bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
   /// Every assembly mode of a 6-3 layout: the ideal hexapod's modes, each polished with the real joints.

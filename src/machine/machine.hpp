@@ -8,6 +8,7 @@
 #include "machine/dynamics_parameters.hpp"
 #include "machine/mass_properties.hpp"
 #include "machine/mechanism.hpp"
+#include "machine/servo_parameters.hpp"
 #include "machine/stiffness_parameters.hpp"
 
 namespace pkm {
@@ -92,6 +93,7 @@ struct Machine {
   MassProperties masses;          ///< `masses:` (machine/mass_properties.hpp); no masses by default
   DynamicsParameters dynamics;    ///< `dynamics:` (machine/dynamics_parameters.hpp); not given by default
   StiffnessParameters stiffness;  ///< `stiffness:` (machine/stiffness_parameters.hpp); not given by default
+  ServoParameters servo;          ///< `servo:` (machine/servo_parameters.hpp); not given by default
   DriveSettings drives;
   bool home_given = false;
 };

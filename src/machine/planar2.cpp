@@ -52,6 +52,11 @@ Result<ActuatorVector> Planar2::inverse(const Pose& pose) const {
   return lengths;
 }
 
+bool Planar2::actuator_values(const Pose& pose, double* out) const noexcept {
+  strut_lengths(point_of(pose), out);
+  return out[0] > 0.0 && out[1] > 0.0;
+}
+
 bool Planar2::twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept {
   const Eigen::Vector2d b = point_of(pose);
   out.setZero(2, 6);

@@ -31,6 +31,8 @@ class Planar2 final : public Mechanism {
   /// Keeps x, y; z = 0 and no rotation (B is a point).
   Result<Pose> complete_pose(const Pose& pose) const override;
   Result<ActuatorVector> inverse(const Pose& pose) const override;
+  /// Hot IK: inverse() without its Result, false where inverse() fails; never allocates.
+  bool actuator_values(const Pose& pose, double* out) const noexcept override;
   /// Closed form; the solution on the guess's side of line A_1A_2 (the home side if the guess is on the
   /// line).
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,

@@ -85,34 +85,43 @@ bool Rotopod::carriage_angle(int j, const Eigen::Vector3d& joint, double centre_
   return true;
 }
 
+int Rotopod::carriage_angles(const Pose& pose, const std::array<double, 6>& centres_rad,
+                             double* out) const noexcept {
+  for (int j = 0; j < 6; ++j) {
+    const CircleReach reach = circle_reach(geometry_, j, pose.to_base(geometry_.platform_joints_mm[j]));
+    if (!(reach.radial_mm > 0.0) || !(std::abs(reach.cosine) <= 1.0)) return j;
+    out[j] = wrap_near(reach.nearest_rad + geometry_.branches[j] * std::acos(reach.cosine), centres_rad[j]);
+  }
+  return -1;
+}
+
 Result<ActuatorVector> Rotopod::angles(const Pose& pose, const std::array<double, 6>& centres_rad) const {
   ActuatorVector phi(6);
-  for (int j = 0; j < 6; ++j) {
-    const Eigen::Vector3d b = pose.to_base(geometry_.platform_joints_mm[j]);
-    const CircleReach reach = circle_reach(geometry_, j, b);
-    const double length = geometry_.strut_lengths_mm[j];
-    if (!(reach.radial_mm > 0.0)) {
-      return make_error(
-          ErrorCode::singular,
-          fmt::format("carriage {}: platform joint {} is on the circle's axis, where every carriage "
-                      "angle (or none) fits",
-                      j + 1, j + 1));
-    }
-    if (!(std::abs(reach.cosine) <= 1.0)) {
-      const double r = geometry_.circle_radius_mm;
-      const double nearest = std::hypot(reach.radial_mm - r, reach.height_mm);
-      const double farthest = std::hypot(reach.radial_mm + r, reach.height_mm);
-      const bool too_short = length < nearest;
-      return make_error(
-          ErrorCode::unreachable,
-          fmt::format("carriage {}: its {:.3f} mm strut cannot reach the carriage circle: {:.3f} mm "
-                      "too {} (platform joint {:.3f} to {:.3f} mm from the circle)",
-                      j + 1, length, too_short ? nearest - length : length - farthest,
-                      too_short ? "short" : "long", nearest, farthest));
-    }
-    phi[j] = wrap_near(reach.nearest_rad + geometry_.branches[j] * std::acos(reach.cosine), centres_rad[j]);
+  const int j = carriage_angles(pose, centres_rad, phi.data());
+  if (j < 0) return phi;
+  const CircleReach reach = circle_reach(geometry_, j, pose.to_base(geometry_.platform_joints_mm[j]));
+  const double length = geometry_.strut_lengths_mm[j];
+  if (!(reach.radial_mm > 0.0)) {
+    return make_error(
+        ErrorCode::singular,
+        fmt::format("carriage {}: platform joint {} is on the circle's axis, where every carriage "
+                    "angle (or none) fits",
+                    j + 1, j + 1));
   }
-  return phi;
+  const double r = geometry_.circle_radius_mm;
+  const double nearest = std::hypot(reach.radial_mm - r, reach.height_mm);
+  const double farthest = std::hypot(reach.radial_mm + r, reach.height_mm);
+  const bool too_short = length < nearest;
+  return make_error(
+      ErrorCode::unreachable,
+      fmt::format("carriage {}: its {:.3f} mm strut cannot reach the carriage circle: {:.3f} mm "
+                  "too {} (platform joint {:.3f} to {:.3f} mm from the circle)",
+                  j + 1, length, too_short ? nearest - length : length - farthest,
+                  too_short ? "short" : "long", nearest, farthest));
+}
+
+bool Rotopod::actuator_values(const Pose& pose, double* out) const noexcept {
+  return carriage_angles(pose, reference_rad_, out) < 0;
 }
 
 Result<ActuatorVector> Rotopod::inverse(const Pose& pose) const {

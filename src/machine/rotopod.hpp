@@ -42,6 +42,8 @@ class Rotopod final : public Mechanism {
   bool actuators_are_angles() const override { return true; }
 
   Result<ActuatorVector> inverse(const Pose& pose) const override;
+  /// Hot IK: inverse() without its Result, false where inverse() fails; never allocates.
+  bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
@@ -82,6 +84,10 @@ class Rotopod final : public Mechanism {
 
  private:
   Result<ActuatorVector> angles(const Pose& pose, const std::array<double, 6>& centres_rad) const;
+  /// The carriage angles into `out`, each in the 2π window about its centre: −1, or the first carriage
+  /// whose angle is undefined (its platform joint on the circle's axis) or whose strut cannot reach the
+  /// circle.
+  int carriage_angles(const Pose& pose, const std::array<double, 6>& centres_rad, double* out) const noexcept;
 
   RotopodGeometry geometry_;
   AngleConvention convention_;

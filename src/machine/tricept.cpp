@@ -135,6 +135,15 @@ Result<ActuatorVector> Tricept::inverse(const Pose& pose) const {
   return out;
 }
 
+bool Tricept::actuator_values(const Pose& pose, double* out) const noexcept {
+  // As inverse(): evaluate() fails exactly where complete_pose() does (no manipulator axis) or a strut
+  // would have zero length.
+  Eigen::Vector3d lengths;
+  if (!evaluate(pose.position_mm, lengths, nullptr)) return false;
+  for (int j = 0; j < 3; ++j) out[j] = lengths[j];
+  return true;
+}
+
 int Tricept::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   auto complete = complete_pose(pose);
   if (!complete) return -1;

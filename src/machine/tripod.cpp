@@ -256,6 +256,19 @@ Result<ActuatorVector> Tripod::inverse(const Pose& pose) const {
   return out;
 }
 
+bool Tripod::actuator_values(const Pose& pose, double* out) const noexcept {
+  // As inverse(): the dependent coordinates completed (complete_pose), then the strut lengths.
+  const PoseVector c = vector_from_pose(convention_, pose);
+  TripodDependents d;
+  if (!solve_dependents(tilt_of(c), yaw_branch_, d)) return false;
+  const Eigen::Vector3d l = strut_lengths(pose_of(c, d));
+  for (int j = 0; j < 3; ++j) {
+    if (!(l[j] > 0.0)) return false;
+    out[j] = l[j];
+  }
+  return true;
+}
+
 int Tripod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   auto complete = complete_pose(pose);
   if (!complete) return -1;

@@ -46,6 +46,8 @@ class Tripod final : public Mechanism {
 
   Result<Pose> complete_pose(const Pose& pose) const override;
   Result<ActuatorVector> inverse(const Pose& pose) const override;
+  /// Hot IK: inverse() without its Result, false where inverse() fails; never allocates.
+  bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,

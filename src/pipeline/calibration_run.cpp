@@ -14,32 +14,25 @@
 namespace pkm::pipeline {
 
 Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const CalibrationPlanJob& job) {
-  auto model = calibration_model(machine);
-  if (!model) return model.error();
-  auto setup = calibration_setup(job.instrument);
-  if (!setup) return setup.error();
-  auto plan = calibration_pose_plan(machine, **model, job.plan, *setup);
-  if (!plan) return plan.error();
-  auto held_out = calibration_held_out(machine, **model, job.plan);
-  if (!held_out) return held_out.error();
-  auto prediction = calibration::predict_plan(**model, plan->poses, *setup, *held_out);
-  if (!prediction) return prediction.error();
-  const calibration::Identifiability& id = prediction->identifiability;
+  auto prepared = calibration_prepare(machine, job.plan, job.instrument);
+  if (!prepared) return prepared.error();
+  const calibration::Identifiability& id = prepared->prediction.identifiability;
   if (job.strict && !id.full_rank()) {
-    return make_error(ErrorCode::singular,
-                      fmt::format("the {} plan of {} poses identifies {} of {} parameter directions (strict)",
-                                  to_string(job.plan.method), plan->poses.size(), id.rank, id.parameters));
+    return make_error(
+        ErrorCode::singular,
+        fmt::format("the {} plan of {} poses identifies {} of {} parameter directions (strict)",
+                    to_string(job.plan.method), prepared->plan.poses.size(), id.rank, id.parameters));
   }
 
   OutputSet outputs;
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
-  const Mechanism& mechanism = **model;
+  const Mechanism& mechanism = *prepared->model;
   const int n = mechanism.actuator_count();
   std::string csv =
       fmt::format("pose_id,{}{}\n", calibration_pose_header(mechanism), calibration_reading_header(n));
-  const int count = static_cast<int>(plan->poses.size());
+  const int count = static_cast<int>(prepared->plan.poses.size());
   for (int p = 0; p < count; ++p) {
-    const Pose& pose = plan->poses[static_cast<std::size_t>(p)];
+    const Pose& pose = prepared->plan.poses[static_cast<std::size_t>(p)];
     auto readings = mechanism.inverse(pose);
     if (!readings) return readings.error();
     fmt::format_to(std::back_inserter(csv), "{},{}{}\n", calibration_pose_id(p, count),
@@ -72,15 +65,15 @@ Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const Cal
       {"method", std::string(to_string(job.plan.method))},
       {"poses", count},
       {"angles", std::string(to_string(mechanism.convention()))},
-      {"instrument", calibration_instrument_json(job.instrument, *setup)},
+      {"instrument", calibration_instrument_json(job.instrument, prepared->setup)},
       {"box", {{"translation_mm", job.plan.box_mm}, {"angle_deg", job.plan.box_deg}}},
       {"seed", job.plan.seed},
       {"identifiability", calibration_identifiability_json(id)},
       {"predicted_tool_error_mm",
-       {{"held_out_poses", held_out->size()},
-        {"rms", prediction->tool_rms_mm},
-        {"p90", prediction->tool_p90_mm},
-        {"max", prediction->tool_max_mm},
+       {{"held_out_poses", prepared->held_out.size()},
+        {"rms", prepared->prediction.tool_rms_mm},
+        {"p90", prepared->prediction.tool_p90_mm},
+        {"max", prepared->prediction.tool_max_mm},
         {"note", "from measurement noise alone; what the plan cannot identify adds its own error"}}},
       {"parameters", sd},
       {"warnings", warnings}};
@@ -89,9 +82,9 @@ Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const Cal
     return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();
   CalibrationPlanResult result;
-  result.plan = std::move(*plan);
-  result.prediction = std::move(*prediction);
-  result.parameters = id.parameters;
+  result.plan = std::move(prepared->plan);
+  result.parameters = id.parameters;  // before the prediction `id` is part of moves
+  result.prediction = std::move(prepared->prediction);
   result.summary = std::move(summary);
   return result;
 }

@@ -187,4 +187,20 @@ nlohmann::json calibration_identifiability_json(const calibration::Identifiabili
       {"weakest_combinations", calibration_combinations_json(identifiability.weakest)}};
 }
 
+Result<CalibrationPrepared> calibration_prepare(const Machine& machine, const CalibrationPlanSpec& spec,
+                                                const CalibrationInstrument& instrument) {
+  auto model = calibration_model(machine);
+  if (!model) return model.error();
+  auto setup = calibration_setup(instrument);
+  if (!setup) return setup.error();
+  auto plan = calibration_pose_plan(machine, **model, spec, *setup);
+  if (!plan) return plan.error();
+  auto held_out = calibration_held_out(machine, **model, spec);
+  if (!held_out) return held_out.error();
+  auto prediction = calibration::predict_plan(**model, plan->poses, *setup, *held_out);
+  if (!prediction) return prediction.error();
+  return CalibrationPrepared{std::move(*model), std::move(*setup), std::move(*plan), std::move(*held_out),
+                             std::move(*prediction)};
+}
+
 }  // namespace pkm::pipeline

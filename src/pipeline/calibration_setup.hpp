@@ -10,6 +10,7 @@
 
 #include "calibration/identifiability.hpp"
 #include "calibration/plan_design.hpp"
+#include "calibration/plan_prediction.hpp"
 #include "calibration/synthetic_measurements.hpp"
 #include "machine/machine.hpp"
 #include "pipeline/calibration_run.hpp"
@@ -33,6 +34,18 @@ Result<calibration::PosePlan> calibration_pose_plan(const Machine& machine, cons
 /// `spec.held_out` random poses in the spec's box within the limits, drawn apart from the plan's.
 Result<std::vector<Pose>> calibration_held_out(const Machine& machine, const Mechanism& model,
                                                const CalibrationPlanSpec& spec);
+
+/// What `pkm calibrate plan` and `simulate` both start from: the model, the instrument, the planned and the
+/// held-out poses, and the plan's predicted identifiability and tool error.
+struct CalibrationPrepared {
+  std::unique_ptr<Mechanism> model;
+  calibration::MeasurementSetup setup;
+  calibration::PosePlan plan;
+  std::vector<Pose> held_out;
+  calibration::PlanPrediction prediction;
+};
+Result<CalibrationPrepared> calibration_prepare(const Machine& machine, const CalibrationPlanSpec& spec,
+                                                const CalibrationInstrument& instrument);
 
 /// "P01", "P02", … (as many digits as `count` needs).
 std::string calibration_pose_id(int index, int count);

@@ -104,26 +104,18 @@ Result<CalibrationSimulateResult> calibration_simulate(const Machine& machine,
                                                        const CalibrationSimulateJob& job) {
   if (job.trials < 0)
     return make_error(ErrorCode::bad_input, fmt::format("{} trials: expected 0 or more", job.trials));
-  auto model = calibration_model(machine);
-  if (!model) return model.error();
-  auto setup = calibration_setup(job.instrument);
-  if (!setup) return setup.error();
-  auto plan = calibration_pose_plan(machine, **model, job.plan, *setup);
-  if (!plan) return plan.error();
-  auto held_out = calibration_held_out(machine, **model, job.plan);
-  if (!held_out) return held_out.error();
-  auto prediction = calibration::predict_plan(**model, plan->poses, *setup, *held_out);
-  if (!prediction) return prediction.error();
+  auto prepared = calibration_prepare(machine, job.plan, job.instrument);
+  if (!prepared) return prepared.error();
 
   calibration::TrialSetup trial;
-  trial.plan = plan->poses;
-  trial.setup = *setup;
-  trial.held_out = *held_out;
+  trial.plan = prepared->plan.poses;
+  trial.setup = prepared->setup;
+  trial.held_out = prepared->held_out;
   trial.perturbation = {job.joint_error_mm, job.offset_error_mm};
   CalibrationSimulateResult result;
-  result.monte_carlo = calibration::monte_carlo(**model, trial, job.trials, job.plan.seed);
-  result.parameters = prediction->identifiability.parameters;
-  result.plan_poses = static_cast<int>(plan->poses.size());
+  result.monte_carlo = calibration::monte_carlo(*prepared->model, trial, job.trials, job.plan.seed);
+  result.parameters = prepared->prediction.identifiability.parameters;
+  result.plan_poses = static_cast<int>(prepared->plan.poses.size());
   const calibration::MonteCarloSummary& mc = result.monte_carlo;
 
   OutputSet outputs;
@@ -133,14 +125,16 @@ Result<CalibrationSimulateResult> calibration_simulate(const Machine& machine,
       !written)
     return written.error();
   if (!job.measurements_path.empty()) {
-    if (Status written = calsim_write_measurements(machine, **model, job, *plan, *setup, outputs); !written)
+    if (Status written = calsim_write_measurements(machine, *prepared->model, job, prepared->plan,
+                                                   prepared->setup, outputs);
+        !written)
       return written.error();
   }
-  std::vector<std::string> warnings = prediction->identifiability.warnings;
-  if (!prediction->identifiability.full_rank()) {
+  std::vector<std::string> warnings = prepared->prediction.identifiability.warnings;
+  if (!prepared->prediction.identifiability.full_rank()) {
     warnings.insert(warnings.begin(),
                     fmt::format("not identifiable: the plan determines {} of {} parameter directions",
-                                prediction->identifiability.rank, result.parameters));
+                                prepared->prediction.identifiability.rank, result.parameters));
   }
   if (mc.failed > 0) {
     for (const calibration::TrialResult& r : mc.results) {
@@ -157,20 +151,20 @@ Result<CalibrationSimulateResult> calibration_simulate(const Machine& machine,
       {"method", std::string(to_string(job.plan.method))},
       {"poses", result.plan_poses},
       {"parameters", result.parameters},
-      {"instrument", calibration_instrument_json(job.instrument, *setup)},
+      {"instrument", calibration_instrument_json(job.instrument, prepared->setup)},
       {"perturbation", {{"joint_error_mm", job.joint_error_mm}, {"offset_error_mm", job.offset_error_mm}}},
       {"seed", job.plan.seed},
       {"trials", mc.trials},
       {"failed", mc.failed},
       {"not_converged", mc.not_converged},
-      {"held_out_poses", held_out->size()},
+      {"held_out_poses", prepared->held_out.size()},
       {"held_out_rms_mm", calsim_distribution(mc.held_out_rms_mm)},
       {"held_out_max_mm", calsim_distribution(mc.held_out_max_mm)},
       {"parameter_error_max_mm", calsim_distribution(mc.parameter_error_max_mm)},
       {"parameter_error_rms_mm", calsim_distribution(mc.parameter_error_rms_mm)},
       {"mean_condition_number", mc.mean_condition_number},
-      {"predicted_tool_rms_mm", prediction->tool_rms_mm},
-      {"identifiability", calibration_identifiability_json(prediction->identifiability)},
+      {"predicted_tool_rms_mm", prepared->prediction.tool_rms_mm},
+      {"identifiability", calibration_identifiability_json(prepared->prediction.identifiability)},
       {"warnings", warnings}};
   if (!job.measurements_path.empty()) {
     summary["measurements"] = {

@@ -19,7 +19,7 @@ namespace pkm::report {
 namespace {
 
 namespace fs = std::filesystem;
-namespace csv = calibration_csv;
+namespace csv = csv_text;
 
 // A run's CSV with text fields (pose ids, parameter names): the rows as strings, by column name.
 struct CalrepTable {

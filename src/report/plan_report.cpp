@@ -1,7 +1,8 @@
 // The report of a `pkm plan` run: actuator positions, speeds and accelerations against their limits, path
 // speed against the programmed feed, the path error, and the 3-D animation, from actuators.csv and path.csv;
 // with --dynamics also the drive forces, power and energy (forces.csv) and the dynamic tool error
-// (response.csv), and struts that can be coloured by force.
+// (response.csv), and struts that can be coloured by force; after `pkm servo` the following and contour
+// error, the servo rows of the table and the loops' Bode data (servo_plots.hpp).
 #include <fmt/format.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "report/dynamics_trace.hpp"
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
+#include "report/servo_plots.hpp"
 
 namespace pkm::report {
 
@@ -105,6 +107,11 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   if (Status opened = dynamics.open(files.directory, files.summary, n, expected, options.chart_buckets);
       !opened)
     return opened.error();
+  ServoTrace servo;
+  if (Status opened = servo.open(files.directory, options.servo_directory, files.summary, n, expected,
+                                 options.chart_buckets);
+      !opened)
+    return opened.error();
 
   std::vector<double> prow, arow;
   std::vector<double> q(static_cast<std::size_t>(n)), q_prev(q.size()), v(q.size()), v_prev(q.size()),
@@ -151,6 +158,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     const double error = column[11] >= 0 ? prow[static_cast<std::size_t>(column[11])] : nan;
     path_error.add(t, s, &error);
     if (Status read = dynamics.next(t, s); !read) return read.error();
+    if (Status read = servo.next(t, s); !read) return read.error();
 
     pose.position_mm =
         Eigen::Vector3d(prow[static_cast<std::size_t>(column[3])], prow[static_cast<std::size_t>(column[4])],
@@ -180,6 +188,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
   }
   if (Status finished = dynamics.finish(); !finished) return finished.error();
+  if (Status finished = servo.finish(); !finished) return finished.error();
   scene.set_force_scale(dynamics.peak_force(), dynamics.force_unit());
   for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
 
@@ -202,6 +211,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   const std::optional<double> force_limit =
       machine.mechanism->actuators_are_angles() ? std::nullopt : machine.limits.force_N;
   for (auto& chart : dynamics.charts(force_limit)) charts.push_back(std::move(chart));
+  for (auto& chart : servo.charts(machine)) charts.push_back(std::move(chart));
 
   const nlohmann::json& sm = files.summary;
   const std::string u = unit;
@@ -232,6 +242,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   table.push_back(table_row("Time limited by the actuators",
                             fmt::format("{:.1f} %", 100.0 * value_or_nan(sm, "actuator_limited_fraction"))));
   for (auto& row : dynamics_table_rows(sm)) table.push_back(std::move(row));
+  for (auto& row : servo.table_rows()) table.push_back(std::move(row));
   table.push_back(table_row("Program", files.program));
   table.push_back(table_row("Machine file", machine.source));
 
@@ -240,6 +251,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   add_limit_entry(reached, accel_peak, "acceleration", u + "/s²");
   add_limit_entry(reached, position_peak, "position", u);
   for (auto& entry : dynamics_limit_entries(sm, force_limit)) reached.push_back(std::move(entry));
+  for (auto& entry : servo.limit_entries()) reached.push_back(std::move(entry));
 
   ReportParts parts;
   parts.kind = "plan";
@@ -249,7 +261,13 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   parts.limits_reached = std::move(reached);
   parts.summary = files.summary;
   parts.charts = std::move(charts);
-  return report_document(machine, std::move(parts), scene);
+  nlohmann::json report = report_document(machine, std::move(parts), scene);
+  if (servo.active()) {
+    auto object = servo.object();
+    if (!object) return object.error();
+    report["servo"] = std::move(*object);
+  }
+  return report;
 }
 
 }  // namespace pkm::report

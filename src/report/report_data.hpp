@@ -22,6 +22,9 @@ struct ReportOptions {
   int chart_buckets = 2000;  ///< two points per bucket and series
   int frames = 1500;         ///< animation frames
   int path_points = 40000;   ///< points of each 3-D path
+  /// Where `pkm servo` wrote servo.csv, servo_bode.csv and servo_summary.json for a plan's report
+  /// (servo_plots.hpp); "": the run's own directory.
+  std::string servo_directory;
 };
 
 /// The report data of the run in `directory`.

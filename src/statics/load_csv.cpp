@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "io/measurement_csv.hpp"
 #include "statics/load_model.hpp"
 
 namespace pkm::statics {
@@ -35,32 +36,6 @@ double* load_csv_field(CuttingLoad& load, std::string_view column) {
   return nullptr;
 }
 
-std::string_view load_csv_trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
-struct CsvField {
-  std::string_view text;
-  int column = 1;  ///< 1-based character column of the field's first character
-};
-
-std::vector<CsvField> load_csv_fields(std::string_view row) {
-  std::vector<CsvField> fields;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = row.find(',', start);
-    const std::string_view raw =
-        row.substr(start, comma == std::string_view::npos ? row.npos : comma - start);
-    std::size_t lead = 0;
-    while (lead < raw.size() && (raw[lead] == ' ' || raw[lead] == '\t')) ++lead;
-    fields.push_back({load_csv_trim(raw), static_cast<int>(start + lead) + 1});
-    if (comma == std::string_view::npos) return fields;
-    start = comma + 1;
-  }
-}
-
 Error load_csv_error(const std::string& source, int line, int column, std::string_view key,
                      std::string_view message) {
   return Error{ErrorCode::bad_input, fmt::format("{}:{}:{}: {}: {}", source, line, column, key, message),
@@ -79,14 +54,14 @@ Result<LoadModel> parse_load_csv(std::string_view text, const std::string& sourc
     const std::string_view row = text.substr(at, end - at);
     at = end + 1;
     ++file_line;
-    const std::string_view trimmed = load_csv_trim(row);
+    const std::string_view trimmed = csv_text::trim(row);
     if (trimmed.empty() || trimmed.front() == '#') {
       if (end == text.size()) break;
       continue;
     }
-    const std::vector<CsvField> fields = load_csv_fields(row);
+    const std::vector<csv_text::Field> fields = csv_text::split_row(row);
     if (columns.empty()) {
-      for (const CsvField& field : fields) {
+      for (const csv_text::Field& field : fields) {
         if (std::find(kLoadCsvColumns.begin(), kLoadCsvColumns.end(), field.text) == kLoadCsvColumns.end()) {
           return load_csv_error(source_name, file_line, field.column, field.text,
                                 "unknown column (line, fx_N, fy_N, fz_N, mx_Nmm, my_Nmm, mz_Nmm, "
@@ -115,7 +90,7 @@ Result<LoadModel> parse_load_csv(std::string_view text, const std::string& sourc
     }
     BlockLoad block;
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      const CsvField& field = fields[c];
+      const csv_text::Field& field = fields[c];
       double value = 0.0;
       std::string_view number = field.text;
       if (number.size() > 1 && number.front() == '+') number.remove_prefix(1);

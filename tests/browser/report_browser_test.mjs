@@ -12,6 +12,11 @@
 //     the stiffness map, drawn, with the files' frequencies and cells; reports without them have neither;
 //   - a `pkm workspace` report has its heat map, drawn for every layer with the colour each cell's value
 //     should get, with workspace.csv's cells and statuses, and a 3-D grid's slices can be stepped through.
+//   - `pkm servo --report` on a plan has the following-error and contour-error plots with servo.csv's drives and
+//     ticks, and a Bode plot per loop (magnitude and phase) for every drive with servo_bode.csv's frequencies,
+//     its sampled series ending at the Nyquist frequency; reports without a servo run have none of them;
+//   - a `pkm calibrate identify --report` page has its residual chart, drawn, and the parameter table with
+//     residuals.csv's and parameters.csv's rows, and its measured poses can be scrubbed through.
 // Usage: node tests/browser/report_browser_test.mjs --pkm build/pkm --out build/browser-test
 //                                                   [--screenshots docs/images] [--chromium /usr/bin/chromium]
 import { execFileSync } from 'node:child_process';
@@ -77,6 +82,13 @@ const cases = [
     extra: ['--plane', 'xz', '--range-mm', '400', '--step-mm', '40', '--stiffness'], workspace: true },
   { name: 'workspace-triglide-3d', command: 'workspace', machine: 'examples/machines/triglide.yaml', rows: null,
     extra: ['--grid3d', '--range-mm', '400', '--step-mm', '40'], workspace: true },
+  // pkm plan, then pkm servo --report on its directory: the plan's page with the servo plots.
+  { name: 'servo-ch5-line', command: 'plan', program: 'examples/programs/ch5_line.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], servo: true },
+  // pkm calibrate identify: the measured poses one second apart (too slow to see play advance), lines of the
+  // measurement file.
+  { name: 'calibrate-ch5-tracker', command: 'calibrate', machine: 'examples/machines/hexapod_ch5.yaml', rows: null,
+    measurements: 'examples/calibration/hexapod_ch5_tracker.csv', extra: [], calibration: true },
 ];
 
 /** '#rrggbb' → redness r − b in 0..1 units: rises monotonically from full tension to full compression. */
@@ -181,6 +193,89 @@ async function checkWorkspaceMap(page, data, dir, fail) {
   await page.evaluate(() => window.pkmReport.setWorkspaceLayer('status'));
 }
 
+/** The points a chart keeps of `rows` samples (src/report/decimator.hpp, 2000 buckets of two points). */
+function decimatedPoints(rows, buckets = 2000) {
+  if (rows <= 2 * buckets) return rows;
+  const size = Math.ceil(rows / buckets);
+  return 2 * Math.ceil(rows / size);
+}
+
+// The series of each Bode plot (web/src/servo.js): servo_bode.csv's columns.
+const SERVO_BODE_SERIES = {
+  'speed magnitude': ['speed_open_db', 'speed_open_sampled_db', 'speed_closed_db'],
+  'speed phase': ['speed_open_deg', 'speed_open_sampled_deg'],
+  'position magnitude': ['position_open_db', 'position_open_sampled_db', 'position_closed_db', 'position_closed_sampled_db'],
+  'position phase': ['position_open_deg', 'position_open_sampled_deg'],
+};
+
+/**
+ * The servo plots: the following error with a series per drive and the contour error, servo.csv's ticks, drawn;
+ * for the first and the last drive the four Bode plots with servo_bode.csv's frequencies and the non-empty
+ * values of each column (the sampled ones end at the Nyquist frequency); the table's contour error row.
+ */
+async function checkServoPlots(page, data, dir, fail) {
+  const state = await page.evaluate(() => window.pkmReport.servoPlots());
+  if (!state) return fail('no servo plots');
+  const ticks = readCsv(join(dir, 'servo.csv'));
+  const drives = Object.keys(ticks[0]).filter((k) => /^e\d+_(mm|deg)$/.test(k)).length;
+  const summary = JSON.parse(readFileSync(join(dir, 'servo_summary.json'), 'utf8'));
+  if (drives !== 6 || summary.drives.length !== drives) fail(`servo.csv has ${drives} drives, the summary ${summary.drives.length}`);
+  for (const [id, series] of [['servo_following_error', drives], ['servo_contour_error', 1]]) {
+    const chart = state.charts.find((ch) => ch.id === id);
+    if (!chart) { fail(`no ${id} plot`); continue; }
+    if (chart.series !== series || chart.legend !== series) fail(`${id}: ${chart.series} series in the data, ${chart.legend} drawn, servo.csv has ${series}`);
+    if (chart.points !== decimatedPoints(ticks.length)) fail(`${id}: ${chart.points} points for ${ticks.length} ticks`);
+    if (!chart.drawn) fail(`${id} is not drawn`);
+  }
+  if (Math.abs(data.servo.nyquist_hz - 0.5 / summary.loop_period_s) > 1e-6) fail(`nyquist_hz ${data.servo.nyquist_hz}`);
+  const bode = readCsv(join(dir, 'servo_bode.csv'));
+  if (state.drives !== drives) fail(`the Bode plots offer ${state.drives} drives`);
+  for (const drive of [1, drives]) {
+    if ((await page.evaluate((d) => window.pkmReport.setServoDrive(d), drive)) !== drive) fail(`cannot show drive ${drive}`);
+    const shown = await page.evaluate(() => window.pkmReport.servoPlots());
+    const rows = bode.filter((r) => r.drive === drive);
+    if (shown.drive !== drive || shown.bode.length !== 4) fail(`drive ${drive}: ${JSON.stringify(shown.bode)}`);
+    for (const plot of shown.bode) {
+      const columns = SERVO_BODE_SERIES[`${plot.loop} ${plot.which}`];
+      const where = `drive ${drive}, ${plot.loop} loop ${plot.which}`;
+      if (!columns || plot.series !== columns.length) { fail(`${where}: ${plot.series} series`); continue; }
+      if (!plot.drawn) fail(`${where}: not drawn`);
+      if (plot.points !== rows.length) fail(`${where}: ${plot.points} frequencies, servo_bode.csv has ${rows.length}`);
+      columns.forEach((column, k) => {
+        const given = rows.filter((r) => Number.isFinite(r[column])).length;
+        if (plot.values[k] !== given) fail(`${where}: ${column} has ${plot.values[k]} values, servo_bode.csv ${given}`);
+        if (column.includes('sampled') && !(given > 0 && given < rows.length)) fail(`${where}: ${column} should end at the Nyquist frequency`);
+      });
+    }
+    const sampledEnd = Math.max(...rows.filter((r) => Number.isFinite(r.speed_open_sampled_db)).map((r) => r.frequency_hz));
+    if (!(sampledEnd <= data.servo.nyquist_hz)) fail(`drive ${drive}: sampled values up to ${sampledEnd} Hz, beyond Nyquist ${data.servo.nyquist_hz} Hz`);
+  }
+  const row = data.table.find((r) => r.label === 'Max contour error (servo)');
+  if (!row || row.line !== summary.max_contour_line) fail(`the table's contour error row ${JSON.stringify(row)}, the summary's line ${summary.max_contour_line}`);
+  const shownRow = await page.evaluate(() => [...document.querySelectorAll('#summary-table th')].some((th) => th.textContent === 'Max contour error (servo)'));
+  if (!shownRow) fail('the summary table does not show the contour error');
+  await page.evaluate(() => window.pkmReport.setServoDrive(1));
+}
+
+/** Rows of a CSV that pkm wrote with text fields (no quoting needed): the data rows, comments skipped. */
+function csvRowCount(file) {
+  return readFileSync(file, 'utf8').split('\n').filter((l) => l.trim() && !l.startsWith('#')).length - 1;
+}
+
+/** The calibration page: the residual chart drawn with residuals.csv's rows, the parameter table parameters.csv's. */
+async function checkCalibrationPlots(page, data, dir, fail) {
+  const state = await page.evaluate(() => window.pkmReport.calibrationPlots());
+  if (!state) return fail('no calibration plots');
+  const residuals = csvRowCount(join(dir, 'residuals.csv'));
+  const parameters = csvRowCount(join(dir, 'parameters.csv'));
+  if (state.residuals !== residuals) fail(`the residual chart has ${state.residuals} residuals, residuals.csv ${residuals}`);
+  if (state.parameters !== parameters) fail(`the parameter table has ${state.parameters} parameters, parameters.csv ${parameters}`);
+  if (!state.drawn) fail('the residual chart is not drawn');
+  const tableRows = await page.evaluate(() => document.querySelectorAll('#calibration-parameters tbody tr').length);
+  if (tableRows !== parameters) fail(`the parameter table shows ${tableRows} rows for ${parameters} parameters`);
+  if (data.kind !== 'calibration' || data.charts.length) fail(`kind ${data.kind}, ${data.charts.length} time plots`);
+}
+
 /** The dynamics plots are there and the struts can be coloured by drive force, in step with the animation. */
 async function checkForceColouring(page, data, fail) {
   const ids = data.charts.map((ch) => ch.id);
@@ -239,7 +334,13 @@ try {
     mkdirSync(dir, { recursive: true });
     const out = c.command === 'optimize' ? join(dir, 'optimized.ngc') : dir;
     if (c.workspace) runWorkspace(c, dir, page_file);
-    else execFileSync(args.pkm, [c.command, join(root, c.program), '--machine', join(root, c.machine), '--out', out,
+    else if (c.servo) {
+      execFileSync(args.pkm, ['plan', join(root, c.program), '--machine', join(root, c.machine), '--out', dir], { stdio: 'pipe' });
+      execFileSync(args.pkm, ['servo', dir, '--machine', join(root, c.machine), '--report', page_file], { stdio: 'pipe' });
+    } else if (c.calibration) {
+      execFileSync(args.pkm, ['calibrate', 'identify', '--machine', join(root, c.machine), '--measurements', join(root, c.measurements),
+                              '--out', join(dir, 'calibrated.yaml'), '--dir', dir, '--report', page_file], { stdio: 'pipe', cwd: root });
+    } else execFileSync(args.pkm, [c.command, join(root, c.program), '--machine', join(root, c.machine), '--out', out,
                                  '--report', page_file, ...c.extra], { stdio: 'pipe' });
     if (c.stiffness) addStiffnessFiles(c, dir, page_file);
     const rows = c.rows ? readCsv(join(dir, c.rows)) : null;
@@ -295,6 +396,15 @@ try {
       if (source && !shown.text.includes(source.trim().slice(0, 20))) fail(`#current-line "${shown.text}" lacks the source text "${source}"`);
       if (!(await page.evaluate(() => window.pkmReport.canvasHasPixels()))) fail(`the 3-D canvas is empty at frame ${k}`);
     }
+    if (c.calibration) {
+      await checkCalibrationPlots(page, data, dir, fail);
+      if (args.screenshots) await page.screenshot({ path: join(args.screenshots, `report-${c.name}.png`), fullPage: true });
+      await page.close();
+      console.log(`${c.name}: ${frames.time_s.length} poses, calibration plots checked`);
+      continue;
+    }
+    if (data.calibration || (await page.evaluate(() => window.pkmReport.calibrationPlots() !== null)))
+      fail('a report of a run has calibration plots');
     // Play moves the animation on; pause holds it.
     await page.evaluate(() => window.pkmReport.setFrame(0));
     await page.click('#play');
@@ -309,6 +419,10 @@ try {
     if (c.stiffness) await checkStiffnessPlots(page, data, dir, fail);
     else if (data.frequency_response || data.stiffness_map || (await page.evaluate(() => document.getElementById('stiffness-plots') !== null)))
       fail('a report without bode.csv or stiffness_map.csv has stiffness plots');
+
+    if (c.servo) await checkServoPlots(page, data, dir, fail);
+    else if (data.servo || (await page.evaluate(() => window.pkmReport.servoPlots() !== null || document.getElementById('servo-plots') !== null)))
+      fail('a report without a servo run has servo plots');
 
     if (c.dynamics) await checkForceColouring(page, data, fail);
     else if (await page.evaluate(() => document.getElementById('strut-colour') !== null || window.pkmReport.strutColoring() !== null))

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "source_paths.hpp"
 
@@ -36,6 +38,25 @@ inline CliRun run_pkm_in(const std::string& directory, const std::string& args) 
 }
 
 /// Writes `text` to a file in the temporary directory and returns its path.
+/// A CSV file's header line and its rows split at commas (an empty last cell kept).
+struct CsvRows {
+  std::string header;
+  std::vector<std::vector<std::string>> rows;
+};
+inline CsvRows read_csv_rows(const std::string& path) {
+  std::ifstream in(path);
+  CsvRows out;
+  std::getline(in, out.header);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> fields;
+    std::stringstream text(line);
+    for (std::string field; std::getline(text, field, ',');) fields.push_back(field);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    out.rows.push_back(fields);
+  }
+  return out;
+}
+
 inline std::string write_temp_file(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / ("pkm_cli_test_" + name);
   std::ofstream(path) << text;

@@ -89,18 +89,8 @@ std::string compliance_cli_out(const std::string& name) {
 
 /// The CSV's header and its rows split at commas (an empty last cell kept).
 std::pair<std::string, std::vector<std::vector<std::string>>> compliance_cli_csv(const std::string& path) {
-  std::ifstream in(path);
-  std::string header;
-  std::getline(in, header);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> fields;
-    std::stringstream text(line);
-    for (std::string field; std::getline(text, field, ',');) fields.push_back(field);
-    if (!line.empty() && line.back() == ',') fields.emplace_back();
-    rows.push_back(fields);
-  }
-  return {header, rows};
+  test::CsvRows csv = test::read_csv_rows(path);
+  return {csv.header, std::move(csv.rows)};
 }
 
 /// The ch5 machine file with its dynamics: section replaced by a stiffness: section of the same springs.

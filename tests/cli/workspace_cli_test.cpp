@@ -32,17 +32,9 @@ std::string ws_cli_out(const std::string& name) {
 }
 
 std::vector<std::vector<std::string>> ws_cli_rows(const std::string& path, std::string& header) {
-  std::ifstream in(path);
-  std::getline(in, header);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> fields;
-    std::stringstream text(line);
-    for (std::string field; std::getline(text, field, ',');) fields.push_back(field);
-    if (!line.empty() && line.back() == ',') fields.emplace_back();
-    rows.push_back(fields);
-  }
-  return rows;
+  test::CsvRows csv = test::read_csv_rows(path);
+  header = csv.header;
+  return std::move(csv.rows);
 }
 
 TEST(WorkspaceCli, WritesTheMapAndItsSummaryWithARowPerCell) {
@@ -167,6 +159,85 @@ TEST(WorkspaceCli, BadFlagsExitTwoAndLeaveNoDirectory) {
       test::run_pkm("workspace --machine " + ws_cli_machine("planar3.yaml") + " --plane xz --out " + out);
   EXPECT_EQ(planar.exit_code, 2) << planar.out;
   EXPECT_NE(planar.out.find("--plane xz: the planar3 does not control z"), std::string::npos) << planar.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// pkm workspace --calibration-plan DIR: the tool error predicted after measuring the plan `pkm calibrate
+// plan` wrote to DIR, a column of its own, positive and finite where the machine can stand and empty
+// elsewhere; a directory that is no plan for this machine exits 2 naming the file, before any output.
+std::string wscal_plan(const std::string& machine_file, const std::string& name) {
+  const std::string dir = ws_cli_out("calplan_" + name);
+  const auto run = test::run_pkm("calibrate plan --machine " + ws_cli_machine(machine_file) +
+                                 " --method random --poses 12 --held-out 3 --box-mm 20 --out " + dir);
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  return dir;
+}
+
+TEST(WorkspaceCli, CalibrationPlanAddsThePredictedErrorWhereTheMachineCanStand) {
+  struct Case {
+    std::string machine, grid;
+    bool unreachable;  ///< the grid has unreachable cells
+  };
+  const std::vector<Case> cases = {
+      {"hexapod_ch5.yaml", " --plane xz --range-mm 400 --step-mm 100", false},
+      {"triglide.yaml", " --plane xz --range-mm 600 --step-mm 100", true},
+  };
+  for (const Case& c : cases) {
+    const std::string plan = wscal_plan(c.machine, c.machine);
+    const std::string out = ws_cli_out("calibrated_" + c.machine);
+    const auto run = test::run_pkm("workspace --machine " + ws_cli_machine(c.machine) + c.grid +
+                                       " --calibration-plan " + plan + " --out " + out + " --json",
+                                   false);
+    ASSERT_EQ(run.exit_code, 0) << c.machine << "\n" << run.out;
+    const auto printed = nlohmann::json::parse(run.out);
+    EXPECT_EQ(printed["calibration_plan"]["poses"], 12) << c.machine;
+    ASSERT_TRUE(printed["layers"].contains("calibrated_error_mm")) << c.machine;
+    std::string header;
+    const auto rows = ws_cli_rows(out + "/workspace.csv", header);
+    const std::string column = ",calibrated_error_mm";
+    ASSERT_EQ(header.rfind(column), header.size() - column.size()) << header;
+    long ok = 0, stopped = 0, unreachable = 0;
+    double lowest = INFINITY, highest = -INFINITY;
+    for (const auto& row : rows) {
+      const std::string& status = row[6];
+      const std::string& value = row.back();
+      if (status == "ok") {
+        ++ok;
+        ASSERT_FALSE(value.empty()) << c.machine;
+        const double error = std::stod(value);
+        EXPECT_TRUE(std::isfinite(error) && error > 0.0) << c.machine << " " << value;
+        lowest = std::min(lowest, error);
+        highest = std::max(highest, error);
+      } else {
+        ++stopped;
+        unreachable += status == "unreachable";
+        EXPECT_TRUE(value.empty()) << c.machine << " " << status << " " << value;
+      }
+    }
+    EXPECT_GT(ok, 0) << c.machine;
+    EXPECT_GT(stopped, 0) << c.machine;
+    if (c.unreachable) {
+      EXPECT_GT(unreachable, 0) << c.machine;
+    }
+    EXPECT_NEAR(printed["layers"]["calibrated_error_mm"]["min"].get<double>(), lowest, 1e-8 * lowest);
+    EXPECT_NEAR(printed["layers"]["calibrated_error_mm"]["max"].get<double>(), highest, 1e-8 * highest);
+  }
+}
+
+TEST(WorkspaceCli, CalibrationPlanThatIsNoneOrAnotherMachinesExitsTwo) {
+  const std::string out = ws_cli_out("calibration_refused");
+  const std::string ch5 = "workspace --machine " + ws_cli_machine("hexapod_ch5.yaml") + " --out " + out;
+  const std::string none = ws_cli_out("calplan_none");
+  const auto missing = test::run_pkm(ch5 + " --calibration-plan " + none);
+  EXPECT_EQ(missing.exit_code, 2) << missing.out;
+  EXPECT_NE(missing.out.find("pkm workspace: error: " + none + ": "), std::string::npos) << missing.out;
+  EXPECT_FALSE(fs::exists(out));
+  const std::string tripod_plan = wscal_plan("tripod.yaml", "tripod");
+  const auto other = test::run_pkm(ch5 + " --calibration-plan " + tripod_plan);
+  EXPECT_EQ(other.exit_code, 2) << other.out;
+  EXPECT_NE(other.out.find(tripod_plan + "/plan.csv:1:"), std::string::npos) << other.out;
+  EXPECT_NE(other.out.find("the plan has 3 actuator columns, the hexapod has 6 actuators"), std::string::npos)
+      << other.out;
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -135,6 +135,7 @@ export function normalize(raw) {
     stiffness_map: normalizeMap(d.stiffness_map),
     workspace_map: normalizeWorkspace(d.workspace_map),
     calibration: d.calibration ?? null,
+    servo: d.servo ?? null,
     scene: {
       base_polygon: arr(scene.base_polygon),
       programmed_path: arr(scene.programmed_path),

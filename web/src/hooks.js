@@ -1,6 +1,6 @@
 // window.pkmReport: the hooks the browser test uses.
 
-export function installHooks({ player, sceneView, charts, transport, scenePanel, stiffness, workspace, calibration }) {
+export function installHooks({ player, sceneView, charts, transport, scenePanel, stiffness, workspace, calibration, servo }) {
   const hooks = {
     ready: false,
     frameCount: player.count,
@@ -45,6 +45,13 @@ export function installHooks({ player, sceneView, charts, transport, scenePanel,
     workspaceCellColour: (i, j) => workspace.cellColour(i, j),
     /** The calibration plots: {residuals, parameters, drawn} | null; drawn = the residual chart has pixels. */
     calibrationPlots: () => calibration.state(),
+    /**
+     * The servo plots (plans after `pkm servo`): {drive, drives, bode: [{loop, which, series, points, values,
+     * drawn}], charts: [{id, series, legend, points, drawn}]} | null; drawn = has pixels.
+     */
+    servoPlots: () => servo.state(),
+    /** Shows the loops of drive d (1-based); returns d, null if there is no such drive. */
+    setServoDrive: (d) => servo.setDrive(d),
   };
   window.pkmReport = hooks;
   return hooks;

@@ -9,6 +9,7 @@ import { createCharts } from './charts.js';
 import { createStiffnessPlots } from './stiffness.js';
 import { createWorkspaceMap } from './workspace.js';
 import { createCalibrationPlots } from './calibration.js';
+import { createServoPlots } from './servo.js';
 import { installHooks } from './hooks.js';
 
 function init() {
@@ -34,6 +35,7 @@ function init() {
   const stiffness = createStiffnessPlots(data);
   const workspace = createWorkspaceMap(data);
   const calibration = createCalibrationPlots(data);
+  const servo = createServoPlots(data);
   const transport = createTransport(player, data, [charts.toggle]);
   const summary = renderSummary(data, { frameOf: player.frameOfLine, onLine: seekLine, onTime: seekTime });
 
@@ -46,12 +48,12 @@ function init() {
     { class: 'pkm-report' },
     renderHeader(data),
     transport.element,
-    h('main', null, h('div', { class: 'top-grid' }, h('section', { class: 'panel summary-panel' }, summary), scenePanel.element), chartsSection, stiffness.element, workspace.element, calibration.element),
+    h('main', null, h('div', { class: 'top-grid' }, h('section', { class: 'panel summary-panel' }, summary), scenePanel.element), chartsSection, servo.element, stiffness.element, workspace.element, calibration.element),
     h('footer', { class: 'page-footer' }, [data.generated_by, data.format].filter(Boolean).join(' · ')),
   );
   document.body.appendChild(root);
 
-  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel, stiffness, workspace, calibration });
+  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel, stiffness, workspace, calibration, servo });
   marks.dom = performance.now();
   const hasScene = scenePanel.start();
   marks.scene = performance.now();
@@ -68,6 +70,7 @@ function init() {
   stiffness.start();
   workspace.start();
   calibration.start();
+  servo.start();
   marks.charts = performance.now();
   if (hasScene) view.render();
   marks.render = performance.now();

@@ -11,10 +11,10 @@ const PLOT_HEIGHT = 230;
 const MAP_HEIGHT = 320;
 const FONT = '11px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
 const LABEL_FONT = '600 11px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
-const AXIS = { stroke: '#56616b', grid: { stroke: '#e7ebee', width: 1 }, ticks: { stroke: '#cfd6dc', width: 1, size: 4 }, font: FONT, labelFont: LABEL_FONT, labelSize: 16 };
+export const AXIS = { stroke: '#56616b', grid: { stroke: '#e7ebee', width: 1 }, ticks: { stroke: '#cfd6dc', width: 1, size: 4 }, font: FONT, labelFont: LABEL_FONT, labelSize: 16 };
 const NONE_COLOR = '#d5d9dd';
 
-function card(id, title, sub, body) {
+export function card(id, title, sub, body) {
   return h(
     'article',
     { class: 'chart-card', id, dataset: { chartId: id } },
@@ -24,7 +24,7 @@ function card(id, title, sub, body) {
 }
 
 /** Tick labels of a log axis: 1, 2, 5 × powers of ten, others blank. */
-function logTicks(u, splits) {
+export function logTicks(u, splits) {
   return splits.map((v) => {
     if (!(v > 0)) return '';
     const m = v / 10 ** Math.floor(Math.log10(v) + 1e-9);
@@ -78,6 +78,31 @@ function mapRange(map) {
   return Number.isFinite(lo) ? [lo, hi] : null;
 }
 
+/** The axes of a heat map of cells (first, middle and last value of each axis, and their labels). */
+export function labelMapAxes(ctx, map, pad, plotW, plotH, cellW, cellH) {
+  const nx = map.x.length;
+  const ny = map.y.length;
+  ctx.fillStyle = '#56616b';
+  ctx.font = FONT;
+  ctx.textAlign = 'center';
+  ctx.textBaseline = 'top';
+  const ticks = (n) => [...new Set([0, Math.floor((n - 1) / 2), n - 1])];
+  for (const i of ticks(nx)) ctx.fillText(fmtNum(map.x[i], 4), pad.left + (i + 0.5) * cellW, pad.top + plotH + 4);
+  ctx.font = LABEL_FONT;
+  ctx.fillText(map.x_label, pad.left + plotW / 2, pad.top + plotH + 18);
+  ctx.font = FONT;
+  ctx.textAlign = 'right';
+  ctx.textBaseline = 'middle';
+  for (const j of ticks(ny)) ctx.fillText(fmtNum(map.y[j], 4), pad.left - 6, pad.top + (ny - 1 - j + 0.5) * cellH);
+  ctx.save();
+  ctx.translate(12, pad.top + plotH / 2);
+  ctx.rotate(-Math.PI / 2);
+  ctx.textAlign = 'center';
+  ctx.font = LABEL_FONT;
+  ctx.fillText(map.y_label, 0, 0);
+  ctx.restore();
+}
+
 function drawMap(map, canvas, width) {
   const pr = window.devicePixelRatio || 1;
   const nx = map.x.length;
@@ -112,25 +137,7 @@ function drawMap(map, canvas, width) {
       ctx.fillRect(pad.left + i * cellW, pad.top + (ny - 1 - j) * cellH, Math.ceil(cellW), Math.ceil(cellH));
     }
   }
-  ctx.fillStyle = '#56616b';
-  ctx.font = FONT;
-  ctx.textAlign = 'center';
-  ctx.textBaseline = 'top';
-  const ticks = (n) => [...new Set([0, Math.floor((n - 1) / 2), n - 1])];
-  for (const i of ticks(nx)) ctx.fillText(fmtNum(map.x[i], 4), pad.left + (i + 0.5) * cellW, pad.top + plotH + 4);
-  ctx.font = LABEL_FONT;
-  ctx.fillText(map.x_label, pad.left + plotW / 2, pad.top + plotH + 18);
-  ctx.font = FONT;
-  ctx.textAlign = 'right';
-  ctx.textBaseline = 'middle';
-  for (const j of ticks(ny)) ctx.fillText(fmtNum(map.y[j], 4), pad.left - 6, pad.top + (ny - 1 - j + 0.5) * cellH);
-  ctx.save();
-  ctx.translate(12, pad.top + plotH / 2);
-  ctx.rotate(-Math.PI / 2);
-  ctx.textAlign = 'center';
-  ctx.font = LABEL_FONT;
-  ctx.fillText(map.y_label, 0, 0);
-  ctx.restore();
+  labelMapAxes(ctx, map, pad, plotW, plotH, cellW, cellH);
   return { pad, cellW, cellH, nx, ny };
 }
 

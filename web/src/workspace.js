@@ -6,10 +6,9 @@
 import { h } from './dom.js';
 import { errorRgb, ERROR_GRADIENT } from './colors.js';
 import { fmtNum } from './format.js';
+import { labelMapAxes } from './stiffness.js';
 
 const MAP_HEIGHT = 360;
-const FONT = '11px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
-const LABEL_FONT = '600 11px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
 const NONE_COLOR = '#d5d9dd';
 // The browser test reads cells back (cellColour): a canvas read often is kept in memory, where that is cheap.
 const CONTEXT = { willReadFrequently: true };
@@ -143,25 +142,7 @@ export function createWorkspaceMap(data) {
         ctx.fillRect(pad.left + i * cellW, pad.top + (ny - 1 - j) * cellH, Math.ceil(cellW), Math.ceil(cellH));
       }
     }
-    ctx.fillStyle = '#56616b';
-    ctx.font = FONT;
-    ctx.textAlign = 'center';
-    ctx.textBaseline = 'top';
-    const ticks = (n) => [...new Set([0, Math.floor((n - 1) / 2), n - 1])];
-    for (const i of ticks(nx)) ctx.fillText(fmtNum(map.x[i], 4), pad.left + (i + 0.5) * cellW, pad.top + plotH + 4);
-    ctx.font = LABEL_FONT;
-    ctx.fillText(map.x_label, pad.left + plotW / 2, pad.top + plotH + 18);
-    ctx.font = FONT;
-    ctx.textAlign = 'right';
-    ctx.textBaseline = 'middle';
-    for (const j of ticks(ny)) ctx.fillText(fmtNum(map.y[j], 4), pad.left - 6, pad.top + (ny - 1 - j + 0.5) * cellH);
-    ctx.save();
-    ctx.translate(12, pad.top + plotH / 2);
-    ctx.rotate(-Math.PI / 2);
-    ctx.textAlign = 'center';
-    ctx.font = LABEL_FONT;
-    ctx.fillText(map.y_label, 0, 0);
-    ctx.restore();
+    labelMapAxes(ctx, map, pad, plotW, plotH, cellW, cellH);
     layout = { pad, cellW, cellH, pr };
     drawLegend(layer, range);
     buttons.forEach((b, k) => b.classList.toggle('active', k === layerIndex));

@@ -3,7 +3,8 @@
 // and at each pose what was measured of the platform — positions of targets fixed to it (a laser tracker, a
 // CMM touching the vertices of the dissertation's triangular plate), or the length of a ballbar between the
 // tool point and a ball fixed to the table. Read from CSV by io/measurement_file.hpp; made by simulation in
-// calibration/simulate.hpp.
+// calibration/simulate.hpp. Plain data in io/ (the layer of its readers, below the calibration in
+// pkm::motion); the namespace stays pkm::calibration.
 #include <Eigen/Core>
 #include <string>
 #include <vector>

@@ -1,0 +1,41 @@
+#pragma once
+// `pkm servo PLAN_DIR` as one library call (issue 17; docs/servo.md): reads a planned run back
+// (actuators.csv: the set points; path.csv: the commanded tool poses and their program lines), designs each
+// drive's loops from the machine file's `servo:` section, refuses unstable loops, simulates all drives on the
+// coupled plant, and writes servo.csv (per tick: following error, force and command per drive, contour error
+// and lag), servo_bode.csv (each drive's loops, continuous and sampled) and servo_summary.json, as one output
+// set, into the run's directory (or another).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/result.hpp"
+#include "machine/machine.hpp"
+#include "servo/loop_analysis.hpp"
+#include "servo/servo_run.hpp"
+
+namespace pkm::pipeline {
+
+struct ServoJob {
+  std::string plan_directory;  ///< the output directory of pkm plan
+  std::string out_directory;   ///< where to write ("": the plan directory)
+  bool coupled = true;         ///< false: each drive on its own inertia only (servo_run.hpp)
+  int inertia_stride = 10;     ///< the plant's inertia is evaluated every this many servo ticks
+  int bode_points = 120;
+  std::string report_path;  ///< the HTML report of the run with the servo plots ("": none)
+};
+
+struct ServoProgramResult {
+  servo::LoopDesign design;
+  std::vector<servo::ChannelAnalysis> analysis;  ///< per drive
+  servo::ServoSummary summary;
+  nlohmann::json json;  ///< servo_summary.json as written
+};
+
+/// Reads the run of `job.plan_directory` back: set points, commanded poses, lines and the servo period.
+/// Errors name the file, its line and column.
+Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std::string& plan_directory);
+
+Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob& job);
+
+}  // namespace pkm::pipeline

@@ -1,0 +1,355 @@
+#include "servo/servo_run.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+namespace pkm::servo {
+namespace {
+
+constexpr std::size_t kServoListedLines = 20;
+constexpr std::size_t kServoWorstLines = 10;
+constexpr int kServoStabilitySamples = 400;
+
+// The inverse of the plant's inertia as the run models it: the full matrix, or its diagonal alone.
+DriveMatrix servo_inverse_inertia(const DriveMatrix& inertia, int drives, bool coupled) {
+  DriveMatrix out = DriveMatrix::Zero();
+  if (coupled) {
+    out.topLeftCorner(drives, drives) = inertia.topLeftCorner(drives, drives).inverse();
+  } else {
+    for (int j = 0; j < drives; ++j) out(j, j) = 1.0 / inertia(j, j);
+  }
+  return out;
+}
+
+void servo_add_line(std::vector<int>& lines, int line) {
+  if (std::find(lines.begin(), lines.end(), line) != lines.end()) return;
+  if (lines.size() < kServoListedLines)
+    lines.insert(std::upper_bound(lines.begin(), lines.end(), line), line);
+}
+
+// The tool point with the coordinates the mechanism does not control set to zero: they follow, and are no
+// contour error (as the plan's own path error).
+Eigen::Vector3d servo_controlled_point(const Eigen::Vector3d& point, const AxisMask& axes) {
+  Eigen::Vector3d out = point;
+  for (int c = 0; c < 3; ++c) {
+    if (!axes.controlled[c]) out[c] = 0.0;
+  }
+  return out;
+}
+
+// Nearest point of the commanded polyline (ticks first … last) to `point`: distance and the time there.
+std::pair<double, double> servo_nearest_on_path(const std::vector<Eigen::Vector3d>& path,
+                                                const std::vector<double>& time_s, std::size_t first,
+                                                std::size_t last, const Eigen::Vector3d& point) {
+  double best = (point - path[first]).norm(), best_time = time_s[first];
+  for (std::size_t j = first + 1; j <= last; ++j) {
+    const Eigen::Vector3d a = path[j - 1], chord = path[j] - a;
+    const double length2 = chord.squaredNorm();
+    const double f = length2 > 0.0 ? std::clamp((point - a).dot(chord) / length2, 0.0, 1.0) : 0.0;
+    const double d = (point - (a + f * chord)).norm();
+    if (d <= best) {  // the latest of equally near points: where the path stands still, no lag
+      best = d;
+      best_time = time_s[j - 1] + f * (time_s[j] - time_s[j - 1]);
+    }
+  }
+  return {best, best_time};
+}
+
+// Balances `map` by a diagonal similarity (Parlett–Reinsch): the loop's states span many decades (positions
+// in mm, forces of 10⁸ N per mm of error at T_μ = 10 µs), and the eigenvalues of the unbalanced matrix lose
+// digits enough to misjudge its stability.
+void servo_balance(Eigen::MatrixXd& map) {
+  const Eigen::Index n = map.rows();
+  for (int sweep = 0; sweep < 40; ++sweep) {
+    bool changed = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double column = map.col(i).cwiseAbs().sum() - std::abs(map(i, i));
+      const double row = map.row(i).cwiseAbs().sum() - std::abs(map(i, i));
+      if (!(column > 0.0) || !(row > 0.0)) continue;
+      const double f = std::sqrt(row / column);
+      if (std::abs(std::log(f)) < 0.01) continue;
+      map.col(i) *= f;
+      map.row(i) /= f;
+      changed = true;
+    }
+    if (!changed) break;
+  }
+}
+
+}  // namespace
+
+Result<int> loop_steps_per_period(const Machine& machine, double period_s) {
+  const double loop_s = machine.servo.loop_period_s > 0.0 ? machine.servo.loop_period_s : period_s;
+  const double ratio = period_s / loop_s;
+  const int steps = static_cast<int>(std::lround(ratio));
+  if (steps < 1 || std::abs(ratio - steps) > 1e-6 * ratio) {
+    const int line = machine.servo.loop_period_line;
+    return Error{ErrorCode::bad_input,
+                 fmt::format("{}:{}: servo.loop_period_ms: {} ms does not divide the servo period {} ms",
+                             machine.source, line, loop_s * 1e3, period_s * 1e3),
+                 ErrorLocation{machine.source, line, 0, "servo.loop_period_ms"}};
+  }
+  return steps;
+}
+
+Status check_stability(const Machine& machine, const LoopDesign& design, const ServoPlant& plant,
+                       const ServoRunInput& input, int steps_per_period, const ServoRunOptions& options) {
+  LoopDesign linear = design;  // the limits off: the loop period's map is then linear in the state
+  for (int j = 0; j < design.drives; ++j) {
+    linear.channels[j].error_max = std::numeric_limits<double>::infinity();
+    linear.channels[j].command_max = std::numeric_limits<double>::infinity();
+  }
+  const double period_s = input.period_s / steps_per_period;
+  ServoSimulator simulator(linear, period_s);
+  const std::size_t samples = plant.inertia.size();
+  const std::size_t every = std::max<std::size_t>(1, samples / kServoStabilitySamples);
+  // The states that carry the loops' dynamics: each drive's position, speed and force, and its speed integral
+  // and filtered reference where the tuning has them (otherwise they hold nothing from one step to the next).
+  std::vector<int> states;
+  for (int kind = 0; kind < 5; ++kind) {
+    for (int j = 0; j < design.drives; ++j) {
+      const ChannelGains& g = design.channels[j];
+      if ((kind == 3 && !(g.speed_integral_s > 0.0)) || (kind == 4 && !(g.reference_filter_s > 0.0)))
+        continue;
+      states.push_back(kind * kMaxActuators + j);
+    }
+  }
+  const int n = static_cast<int>(states.size());
+  const DriveVector zero = DriveVector::Zero();
+  for (std::size_t i = 0; i < samples; i += every) {
+    simulator.set_inverse_inertia(servo_inverse_inertia(plant.inertia[i], design.drives, options.coupled));
+    Eigen::MatrixXd map(n, n);
+    for (int c = 0; c < n; ++c) {
+      simulator.set_state(ServoSimulator::StateVector::Unit(states[static_cast<std::size_t>(c)]));
+      simulator.step(zero, zero);
+      const ServoSimulator::StateVector after = simulator.state();
+      for (int r = 0; r < n; ++r) map(r, c) = after[states[static_cast<std::size_t>(r)]];
+    }
+    servo_balance(map);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eigen(map, false);
+    const auto& values = eigen.eigenvalues();
+    int worst = 0;
+    for (int c = 1; c < n; ++c) {
+      if (std::abs(values[c]) > std::abs(values[worst])) worst = c;
+    }
+    const double radius = std::abs(values[worst]);
+    if (radius >= 1.0 - 1e-12 || !std::isfinite(radius)) {
+      const std::size_t tick = std::min(i * static_cast<std::size_t>(plant.stride), input.line.size() - 1);
+      // The drive whose states the unstable mode moves most.
+      const Eigen::EigenSolver<Eigen::MatrixXd> vectors(map, true);
+      const Eigen::VectorXd mode = vectors.eigenvectors().col(worst).cwiseAbs();
+      int drive = 0;
+      double largest = -1.0;
+      for (int c = 0; c < n; ++c) {
+        if (mode[c] > largest) {
+          largest = mode[c];
+          drive = states[static_cast<std::size_t>(c)] % kMaxActuators;
+        }
+      }
+      const DriveServo& d = machine.servo.drives[drive];
+      const int line = machine.servo.tuning == ServoTuning::explicit_gains ? d.speed_gain_line : d.line;
+      return Error{ErrorCode::bad_input,
+                   fmt::format("{}:{}: servo.drives[{}]: the loops are unstable at program line {} (spectral "
+                               "radius {:.4f} of the {} ms loop period; {} tuning): lower the gains or the "
+                               "loop period",
+                               machine.source, line, drive, input.line[tick], radius, period_s * 1e3,
+                               to_string(machine.servo.tuning)),
+                   ErrorLocation{machine.source, line, 0, fmt::format("servo.drives[{}]", drive)}};
+    }
+  }
+  return ok_status();
+}
+
+Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design, const ServoPlant& plant,
+                               const ServoRunInput& input, int steps_per_period,
+                               const ServoRunOptions& options,
+                               const std::function<Status(const ServoTick&)>& on_tick) {
+  const Mechanism& mechanism = *machine.mechanism;
+  const int m = design.drives;
+  const std::size_t ticks = input.time_s.size();
+  ServoSummary summary;
+  summary.drives = m;
+  summary.period_s = input.period_s;
+  summary.loop_period_s = input.period_s / steps_per_period;
+  summary.coupled = options.coupled;
+  summary.has_machine_dynamics = plant.has_machine_dynamics;
+  if (ticks == 0) return summary;
+
+  // The coupling check along the run.
+  const ActuatorVector motors = motor_inertia(machine.servo, m);
+  for (std::size_t i = 0; i < plant.machine_inertia.size(); ++i) {
+    const DriveVector ratios = coupling_ratios(plant.machine_inertia[i], motors, m);
+    const int line = input.line[std::min(i * static_cast<std::size_t>(plant.stride), ticks - 1)];
+    for (int j = 0; j < m; ++j) {
+      DriveServoSummary& d = summary.drive[j];
+      if (ratios[j] > d.max_coupling_ratio) {
+        d.max_coupling_ratio = ratios[j];
+        d.max_coupling_line = line;
+      }
+      if (ratios[j] >= kCouplingRatioLimit) servo_add_line(d.coupled_lines, line);
+    }
+  }
+
+  const AxisMask axes = mechanism.controlled_axes();
+  // The commanded path: the ticks, and between each two the cubic through the four around them at
+  // mid-period ((−p0 + 9p1 + 9p2 − p3)/16), so that the polyline's chords leave out 1/16 of a curve's
+  // sagitta v²T²/8R and a perfect servo's contour error is the plan's own path error.
+  std::vector<Eigen::Vector3d> tick_points(ticks);
+  for (std::size_t k = 0; k < ticks; ++k)
+    tick_points[k] = servo_controlled_point(input.pose[k].position_mm, axes);
+  std::vector<Eigen::Vector3d> path(2 * ticks - 1);
+  std::vector<double> path_time_s(2 * ticks - 1);
+  for (std::size_t k = 0; k < ticks; ++k) {
+    path[2 * k] = tick_points[k];
+    path_time_s[2 * k] = input.time_s[k];
+    if (k + 1 == ticks) break;
+    const Eigen::Vector3d& before = tick_points[k > 0 ? k - 1 : k];
+    const Eigen::Vector3d& after = tick_points[k + 2 < ticks ? k + 2 : k + 1];
+    path[2 * k + 1] = (9.0 * (tick_points[k] + tick_points[k + 1]) - before - after) / 16.0;
+    path_time_s[2 * k + 1] = 0.5 * (input.time_s[k] + input.time_s[k + 1]);
+  }
+  std::vector<double> commanded_speed(ticks, 0.0);
+  double fastest = 0.0;
+  for (std::size_t k = 1; k + 1 < ticks; ++k) {
+    commanded_speed[k] = (tick_points[k + 1] - tick_points[k - 1]).norm() / (2.0 * input.period_s);
+    fastest = std::max(fastest, commanded_speed[k]);
+  }
+  // How far back the nearest path point can be: a few times the position loop's time constant.
+  double slowest_s = input.period_s;
+  for (int j = 0; j < m; ++j) {
+    const ChannelGains& c = design.channels[j];
+    const double loop_s = c.position_gain_per_s > 0.0 ? 1.0 / c.position_gain_per_s : 0.0;
+    slowest_s = std::max(slowest_s, 4.0 * loop_s + 4.0 * c.lag_s + c.reference_filter_s);
+  }
+  const auto window = static_cast<std::size_t>(std::min(5000.0, std::ceil(slowest_s / input.period_s) + 2.0));
+
+  ServoSimulator simulator(design, summary.loop_period_s);
+  DriveVector load = plant.load[0];
+  simulator.set_load(load);
+  std::size_t inertia_sample = 0;
+  simulator.set_inverse_inertia(servo_inverse_inertia(plant.inertia[0], m, options.coupled));
+  DriveVector start = DriveVector::Zero();
+  start.head(m) = input.setpoint[0];
+  simulator.reset(start);
+
+  auto fk_workspace = mechanism.make_fk_workspace();
+  Pose guess = input.pose[0];
+  ActuatorVector actuators(m);
+  std::map<int, double> worst_by_line;
+  double contour_squares = 0.0;
+  long contour_count = 0;
+  std::vector<double> squares(m, 0.0);
+  // The contour error of the simulated positions at time `time_s`, searching the path back from tick `k`.
+  auto contour = [&](const DriveVector& position, std::size_t k, double time_s, double& lag_s) {
+    actuators = position.head(m);
+    auto fk = mechanism.forward_warm(actuators, guess, FkOptions{}, *fk_workspace);
+    if (!fk) {
+      ++summary.fk_failures;
+      lag_s = std::numeric_limits<double>::quiet_NaN();
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    guess = fk->pose;
+    const std::size_t first = k > window ? 2 * (k - window) : 0;
+    const std::size_t last = 2 * std::min(k + 1, ticks - 1);
+    const auto [distance, at_s] = servo_nearest_on_path(path, path_time_s, first, last,
+                                                        servo_controlled_point(fk->pose.position_mm, axes));
+    // Where the path nearly stands still a tiny error (a static one under gravity, say) is a long time: the
+    // lag is given only where the commanded speed is at least a quarter of the run's fastest.
+    lag_s = commanded_speed[k] >= 0.25 * fastest ? time_s - at_s : std::numeric_limits<double>::quiet_NaN();
+    return distance;
+  };
+  auto record_contour = [&](double error_mm, double lag_s, double time_s, int line) {
+    if (!std::isfinite(error_mm)) return;
+    contour_squares += error_mm * error_mm;
+    ++contour_count;
+    if (error_mm > summary.max_contour_error_mm) {
+      summary.max_contour_error_mm = error_mm;
+      summary.max_contour_time_s = time_s;
+      summary.max_contour_line = line;
+    }
+    if (std::isfinite(lag_s)) summary.max_lag_s = std::max(summary.max_lag_s, lag_s);
+    double& worst = worst_by_line[line];
+    worst = std::max(worst, error_mm);
+  };
+
+  DriveVector setpoint = start, previous = start, reference, speed;
+  for (std::size_t k = 0; k < ticks; ++k) {
+    ServoTick tick;
+    if (k > 0) {
+      previous.head(m) = input.setpoint[k - 1];
+      setpoint.head(m) = input.setpoint[k];
+      if (const std::size_t sample = (k - 1) / static_cast<std::size_t>(plant.stride);
+          sample != inertia_sample && sample < plant.inertia.size()) {
+        inertia_sample = sample;
+        simulator.set_inverse_inertia(servo_inverse_inertia(plant.inertia[sample], m, options.coupled));
+      }
+      load = 0.5 * (plant.load[k - 1] + plant.load[k]);
+      simulator.set_load(load);
+      speed = (setpoint - previous) / input.period_s;
+      DriveVector mid = previous;
+      for (int i = 0; i < steps_per_period; ++i) {
+        reference = previous + (static_cast<double>(i) / steps_per_period) * (setpoint - previous);
+        simulator.step(reference, speed);
+        tick.clamps.error |= simulator.clamps().error;
+        tick.clamps.command |= simulator.clamps().command;
+        for (int j = 0; j < m; ++j) {
+          if (simulator.clamps().error & (1u << j)) ++summary.drive[j].error_clamps;
+          if (simulator.clamps().command & (1u << j)) ++summary.drive[j].command_clamps;
+        }
+        if (2 * i + 1 == steps_per_period) mid = simulator.mid_position();
+        if (2 * (i + 1) == steps_per_period) mid = simulator.position();
+      }
+      if (!simulator.finite()) {
+        return make_error(ErrorCode::not_converged,
+                          fmt::format("program line {} (t = {:.4f} s): the servo loops diverged",
+                                      input.line[k], input.time_s[k]));
+      }
+      double mid_lag = 0.0;
+      const double mid_s = input.time_s[k] - 0.5 * input.period_s;
+      record_contour(contour(mid, k, mid_s, mid_lag), mid_lag, mid_s, input.line[k]);
+    }
+    tick.time_s = input.time_s[k];
+    tick.line = input.line[k];
+    tick.drives = m;
+    tick.setpoint = &setpoint;
+    tick.position = &simulator.position();
+    tick.force = &simulator.force();
+    tick.command = &simulator.command();
+    tick.contour_error_mm = contour(simulator.position(), k, tick.time_s, tick.lag_s);
+    record_contour(tick.contour_error_mm, tick.lag_s, tick.time_s, tick.line);
+    for (int j = 0; j < m; ++j) {
+      DriveServoSummary& d = summary.drive[j];
+      const double error = setpoint[j] - simulator.position()[j];
+      squares[j] += error * error;
+      if (std::abs(error) > d.max_following_error) {
+        d.max_following_error = std::abs(error);
+        d.max_following_time_s = tick.time_s;
+        d.max_following_line = tick.line;
+      }
+      d.peak_force = std::max(d.peak_force, std::abs(simulator.force()[j]));
+      d.peak_command = std::max(d.peak_command, std::abs(simulator.command()[j]));
+      if ((tick.clamps.error | tick.clamps.command) & (1u << j)) servo_add_line(d.clamp_lines, tick.line);
+    }
+    if (on_tick) {
+      if (Status sent = on_tick(tick); !sent) return sent.error();
+    }
+  }
+  summary.ticks = static_cast<long>(ticks);
+  for (int j = 0; j < m; ++j)
+    summary.drive[j].rms_following_error = std::sqrt(squares[j] / static_cast<double>(ticks));
+  if (contour_count > 0) summary.rms_contour_error_mm = std::sqrt(contour_squares / contour_count);
+  std::vector<std::pair<int, double>> lines(worst_by_line.begin(), worst_by_line.end());
+  std::sort(lines.begin(), lines.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (lines.size() > kServoWorstLines) lines.resize(kServoWorstLines);
+  summary.worst_lines = std::move(lines);
+  return summary;
+}
+
+}  // namespace pkm::servo
