@@ -43,8 +43,9 @@ test: build
 # Built as on a machine without Node.js (PKM_NODE not found): the library, CLI and tests must configure and build
 # without the report page, and configuring must say so in one line (the Release build of make test has the page).
 # Built with clang (installed with the fuzzing tools): it compiles the instrumented code about 1.5x faster than GCC.
-# The same build has the libFuzzer harnesses (PKM_FUZZ: coverage instrumentation too), run for
-# SANITIZE_FUZZ_SECONDS each after the tests: CI builds the library once for both. A fresh build directory
+# The same build has the libFuzzer harnesses (PKM_FUZZ), run for SANITIZE_FUZZ_SECONDS each after the tests over
+# their seeds and reproducers: CI builds the library once for both. Only the harnesses have coverage
+# instrumentation there (on the whole library it doubles the suite's time); make fuzz is the coverage-guided run. A fresh build directory
 # starts from tests/sanitizer_test_costs.txt (the tests above 1 s under the sanitizers, as ctest measured them),
 # so that ctest starts the longest first and the two cores end together.
 sanitize:

@@ -114,6 +114,21 @@ TEST(NoAllocation, KinematicsOfEveryShippedMachine) {
   }
 }
 
+// `count` poses stepping away from home along every controlled coordinate (0.1 mm, 0.0005 rad a step),
+// completed, with their actuator values: a short path on which the warm solvers are timed.
+void noalloc_short_path(const Mechanism& mech, int count, std::vector<Pose>& poses,
+                        std::vector<ActuatorVector>& values) {
+  const AxisMask mask = mech.controlled_axes();
+  for (int i = 0; i < count; ++i) {
+    PoseVector c = vector_from_pose(mech.convention(), mech.home());
+    for (int axis = 0; axis < 6; ++axis) {
+      if (mask.controlled[axis]) c[axis] += (axis < 3 ? 0.1 : 0.0005) * i;
+    }
+    poses.push_back(*mech.complete_pose(pose_from_vector(mech.convention(), c)));
+    values.push_back(*mech.inverse(poses.back()));
+  }
+}
+
 // The servo-loop forms of the interface: warm FK with the mechanism's own workspace (made once, before the
 // count), hot IK into caller storage, and the twist Jacobian, along a short path of every shipped machine.
 TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
@@ -127,14 +142,7 @@ TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
     constexpr int kPoses = 20;
     std::vector<Pose> poses;
     std::vector<ActuatorVector> values;
-    for (int i = 0; i < kPoses; ++i) {
-      PoseVector c = vector_from_pose(mech.convention(), mech.home());
-      for (int axis = 0; axis < 6; ++axis) {
-        if (mask.controlled[axis]) c[axis] += (axis < 3 ? 0.1 : 0.0005) * i;
-      }
-      poses.push_back(*mech.complete_pose(pose_from_vector(mech.convention(), c)));
-      values.push_back(*mech.inverse(poses.back()));
-    }
+    noalloc_short_path(mech, kPoses, poses, values);
     auto workspace = mech.make_fk_workspace();
     const FkOptions options;
     std::array<double, kMaxActuators> hot{};
@@ -173,18 +181,10 @@ TEST(NoAllocation, WarmForwardAndHotInverseThroughActuatorOffsets) {
       offsets[j] = (m.mechanism->actuators_are_angles() ? 1e-3 : 0.5) * (j % 2 ? 1 : -1);
     const auto decorated = with_actuator_offsets(std::move(clone.value()), offsets);
     const Mechanism& mech = *decorated;
-    const AxisMask mask = mech.controlled_axes();
     constexpr int kPoses = 20;
     std::vector<Pose> poses;
     std::vector<ActuatorVector> values;
-    for (int i = 0; i < kPoses; ++i) {
-      PoseVector c = vector_from_pose(mech.convention(), mech.home());
-      for (int axis = 0; axis < 6; ++axis) {
-        if (mask.controlled[axis]) c[axis] += (axis < 3 ? 0.1 : 0.0005) * i;
-      }
-      poses.push_back(*mech.complete_pose(pose_from_vector(mech.convention(), c)));
-      values.push_back(*mech.inverse(poses.back()));
-    }
+    noalloc_short_path(mech, kPoses, poses, values);
     auto workspace = mech.make_fk_workspace();
     const FkOptions options;
     std::array<double, kMaxActuators> hot{};

@@ -103,20 +103,29 @@ export function labelMapAxes(ctx, map, pad, plotW, plotH, cellW, cellH) {
   ctx.restore();
 }
 
-function drawMap(map, canvas, width) {
+/**
+ * Sizes a heat map's canvas to `width` × `height` CSS pixels at the device's pixel ratio, clears it, and gives
+ * the context and the plot area inside the margins (`padLeft` for the second axis' numbers).
+ */
+export function startMapCanvas(canvas, width, height, padLeft, contextOptions) {
   const pr = window.devicePixelRatio || 1;
+  const pad = { left: padLeft, right: 12, top: 8, bottom: 34 };
+  const plotW = Math.max(40, width - pad.left - pad.right);
+  const plotH = height - pad.top - pad.bottom;
+  canvas.width = Math.round(width * pr);
+  canvas.height = Math.round(height * pr);
+  canvas.style.width = `${width}px`;
+  canvas.style.height = `${height}px`;
+  const ctx = canvas.getContext('2d', contextOptions);
+  ctx.setTransform(pr, 0, 0, pr, 0, 0);
+  ctx.clearRect(0, 0, width, height);
+  return { ctx, pad, plotW, plotH, pr };
+}
+
+function drawMap(map, canvas, width) {
   const nx = map.x.length;
   const ny = map.y.length;
-  const pad = { left: 56, right: 12, top: 8, bottom: 34 };
-  const plotW = Math.max(40, width - pad.left - pad.right);
-  const plotH = MAP_HEIGHT - pad.top - pad.bottom;
-  canvas.width = Math.round(width * pr);
-  canvas.height = Math.round(MAP_HEIGHT * pr);
-  canvas.style.width = `${width}px`;
-  canvas.style.height = `${MAP_HEIGHT}px`;
-  const ctx = canvas.getContext('2d');
-  ctx.setTransform(pr, 0, 0, pr, 0, 0);
-  ctx.clearRect(0, 0, width, MAP_HEIGHT);
+  const { ctx, pad, plotW, plotH } = startMapCanvas(canvas, width, MAP_HEIGHT, 56);
   const range = mapRange(map);
   const cellW = plotW / nx;
   const cellH = plotH / ny;

@@ -6,7 +6,7 @@
 import { h } from './dom.js';
 import { errorRgb, ERROR_GRADIENT } from './colors.js';
 import { fmtNum } from './format.js';
-import { labelMapAxes } from './stiffness.js';
+import { labelMapAxes, startMapCanvas } from './stiffness.js';
 
 const MAP_HEIGHT = 360;
 const NONE_COLOR = '#d5d9dd';
@@ -120,17 +120,7 @@ export function createWorkspaceMap(data) {
     const layer = map.layers[layerIndex];
     const range = ranges[layerIndex];
     const width = Math.max(200, Math.floor(body.clientWidth));
-    const pr = window.devicePixelRatio || 1;
-    const pad = { left: 60, right: 12, top: 8, bottom: 34 };
-    const plotW = Math.max(40, width - pad.left - pad.right);
-    const plotH = MAP_HEIGHT - pad.top - pad.bottom;
-    canvas.width = Math.round(width * pr);
-    canvas.height = Math.round(MAP_HEIGHT * pr);
-    canvas.style.width = `${width}px`;
-    canvas.style.height = `${MAP_HEIGHT}px`;
-    const ctx = canvas.getContext('2d', CONTEXT);
-    ctx.setTransform(pr, 0, 0, pr, 0, 0);
-    ctx.clearRect(0, 0, width, MAP_HEIGHT);
+    const { ctx, pad, plotW, plotH, pr } = startMapCanvas(canvas, width, MAP_HEIGHT, 60, CONTEXT);
     const cellW = plotW / nx;
     const cellH = plotH / ny;
     const rgb = [0, 0, 0];
