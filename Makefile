@@ -51,7 +51,7 @@ test: build
 sanitize:
 	@bash scripts/install-deps.sh --with-fuzz
 	@mkdir -p build-asan
-	@cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g0" -DPKM_SANITIZE=ON -DPKM_FUZZ=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
+	@cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g0" -DPKM_SANITIZE=ON -DPKM_PYTHON=OFF -DPKM_FUZZ=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
 	@grep "building without the HTML report page: Node.js or npm not found" build-asan/configure.log
 	@cmake --build build-asan -j $(JOBS)
 	@mkdir -p build-asan/Testing/Temporary
@@ -87,7 +87,7 @@ screenshots: build
 fuzz:
 	@bash scripts/install-deps.sh --with-fuzz
 	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-		-DPKM_FUZZ=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON > /dev/null
+		-DPKM_FUZZ=ON -DPKM_PYTHON=OFF -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON > /dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target pkm_fuzzers
 	@bash fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
 

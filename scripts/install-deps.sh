@@ -12,6 +12,7 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev libnlopt-cxx-dev libboost-dev libtbb-dev
   clang-format cppcheck
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-matplotlib
 )
 if [ "${1:-}" = "--with-linuxcnc" ]; then packages+=(linuxcnc-uspace); fi
 if [ "${1:-}" = "--with-browser" ]; then packages+=(chromium); fi

@@ -1,0 +1,30 @@
+#pragma once
+// What the binding files share: the registration function of each, and the one way a library error becomes a
+// typed Python exception (pkm/_errors.py holds the exception classes; raise_error builds one from an Error).
+#include <pybind11/pybind11.h>
+
+#include <utility>
+
+#include "core/result.hpp"
+
+namespace pkm::python {
+
+namespace py = pybind11;
+
+void bind_errors(py::module_& m);
+void bind_machine(py::module_& m);
+void bind_batch(py::module_& m);
+void bind_pipeline(py::module_& m);
+void bind_analyses(py::module_& m);
+
+/// Raises the pkm exception for `error` (its class from the error code and location: pkm.MachineFileError for a
+/// located error in a machine file, pkm.UnreachableError, ...), with `file`, `line`, `column` and `key` set.
+[[noreturn]] void raise_error(const Error& error);
+
+template <class T>
+T unwrap(Result<T>&& result) {
+  if (!result) raise_error(result.error());
+  return std::move(result).value();
+}
+
+}  // namespace pkm::python
