@@ -8,7 +8,8 @@
 # headless Chromium), make screenshots (the same, saving docs/images/report-*.png),
 # make fuzz (the libFuzzer harnesses in fuzz/, built with clang + ASan/UBSan in build-fuzz/, FUZZ_SECONDS each),
 # make nightly (the generated-program property suite at nightly size), make bench, make format, make tidy,
-# make consumer (installs pkm::kinematics into build/install and builds and runs examples/consumer against it).
+# make consumer (installs pkm::kinematics into build/install and builds and runs examples/consumer against it),
+# make python (the Python module pkm in build/python, docs/python.md).
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
@@ -17,7 +18,7 @@ FUZZ_SECONDS ?= 60
 # make sanitize also runs each libFuzzer harness for this long (0: not at all); its build has them.
 SANITIZE_FUZZ_SECONDS ?= 6
 
-.PHONY: deps configure build run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
+.PHONY: deps configure build python run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -29,6 +30,10 @@ configure: deps
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
+
+# The Python module alone (docs/python.md): build/python/pkm, used as PYTHONPATH=build/python /usr/bin/python3.
+python: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target pkm_python
 
 # make run builds only what its job needs (the library and the CLI); make test builds the tests too.
 run: configure
@@ -61,7 +66,7 @@ sanitize:
 
 # Formatting must match .clang-format; cppcheck must find nothing.
 lint: deps
-	@find src apps tests bench fuzz -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
+	@find src apps tests bench fuzz python -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
 	@cppcheck -j $(JOBS) --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
 		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps
 	@echo "lint: clean"
@@ -113,7 +118,7 @@ consumer: build
 	$(BUILD)/consumer/pkm_plan_consumer examples/machines/hexapod_ch5.yaml
 
 format:
-	@find src apps tests bench fuzz -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+	@find src apps tests bench fuzz python -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
 
 tidy: build
 	@find src apps -name '*.cpp' | xargs clang-tidy -p $(BUILD) --quiet

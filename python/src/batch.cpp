@@ -1,7 +1,14 @@
+// Batch kinematics as methods of pkm.Machine (registered by bind_machine): IK, FK, Jacobians, conditioning.
+#include "batch_bindings.hpp"
 #include "bindings.hpp"
 
 namespace pkm::python {
 
-void bind_batch(py::module_& /*m*/) {}
+void bind_batch(py::module_& m) {
+  MachineClass cls = machine_class(m);
+  bind_ik(cls, m);
+  bind_fk(cls);
+  bind_jacobian(cls);
+}
 
 }  // namespace pkm::python

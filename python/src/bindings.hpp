@@ -17,8 +17,13 @@ void bind_batch(py::module_& m);
 void bind_pipeline(py::module_& m);
 void bind_analyses(py::module_& m);
 
-/// Raises the pkm exception for `error` (its class from the error code and location: pkm.MachineFileError for a
-/// located error in a machine file, pkm.UnreachableError, ...), with `file`, `line`, `column` and `key` set.
+/// The code's name as pkm/_errors.py spells it ("bad_input", "not_converged", "wrong_branch", "io", ...): the
+/// enumerator's name, unlike to_string(), which is the message's words ("bad input").
+const char* error_code_name(ErrorCode code);
+
+/// Raises the pkm exception for `error` (its class from the error code and location: pkm.MachineFileError for
+/// a located error in a machine file, pkm.UnreachableError, ...), with `file`, `line`, `column` and `key`
+/// set.
 [[noreturn]] void raise_error(const Error& error);
 
 template <class T>

@@ -5,10 +5,33 @@
 
 namespace pkm::python {
 
+const char* error_code_name(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::bad_input:
+      return "bad_input";
+    case ErrorCode::unreachable:
+      return "unreachable";
+    case ErrorCode::not_converged:
+      return "not_converged";
+    case ErrorCode::singular:
+      return "singular";
+    case ErrorCode::wrong_branch:
+      return "wrong_branch";
+    case ErrorCode::limit_exceeded:
+      return "limit_exceeded";
+    case ErrorCode::unsupported:
+      return "unsupported";
+    case ErrorCode::io:
+      return "io";
+  }
+  return "error";
+}
+
 void raise_error(const Error& error) {
   const py::object make = py::module_::import("pkm._errors").attr("from_error");
   const ErrorLocation& at = error.location;
-  const py::object exception = make(to_string(error.code), error.message, at.file, at.line, at.column, at.key);
+  const py::object exception =
+      make(error_code_name(error.code), error.message, at.file, at.line, at.column, at.key);
   PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(exception.ptr())), exception.ptr());
   throw py::error_already_set();
 }
@@ -18,10 +41,10 @@ void bind_errors(py::module_& m) {
       "_raise_test_error",
       [](const std::string& code, const std::string& message) {
         ErrorCode value = ErrorCode::bad_input;
-        for (ErrorCode c : {ErrorCode::bad_input, ErrorCode::unreachable, ErrorCode::not_converged,
-                            ErrorCode::singular, ErrorCode::wrong_branch, ErrorCode::limit_exceeded,
-                            ErrorCode::unsupported, ErrorCode::io}) {
-          if (code == to_string(c)) value = c;
+        for (ErrorCode c :
+             {ErrorCode::bad_input, ErrorCode::unreachable, ErrorCode::not_converged, ErrorCode::singular,
+              ErrorCode::wrong_branch, ErrorCode::limit_exceeded, ErrorCode::unsupported, ErrorCode::io}) {
+          if (code == error_code_name(c)) value = c;
         }
         raise_error(make_error(value, message));
       },

@@ -19,9 +19,10 @@ namespace {
 constexpr double kMinPeriodMs = 0.1;
 constexpr double kMaxPeriodMs = 20.0;
 
-// The job's drive parameters, completed from the machine file's `drives:` and checked.
-Result<interpolation::InterpolateOptions> resolved_options(const Machine& machine,
-                                                           const InterpolateJob& job) {
+}  // namespace
+
+Result<interpolation::InterpolateOptions> interpolate_options_for(const Machine& machine,
+                                                                  const InterpolateJob& job) {
   interpolation::InterpolateOptions options = job.options;
   // The machine file's reader checks drives.period_ms the same way; this is for a period given in the job.
   const double period_ms = job.period_ms ? *job.period_ms : machine.drives.period_ms.value_or(1.0);
@@ -48,10 +49,8 @@ Result<interpolation::InterpolateOptions> resolved_options(const Machine& machin
   return options;
 }
 
-}  // namespace
-
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job) {
-  auto options = resolved_options(machine, job);
+  auto options = interpolate_options_for(machine, job);
   if (!options) return options.error();
   auto program = load_program_for(machine, job.program_path, job.tool_table_path);
   if (!program) return program.error();

@@ -45,4 +45,9 @@ struct InterpolateProgramResult {
 
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job);
 
+/// The options interpolate_program runs with: the job's, its drive parameters completed from the machine
+/// file's `drives:` (then the defaults) and checked (for runs that keep the periods in memory: Python).
+Result<interpolation::InterpolateOptions> interpolate_options_for(const Machine& machine,
+                                                                  const InterpolateJob& job);
+
 }  // namespace pkm::pipeline

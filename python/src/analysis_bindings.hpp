@@ -1,0 +1,12 @@
+#pragma once
+// The analysis functions of the module (analyses.cpp registers them): one file each.
+#include <pybind11/pybind11.h>
+
+namespace pkm::python {
+
+void bind_modes(pybind11::module_& m);
+void bind_compliance(pybind11::module_& m);
+void bind_workspace(pybind11::module_& m);
+void bind_file_runs(pybind11::module_& m);  ///< pkm.stiffness, pkm.servo
+
+}  // namespace pkm::python

@@ -1,0 +1,113 @@
+// pkm.stiffness and pkm.servo: the library runs that write an output set (pipeline/stiffness_program.hpp,
+// pipeline/servo_program.hpp), run into `out_dir` or a temporary directory; their summary comes back as a
+// dict and their per-point / per-tick CSV as a dict of numpy columns (numpy.genfromtxt; empty fields are
+// NaN).
+#include "analysis_bindings.hpp"
+#include "bindings.hpp"
+#include "json_to_python.hpp"
+#include "pipeline/servo_program.hpp"
+#include "pipeline/stiffness_program.hpp"
+#include "pipeline_law_options.hpp"
+#include "pipeline_support.hpp"
+#include "run_directory.hpp"
+#include "stiffness/compliance_model.hpp"
+
+namespace pkm::python {
+
+namespace {
+
+/// The CSV's columns by their header names.
+py::dict csv_columns(const std::string& path) {
+  const py::object numpy = py::module_::import("numpy");
+  const py::object table = numpy.attr("genfromtxt")(path, py::arg("delimiter") = ",", py::arg("names") = true,
+                                                    py::arg("dtype") = "f8", py::arg("ndmin") = 1);
+  py::dict columns;
+  for (const py::handle name : table.attr("dtype").attr("names")) columns[name] = table[name];
+  return columns;
+}
+
+}  // namespace
+
+void bind_file_runs(py::module_& m) {
+  m.def(
+      "stiffness",
+      [](const Machine& machine, const py::object& program_path, const std::string& load,
+         std::optional<std::string> model, double step_mm, const py::object& compensate_path,
+         const py::object& out_dir) {
+        pipeline::StiffnessJob job;
+        job.program_path = optional_path(program_path);
+        job.load = unwrap(load_model(load));
+        if (model) {
+          job.model = stiffness::stiffness_model_from_string(*model);
+          if (!job.model)
+            throw py::value_error("model '" + *model + "': expected struts, struts_joints or frame");
+        }
+        if (!(step_mm > 0.0 && step_mm <= 1000.0))
+          throw py::value_error("step_mm: expected a length in (0, 1000] mm");
+        job.step_mm = step_mm;
+        job.compensated_path = optional_path(compensate_path);
+        const RunDirectory directory(out_dir);
+        job.out_directory = directory.path();
+        Result<pipeline::StiffnessProgramResult> result = make_error(ErrorCode::bad_input, "not computed");
+        {
+          py::gil_scoped_release released;
+          result = pipeline::stiffness_program(machine, job);
+        }
+        const pipeline::StiffnessProgramResult r = unwrap(std::move(result));
+        py::dict out;
+        out["summary"] = python_from_json(r.summary);
+        out["points"] = csv_columns(directory.file("points.csv"));
+        return out;
+      },
+      py::arg("machine"), py::arg("program_path"), py::arg("load"), py::kw_only(),
+      py::arg("model") = py::none(), py::arg("step_mm") = 1.0, py::arg("compensate_path") = py::none(),
+      py::arg("out_dir") = py::none(),
+      R"doc(The tool's deflection under a cutting load along a part program, as `pkm stiffness`.
+
+load: the CLI's --load text (e.g. 'tangential=200,normal=50', or '@FILE'); model: 'struts', 'struts_joints'
+or 'frame' (default: the fullest the machine file describes); step_mm: points at most this far apart;
+compensate_path: also write the pre-compensated program there; out_dir: keep the CLI's points.csv and
+summary.json there (default: a temporary directory, removed).
+
+Returns a dict: summary (the summary.json of `pkm stiffness`) and points: the columns of points.csv by name
+(index, line, time_s, x_mm ... a_deg ..., fx_N ..., dx_mm, dy_mm, dz_mm, rx_rad ..., normal_mm, F1_N ...),
+each a float64 array with one value per path point.)doc");
+
+  m.def(
+      "servo",
+      [](const Machine& machine, const py::object& plan_dir, bool coupled, int inertia_stride,
+         int bode_points, const py::object& out_dir) {
+        if (inertia_stride < 1) throw py::value_error("inertia_stride must be at least 1");
+        if (bode_points < 2) throw py::value_error("bode_points must be at least 2");
+        pipeline::ServoJob job;
+        job.plan_directory = optional_path(plan_dir);
+        job.coupled = coupled;
+        job.inertia_stride = inertia_stride;
+        job.bode_points = bode_points;
+        const RunDirectory directory(out_dir);
+        job.out_directory = directory.path();
+        Result<pipeline::ServoProgramResult> result = make_error(ErrorCode::bad_input, "not computed");
+        {
+          py::gil_scoped_release released;
+          result = pipeline::servo_program(machine, job);
+        }
+        const pipeline::ServoProgramResult r = unwrap(std::move(result));
+        py::dict out;
+        out["summary"] = python_from_json(r.json);
+        out["ticks"] = csv_columns(directory.file("servo.csv"));
+        return out;
+      },
+      py::arg("machine"), py::arg("plan_dir"), py::kw_only(), py::arg("coupled") = true,
+      py::arg("inertia_stride") = 10, py::arg("bode_points") = 120, py::arg("out_dir") = py::none(),
+      R"doc(A planned run through the drives' cascaded servo loops (the machine file's servo: section), as
+`pkm servo PLAN_DIR`.
+
+plan_dir: the directory pkm.plan(..., out_dir=...) or `pkm plan --out` wrote; coupled: the drives on the
+coupled plant (False: each on its own inertia); inertia_stride: the plant's inertia every this many ticks;
+out_dir: keep servo.csv, servo_bode.csv and servo_summary.json there (default: a temporary directory).
+
+Returns a dict: summary (servo_summary.json as a dict) and ticks: the columns of servo.csv by name (time_s,
+line, e1_mm ... following errors, f1_N ... forces, u1 ... commands, contour_error_mm, lag_ms, ...).)doc");
+}
+
+}  // namespace pkm::python

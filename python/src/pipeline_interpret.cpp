@@ -1,0 +1,48 @@
+// pkm.interpret: the canonical moves of a part program, as `pkm interpret --json` prints them.
+#include "bindings.hpp"
+#include "pipeline/load_program.hpp"
+#include "pipeline_bindings.hpp"
+#include "pipeline_program_arrays.hpp"
+#include "pipeline_support.hpp"
+#include "program/part_program.hpp"
+
+namespace pkm::python {
+
+void bind_interpret(py::module_& m) {
+  m.def(
+      "interpret",
+      [](const py::object& program_path, const Machine* machine, const py::object& tool_table) {
+        const std::string path = optional_path(program_path);
+        const std::string table = optional_path(tool_table);
+        Result<program::CanonicalProgram> program = make_error(ErrorCode::bad_input, "not interpreted");
+        {
+          py::gil_scoped_release released;
+          if (machine != nullptr) {
+            program = pipeline::load_program_for(*machine, path, table);
+          } else {
+            program::InterpretOptions options;
+            options.tool_table_path = table;
+            program = program::load_part_program(path, options);
+          }
+        }
+        return program_arrays(unwrap(std::move(program)));
+      },
+      py::arg("program_path"), py::arg("machine") = py::none(), py::arg("tool_table") = py::none(),
+      R"doc(The canonical moves of a part program: G-code, or APT CL data by extension (.cl, .cls, .apt).
+
+Without `machine` the interpreter starts at program zero, as `pkm interpret` does; with a machine it starts
+where that machine's programs start (its home tool point in program coordinates, and its A B C), as `pkm plan`
+reads the program. `tool_table`: a LinuxCNC tool table for G43 (lengths in mm).
+
+Returns a dict of arrays, one row per move (M moves):
+  line (M,) int32: 1-based source line; kind (M,) str: rapid | line | arc | dwell;
+  end_mm (M, 3): end of the tool tip, program coordinates; end_abc_deg (M, 3): A, B, C at the end, degrees;
+  tool_axis_given (M,) bool, tool_axis (M, 3): the programmed unit tool axis (CL data; NaN where not given);
+  center_mm, normal (M, 3): arc centre and unit axis (NaN for other moves); turns (M,) int32 (0: no arc);
+  feed_mm_min (M,); inverse_time_per_min (M,) (G93; NaN otherwise); dwell_s (M,); tool_length_mm (M,);
+  path_tolerance_mm (M,) (G64 P; NaN: none); exact_stop (M,) bool (G61);
+and source, events (list of (line, text)), start_mm, start_abc_deg, end_line.
+Raises pkm.ProgramError (file, line, column) for a malformed program, pkm.FileIOError if it cannot be read.)doc");
+}
+
+}  // namespace pkm::python

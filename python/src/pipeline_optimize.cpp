@@ -1,0 +1,144 @@
+// pkm.optimize: the post-processor of ch3 §3.6 (redundancy/optimize_program.hpp), as `pkm optimize` runs it:
+// the free coordinates chosen by a drive control law at every point, the metrics against holding them
+// constant, and the rewritten program.
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "bindings.hpp"
+#include "io/atomic_file.hpp"
+#include "json_to_python.hpp"
+#include "pipeline/load_program.hpp"
+#include "pipeline_bindings.hpp"
+#include "pipeline_law_options.hpp"
+#include "pipeline_program_arrays.hpp"
+#include "pipeline_support.hpp"
+#include "program/gcode_writer.hpp"
+
+namespace pkm::python {
+
+namespace {
+
+struct OptimizeRun {
+  redundancy::OptimizeResult result;
+  nlohmann::json summary;
+};
+
+Result<OptimizeRun> run_optimize(const Machine& machine, const std::string& program_path,
+                                 const std::string& tool_table, const LawArguments& arguments,
+                                 const std::string& out_path) {
+  auto options = optimize_options(arguments);
+  if (!options) return options.error();
+  auto program = pipeline::load_program_for(machine, program_path, tool_table);
+  if (!program) return program.error();
+  auto result = redundancy::optimize_program(*program, machine, *options);
+  if (!result) return result.error();
+  OptimizeRun run;
+  run.summary = redundancy::optimize_summary_json(*result, *options);
+  run.summary["machine"] = machine.source;
+  if (!out_path.empty()) {
+    program::GcodeWriteOptions write;
+    write.header_comments = {
+        fmt::format("pkm optimize: {} law ({} solver), free {} on {}", arguments.law, arguments.solver,
+                    arguments.free, machine.name),
+        fmt::format("from {}; sum of max strut increments {:.3f} mm (held constant: {:.3f} mm)", program_path,
+                    run.summary["opt_sum_mm"].get<double>(), run.summary["const_sum_mm"].get<double>())};
+    auto text = program::write_gcode(result->program, write);
+    if (!text) return text.error();
+    if (Status written = write_file_atomically(out_path, *text); !written) return written.error();
+    run.summary["out"] = out_path;
+  }
+  run.result = std::move(*result);
+  return run;
+}
+
+py::dict metrics_arrays(const redundancy::TrajectoryMetrics& metrics) {
+  py::dict out;
+  out["feasible"] = metrics.feasible;
+  out["increment_sum_mm"] = metrics.increment_sum_mm;
+  out["peak_force_N"] = metrics.peak_force_N;
+  out["energy_J"] = metrics.energy_J;
+  out["required_work_J"] = metrics.required_work_J;
+  out["max_increment_mm"] = numpy_from(std::vector<double>(metrics.max_increment_mm));
+  out["max_force_N"] = numpy_from(std::vector<double>(metrics.max_force_N));
+  out["cumulative_energy_J"] = numpy_from(std::vector<double>(metrics.cumulative_energy_J));
+  return out;
+}
+
+py::dict optimize_result(const Machine& machine, OptimizeRun&& run) {
+  const redundancy::OptimizeResult& r = run.result;
+  const redundancy::Trajectory& chosen = r.chosen().trajectory;
+  const auto points = static_cast<py::ssize_t>(r.points.points.size());
+  const int k = r.free_count;
+  const int n = machine.mechanism->actuator_count();
+  std::vector<double> free_rad, position_mm, actuators;
+  std::vector<std::int32_t> line;
+  for (std::size_t i = 0; i < r.points.points.size(); ++i) {
+    const redundancy::PathPoint& p = r.points.points[i];
+    line.push_back(p.line);
+    position_mm.insert(position_mm.end(), p.position_mm.data(), p.position_mm.data() + 3);
+    for (int c = 0; c < k; ++c) free_rad.push_back(i < chosen.values.size() ? chosen.values[i][c] : 0.0);
+    const bool has_node = i < chosen.nodes.size() && chosen.nodes[i].valid;
+    for (int j = 0; j < n; ++j)
+      actuators.push_back(has_node ? chosen.nodes[i].lengths[j] : std::numeric_limits<double>::quiet_NaN());
+  }
+  py::dict out;
+  out["summary"] = python_from_json(run.summary);
+  out["free_coordinates"] = py::cast(r.free_names);
+  out["line"] = numpy_from(std::move(line));
+  out["position_mm"] = numpy_from(std::move(position_mm), {points, 3});
+  out["free_rad"] = numpy_from(std::move(free_rad), {points, static_cast<py::ssize_t>(k)});
+  out[py::str("actuators_" + actuator_unit(*machine.mechanism))] =
+      numpy_from(std::move(actuators), {points, static_cast<py::ssize_t>(n)});
+  out["chosen"] = metrics_arrays(r.chosen().metrics);
+  out["constant"] = metrics_arrays(r.constant);
+  out["program"] = program_arrays(r.program);
+  return out;
+}
+
+}  // namespace
+
+void bind_optimize(py::module_& m) {
+  m.def(
+      "optimize",
+      [](const Machine& machine, const py::object& program_path, const std::string& law,
+         const std::string& free, std::optional<std::array<double, 2>> bounds_deg, double step_mm,
+         const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
+         std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
+         const std::string& load, const py::object& tool_table, const py::object& out_path) {
+        const LawArguments arguments{
+            law,         free,          bounds_deg,          step_mm, solver, energy_accounting,
+            force_model, force_limit_N, max_rate_deg_per_mm, load};
+        const std::string path = optional_path(program_path);
+        const std::string table = optional_path(tool_table);
+        const std::string out = optional_path(out_path);
+        Result<OptimizeRun> run = make_error(ErrorCode::bad_input, "not optimised");
+        {
+          py::gil_scoped_release released;
+          run = run_optimize(machine, path, table, arguments, out);
+        }
+        return optimize_result(machine, unwrap(std::move(run)));
+      },
+      py::arg("machine"), py::arg("program_path"), py::arg("law"), py::kw_only(), py::arg("free") = "spin",
+      py::arg("bounds_deg") = py::none(), py::arg("step_mm") = 1.0, py::arg("solver") = "greedy",
+      py::arg("energy_accounting") = "no-recovery", py::arg("force_model") = "statics",
+      py::arg("force_limit_N") = py::none(), py::arg("max_rate_deg_per_mm") = py::none(),
+      py::arg("load") = "", py::arg("tool_table") = py::none(), py::arg("out_path") = py::none(),
+      R"doc(Chooses the coordinates a program leaves free by a drive control law, as `pkm optimize`.
+
+law: 'increment' (Σ of the largest strut increments), 'force' or 'energy'; free: 'spin' (about the tool axis;
+planar: phi) or 'all'; bounds_deg (lo, hi) of every free coordinate (default start ± 30°); step_mm between
+optimised points; solver 'greedy' or 'global'; energy_accounting 'no-recovery' | 'braking-free' | 'recovery';
+force_model 'statics' | 'dynamics'; force_limit_N; max_rate_deg_per_mm (global solver); load: the CLI's
+--load text (e.g. 'tangential=200,normal=50' or '@FILE.yaml'); out_path: also write the rewritten G-code.
+
+Returns a dict: summary (the JSON `pkm optimize --json` prints: const_sum_mm, opt_sum_mm, peak forces,
+energies, ranges...), free_coordinates (names), and per optimised point (K points): line (K,) int32,
+position_mm (K, 3) tool point (base frame), free_rad (K, F) the chosen free coordinates, actuators_mm (K, n)
+(actuators_rad for angular actuators; NaN where unreachable); chosen and constant: the metrics of the law's
+trajectory and of holding the free coordinates constant (increment_sum_mm, peak_force_N, energy_J,
+required_work_J, feasible, and per point max_increment_mm, max_force_N, cumulative_energy_J (K,));
+program: the rewritten program as pkm.interpret returns it.)doc");
+}
+
+}  // namespace pkm::python

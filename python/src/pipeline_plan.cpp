@@ -1,0 +1,278 @@
+// pkm.plan: a part program planned on a machine, its servo-rate motion in memory (numpy arrays) and the same
+// summary `pkm plan` writes to summary.json. The ticks are streamed and measured as planning/plan_output.cpp
+// streams them into its CSVs (ServoStream, RunMonitor, RunDynamics), so the summaries agree exactly.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "bindings.hpp"
+#include "json_to_python.hpp"
+#include "pipeline/load_program.hpp"
+#include "pipeline_bindings.hpp"
+#include "pipeline_law_options.hpp"
+#include "pipeline_support.hpp"
+#include "planning/plan_output.hpp"
+#include "planning/run_monitor.hpp"
+#include "planning/servo_stream.hpp"
+
+namespace pkm::python {
+
+namespace {
+
+struct PlanArguments {
+  std::string program_path, tool_table;
+  planning::PlanOptions plan;
+  std::optional<LawArguments> law;
+  bool dynamics = false;
+  std::string load;
+  bool evaluate_path_error = true;
+  std::string out_dir;
+};
+
+/// The drive forces per tick (RunDynamics hands them on in order).
+struct DynamicsArrays {
+  std::vector<double> time_s, total, static_part, dynamic_part, power_W, command;
+};
+
+struct PlanRun {
+  planning::MotionPlan plan;
+  planning::RunSummary run;
+  double planning_s = 0.0;
+  nlohmann::json summary, law_summary;
+  int actuators = 0;
+  std::vector<double> time_s, s, path_speed, feed_cap, path_error, actuator_values, pose;
+  std::vector<std::int32_t> line, segment;
+  std::optional<DynamicsArrays> dynamics;
+};
+
+/// As plan_output.cpp: an error at a program line names the program file.
+Error at_program_line(const planning::MotionPlan& plan, const Error& error) {
+  Error located = error;
+  located.message = fmt::format("{}:{}: {}", plan.program_source, error.location.line, error.message);
+  located.location.file = plan.program_source;
+  return located;
+}
+
+void append(std::vector<double>& out, const ActuatorVector& values, int n) {
+  for (int j = 0; j < n; ++j) out.push_back(values[j]);
+}
+
+Status stream_ticks(const Machine& machine, const PlanArguments& a, const statics::LoadModel& load,
+                    PlanRun& r) {
+  const Mechanism& mechanism = *machine.mechanism;
+  const int n = mechanism.actuator_count();
+  r.actuators = n;
+  std::optional<dynamics::RunDynamics> drive_dynamics;
+  if (a.dynamics) {
+    if (!machine.dynamics.given()) {
+      return Error{ErrorCode::bad_input,
+                   fmt::format("{}: the machine file has no dynamics: section (masses and inertias, "
+                               "docs/machine-file.md): the drive forces cannot be computed",
+                               machine.source),
+                   ErrorLocation{machine.source, 0, 0, "dynamics"}};
+    }
+    r.dynamics.emplace();
+    DynamicsArrays& d = *r.dynamics;
+    drive_dynamics.emplace(
+        machine, r.plan.period_s,
+        [&d, n](const dynamics::TickDynamics& t) -> Status {
+          d.time_s.push_back(t.time_s);
+          append(d.total, t.forces.total, n);
+          append(d.static_part, t.forces.static_part, n);
+          append(d.dynamic_part, t.forces.dynamic_part, n);
+          append(d.power_W, t.power_W, n);
+          append(d.command, t.command_N, n);
+          return ok_status();
+        },
+        &load);
+  }
+  planning::ServoStream stream(r.plan, machine);
+  planning::RunMonitor monitor(r.plan, machine, a.plan.override_pct, a.evaluate_path_error);
+  const auto ticks = static_cast<std::size_t>(std::max(0L, stream.tick_count()));
+  for (auto* v : {&r.time_s, &r.s, &r.path_speed, &r.feed_cap, &r.path_error}) v->reserve(ticks);
+  r.actuator_values.reserve(ticks * static_cast<std::size_t>(n));
+  r.pose.reserve(ticks * 6);
+  planning::ServoTick tick;
+  while (stream.next(tick)) {
+    monitor.add(tick);
+    if (drive_dynamics) {
+      const bool cutting = !r.plan.path.segments[tick.segment].rapid;
+      if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose, cutting); !added)
+        return at_program_line(r.plan, added.error());
+    }
+    r.time_s.push_back(tick.time_s);
+    r.line.push_back(tick.line);
+    r.segment.push_back(tick.segment);
+    r.s.push_back(tick.s);
+    r.path_speed.push_back(tick.path_speed);
+    r.feed_cap.push_back(monitor.last_feed_cap());
+    r.path_error.push_back(monitor.last_path_error_mm());
+    append(r.actuator_values, tick.actuators, n);
+    const PoseVector v = vector_from_pose(mechanism.convention(), tick.pose);
+    r.pose.insert(r.pose.end(), v.data(), v.data() + 6);
+  }
+  if (stream.error()) return *stream.error();
+  r.run = monitor.summary();
+  if (drive_dynamics) {
+    if (Status finished = drive_dynamics->finish(); !finished)
+      return at_program_line(r.plan, finished.error());
+    r.run.dynamics = drive_dynamics->summary();
+  }
+  return ok_status();
+}
+
+Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
+  std::optional<redundancy::OptimizeOptions> law;
+  if (a.law) {
+    auto options = optimize_options(*a.law);
+    if (!options) return options.error();
+    law = std::move(*options);
+  }
+  auto load = load_model(a.load);
+  if (!load) return load.error();
+  auto program = pipeline::load_program_for(machine, a.program_path, a.tool_table);
+  if (!program) return program.error();
+  PlanRun r;
+  if (law) {
+    auto optimized = redundancy::optimize_program(*program, machine, *law);
+    if (!optimized) return optimized.error();
+    r.law_summary = redundancy::optimize_summary_json(*optimized, *law);
+    *program = std::move(optimized->program);
+  }
+  const auto started = std::chrono::steady_clock::now();
+  auto plan = planning::plan_motion(machine, *program, a.plan);
+  if (!plan) return plan.error();
+  r.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  r.plan = std::move(*plan);
+  if (Status streamed = stream_ticks(machine, a, *load, r); !streamed) return streamed.error();
+  r.summary = planning::summary_json(r.plan, machine, r.run);
+  if (!a.out_dir.empty()) {
+    // The CLI's files as well: the plan streamed once more into the output set.
+    planning::OutputOptions output;
+    output.override_pct = a.plan.override_pct;
+    output.evaluate_path_error = a.evaluate_path_error;
+    output.dynamics = a.dynamics;
+    output.dynamics_load = &*load;
+    auto written = planning::write_plan_outputs(r.plan, machine, a.out_dir, output);
+    if (!written) return written.error();
+  }
+  return r;
+}
+
+py::dict plan_result(const Machine& machine, PlanRun&& r) {
+  const auto ticks = static_cast<py::ssize_t>(r.time_s.size());
+  const auto n = static_cast<py::ssize_t>(r.actuators);
+  py::dict out;
+  out["summary"] = python_from_json(r.summary);
+  out["planning_time_s"] = r.planning_s;
+  if (!r.law_summary.is_null()) out["law"] = python_from_json(r.law_summary);
+  out["time_s"] = numpy_from(std::move(r.time_s));
+  out["line"] = numpy_from(std::move(r.line));
+  out["segment"] = numpy_from(std::move(r.segment));
+  out["s"] = numpy_from(std::move(r.s));
+  out["path_speed_mm_s"] = numpy_from(std::move(r.path_speed));
+  out["feed_cap_mm_s"] = numpy_from(std::move(r.feed_cap));
+  out["path_error_mm"] = numpy_from(std::move(r.path_error));
+  out[py::str("actuators_" + actuator_unit(*machine.mechanism))] =
+      numpy_from(std::move(r.actuator_values), {ticks, n});
+  out["pose"] = numpy_from(std::move(r.pose), {ticks, 6});
+  if (r.dynamics) {
+    DynamicsArrays& d = *r.dynamics;
+    const auto rows = static_cast<py::ssize_t>(d.time_s.size());
+    const std::string unit = drive_force_unit(*machine.mechanism);
+    py::dict forces;
+    forces["time_s"] = numpy_from(std::move(d.time_s));
+    forces[py::str("force_" + unit)] = numpy_from(std::move(d.total), {rows, n});
+    forces[py::str("static_force_" + unit)] = numpy_from(std::move(d.static_part), {rows, n});
+    forces[py::str("dynamic_force_" + unit)] = numpy_from(std::move(d.dynamic_part), {rows, n});
+    forces["power_W"] = numpy_from(std::move(d.power_W), {rows, n});
+    forces[py::str("command_" + unit)] = numpy_from(std::move(d.command), {rows, n});
+    out["dynamics"] = forces;
+  }
+  return out;
+}
+
+}  // namespace
+
+void bind_plan(py::module_& m) {
+  m.def(
+      "plan",
+      [](const Machine& machine, const py::object& program_path, std::optional<double> servo_period_ms,
+         double feed_override_pct, std::optional<double> blend_tolerance_mm, std::optional<std::string> law,
+         const std::string& free, std::optional<std::array<double, 2>> bounds_deg, double law_step_mm,
+         const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
+         std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
+         const std::string& load, bool dynamics, bool path_error, const py::object& tool_table,
+         const py::object& out_dir) {
+        PlanArguments a;
+        a.program_path = optional_path(program_path);
+        a.tool_table = optional_path(tool_table);
+        a.out_dir = optional_path(out_dir);
+        if (servo_period_ms) {
+          if (!(*servo_period_ms >= 0.01 && *servo_period_ms <= 1000.0))
+            throw py::value_error(
+                fmt::format("servo_period_ms {}: expected 0.01 … 1000 ms", *servo_period_ms));
+          a.plan.rate_hz = 1000.0 / *servo_period_ms;
+        }
+        if (!(feed_override_pct > 0.0 && feed_override_pct <= 200.0))
+          throw py::value_error(
+              fmt::format("feed_override_pct {}: expected > 0 and ≤ 200 %", feed_override_pct));
+        a.plan.override_pct = feed_override_pct;
+        if (blend_tolerance_mm) {
+          if (!(*blend_tolerance_mm >= 0.0 && *blend_tolerance_mm <= 100.0))
+            throw py::value_error(
+                fmt::format("blend_tolerance_mm {}: expected 0 … 100 mm", *blend_tolerance_mm));
+          a.plan.path_tolerance_mm = blend_tolerance_mm;
+        }
+        if (law) {
+          a.law = LawArguments{
+              *law,        free,          bounds_deg,          law_step_mm, solver, energy_accounting,
+              force_model, force_limit_N, max_rate_deg_per_mm, load};
+        }
+        a.dynamics = dynamics;
+        a.load = load;
+        a.evaluate_path_error = path_error;
+        Result<PlanRun> run = make_error(ErrorCode::bad_input, "not planned");
+        {
+          py::gil_scoped_release released;
+          run = run_plan(machine, a);
+        }
+        return plan_result(machine, unwrap(std::move(run)));
+      },
+      py::arg("machine"), py::arg("program_path"), py::kw_only(), py::arg("servo_period_ms") = py::none(),
+      py::arg("feed_override_pct") = 100.0, py::arg("blend_tolerance_mm") = py::none(),
+      py::arg("law") = py::none(), py::arg("free") = "spin", py::arg("bounds_deg") = py::none(),
+      py::arg("law_step_mm") = 1.0, py::arg("solver") = "greedy",
+      py::arg("energy_accounting") = "no-recovery", py::arg("force_model") = "statics",
+      py::arg("force_limit_N") = py::none(), py::arg("max_rate_deg_per_mm") = py::none(),
+      py::arg("load") = "", py::arg("dynamics") = false, py::arg("path_error") = true,
+      py::arg("tool_table") = py::none(), py::arg("out_dir") = py::none(),
+      R"doc(Plans a part program on `machine` and returns its servo-rate motion, as `pkm plan` does.
+
+Arguments (the CLI's options): servo_period_ms (default 1 ms, --rate 1000/period), feed_override_pct (0 < … ≤
+200), blend_tolerance_mm (corner blending; default the machine file's; 0: exact stop), path_error (FK of the
+actuators at every mid-period, as without --no-path-error), tool_table (G43), out_dir (also write the CLI's
+actuators.csv, path.csv, summary.json and with dynamics forces.csv there).
+law ('increment' | 'force' | 'energy'): first choose the coordinates the program leaves free by that drive
+control law, as pkm.optimize does, with free, bounds_deg (lo, hi), law_step_mm, solver, energy_accounting,
+force_model, force_limit_N, max_rate_deg_per_mm and load (the CLI's --load text, e.g.
+'tangential=200,normal=50'; also the process load of the dynamics).
+dynamics: also the drive forces, power and energy at every tick (the machine file's dynamics: section).
+
+Returns a dict:
+  summary: the summary.json of `pkm plan` as a dict (same keys and numbers); law: the law's summary (with law);
+  planning_time_s; per servo tick (T ticks, n actuators):
+  time_s (T,), line (T,) int32 source line, segment (T,) int32, s (T,) path parameter,
+  path_speed_mm_s (T,), feed_cap_mm_s (T,) the speed the programmed feed allows,
+  path_error_mm (T,) (NaN where not evaluated), actuators_mm (T, n) (actuators_rad for angular actuators),
+  pose (T, 6) the commanded pose [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad], base frame, machine convention;
+  with dynamics, dynamics: a dict with time_s, force_N, static_force_N, dynamic_force_N, command_N (T, n)
+  (_Nmm for angular drives) and power_W (T, n).
+Raises pkm.ProgramError for a malformed program, pkm.LimitExceededError / pkm.UnreachableError where the
+program leaves the machine's limits, pkm.InputError (ValueError) for a bad option, and for dynamics on a
+machine without a dynamics: section (key 'dynamics').)doc");
+}
+
+}  // namespace pkm::python

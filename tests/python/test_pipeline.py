@@ -1,0 +1,246 @@
+"""pkm.interpret, pkm.plan, pkm.interpolate and pkm.optimize against the CLI on the shipped examples.
+
+The CLI ($PKM_BINARY) and the module run the same library; the summaries must agree to 1e-12 and the arrays
+must agree with the CSVs the CLI writes (to their printed precision) and with the summaries' own extremes.
+"""
+
+import json
+import math
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pkm
+
+SOURCE = Path(os.environ.get("PKM_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+PKM = os.environ.get("PKM_BINARY", "pkm")
+MACHINES = SOURCE / "examples" / "machines"
+PROGRAMS = SOURCE / "examples" / "programs"
+
+
+def machine_path(name):
+    return str(MACHINES / f"{name}.yaml")
+
+
+def program_path(name):
+    return str(PROGRAMS / name)
+
+
+def cli(*args):
+    done = subprocess.run([PKM, *map(str, args)], capture_output=True, text=True, check=True)
+    return done.stdout
+
+
+def assert_same(actual, expected, where="summary", skip=()):
+    """Equal JSON-like values: numbers to 1e-12 (relative), everything else exactly."""
+    if isinstance(expected, dict):
+        assert isinstance(actual, dict), where
+        keys = set(expected) - set(skip)
+        assert keys <= set(actual), f"{where}: missing {sorted(keys - set(actual))}"
+        for key in keys:
+            assert_same(actual[key], expected[key], f"{where}.{key}", skip)
+    elif isinstance(expected, list):
+        assert len(actual) == len(expected), where
+        for i, (a, e) in enumerate(zip(actual, expected)):
+            assert_same(a, e, f"{where}[{i}]", skip)
+    elif isinstance(expected, float) or isinstance(actual, float):
+        assert math.isclose(actual, expected, rel_tol=1e-12, abs_tol=1e-12), f"{where}: {actual} != {expected}"
+    else:
+        assert actual == expected, f"{where}: {actual!r} != {expected!r}"
+
+
+@pytest.fixture(scope="module")
+def ch5():
+    return pkm.Machine.load(machine_path("hexapod_ch5"))
+
+
+# --- interpret ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("program", ["circle.ngc", "pocket.ngc", "ball_end_5axis.cl"])
+def test_interpret_matches_cli(program):
+    moves = pkm.interpret(program_path(program))
+    expected = json.loads(cli("interpret", program_path(program), "--json"))
+    assert len(moves["line"]) == len(expected) > 0
+    assert moves["end_mm"].shape == (len(expected), 3) and moves["end_mm"].dtype == np.float64
+    for i, e in enumerate(expected):
+        assert moves["line"][i] == e["line"]
+        assert moves["kind"][i] == e["kind"]
+        np.testing.assert_array_equal(np.concatenate([moves["end_mm"][i], moves["end_abc_deg"][i]]), e["end"])
+        assert moves["feed_mm_min"][i] == e["feed_mm_min"]
+        if e["kind"] == "arc":
+            np.testing.assert_array_equal(moves["center_mm"][i], e["center"])
+            np.testing.assert_array_equal(moves["normal"][i], e["normal"])
+            assert moves["turns"][i] == e["turns"]
+        else:
+            assert np.isnan(moves["center_mm"][i]).all()
+        if "dwell_s" in e:
+            assert moves["dwell_s"][i] == e["dwell_s"]
+
+
+def test_interpret_with_machine_starts_at_its_home(ch5):
+    # ch5's program zero is its home tool point, so the start is program zero either way; the moves agree.
+    alone = pkm.interpret(program_path("ch5_line.ngc"))
+    planned = pkm.interpret(program_path("ch5_line.ngc"), ch5)
+    np.testing.assert_array_equal(planned["start_mm"], [0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(planned["end_mm"], alone["end_mm"])
+
+
+def test_program_error_has_line_and_column(tmp_path):
+    bad = tmp_path / "bad.ngc"
+    bad.write_text("G21 G90\nG1 X10 F100\nG1 X20 Y\nM2\n")
+    with pytest.raises(pkm.ProgramError) as caught:
+        pkm.interpret(bad)
+    error = caught.value
+    # The CLI says where: "bad.ngc:3:8: Y word without a number".
+    completed = subprocess.run([PKM, "interpret", str(bad)], capture_output=True, text=True)
+    assert completed.returncode != 0
+    assert f"{bad}:{error.line}:{error.column}:" in completed.stderr
+    assert (error.file, error.line, error.column) == (str(bad), 3, 8)
+    assert isinstance(error, ValueError)
+
+
+def test_missing_program_is_a_file_error(tmp_path):
+    with pytest.raises(pkm.FileIOError):
+        pkm.interpret(tmp_path / "absent.ngc")
+
+
+# --- plan --------------------------------------------------------------------------------------------------
+
+PLAN_PAIRS = [("hexapod_ch5", "ch5_line.ngc"), ("planar3", "planar_circle.ngc"),
+              ("hexapod_ch3", "hexapod_circle.ngc")]
+
+
+@pytest.mark.parametrize("machine_name,program", PLAN_PAIRS)
+def test_plan_summary_and_arrays_match_cli(tmp_path, machine_name, program):
+    machine = pkm.Machine.load(machine_path(machine_name))
+    result = pkm.plan(machine, program_path(program))
+    cli("plan", program_path(program), "--machine", machine_path(machine_name), "--out", tmp_path)
+    expected = json.loads((tmp_path / "summary.json").read_text())
+    summary = result["summary"]
+    assert_same(summary, expected)
+
+    ticks = summary["ticks"]
+    unit = summary["actuator_unit"]
+    key = "actuators_mm" if unit == "mm" else "actuators_rad"
+    q = result[key]
+    n = len(summary["actuators"])
+    assert q.shape == (ticks, n) and result["pose"].shape == (ticks, 6) and result["time_s"].shape == (ticks,)
+    np.testing.assert_allclose(np.diff(result["time_s"]), 1.0 / summary["rate_hz"], rtol=0, atol=1e-12)
+    # The summary's extremes are those of the arrays.
+    scale = 1.0 if unit == "mm" else 180.0 / math.pi
+    for j, a in enumerate(summary["actuators"]):
+        assert math.isclose(q[:, j].min() * scale, a["min_position"], rel_tol=1e-12)
+        assert math.isclose(q[:, j].max() * scale, a["max_position"], rel_tol=1e-12)
+    assert math.isclose(np.nanmax(result["path_error_mm"]), summary["max_path_error_mm"], rel_tol=1e-12)
+    # actuators.csv holds the same ticks at six decimals.
+    csv = np.loadtxt(tmp_path / "actuators.csv", delimiter=",", skiprows=1)
+    assert csv.shape == (ticks, n + 1)
+    np.testing.assert_allclose(csv[:, 0], result["time_s"], atol=6e-7)
+    np.testing.assert_allclose(csv[:, 1:], q * scale, atol=6e-7)
+    lines = np.loadtxt(tmp_path / "path.csv", delimiter=",", skiprows=1, usecols=1, dtype=np.int64)
+    np.testing.assert_array_equal(lines, result["line"])
+
+
+def test_plan_options_match_cli(tmp_path, ch5):
+    result = pkm.plan(ch5, program_path("circle.ngc"), servo_period_ms=2.0, feed_override_pct=50.0,
+                      blend_tolerance_mm=0.05, path_error=False)
+    cli("plan", program_path("circle.ngc"), "--machine", machine_path("hexapod_ch5"), "--rate", 500,
+        "--override", 50, "--tolerance", 0.05, "--no-path-error", "--out", tmp_path)
+    expected = json.loads((tmp_path / "summary.json").read_text())
+    assert_same(result["summary"], expected)
+    assert result["summary"]["rate_hz"] == 500.0
+    assert np.isnan(result["path_error_mm"]).all()
+
+
+def test_plan_with_a_law_matches_cli(tmp_path):
+    machine = pkm.Machine.load(machine_path("planar3"))
+    result = pkm.plan(machine, program_path("planar_circle.ngc"), law="increment")
+    printed = json.loads(cli("plan", program_path("planar_circle.ngc"), "--machine", machine_path("planar3"),
+                             "--law", "increment", "--out", tmp_path, "--json"))
+    assert_same(result["summary"], json.loads((tmp_path / "summary.json").read_text()))
+    assert_same(result["law"], printed["redundancy"], skip={"seconds"})
+    # The law turns the platform (φ, the third angle); the program as written holds it constant.
+    assert np.ptp(result["pose"][:, 5]) > 1e-3
+    assert np.ptp(pkm.plan(machine, program_path("planar_circle.ngc"))["pose"][:, 5]) < 1e-12
+
+
+def test_plan_writes_the_cli_files_when_asked(tmp_path, ch5):
+    result = pkm.plan(ch5, program_path("ch5_line.ngc"), out_dir=tmp_path / "run")
+    written = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert_same(result["summary"], written)
+    assert (tmp_path / "run" / "actuators.csv").exists()
+
+
+def test_plan_dynamics_matches_cli(tmp_path, ch5):
+    result = pkm.plan(ch5, program_path("ch5_line.ngc"), dynamics=True)
+    cli("plan", program_path("ch5_line.ngc"), "--machine", machine_path("hexapod_ch5"), "--dynamics", "--out",
+        tmp_path)
+    expected = json.loads((tmp_path / "summary.json").read_text())
+    assert_same(result["summary"], expected)
+    d = result["dynamics"]
+    ticks = result["summary"]["ticks"]
+    assert d["force_N"].shape == (ticks, 6) and d["power_W"].shape == (ticks, 6)
+    np.testing.assert_array_equal(d["time_s"], result["time_s"])
+    np.testing.assert_allclose(d["force_N"], d["static_force_N"] + d["dynamic_force_N"], rtol=1e-12, atol=1e-9)
+    for j, drive in enumerate(result["summary"]["dynamics"]["drives"]):
+        assert math.isclose(np.abs(d["force_N"][:, j]).max(), drive["peak_force_N"], rel_tol=1e-12)
+    forces = np.loadtxt(tmp_path / "forces.csv", delimiter=",", skiprows=1)
+    np.testing.assert_allclose(forces[:, 2:20:3], d["force_N"], atol=6e-5)
+
+
+def test_plan_dynamics_without_a_dynamics_section():
+    machine = pkm.Machine.load(machine_path("hexapod_genhexkins"))
+    with pytest.raises(pkm.InputError) as caught:
+        pkm.plan(machine, program_path("ch5_line.ngc"), dynamics=True)
+    assert caught.value.key == "dynamics"
+    assert "dynamics" in str(caught.value)
+
+
+def test_plan_rejects_bad_options(ch5):
+    with pytest.raises(ValueError):
+        pkm.plan(ch5, program_path("ch5_line.ngc"), feed_override_pct=0.0)
+    with pytest.raises(pkm.InputError):
+        pkm.plan(ch5, program_path("ch5_line.ngc"), law="fastest")
+
+
+# --- interpolate -------------------------------------------------------------------------------------------
+
+def test_interpolate_matches_cli(tmp_path, ch5):
+    result = pkm.interpolate(ch5, program_path("ch5_line.ngc"))
+    cli("interpolate", program_path("ch5_line.ngc"), "--machine", machine_path("hexapod_ch5"), "--out", tmp_path)
+    expected = json.loads((tmp_path / "summary.json").read_text())
+    timing = [k for k in expected if "compute_us" in k or k.startswith("period_time")]
+    assert_same(result["summary"], expected, skip=timing)
+    periods = expected["periods"]
+    assert result["steps"].shape == (periods, 6) and result["steps"].dtype == np.int32
+    steps = np.loadtxt(tmp_path / "steps.csv", delimiter=",", skiprows=1).astype(np.int64)
+    np.testing.assert_array_equal(steps[:, 3:9], result["steps"])
+    np.testing.assert_array_equal(steps[:, 9:15], result["position_steps"])
+    np.testing.assert_array_equal(steps[:, 2], result["line"])
+    ends = [a["end_position_steps"] for a in expected["actuators"]]
+    np.testing.assert_array_equal(result["position_steps"][-1], ends)
+    assert math.isclose(result["contour_error_mm"].max(), expected["max_contour_error_mm"], rel_tol=1e-12)
+
+
+# --- optimize ----------------------------------------------------------------------------------------------
+
+def test_optimize_matches_cli(tmp_path):
+    machine = pkm.Machine.load(machine_path("planar3"))
+    out = tmp_path / "py.ngc"
+    result = pkm.optimize(machine, program_path("planar_circle.ngc"), "increment", out_path=out)
+    expected = json.loads(cli("optimize", program_path("planar_circle.ngc"), "--machine", machine_path("planar3"),
+                              "--law", "increment", "--out", tmp_path / "cli.ngc", "--json"))
+    assert_same(result["summary"], expected, skip={"seconds", "out", "machine"})
+    assert out.read_text() == (tmp_path / "cli.ngc").read_text()
+    s = result["summary"]
+    chosen = result["chosen"]
+    assert chosen["increment_sum_mm"] == s["opt_sum_mm"]
+    assert result["constant"]["increment_sum_mm"] == s["const_sum_mm"]
+    assert math.isclose(chosen["max_increment_mm"].sum(), s["opt_sum_mm"], rel_tol=1e-9)
+    k = len(s["free_coordinates"])
+    assert result["free_rad"].shape == (s["points"], k)
+    lo, hi = np.radians(np.array(s["free_range_deg"]).T)
+    assert (result["free_rad"] >= lo - 1e-12).all() and (result["free_rad"] <= hi + 1e-12).all()
