@@ -6,25 +6,12 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "program/move_kind_name.hpp"
 #include "program/part_program.hpp"
 
 namespace pkm::cli {
 
 namespace {
-
-const char* kind_name(program::MoveKind kind) {
-  switch (kind) {
-    case program::MoveKind::rapid:
-      return "rapid";
-    case program::MoveKind::line:
-      return "line";
-    case program::MoveKind::arc:
-      return "arc";
-    case program::MoveKind::dwell:
-      return "dwell";
-  }
-  return "?";
-}
 
 nlohmann::json vector_json(const Eigen::Vector3d& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
@@ -33,7 +20,7 @@ nlohmann::json vector_json(const Eigen::Vector3d& v) {
 nlohmann::json move_json(const program::CanonicalMove& m) {
   nlohmann::json j;
   j["line"] = m.line;
-  j["kind"] = kind_name(m.kind);
+  j["kind"] = program::move_kind_name(m.kind);
   j["end"] = {m.end_mm.x(),      m.end_mm.y(),      m.end_mm.z(),
               m.end_abc_deg.x(), m.end_abc_deg.y(), m.end_abc_deg.z()};
   if (m.kind == program::MoveKind::arc) {
@@ -83,8 +70,8 @@ void print_table(const program::CanonicalProgram& program) {
     if (m.inverse_time) detail.append(fmt::format(" (G93 F{:g}/min)", m.inverse_time_per_min));
     std::cout << fmt::format(
         "{:>6}  {:<5}  {:>11.4f} {:>11.4f} {:>11.4f}  {:>9.4f} {:>9.4f} {:>9.4f}  {:>10.1f}  {}\n", m.line,
-        kind_name(m.kind), m.end_mm.x(), m.end_mm.y(), m.end_mm.z(), m.end_abc_deg.x(), m.end_abc_deg.y(),
-        m.end_abc_deg.z(), m.feed_mm_min, detail);
+        program::move_kind_name(m.kind), m.end_mm.x(), m.end_mm.y(), m.end_mm.z(), m.end_abc_deg.x(),
+        m.end_abc_deg.y(), m.end_abc_deg.z(), m.feed_mm_min, detail);
   }
   for (const program::ProgramEvent& e : program.events)
     std::cout << fmt::format("{:>6}  {}\n", e.line, e.what);

@@ -130,10 +130,13 @@ def plan(machine: Machine, program_path: str | os.PathLike[str], *, servo_period
          free: str = "spin", bounds_deg: Optional[tuple[float, float]] = None, law_step_mm: float = 1.0,
          solver: str = "greedy", energy_accounting: str = "no-recovery", force_model: str = "statics",
          force_limit_N: Optional[float] = None, max_rate_deg_per_mm: Optional[float] = None, load: str = "",
-         dynamics: bool = False, path_error: bool = True, tool_table: Optional[str | os.PathLike[str]] = None,
+         dynamics: bool = False, elastic: bool = False, path_error: bool = True,
+         tool_table: Optional[str | os.PathLike[str]] = None,
          out_dir: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
     """The planned servo-rate motion: summary (as summary.json), time_s, line, actuators_mm (T, n), pose (T, 6),
-    and with dynamics=True a dynamics dict (force_N, static_force_N, dynamic_force_N, power_W ...)."""
+    and with dynamics=True a dynamics dict (force_N, static_force_N, dynamic_force_N, power_W ...); with
+    elastic=True also elastic (response.csv's columns: time_s, line, deviation_mm (T, 3), rotation_deg,
+    tool_error_mm) and the elastic keys in summary['dynamics']."""
 
 def interpolate(machine: Machine, program_path: str | os.PathLike[str], *, method: str = "carrier-corrected",
                 servo_period_ms: Optional[float] = None, step_mm: Optional[float] = None,
@@ -167,3 +170,44 @@ def workspace(machine: Machine, *, plane: str = "xy", centre: Optional[ArrayLike
               out_dir: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
     """The workspace map: summary (as summary.json), pose (C, 6), status (C,), limit, det_sign, condition_number,
     delta_rho, sensitivity (C, 3), optional lowest_stiffness_N_um / lowest_frequency_Hz."""
+
+
+# --- calibration and dynamics ----------------------------------------------------------------------------------
+# (python/src/analysis_calibration.cpp, analysis_dynamics.cpp; docs/calibration.md, docs/dynamics.md)
+
+_PlanMethod = Literal["seven-pose", "random", "d-optimal"]
+_Path = str | os.PathLike[str]
+
+
+def calibrate_plan(machine: Machine, *, method: _PlanMethod = "d-optimal", poses: Optional[int] = None,
+                   box_mm: float = 50.0, box_deg: float = 10.0, strut_change_mm: float = 10.0,
+                   candidates: int = 400, held_out: int = 50, seed: int = 1, fixture_path: Optional[_Path] = None,
+                   plate_radius_mm: float = 100.0, ballbar_centre_mm: Optional[tuple[float, float, float]] = None,
+                   sigma_mm: float = 0.01, strict: bool = False, out_dir: Optional[_Path] = None) -> dict[str, Any]:
+    """The poses to measure and their predicted accuracy, as `pkm calibrate plan`: summary, plan (plan.csv's
+    columns), poses (P, 6), parameter_names (k,), predicted_sigma (k,), predicted_tool_error_mm (held_out,)."""
+
+def calibrate_simulate(machine: Machine, *, method: _PlanMethod = "d-optimal", poses: Optional[int] = None,
+                       box_mm: float = 50.0, box_deg: float = 10.0, strut_change_mm: float = 10.0,
+                       candidates: int = 400, held_out: int = 50, seed: int = 1,
+                       fixture_path: Optional[_Path] = None, plate_radius_mm: float = 100.0,
+                       ballbar_centre_mm: Optional[tuple[float, float, float]] = None, sigma_mm: float = 0.01,
+                       trials: int = 20, joint_error_mm: float = 0.1, offset_error_mm: float = 0.1,
+                       write_measurements: Optional[_Path] = None, noise_free: bool = False,
+                       out_dir: Optional[_Path] = None) -> dict[str, Any]:
+    """Monte-Carlo calibration trials, as `pkm calibrate simulate`: summary, trials (trials.csv's columns), and with
+    write_measurements true_parameters (true_parameters.csv's columns)."""
+
+def calibrate_identify(machine: Machine, measurements_path: _Path, *, fixture_path: Optional[_Path] = None,
+                       holdout: int = 0, strict: bool = False, calibrated_path: Optional[_Path] = None,
+                       report_path: Optional[_Path] = None, out_dir: Optional[_Path] = None) -> dict[str, Any]:
+    """Geometry and drive offsets from a measurement file, as `pkm calibrate identify`: summary, parameter_names,
+    parameter_units, nominal, identified, sigma, identifiable (k,), residuals_before_mm, residuals_after_mm (r,),
+    residuals / poses (the CSVs' columns), calibrated_text, calibrated_machine (a Machine)."""
+
+def inverse_dynamics(machine: Machine, poses: ArrayLike, velocities: ArrayLike, accelerations: ArrayLike, *,
+                     rates: Literal["twist", "coordinates"] = "twist",
+                     load_N_Nmm: Optional[Sequence[float]] = None, errors: _Errors = "raise",
+                     check_limits: bool = True) -> dict[str, _Array]:
+    """Rigid-body drive forces for (N, 6) poses and twists [v mm/s, ω rad/s] (rates='twist') or coordinate rates:
+    force_N, static_force_N, dynamic_force_N, actuator_rates_mm_s, power_W, each (N, n)."""

@@ -6,12 +6,10 @@ import concurrent.futures
 import multiprocessing
 import os
 import pickle
-import re
 import sys
 from typing import Any, List, Tuple
 
 from ._sweep_chunks import _ChunkResults, _run_chunk, _Task
-
 
 
 def _chunks(count: int, size: int) -> List[Tuple[int, int]]:

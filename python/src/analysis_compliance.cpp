@@ -29,12 +29,7 @@ void bind_compliance(py::module_& m) {
       [](const Machine& machine, const py::object& pose_value) {
         const Mechanism& mechanism = *machine.mechanism;
         const Pose pose = pose_from_python(mechanism, pose_value, "pose");
-        Result<stiffness::ToolCompliance> computed = make_error(ErrorCode::bad_input, "not computed");
-        {
-          py::gil_scoped_release released;
-          computed = run_compliance(machine, pose);
-        }
-        const stiffness::ToolCompliance c = unwrap(std::move(computed));
+        const stiffness::ToolCompliance c = unwrap_released([&] { return run_compliance(machine, pose); });
         const auto translation = stiffness::principal_stiffness(c, false);
         const auto rotation = stiffness::principal_stiffness(c, true);
         const auto n = static_cast<int>(c.strut_stiffness_N_mm.size());

@@ -13,6 +13,7 @@
 #include "bindings.hpp"
 #include "core/rotation.hpp"
 #include "dynamics/rigid_dynamics.hpp"
+#include "dynamics/run_dynamics.hpp"
 #include "pipeline_support.hpp"
 #include "row_loop.hpp"
 
@@ -75,15 +76,10 @@ struct DynOutputs {
 
 py::dict inverse_dynamics_batch(const Machine& machine, const py::object& poses, const py::object& velocities,
                                 const py::object& accelerations, const std::string& rates_name,
-                                const std::optional<std::array<double, 6>>& load, const std::string& errors) {
+                                const std::optional<std::array<double, 6>>& load, const std::string& errors,
+                                bool check_limits) {
   const Mechanism& mechanism = *machine.mechanism;
-  if (!machine.dynamics.given()) {
-    raise_error(Error{ErrorCode::bad_input,
-                      fmt::format("{}: the machine file has no dynamics: section (masses and inertias, "
-                                  "docs/machine-file.md): the drive forces cannot be computed",
-                                  machine.source),
-                      ErrorLocation{machine.source, 0, 0, "dynamics"}});
-  }
+  if (Status given = dynamics::require_dynamics_section(machine); !given) raise_error(given.error());
   const DynRates rates = dyn_rates_mode(rates_name);
   const OnError mode = on_error_mode(errors);
   const RowArray p = row_array(poses, 6, "poses");
@@ -109,9 +105,16 @@ py::dict inverse_dynamics_batch(const Machine& machine, const py::object& poses,
   const DynOutputs out{arrays[0].mutable_data(), arrays[1].mutable_data(), arrays[2].mutable_data(),
                        arrays[3].mutable_data(), arrays[4].mutable_data()};
   const auto width = static_cast<std::size_t>(n);
+  const ActuatorRange range(machine.limits);
   auto row_forces = [&](std::size_t row) -> Result<dynamics::DriveForces> {
     auto motion = dyn_row_motion(mechanism, p.row(row), v.row(row), a.row(row), rates);
     if (!motion) return motion.error();
+    if (check_limits) {
+      std::array<double, kMaxActuators> q{};
+      if (!mechanism.actuator_values(motion->pose, q.data()) ||
+          !range.contains(q.data(), mechanism.actuator_count()))
+        return unreachable_error(machine, motion->pose, true);
+    }
     return dynamics::inverse_dynamics(mechanism, machine.dynamics, *motion, wrench);
   };
   FirstRow invalid, failed;
@@ -164,7 +167,7 @@ py::dict inverse_dynamics_batch(const Machine& machine, const py::object& poses,
 void bind_dynamics(py::module_& m) {
   m.def("inverse_dynamics", &inverse_dynamics_batch, py::arg("machine"), py::arg("poses"),
         py::arg("velocities"), py::arg("accelerations"), py::kw_only(), py::arg("rates") = "twist",
-        py::arg("load_N_Nmm") = py::none(), py::arg("errors") = "raise",
+        py::arg("load_N_Nmm") = py::none(), py::arg("errors") = "raise", py::arg("check_limits") = true,
         R"doc(The drive forces that move the platform as given: rigid-body inverse dynamics (Newton–Euler with
 virtual power over the platform, the struts and moving base joints; the machine file's dynamics: section),
 for many motions at once (the loop in C++, in parallel, the GIL released).
@@ -176,7 +179,8 @@ platform's twist about the tool point and its rate: [vx, vy, vz] mm/s (mm/s²) o
 6 coordinates (mm/s and rad/s of the convention's angles; ω = E(θ)·θ̇, α = E·θ̈ + Ė·θ̇).
 load_N_Nmm: an external wrench on the platform at every row, [fx, fy, fz] N and [mx, my, mz] N·mm about the
 tool point, base frame (default: none; gravity always acts). errors: 'raise' (the first failing row raises,
-e.g. pkm.UnreachableError, with its row) or 'nan' (failing rows are NaN).
+e.g. pkm.UnreachableError, with its row) or 'nan' (failing rows are NaN); check_limits: a pose whose
+actuators leave the machine's actuator range fails as unreachable (as Machine.ik).
 
 Returns a dict of (N, n) arrays (n actuators; (n,) for a single row), positive where the drive pushes its
 coordinate up: force_N = static_force_N + dynamic_force_N (gravity and the load; the rates of momentum),

@@ -48,12 +48,8 @@ void bind_file_runs(py::module_& m) {
         job.compensated_path = optional_path(compensate_path);
         const RunDirectory directory(out_dir);
         job.out_directory = directory.path();
-        Result<pipeline::StiffnessProgramResult> result = make_error(ErrorCode::bad_input, "not computed");
-        {
-          py::gil_scoped_release released;
-          result = pipeline::stiffness_program(machine, job);
-        }
-        const pipeline::StiffnessProgramResult r = unwrap(std::move(result));
+        const pipeline::StiffnessProgramResult r =
+            unwrap_released([&] { return pipeline::stiffness_program(machine, job); });
         py::dict out;
         out["summary"] = python_from_json(r.summary);
         out["points"] = csv_columns(directory.file("points.csv"));
@@ -86,12 +82,8 @@ each a float64 array with one value per path point.)doc");
         job.bode_points = bode_points;
         const RunDirectory directory(out_dir);
         job.out_directory = directory.path();
-        Result<pipeline::ServoProgramResult> result = make_error(ErrorCode::bad_input, "not computed");
-        {
-          py::gil_scoped_release released;
-          result = pipeline::servo_program(machine, job);
-        }
-        const pipeline::ServoProgramResult r = unwrap(std::move(result));
+        const pipeline::ServoProgramResult r =
+            unwrap_released([&] { return pipeline::servo_program(machine, job); });
         py::dict out;
         out["summary"] = python_from_json(r.json);
         out["ticks"] = csv_columns(directory.file("servo.csv"));

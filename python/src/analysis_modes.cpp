@@ -56,12 +56,7 @@ void bind_modes(py::module_& m) {
       [](const Machine& machine, const py::object& pose_value) {
         const Mechanism& mechanism = *machine.mechanism;
         const Pose pose = pose_from_python(mechanism, pose_value, "pose");
-        Result<ModesRun> run = make_error(ErrorCode::bad_input, "not computed");
-        {
-          py::gil_scoped_release released;
-          run = run_modes(machine, pose);
-        }
-        ModesRun r = unwrap(std::move(run));
+        ModesRun r = unwrap_released([&] { return run_modes(machine, pose); });
         const dynamics::NaturalModes& modes = r.modes;
         const Eigen::Vector3d sag_mm = modes.equilibrium.pose.position_mm - pose.position_mm;
         const double tilt_deg = deg_from_rad(

@@ -70,12 +70,8 @@ void bind_workspace(py::module_& m) {
         options.frequencies = frequencies;
         options.threads = threads;
         const std::string out_directory = optional_path(out_dir);
-        Result<WorkspaceRun> run = make_error(ErrorCode::bad_input, "not computed");
-        {
-          py::gil_scoped_release released;
-          run = run_workspace(machine, grid, options, out_directory);
-        }
-        WorkspaceRun r = unwrap(std::move(run));
+        WorkspaceRun r =
+            unwrap_released([&] { return run_workspace(machine, grid, options, out_directory); });
         const workspace::WorkspaceMap& map = r.map;
         const workspace::GridCells cells(map.grid, mechanism.convention());
         const auto count = static_cast<py::ssize_t>(map.cells.size());

@@ -3,6 +3,7 @@
 // typed Python exception (pkm/_errors.py holds the exception classes; raise_error builds one from an Error).
 #include <pybind11/pybind11.h>
 
+#include <optional>
 #include <utility>
 
 #include "core/result.hpp"
@@ -30,6 +31,18 @@ template <class T>
 T unwrap(Result<T>&& result) {
   if (!result) raise_error(result.error());
   return std::move(result).value();
+}
+
+/// Runs the library call `work` (returning a Result) with the GIL released, so that other Python threads run
+/// meanwhile; returns its value or raises its error once the GIL is held again.
+template <class Work>
+auto unwrap_released(Work&& work) {
+  std::optional<decltype(work())> result;
+  {
+    py::gil_scoped_release released;
+    result.emplace(work());
+  }
+  return unwrap(std::move(*result));
 }
 
 }  // namespace pkm::python

@@ -9,10 +9,8 @@
 #include "bindings.hpp"
 #include "json_to_python.hpp"
 #include "pipeline/interpolate_program.hpp"
-#include "pipeline/load_program.hpp"
 #include "pipeline_bindings.hpp"
 #include "pipeline_support.hpp"
-#include "planning/motion_plan.hpp"
 
 namespace pkm::python {
 
@@ -30,25 +28,15 @@ struct InterpolateRun {
   PeriodArrays periods;
 };
 
-Result<InterpolateRun> run_interpolation(const Machine& machine, const pipeline::InterpolateJob& job) {
-  auto options = pipeline::interpolate_options_for(machine, job);
-  if (!options) return options.error();
-  auto program = pipeline::load_program_for(machine, job.program_path, job.tool_table_path);
-  if (!program) return program.error();
-  planning::PlanOptions plan_options;
-  plan_options.rate_hz = 1.0 / options->period_s;
-  plan_options.override_pct = job.override_pct;
-  plan_options.jerk_limited = job.accel != interpolation::RampShape::linear;
-  auto plan = planning::plan_motion(machine, *program, plan_options);
-  if (!plan) return plan.error();
-  auto timing = interpolation::IdealTiming::from_plan(*plan, machine);
-  if (!timing) return timing.error();
+// The library's run with the periods kept in memory; with job.out_directory it writes the CLI's files as
+// well.
+Result<InterpolateRun> run_interpolation(const Machine& machine, pipeline::InterpolateJob job) {
   InterpolateRun r;
   PeriodArrays& p = r.periods;
   const int n = machine.mechanism->actuator_count();
   p.actuators = n;
-  options->on_period = [&p, n](const interpolation::StepPeriod& period,
-                               const interpolation::PeriodContour& contour, const Eigen::Vector3d& path_mm) {
+  job.on_period = [&p, n](const interpolation::StepPeriod& period,
+                          const interpolation::PeriodContour& contour, const Eigen::Vector3d& path_mm) {
     p.time_s.push_back(period.time_s);
     p.line.push_back(period.line);
     for (int j = 0; j < n; ++j) {
@@ -62,20 +50,9 @@ Result<InterpolateRun> run_interpolation(const Machine& machine, const pipeline:
     p.tool_mm.insert(p.tool_mm.end(), tool.data(), tool.data() + 3);
     p.path_mm.insert(p.path_mm.end(), path_mm.data(), path_mm.data() + 3);
   };
-  auto summary = interpolation::interpolate(machine, plan->path, *timing, *options, {}, program->source);
-  if (!summary) return summary.error();
-  // The keys interpolate_program adds to summary.json.
-  r.summary = interpolation::interpolation_summary_json(*summary, machine);
-  r.summary["program"] = program->source;
-  r.summary["blocks"] = plan->statistics.blocks;
-  r.summary["override_pct"] = job.override_pct;
-  r.summary["accel"] = job.accel == interpolation::RampShape::linear ? "linear" : "s-curve";
-  if (options->max_step_rate_hz) r.summary["max_step_rate_hz"] = *options->max_step_rate_hz;
-  if (!job.out_directory.empty()) {
-    // The CLI's files as well (steps.csv, steps.bin, contour.csv, summary.json): the run once more.
-    auto written = pipeline::interpolate_program(machine, job);
-    if (!written) return written.error();
-  }
+  auto run = pipeline::interpolate_program(machine, job);
+  if (!run) return run.error();
+  r.summary = std::move(run->json);
   return r;
 }
 
@@ -158,12 +135,7 @@ void bind_interpolate(py::module_& m) {
         job.program_path = optional_path(program_path);
         job.tool_table_path = optional_path(tool_table);
         job.out_directory = optional_path(out_dir);
-        Result<InterpolateRun> run = make_error(ErrorCode::bad_input, "not interpolated");
-        {
-          py::gil_scoped_release released;
-          run = run_interpolation(machine, job);
-        }
-        return interpolate_result(unwrap(std::move(run)));
+        return interpolate_result(unwrap_released([&] { return run_interpolation(machine, job); }));
       },
       py::arg("machine"), py::arg("program_path"), py::kw_only(), py::arg("method") = "carrier-corrected",
       py::arg("servo_period_ms") = py::none(), py::arg("step_mm") = py::none(),

@@ -112,12 +112,8 @@ void bind_optimize(py::module_& m) {
         const std::string path = optional_path(program_path);
         const std::string table = optional_path(tool_table);
         const std::string out = optional_path(out_path);
-        Result<OptimizeRun> run = make_error(ErrorCode::bad_input, "not optimised");
-        {
-          py::gil_scoped_release released;
-          run = run_optimize(machine, path, table, arguments, out);
-        }
-        return optimize_result(machine, unwrap(std::move(run)));
+        return optimize_result(
+            machine, unwrap_released([&] { return run_optimize(machine, path, table, arguments, out); }));
       },
       py::arg("machine"), py::arg("program_path"), py::arg("law"), py::kw_only(), py::arg("free") = "spin",
       py::arg("bounds_deg") = py::none(), py::arg("step_mm") = 1.0, py::arg("solver") = "greedy",

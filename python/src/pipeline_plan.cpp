@@ -8,6 +8,8 @@
 #include <optional>
 
 #include "bindings.hpp"
+#include "dynamics/run_dynamics.hpp"
+#include "dynamics/run_elastic.hpp"
 #include "json_to_python.hpp"
 #include "pipeline/load_program.hpp"
 #include "pipeline_bindings.hpp"
@@ -26,6 +28,7 @@ struct PlanArguments {
   planning::PlanOptions plan;
   std::optional<LawArguments> law;
   bool dynamics = false;
+  bool elastic = false;  ///< with dynamics: the elastic machine's response (dynamics/run_elastic.hpp)
   std::string load;
   bool evaluate_path_error = true;
   std::string out_dir;
@@ -34,6 +37,12 @@ struct PlanArguments {
 /// The drive forces per tick (RunDynamics hands them on in order).
 struct DynamicsArrays {
   std::vector<double> time_s, total, static_part, dynamic_part, power_W, command;
+};
+
+/// The elastic machine's response per tick, as response.csv (RunElastic hands it on in order).
+struct ElasticArrays {
+  std::vector<double> time_s, deviation_mm, rotation_deg, tool_error_mm;
+  std::vector<std::int32_t> line;
 };
 
 struct PlanRun {
@@ -45,6 +54,7 @@ struct PlanRun {
   std::vector<double> time_s, s, path_speed, feed_cap, path_error, actuator_values, pose;
   std::vector<std::int32_t> line, segment;
   std::optional<DynamicsArrays> dynamics;
+  std::optional<ElasticArrays> elastic;
 };
 
 /// As plan_output.cpp: an error at a program line names the program file.
@@ -66,13 +76,7 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
   r.actuators = n;
   std::optional<dynamics::RunDynamics> drive_dynamics;
   if (a.dynamics) {
-    if (!machine.dynamics.given()) {
-      return Error{ErrorCode::bad_input,
-                   fmt::format("{}: the machine file has no dynamics: section (masses and inertias, "
-                               "docs/machine-file.md): the drive forces cannot be computed",
-                               machine.source),
-                   ErrorLocation{machine.source, 0, 0, "dynamics"}};
-    }
+    if (Status given = dynamics::require_dynamics_section(machine); !given) return given.error();
     r.dynamics.emplace();
     DynamicsArrays& d = *r.dynamics;
     drive_dynamics.emplace(
@@ -88,6 +92,24 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
         },
         &load);
   }
+  std::optional<dynamics::RunElastic> elastic;
+  if (a.dynamics && a.elastic) {
+    r.elastic.emplace();
+    ElasticArrays& e = *r.elastic;
+    auto made = dynamics::RunElastic::make(
+        machine, r.plan.period_s,
+        [&e](const dynamics::ElasticTick& t) -> Status {
+          e.time_s.push_back(t.time_s);
+          e.line.push_back(t.line);
+          e.deviation_mm.insert(e.deviation_mm.end(), t.deviation_mm.data(), t.deviation_mm.data() + 3);
+          e.rotation_deg.push_back(t.rotation_deg);
+          e.tool_error_mm.push_back(t.tool_error_mm);
+          return ok_status();
+        },
+        {}, &load);
+    if (!made) return made.error();
+    elastic.emplace(std::move(*made));
+  }
   planning::ServoStream stream(r.plan, machine);
   planning::RunMonitor monitor(r.plan, machine, a.plan.override_pct, a.evaluate_path_error);
   const auto ticks = static_cast<std::size_t>(std::max(0L, stream.tick_count()));
@@ -100,6 +122,11 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
     if (drive_dynamics) {
       const bool cutting = !r.plan.path.segments[tick.segment].rapid;
       if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose, cutting); !added)
+        return at_program_line(r.plan, added.error());
+    }
+    if (elastic) {
+      const bool cutting = !r.plan.path.segments[tick.segment].rapid;
+      if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators, cutting); !added)
         return at_program_line(r.plan, added.error());
     }
     r.time_s.push_back(tick.time_s);
@@ -119,6 +146,10 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
     if (Status finished = drive_dynamics->finish(); !finished)
       return at_program_line(r.plan, finished.error());
     r.run.dynamics = drive_dynamics->summary();
+  }
+  if (elastic) {
+    if (Status finished = elastic->finish(); !finished) return at_program_line(r.plan, finished.error());
+    r.run.elastic = elastic->summary();
   }
   return ok_status();
 }
@@ -154,6 +185,7 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
     output.override_pct = a.plan.override_pct;
     output.evaluate_path_error = a.evaluate_path_error;
     output.dynamics = a.dynamics;
+    output.elastic = a.elastic;
     output.dynamics_load = &*load;
     auto written = planning::write_plan_outputs(r.plan, machine, a.out_dir, output);
     if (!written) return written.error();
@@ -189,6 +221,17 @@ py::dict plan_result(const Machine& machine, PlanRun&& r) {
     forces[py::str("dynamic_force_" + unit)] = numpy_from(std::move(d.dynamic_part), {rows, n});
     forces["power_W"] = numpy_from(std::move(d.power_W), {rows, n});
     forces[py::str("command_" + unit)] = numpy_from(std::move(d.command), {rows, n});
+    if (r.elastic) {
+      ElasticArrays& e = *r.elastic;
+      const auto rows_e = static_cast<py::ssize_t>(e.time_s.size());
+      py::dict response;
+      response["time_s"] = numpy_from(std::move(e.time_s));
+      response["line"] = numpy_from(std::move(e.line));
+      response["deviation_mm"] = numpy_from(std::move(e.deviation_mm), {rows_e, 3});
+      response["rotation_deg"] = numpy_from(std::move(e.rotation_deg));
+      response["tool_error_mm"] = numpy_from(std::move(e.tool_error_mm));
+      out["elastic"] = response;
+    }
     out["dynamics"] = forces;
   }
   return out;
@@ -204,7 +247,7 @@ void bind_plan(py::module_& m) {
          const std::string& free, std::optional<std::array<double, 2>> bounds_deg, double law_step_mm,
          const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
-         const std::string& load, bool dynamics, bool path_error, const py::object& tool_table,
+         const std::string& load, bool dynamics, bool elastic, bool path_error, const py::object& tool_table,
          const py::object& out_dir) {
         PlanArguments a;
         a.program_path = optional_path(program_path);
@@ -231,15 +274,13 @@ void bind_plan(py::module_& m) {
               *law,        free,          bounds_deg,          law_step_mm, solver, energy_accounting,
               force_model, force_limit_N, max_rate_deg_per_mm, load};
         }
+        if (elastic && !dynamics)
+          throw py::value_error("elastic=True: only with dynamics=True (the elastic machine's masses)");
         a.dynamics = dynamics;
+        a.elastic = elastic;
         a.load = load;
         a.evaluate_path_error = path_error;
-        Result<PlanRun> run = make_error(ErrorCode::bad_input, "not planned");
-        {
-          py::gil_scoped_release released;
-          run = run_plan(machine, a);
-        }
-        return plan_result(machine, unwrap(std::move(run)));
+        return plan_result(machine, unwrap_released([&] { return run_plan(machine, a); }));
       },
       py::arg("machine"), py::arg("program_path"), py::kw_only(), py::arg("servo_period_ms") = py::none(),
       py::arg("feed_override_pct") = 100.0, py::arg("blend_tolerance_mm") = py::none(),
@@ -247,8 +288,8 @@ void bind_plan(py::module_& m) {
       py::arg("law_step_mm") = 1.0, py::arg("solver") = "greedy",
       py::arg("energy_accounting") = "no-recovery", py::arg("force_model") = "statics",
       py::arg("force_limit_N") = py::none(), py::arg("max_rate_deg_per_mm") = py::none(),
-      py::arg("load") = "", py::arg("dynamics") = false, py::arg("path_error") = true,
-      py::arg("tool_table") = py::none(), py::arg("out_dir") = py::none(),
+      py::arg("load") = "", py::arg("dynamics") = false, py::arg("elastic") = false,
+      py::arg("path_error") = true, py::arg("tool_table") = py::none(), py::arg("out_dir") = py::none(),
       R"doc(Plans a part program on `machine` and returns its servo-rate motion, as `pkm plan` does.
 
 Arguments (the CLI's options): servo_period_ms (default 1 ms, --rate 1000/period), feed_override_pct (0 < … ≤
@@ -260,6 +301,10 @@ control law, as pkm.optimize does, with free, bounds_deg (lo, hi), law_step_mm, 
 force_model, force_limit_N, max_rate_deg_per_mm and load (the CLI's --load text, e.g.
 'tangential=200,normal=50'; also the process load of the dynamics).
 dynamics: also the drive forces, power and energy at every tick (the machine file's dynamics: section).
+elastic (with dynamics): also the elastic machine's response to the planned drive motion (struts'
+stiffness_N_mm, docs/dynamics_elastic.md), as `pkm plan --dynamics --elastic`: the summary's dynamics gain
+lowest_natural_frequency_Hz, static_deflection_at_start_mm, max_dynamic_tool_error_mm (_line, _time_s) and
+max_dynamic_rotation_deg.
 
 Returns a dict:
   summary: the summary.json of `pkm plan` as a dict (same keys and numbers); law: the law's summary (with law);
@@ -269,7 +314,9 @@ Returns a dict:
   path_error_mm (T,) (NaN where not evaluated), actuators_mm (T, n) (actuators_rad for angular actuators),
   pose (T, 6) the commanded pose [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad], base frame, machine convention;
   with dynamics, dynamics: a dict with time_s, force_N, static_force_N, dynamic_force_N, command_N (T, n)
-  (_Nmm for angular drives) and power_W (T, n).
+  (_Nmm for angular drives) and power_W (T, n); with elastic also elastic: the columns of
+  response.csv per tick, time_s (T,), line (T,) int32, deviation_mm (T, 3) the tool point's actual − commanded
+  position [dx, dy, dz] (base frame), rotation_deg (T,) and tool_error_mm (T,) = |deviation_mm|.
 Raises pkm.ProgramError for a malformed program, pkm.LimitExceededError / pkm.UnreachableError where the
 program leaves the machine's limits, pkm.InputError (ValueError) for a bad option, and for dynamics on a
 machine without a dynamics: section (key 'dynamics').)doc");

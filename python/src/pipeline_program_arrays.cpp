@@ -3,24 +3,11 @@
 #include <limits>
 
 #include "pipeline_support.hpp"
+#include "program/move_kind_name.hpp"
 
 namespace pkm::python {
 
 namespace {
-
-const char* kind_name(program::MoveKind kind) {
-  switch (kind) {
-    case program::MoveKind::rapid:
-      return "rapid";
-    case program::MoveKind::line:
-      return "line";
-    case program::MoveKind::arc:
-      return "arc";
-    case program::MoveKind::dwell:
-      return "dwell";
-  }
-  return "?";
-}
 
 void append(std::vector<double>& out, const Eigen::Vector3d& v) {
   out.insert(out.end(), v.data(), v.data() + 3);
@@ -38,7 +25,7 @@ py::dict program_arrays(const program::CanonicalProgram& program) {
   std::vector<bool> exact_stop, axis_given;
   for (const program::CanonicalMove& m : program.moves) {
     line.push_back(m.line);
-    kind.emplace_back(kind_name(m.kind));
+    kind.emplace_back(program::move_kind_name(m.kind));
     append(end_mm, m.end_mm);
     append(end_abc_deg, m.end_abc_deg);
     const bool arc = m.kind == program::MoveKind::arc;

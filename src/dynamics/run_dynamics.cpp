@@ -10,6 +10,15 @@
 
 namespace pkm::dynamics {
 
+Status require_dynamics_section(const Machine& machine) {
+  if (machine.dynamics.given()) return ok_status();
+  return Error{ErrorCode::bad_input,
+               fmt::format("{}: the machine file has no dynamics: section (masses and inertias, "
+                           "docs/machine-file.md): the drive forces cannot be computed",
+                           machine.source),
+               ErrorLocation{machine.source, 0, 0, "dynamics"}};
+}
+
 RunDynamics::RunDynamics(const Machine& machine, double period_s,
                          std::function<Status(const TickDynamics&)> on_tick, const statics::LoadModel* load)
     : machine_(machine),

@@ -47,6 +47,10 @@ struct RunDynamicsSummary {
   long ticks = 0;
 };
 
+/// Whether the machine file gives the masses and inertias drive forces need (its `dynamics:` section); the
+/// error names the file and the key.
+Status require_dynamics_section(const Machine& machine);
+
 class RunDynamics {
  public:
   /// `on_tick` receives every evaluated tick in order (e.g. to write forces.csv); it may be empty. `load`,

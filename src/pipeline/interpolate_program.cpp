@@ -19,10 +19,9 @@ namespace {
 constexpr double kMinPeriodMs = 0.1;
 constexpr double kMaxPeriodMs = 20.0;
 
-}  // namespace
-
-Result<interpolation::InterpolateOptions> interpolate_options_for(const Machine& machine,
-                                                                  const InterpolateJob& job) {
+// The job's drive parameters, completed from the machine file's `drives:` and checked.
+Result<interpolation::InterpolateOptions> resolved_options(const Machine& machine,
+                                                           const InterpolateJob& job) {
   interpolation::InterpolateOptions options = job.options;
   // The machine file's reader checks drives.period_ms the same way; this is for a period given in the job.
   const double period_ms = job.period_ms ? *job.period_ms : machine.drives.period_ms.value_or(1.0);
@@ -49,8 +48,10 @@ Result<interpolation::InterpolateOptions> interpolate_options_for(const Machine&
   return options;
 }
 
+}  // namespace
+
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job) {
-  auto options = interpolate_options_for(machine, job);
+  auto options = resolved_options(machine, job);
   if (!options) return options.error();
   auto program = load_program_for(machine, job.program_path, job.tool_table_path);
   if (!program) return program.error();
@@ -64,35 +65,43 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
   auto timing = interpolation::IdealTiming::from_plan(*plan, machine);
   if (!timing) return timing.error();
 
+  if (job.progress && plan->duration_s / options->period_s > 200000) options->progress = job.progress;
+  const bool files = !job.out_directory.empty();
+  if (!files && !job.report_path.empty()) {
+    return make_error(ErrorCode::bad_input, "an interpolation report needs an output directory");
+  }
   // The step files, the contour trace, the summary and the report replace the previous run's together.
   OutputSet outputs;
-  if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
-  interpolation::StepStreamHeader header;
-  header.actuators = machine.mechanism->actuator_count();
-  header.period_s = options->period_s;
-  // The stream's step is in the actuators' own unit: mm, or rad for angular actuators (given in deg).
-  header.step_mm =
-      machine.mechanism->actuators_are_angles() ? options->step_mm * (kPi / 180.0) : options->step_mm;
-  header.machine = machine.source;
-  if (job.progress && plan->duration_s / options->period_s > 200000) options->progress = job.progress;
-  auto start_steps = interpolation::start_positions(machine, plan->path, options->step_mm);
-  if (!start_steps) return start_steps.error();
-  header.start_position = *start_steps;
   interpolation::StepsCsvWriter csv;
-  if (Status opened = csv.open(outputs.staged_path("steps.csv"), header); !opened) return opened.error();
   interpolation::StepStreamWriter binary;
-  if (Status opened = binary.open(outputs.staged_path("steps.bin"), header); !opened) return opened.error();
   interpolation::ContourTraceWriter trace;
-  if (Status opened = trace.open(outputs.staged_path("contour.csv")); !opened) return opened.error();
+  std::vector<interpolation::StepSink*> sinks;
+  if (files) {
+    if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
+    interpolation::StepStreamHeader header;
+    header.actuators = machine.mechanism->actuator_count();
+    header.period_s = options->period_s;
+    // The stream's step is in the actuators' own unit: mm, or rad for angular actuators (given in deg).
+    header.step_mm =
+        machine.mechanism->actuators_are_angles() ? options->step_mm * (kPi / 180.0) : options->step_mm;
+    header.machine = machine.source;
+    auto start_steps = interpolation::start_positions(machine, plan->path, options->step_mm);
+    if (!start_steps) return start_steps.error();
+    header.start_position = *start_steps;
+    if (Status opened = csv.open(outputs.staged_path("steps.csv"), header); !opened) return opened.error();
+    if (Status opened = binary.open(outputs.staged_path("steps.bin"), header); !opened) return opened.error();
+    if (Status opened = trace.open(outputs.staged_path("contour.csv")); !opened) return opened.error();
+    sinks = {&csv, &binary};
+  }
   Status trace_status = ok_status();
   options->on_period = [&](const interpolation::StepPeriod& period,
                            const interpolation::PeriodContour& contour, const Eigen::Vector3d& path_mm) {
-    if (trace_status) trace_status = trace.add(period, contour, path_mm);
+    if (job.on_period) job.on_period(period, contour, path_mm);
+    if (files && trace_status) trace_status = trace.add(period, contour, path_mm);
   };
-  auto summary =
-      interpolation::interpolate(machine, plan->path, *timing, *options, {&csv, &binary}, program->source);
+  auto summary = interpolation::interpolate(machine, plan->path, *timing, *options, sinks, program->source);
   if (!summary) return summary.error();
-  if (trace_status) trace_status = trace.finish();
+  if (files && trace_status) trace_status = trace.finish();
   if (!trace_status) return trace_status.error();
 
   InterpolateProgramResult result;
@@ -103,12 +112,15 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
   result.json["override_pct"] = job.override_pct;
   result.json["accel"] = job.accel == interpolation::RampShape::linear ? "linear" : "s-curve";
   if (options->max_step_rate_hz) result.json["max_step_rate_hz"] = *options->max_step_rate_hz;
-  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), result.json.dump(2) + "\n");
-      !written) {
-    return written.error();
+  if (files) {
+    if (Status written =
+            write_file_atomically(outputs.staged_path("summary.json"), result.json.dump(2) + "\n");
+        !written) {
+      return written.error();
+    }
+    if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
+    if (Status committed = outputs.commit(); !committed) return committed.error();
   }
-  if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
-  if (Status committed = outputs.commit(); !committed) return committed.error();
   result.summary = std::move(*summary);
   return result;
 }

@@ -33,8 +33,13 @@ struct InterpolateJob {
   /// period, step, step rate and feed override are set from the fields above.
   interpolation::InterpolateOptions options;
   std::function<void(double)> progress;  ///< fraction done, for runs over 200 000 periods
-  std::string out_directory;
-  std::string report_path;  ///< empty: no report
+  /// Called at every period with its steps, its contour error and the path point (callers that keep the
+  /// periods in memory: Python); the files are written as well when out_directory is given.
+  std::function<void(const interpolation::StepPeriod&, const interpolation::PeriodContour&,
+                     const Eigen::Vector3d& path_mm)>
+      on_period;
+  std::string out_directory;  ///< empty: no files (on_period is then the run's only output)
+  std::string report_path;    ///< empty: no report (needs out_directory)
 };
 
 struct InterpolateProgramResult {
@@ -44,10 +49,5 @@ struct InterpolateProgramResult {
 };
 
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job);
-
-/// The options interpolate_program runs with: the job's, its drive parameters completed from the machine
-/// file's `drives:` (then the defaults) and checked (for runs that keep the periods in memory: Python).
-Result<interpolation::InterpolateOptions> interpolate_options_for(const Machine& machine,
-                                                                  const InterpolateJob& job);
 
 }  // namespace pkm::pipeline

@@ -155,13 +155,7 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   PlanOutputFile forces_csv;
   std::optional<dynamics::RunDynamics> drive_dynamics;
   if (options.dynamics) {
-    if (!machine.dynamics.given()) {
-      return Error{ErrorCode::bad_input,
-                   fmt::format("{}: the machine file has no dynamics: section (masses and inertias, "
-                               "docs/machine-file.md): the drive forces cannot be computed",
-                               machine.source),
-                   ErrorLocation{machine.source, 0, 0, "dynamics"}};
-    }
+    if (Status given = dynamics::require_dynamics_section(machine); !given) return given.error();
     if (auto opened = forces_csv.open(outputs.staged_path("forces.csv")); !opened) return opened.error();
     const std::string force_unit = angular ? "Nmm" : "N";
     fmt::format_to(std::back_inserter(forces_csv.buffer), "time_s,line");

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "program/gcode_arc.hpp"
+#include "program/move_kind_name.hpp"
 #include "program/part_program.hpp"
 
 namespace {
@@ -168,20 +169,6 @@ double tolerance_mm(double scale) {
   return 1e-4 + 0.5e-4 * scale;
 }
 
-const char* kind_name(MoveKind kind) {
-  switch (kind) {
-    case MoveKind::rapid:
-      return "rapid";
-    case MoveKind::line:
-      return "line";
-    case MoveKind::arc:
-      return "arc";
-    case MoveKind::dwell:
-      return "dwell";
-  }
-  return "?";
-}
-
 void expect_near_mm(double ours, double printed, double scale, const std::string& what) {
   EXPECT_NEAR(ours, printed * scale, tolerance_mm(scale)) << what;
 }
@@ -212,7 +199,8 @@ void compare_feed(const CanonicalMove& ours, const Eigen::Vector3d& start, const
 void compare_move(const CanonicalMove& ours, const Eigen::Vector3d& start, const Eigen::Vector3d& start_abc,
                   const Rs274Motion& theirs) {
   const std::string where = "rs274: " + theirs.text + "\npkm line " + std::to_string(ours.line);
-  ASSERT_EQ(kind_name(ours.kind), std::string(kind_name(theirs.kind))) << where;
+  ASSERT_EQ(pkm::program::move_kind_name(ours.kind), std::string(pkm::program::move_kind_name(theirs.kind)))
+      << where;
   const std::vector<double>& a = theirs.args;
   if (theirs.kind == MoveKind::dwell) {
     ASSERT_EQ(a.size(), 1u) << where;
