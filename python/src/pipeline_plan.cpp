@@ -16,6 +16,7 @@
 #include "pipeline_law_options.hpp"
 #include "pipeline_support.hpp"
 #include "planning/plan_output.hpp"
+#include "planning/plan_stream.hpp"
 #include "planning/run_monitor.hpp"
 #include "planning/servo_stream.hpp"
 
@@ -57,78 +58,54 @@ struct PlanRun {
   std::optional<ElasticArrays> elastic;
 };
 
-/// As plan_output.cpp: an error at a program line names the program file.
-Error at_program_line(const planning::MotionPlan& plan, const Error& error) {
-  Error located = error;
-  located.message = fmt::format("{}:{}: {}", plan.program_source, error.location.line, error.message);
-  located.location.file = plan.program_source;
-  return located;
-}
-
 void append(std::vector<double>& out, const ActuatorVector& values, int n) {
   for (int j = 0; j < n; ++j) out.push_back(values[j]);
 }
 
+// The library's tick loop (planning::stream_plan, as `pkm plan` runs it) with every tick kept in arrays.
 Status stream_ticks(const Machine& machine, const PlanArguments& a, const statics::LoadModel& load,
                     PlanRun& r) {
   const Mechanism& mechanism = *machine.mechanism;
   const int n = mechanism.actuator_count();
   r.actuators = n;
-  std::optional<dynamics::RunDynamics> drive_dynamics;
+  planning::OutputOptions options;
+  options.override_pct = a.plan.override_pct;
+  options.evaluate_path_error = a.evaluate_path_error;
+  options.dynamics = a.dynamics;
+  options.elastic = a.dynamics && a.elastic;
+  options.dynamics_load = &load;
+  planning::PlanTickObservers observers;
   if (a.dynamics) {
-    if (Status given = dynamics::require_dynamics_section(machine); !given) return given.error();
     r.dynamics.emplace();
-    DynamicsArrays& d = *r.dynamics;
-    drive_dynamics.emplace(
-        machine, r.plan.period_s,
-        [&d, n](const dynamics::TickDynamics& t) -> Status {
-          d.time_s.push_back(t.time_s);
-          append(d.total, t.forces.total, n);
-          append(d.static_part, t.forces.static_part, n);
-          append(d.dynamic_part, t.forces.dynamic_part, n);
-          append(d.power_W, t.power_W, n);
-          append(d.command, t.command_N, n);
-          return ok_status();
-        },
-        &load);
+    observers.dynamics = [&d = *r.dynamics, n](const dynamics::TickDynamics& t) -> Status {
+      d.time_s.push_back(t.time_s);
+      append(d.total, t.forces.total, n);
+      append(d.static_part, t.forces.static_part, n);
+      append(d.dynamic_part, t.forces.dynamic_part, n);
+      append(d.power_W, t.power_W, n);
+      append(d.command, t.command_N, n);
+      return ok_status();
+    };
   }
-  std::optional<dynamics::RunElastic> elastic;
-  if (a.dynamics && a.elastic) {
+  if (options.elastic) {
     r.elastic.emplace();
-    ElasticArrays& e = *r.elastic;
-    auto made = dynamics::RunElastic::make(
-        machine, r.plan.period_s,
-        [&e](const dynamics::ElasticTick& t) -> Status {
-          e.time_s.push_back(t.time_s);
-          e.line.push_back(t.line);
-          e.deviation_mm.insert(e.deviation_mm.end(), t.deviation_mm.data(), t.deviation_mm.data() + 3);
-          e.rotation_deg.push_back(t.rotation_deg);
-          e.tool_error_mm.push_back(t.tool_error_mm);
-          return ok_status();
-        },
-        {}, &load);
-    if (!made) return made.error();
-    elastic.emplace(std::move(*made));
+    observers.elastic = [&e = *r.elastic](const dynamics::ElasticTick& t) -> Status {
+      e.time_s.push_back(t.time_s);
+      e.line.push_back(t.line);
+      e.deviation_mm.insert(e.deviation_mm.end(), t.deviation_mm.data(), t.deviation_mm.data() + 3);
+      e.rotation_deg.push_back(t.rotation_deg);
+      e.tool_error_mm.push_back(t.tool_error_mm);
+      return ok_status();
+    };
   }
-  planning::ServoStream stream(r.plan, machine);
-  planning::RunMonitor monitor(r.plan, machine, a.plan.override_pct, a.evaluate_path_error);
-  const auto ticks = static_cast<std::size_t>(std::max(0L, stream.tick_count()));
+  // A reserve hint: the ticks from the first to the last of the filtered motion.
+  const auto ticks =
+      static_cast<std::size_t>(std::max(0L, std::lround(r.plan.duration_s / r.plan.period_s) + 1));
   for (auto* v : {&r.time_s, &r.s, &r.path_speed, &r.feed_cap, &r.path_error}) v->reserve(ticks);
   r.actuator_values.reserve(ticks * static_cast<std::size_t>(n));
   r.pose.reserve(ticks * 6);
-  planning::ServoTick tick;
-  while (stream.next(tick)) {
-    monitor.add(tick);
-    if (drive_dynamics) {
-      const bool cutting = !r.plan.path.segments[tick.segment].rapid;
-      if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose, cutting); !added)
-        return at_program_line(r.plan, added.error());
-    }
-    if (elastic) {
-      const bool cutting = !r.plan.path.segments[tick.segment].rapid;
-      if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators, cutting); !added)
-        return at_program_line(r.plan, added.error());
-    }
+  observers.tick = [&r, &mechanism, n](const planning::ServoTick& tick,
+                                       const planning::RunMonitor& monitor) -> Status {
     r.time_s.push_back(tick.time_s);
     r.line.push_back(tick.line);
     r.segment.push_back(tick.segment);
@@ -139,18 +116,11 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
     append(r.actuator_values, tick.actuators, n);
     const PoseVector v = vector_from_pose(mechanism.convention(), tick.pose);
     r.pose.insert(r.pose.end(), v.data(), v.data() + 6);
-  }
-  if (stream.error()) return *stream.error();
-  r.run = monitor.summary();
-  if (drive_dynamics) {
-    if (Status finished = drive_dynamics->finish(); !finished)
-      return at_program_line(r.plan, finished.error());
-    r.run.dynamics = drive_dynamics->summary();
-  }
-  if (elastic) {
-    if (Status finished = elastic->finish(); !finished) return at_program_line(r.plan, finished.error());
-    r.run.elastic = elastic->summary();
-  }
+    return ok_status();
+  };
+  auto run = planning::stream_plan(r.plan, machine, options, observers);
+  if (!run) return run.error();
+  r.run = std::move(*run);
   return ok_status();
 }
 

@@ -12,20 +12,13 @@
 #include "dynamics/run_dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/buffered_file.hpp"
+#include "planning/plan_stream.hpp"
 
 namespace pkm::planning {
 
 namespace {
 
 using PlanOutputFile = BufferedStagedFile;
-
-/// The program file and line of an error at a program line, for messages ("FILE:LINE: …").
-Error at_program_line(const MotionPlan& plan, const Error& error) {
-  Error located = error;
-  located.message = fmt::format("{}:{}: {}", plan.program_source, error.location.line, error.message);
-  located.location.file = plan.program_source;
-  return located;
-}
 
 nlohmann::json dynamics_json(const dynamics::RunDynamicsSummary& d, bool angular) {
   const std::string unit = angular ? "Nmm" : "N";
@@ -152,107 +145,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   fmt::format_to(std::back_inserter(path_csv.buffer),
                  "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s,feed_mm_s,path_error_mm\n");
 
-  PlanOutputFile forces_csv;
-  std::optional<dynamics::RunDynamics> drive_dynamics;
-  if (options.dynamics) {
-    if (Status given = dynamics::require_dynamics_section(machine); !given) return given.error();
-    if (auto opened = forces_csv.open(outputs.staged_path("forces.csv")); !opened) return opened.error();
-    const std::string force_unit = angular ? "Nmm" : "N";
-    fmt::format_to(std::back_inserter(forces_csv.buffer), "time_s,line");
-    for (int j = 1; j <= n; ++j) {
-      fmt::format_to(std::back_inserter(forces_csv.buffer), ",P{0}_{1},P{0}_static_{1},P{0}_dynamic_{1}", j,
-                     force_unit);
-    }
-    for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(forces_csv.buffer), ",power{}_W", j);
-    // A drive that is not ideal needs another command than the force: u_j, what to feed forward.
-    const bool commands = machine.dynamics.drive != DriveModel::ideal;
-    for (int j = 1; j <= n && commands; ++j)
-      fmt::format_to(std::back_inserter(forces_csv.buffer), ",u{}_{}", j, force_unit);
-    forces_csv.buffer.push_back('\n');
-    drive_dynamics.emplace(
-        machine, plan.period_s,
-        [&forces_csv, n, commands](const dynamics::TickDynamics& t) -> Status {
-          auto& b = forces_csv.buffer;
-          fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
-          for (int j = 0; j < n; ++j) {
-            fmt::format_to(std::back_inserter(b), ",{:.4f},{:.4f},{:.4f}", t.forces.total[j],
-                           t.forces.static_part[j], t.forces.dynamic_part[j]);
-          }
-          for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.5f}", t.power_W[j]);
-          for (int j = 0; j < n && commands; ++j)
-            fmt::format_to(std::back_inserter(b), ",{:.4f}", t.command_N[j]);
-          b.push_back('\n');
-          return forces_csv.flush_if_large();
-        },
-        options.dynamics_load);
-  }
-
-  PlanOutputFile response_csv;
-  std::optional<dynamics::RunElastic> elastic;
-  if (options.dynamics && options.elastic) {
-    auto made = dynamics::RunElastic::make(
-        machine, plan.period_s,
-        [&response_csv](const dynamics::ElasticTick& t) -> Status {
-          fmt::format_to(std::back_inserter(response_csv.buffer),
-                         "{:.6f},{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e}\n", t.time_s, t.line,
-                         t.deviation_mm.x(), t.deviation_mm.y(), t.deviation_mm.z(), t.rotation_deg,
-                         t.tool_error_mm);
-          return response_csv.flush_if_large();
-        },
-        {}, options.dynamics_load);
-    if (!made) return made.error();
-    elastic.emplace(std::move(*made));
-    if (auto opened = response_csv.open(outputs.staged_path("response.csv")); !opened) return opened.error();
-    fmt::format_to(std::back_inserter(response_csv.buffer),
-                   "time_s,line,dx_mm,dy_mm,dz_mm,rotation_deg,tool_error_mm\n");
-  }
-
-  PlanOutputFile deflection_csv;
-  std::optional<stiffness::RunDeflection> deflection;
-  if (options.stiffness) {
-    static const statics::LoadModel kNoLoad;
-    auto made = stiffness::RunDeflection::make(
-        machine, options.dynamics_load != nullptr ? *options.dynamics_load : kNoLoad,
-        [&deflection_csv](const stiffness::DeflectionTick& t) -> Status {
-          fmt::format_to(std::back_inserter(deflection_csv.buffer),
-                         "{:.6f},{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e}\n", t.time_s, t.line,
-                         t.deflection_mm.x(), t.deflection_mm.y(), t.deflection_mm.z(), t.normal_mm,
-                         t.rotation_rad);
-          return deflection_csv.flush_if_large();
-        });
-    if (!made) return made.error();
-    deflection.emplace(std::move(*made));
-    if (auto opened = deflection_csv.open(outputs.staged_path("deflection.csv")); !opened)
-      return opened.error();
-    fmt::format_to(std::back_inserter(deflection_csv.buffer),
-                   "time_s,line,dx_mm,dy_mm,dz_mm,normal_mm,rotation_rad\n");
-  }
-
-  ServoStream stream(plan, machine);
-  RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
-  const long total = stream.tick_count();
-  const long report_every = std::max(1L, total / 200);
-  ServoTick tick;
-  while (stream.next(tick)) {
-    monitor.add(tick);
-    if (drive_dynamics) {
-      const bool cutting = !plan.path.segments[tick.segment].rapid;
-      if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose, cutting); !added) {
-        return at_program_line(plan, added.error());
-      }
-    }
-    if (elastic) {
-      const bool cutting = !plan.path.segments[tick.segment].rapid;
-      if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators, cutting); !added) {
-        return at_program_line(plan, added.error());
-      }
-    }
-    if (deflection) {
-      const bool cutting = !plan.path.segments[tick.segment].rapid;
-      if (Status added = deflection->add(tick.time_s, tick.line, tick.pose, cutting); !added) {
-        return at_program_line(plan, added.error());
-      }
-    }
+  PlanTickObservers observers;
+  observers.tick = [&](const ServoTick& tick, const RunMonitor& monitor) -> Status {
     fmt::format_to(std::back_inserter(a), "{:.6f}", tick.time_s);
     for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(a), ",{:.6f}", tick.actuators[j] * scale);
     a.push_back('\n');
@@ -268,30 +162,77 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
       fmt::format_to(std::back_inserter(path_csv.buffer), "{:.3e}", e);
     path_csv.buffer.push_back('\n');
     for (PlanOutputFile* f : {&actuators_csv, &path_csv}) {
-      if (auto flushed = f->flush_if_large(); !flushed) return flushed.error();
+      if (auto flushed = f->flush_if_large(); !flushed) return flushed;
     }
-    if (options.progress && tick.index % report_every == 0)
-      options.progress(static_cast<double>(tick.index) / total);
+    return ok_status();
+  };
+
+  PlanOutputFile forces_csv;
+  if (options.dynamics) {
+    if (auto opened = forces_csv.open(outputs.staged_path("forces.csv")); !opened) return opened.error();
+    const std::string force_unit = angular ? "Nmm" : "N";
+    fmt::format_to(std::back_inserter(forces_csv.buffer), "time_s,line");
+    for (int j = 1; j <= n; ++j) {
+      fmt::format_to(std::back_inserter(forces_csv.buffer), ",P{0}_{1},P{0}_static_{1},P{0}_dynamic_{1}", j,
+                     force_unit);
+    }
+    for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(forces_csv.buffer), ",power{}_W", j);
+    // A drive that is not ideal needs another command than the force: u_j, what to feed forward.
+    const bool commands = machine.dynamics.drive != DriveModel::ideal;
+    for (int j = 1; j <= n && commands; ++j)
+      fmt::format_to(std::back_inserter(forces_csv.buffer), ",u{}_{}", j, force_unit);
+    forces_csv.buffer.push_back('\n');
+    observers.dynamics = [&forces_csv, n, commands](const dynamics::TickDynamics& t) -> Status {
+      auto& b = forces_csv.buffer;
+      fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
+      for (int j = 0; j < n; ++j) {
+        fmt::format_to(std::back_inserter(b), ",{:.4f},{:.4f},{:.4f}", t.forces.total[j],
+                       t.forces.static_part[j], t.forces.dynamic_part[j]);
+      }
+      for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.5f}", t.power_W[j]);
+      for (int j = 0; j < n && commands; ++j)
+        fmt::format_to(std::back_inserter(b), ",{:.4f}", t.command_N[j]);
+      b.push_back('\n');
+      return forces_csv.flush_if_large();
+    };
   }
-  if (stream.error()) return *stream.error();
-  if (options.progress) options.progress(1.0);
-  RunSummary run = monitor.summary();
-  if (drive_dynamics) {
-    if (Status finished = drive_dynamics->finish(); !finished) return at_program_line(plan, finished.error());
-    run.dynamics = drive_dynamics->summary();
-    if (auto committed = forces_csv.commit(); !committed) return committed.error();
+
+  PlanOutputFile response_csv;
+  if (options.dynamics && options.elastic) {
+    if (auto opened = response_csv.open(outputs.staged_path("response.csv")); !opened) return opened.error();
+    fmt::format_to(std::back_inserter(response_csv.buffer),
+                   "time_s,line,dx_mm,dy_mm,dz_mm,rotation_deg,tool_error_mm\n");
+    observers.elastic = [&response_csv](const dynamics::ElasticTick& t) -> Status {
+      fmt::format_to(std::back_inserter(response_csv.buffer),
+                     "{:.6f},{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e}\n", t.time_s, t.line, t.deviation_mm.x(),
+                     t.deviation_mm.y(), t.deviation_mm.z(), t.rotation_deg, t.tool_error_mm);
+      return response_csv.flush_if_large();
+    };
   }
-  if (elastic) {
-    if (Status finished = elastic->finish(); !finished) return at_program_line(plan, finished.error());
-    run.elastic = elastic->summary();
-    if (auto committed = response_csv.commit(); !committed) return committed.error();
+
+  PlanOutputFile deflection_csv;
+  if (options.stiffness) {
+    if (auto opened = deflection_csv.open(outputs.staged_path("deflection.csv")); !opened)
+      return opened.error();
+    fmt::format_to(std::back_inserter(deflection_csv.buffer),
+                   "time_s,line,dx_mm,dy_mm,dz_mm,normal_mm,rotation_rad\n");
+    observers.deflection = [&deflection_csv](const stiffness::DeflectionTick& t) -> Status {
+      fmt::format_to(std::back_inserter(deflection_csv.buffer),
+                     "{:.6f},{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e}\n", t.time_s, t.line, t.deflection_mm.x(),
+                     t.deflection_mm.y(), t.deflection_mm.z(), t.normal_mm, t.rotation_rad);
+      return deflection_csv.flush_if_large();
+    };
   }
-  if (deflection) {
-    if (Status finished = deflection->finish(); !finished) return at_program_line(plan, finished.error());
-    run.deflection = deflection->summary();
-    if (auto committed = deflection_csv.commit(); !committed) return committed.error();
+
+  auto run = stream_plan(plan, machine, options, observers);
+  if (!run) return run;
+  for (auto [file, written] : {std::pair{&forces_csv, options.dynamics},
+                               std::pair{&response_csv, options.dynamics && options.elastic},
+                               std::pair{&deflection_csv, options.stiffness}}) {
+    if (!written) continue;
+    if (auto committed = file->commit(); !committed) return committed.error();
   }
-  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", summary_json(plan, machine, run).dump(2));
+  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", summary_json(plan, machine, *run).dump(2));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
     if (auto committed = f->commit(); !committed) return committed.error();
   }
