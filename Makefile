@@ -9,7 +9,8 @@
 # make fuzz (the libFuzzer harnesses in fuzz/, built with clang + ASan/UBSan in build-fuzz/, FUZZ_SECONDS each),
 # make nightly (the generated-program property suite at nightly size), make bench, make format, make tidy,
 # make consumer (installs pkm::kinematics into build/install and builds and runs examples/consumer against it),
-# make python (the Python module pkm in build/python, docs/python.md).
+# make python (the Python module pkm in build/python, docs/python.md),
+# make linuxcnc (the LinuxCNC kinematics module pkmkins, installed into LinuxCNC's modules: docs/linuxcnc.md).
 JOBS ?= $(shell nproc)
 BUILD ?= build
 EXAMPLE ?= examples/machines/hexapod_ch5.yaml
@@ -22,7 +23,7 @@ SANITIZE_FUZZ_SECONDS ?= 6
 # the elastic response, the energy law), and they run in make test. SANITIZE_SKIP= runs them too.
 SANITIZE_SKIP ?= ^(ServoProgram\.ContourErrorTendsToThePlansPathErrorAsTheCurrentLoopGetsFaster|ServoProgram\.CoupledAndDecoupledPlantsAgreeOnlyWhereTheCouplingIsSmall|ElasticExcitation\.StifferStrutsFollowTheKinematicMotionWithAnErrorFallingAsOneOverC|EnergySpeedSweep\.TheStaticLawsSavingFallsFasterWithSpeedThanTheDynamicLaws)$$
 
-.PHONY: deps configure build python run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
+.PHONY: deps configure build python linuxcnc run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -38,6 +39,13 @@ build: configure
 # The Python module alone (docs/python.md): build/python/pkm, used as PYTHONPATH=build/python /usr/bin/python3.
 python: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target pkm_python
+
+# The LinuxCNC kinematics module: rtapi_app loads modules only from its own folder, so it is installed there
+# (with sudo when not root). make test's LinuxCNC runs install it themselves when they run as root.
+linuxcnc: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target pkmkins
+	@$$([ "$$(id -u)" -eq 0 ] || echo sudo) install -m 644 $(BUILD)/linuxcnc/pkmkins.so /usr/lib/linuxcnc/modules/pkmkins.so
+	@echo "linuxcnc: installed /usr/lib/linuxcnc/modules/pkmkins.so"
 
 # make run builds only what its job needs (the library and the CLI); make test builds the tests too.
 run: configure
@@ -70,9 +78,9 @@ sanitize:
 
 # Formatting must match .clang-format; cppcheck must find nothing.
 lint: deps
-	@find src apps tests bench fuzz python -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
+	@find src apps tests bench fuzz python linuxcnc -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
 	@cppcheck -j $(JOBS) --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
-		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps
+		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps linuxcnc/pkmkins_bridge.cpp
 	@echo "lint: clean"
 
 # The G-code conformance golden files must be what LinuxCNC's rs274 answers today (installs linuxcnc-uspace).
@@ -124,7 +132,7 @@ consumer: build
 	$(BUILD)/consumer/pkm_plan_consumer examples/machines/hexapod_ch5.yaml
 
 format:
-	@find src apps tests bench fuzz python -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+	@find src apps tests bench fuzz python linuxcnc -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
 
 tidy: build
 	@find src apps -name '*.cpp' | xargs clang-tidy -p $(BUILD) --quiet

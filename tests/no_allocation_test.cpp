@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "machine/actuator_offsets.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/joint_limits.hpp"
+#include "pkmkins_bridge.h"
 #include "planning/plan_test_support.hpp"
 #include "servo/servo_simulator.hpp"
 #include "statics/actuator_forces.hpp"
@@ -552,6 +554,72 @@ TEST(NoAllocation, ServoLoopPeriods) {
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_TRUE(simulator.finite());
+}
+
+}  // namespace
+}  // namespace pkm
+
+namespace pkm {
+namespace {
+
+// LinuxCNC's pkmkins module (linuxcnc/pkmkins_bridge.h) calls the bridge's inverse and forward kinematics in
+// the servo thread: along a path of small steps, after one warm-up call, neither allocates.
+TEST(NoAllocation, PkmkinsBridgeInverseAndForwardAlongAPath) {
+  for (const char* file :
+       {"hexapod_ch5.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml", "tripod.yaml",
+        "hexaglide.yaml", "triglide.yaml", "rotopod.yaml", "tricept.yaml", "planar3.yaml", "planar2.yaml"}) {
+    SCOPED_TRACE(file);
+    char error[512] = "";
+    const std::string path = test::source_path(std::string("examples/machines/") + file);
+    pkmkins_machine* m = pkmkins_load(path.c_str(), error, sizeof error);
+    ASSERT_NE(m, nullptr) << error;
+    const std::string coordinates = pkmkins_coordinates(m);
+    double home[6];
+    double joints[6];
+    ASSERT_EQ(pkmkins_home(m, home, joints), 0);
+    // 100 poses stepping 0.05 mm / 0.01 deg a pose along every controlled coordinate.
+    std::vector<std::array<double, 6>> poses(100);
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      for (int i = 0; i < 6; ++i) {
+        const bool controlled = coordinates.find("XYZABC"[i]) != std::string::npos;
+        poses[k][static_cast<std::size_t>(i)] =
+            home[i] + (controlled ? (i < 3 ? 0.05 : 0.01) * static_cast<double>(k + 1) : 0.0);
+      }
+    }
+    double world[6];
+    ASSERT_EQ(pkmkins_inverse(m, poses[0].data(), joints), 0);
+    ASSERT_EQ(pkmkins_forward(m, joints, world), 0);
+    const long before = g_allocations.load();
+    for (std::size_t k = 1; k < poses.size(); ++k) {
+      ASSERT_EQ(pkmkins_inverse(m, poses[k].data(), joints), 0) << "pose " << k;
+      ASSERT_EQ(pkmkins_forward(m, joints, world), 0) << "pose " << k;
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0);
+    // Non-finite input fails before any solve, without allocating either.
+    double nan_joints[6];
+    std::copy(joints, joints + 6, nan_joints);
+    nan_joints[0] = std::numeric_limits<double>::quiet_NaN();
+    double nan_pose[6];
+    std::copy(home, home + 6, nan_pose);
+    // A coordinate the machine controls (the others do not enter its IK).
+    nan_pose[std::string("XYZABC").find(coordinates[0])] = std::numeric_limits<double>::quiet_NaN();
+    const long before_failures = g_allocations.load();
+    EXPECT_EQ(pkmkins_forward(m, nan_joints, world), -1);
+    EXPECT_EQ(pkmkins_inverse(m, nan_pose, joints), -1);
+    EXPECT_EQ(g_allocations.load() - before_failures, 0);
+    pkmkins_free(m);
+  }
+  // Joints no pose has (struts of 1 mm): Newton fails in the servo thread, without allocating.
+  char error[512] = "";
+  const std::string path = test::source_path("examples/machines/hexapod_ch5.yaml");
+  pkmkins_machine* m = pkmkins_load(path.c_str(), error, sizeof error);
+  ASSERT_NE(m, nullptr) << error;
+  const double short_struts[6] = {1, 1, 1, 1, 1, 1};
+  double world[6];
+  const long before = g_allocations.load();
+  EXPECT_EQ(pkmkins_forward(m, short_struts, world), -1);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  pkmkins_free(m);
 }
 
 }  // namespace

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_workspace_command(app, exit_code);
   pkm::cli::add_servo_command(app, exit_code);
   pkm::cli::add_calibrate_command(app, exit_code);
+  pkm::cli::add_linuxcnc_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

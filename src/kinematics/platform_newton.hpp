@@ -37,6 +37,26 @@ struct FkDiagnostics {
   double final_determinant = 0.0;
 };
 
+/// Why the platform solver failed, as data: the servo-loop form (Mechanism::forward_warm_quiet) reports it
+/// without building a message; platform_fk_error() words it for everyone else.
+struct PlatformFkFailure {
+  enum class Kind { start_unreachable, singular_solution, singular_path, not_converged };
+  Kind kind = Kind::not_converged;
+  double residual_mm = 0.0;  ///< max |residual| where Newton stopped (not_converged)
+  ErrorCode code() const {
+    switch (kind) {
+      case Kind::start_unreachable:
+        return ErrorCode::unreachable;
+      case Kind::singular_solution:
+      case Kind::singular_path:
+        return ErrorCode::singular;
+      case Kind::not_converged:
+        break;
+    }
+    return ErrorCode::not_converged;
+  }
+};
+
 /// exp([ω]×)·R = R + a·(ω × R) + b·(ω × (ω × R)), column by column (Rodrigues), without forming matrices:
 /// the on-manifold update of the FK hot path.
 inline Eigen::Matrix3d rotate_by(const Eigen::Vector3d& omega_rad, const Eigen::Matrix3d& rotation) {
@@ -176,10 +196,19 @@ Pose step_pose(const Pose& pose, const Eigen::Matrix<double, N, 1>& step) {
   return out;
 }
 
+/// The words of a failure, as forward() reports it.
+Error platform_fk_error(const PlatformFkFailure& failure, const FkOptions& options);
+
+/// Newton on the platform pose from `guess`: true with `out`, or false with `failure` (no message, no
+/// allocation: the servo loop's form).
 template <int N, class Legs>
-Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVector& target, const Pose& guess,
-                                           const FkOptions& options, FkDiagnostics* diagnostics,
-                                           PlatformFkWorkspace<N>* workspace = nullptr) {
+bool solve_platform_fk_quiet(const Legs& legs, const ActuatorVector& target, const Pose& guess,
+                             const FkOptions& options, FkDiagnostics* diagnostics,
+                             PlatformFkWorkspace<N>* workspace, FkSolution& out, PlatformFkFailure& failure) {
+  auto fail = [&failure](PlatformFkFailure::Kind kind) {
+    failure.kind = kind;
+    return false;
+  };
   using Vector = Eigen::Matrix<double, N, 1>;
   using Matrix = Eigen::Matrix<double, N, N>;
   constexpr int kMaxHalvings = 30;
@@ -200,10 +229,7 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
     pose = guess;  // the extrapolation left the reachable space: start from the guess itself
     reachable = evaluate_residual<N>(legs, pose, target, residual);
   }
-  if (!reachable) {
-    return make_error(ErrorCode::unreachable,
-                      "forward kinematics: the start guess is outside the reachable space");
-  }
+  if (!reachable) return fail(PlatformFkFailure::Kind::start_unreachable);
   double norm = residual.norm();
   FixedLu<N> local_lu;
   FixedLu<N>& lu = workspace ? workspace->lu : local_lu;  // factorised in place: no copies on the hot path
@@ -237,25 +263,14 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
     const double max_abs = residual.cwiseAbs().maxCoeff();
     if (max_abs <= options.tolerance_mm) {
       // A solution at a singular configuration is reported, not returned: its neighbourhood is not unique.
-      if (!factorised && !factorise(0)) {
-        return make_error(
-            ErrorCode::singular,
-            "forward kinematics: these actuator values put the mechanism in a singular configuration");
-      }
-      if (!(lu.pivot_ratio() >= options.min_rcond)) {
-        return make_error(
-            ErrorCode::singular,
-            "forward kinematics: these actuator values put the mechanism in a singular configuration");
-      }
+      if (!factorised && !factorise(0)) return fail(PlatformFkFailure::Kind::singular_solution);
+      if (!(lu.pivot_ratio() >= options.min_rcond)) return fail(PlatformFkFailure::Kind::singular_solution);
       keep();
-      return FkSolution{pose, iteration, max_abs, 0};
+      out = FkSolution{pose, iteration, max_abs, 0};
+      return true;
     }
     if (iteration == options.max_iterations) break;
-    if (!factorised && !factorise(iteration)) {
-      return make_error(ErrorCode::singular,
-                        "forward kinematics: the Jacobian is singular on the way to a solution "
-                        "(the actuator values may lie at a singular configuration)");
-    }
+    if (!factorised && !factorise(iteration)) return fail(PlatformFkFailure::Kind::singular_path);
     Vector trial_residual;
     // Chord step with the factorisation we have.
     if (!lu_is_current) {
@@ -271,11 +286,7 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
           continue;
         }
       }
-      if (!factorise(iteration)) {
-        return make_error(ErrorCode::singular,
-                          "forward kinematics: the Jacobian is singular on the way to a solution "
-                          "(the actuator values may lie at a singular configuration)");
-      }
+      if (!factorise(iteration)) return fail(PlatformFkFailure::Kind::singular_path);
     }
     // Newton step from a fresh factorisation, with backtracking.
     const Vector full_step = lu.solve(-residual);
@@ -299,10 +310,20 @@ Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVecto
     if (!accepted) break;
   }
   if (workspace) workspace->reset();
-  return make_error(ErrorCode::not_converged,
-                    "forward kinematics did not converge within " + std::to_string(options.max_iterations) +
-                        " iterations (residual " + std::to_string(residual.cwiseAbs().maxCoeff()) +
-                        " mm); give a guess closer to the solution");
+  failure.residual_mm = residual.cwiseAbs().maxCoeff();
+  return fail(PlatformFkFailure::Kind::not_converged);
+}
+
+template <int N, class Legs>
+Result<FkSolution> solve_platform_fk_fixed(const Legs& legs, const ActuatorVector& target, const Pose& guess,
+                                           const FkOptions& options, FkDiagnostics* diagnostics,
+                                           PlatformFkWorkspace<N>* workspace = nullptr) {
+  FkSolution solution;
+  PlatformFkFailure failure;
+  if (solve_platform_fk_quiet<N>(legs, target, guess, options, diagnostics, workspace, solution, failure)) {
+    return solution;
+  }
+  return platform_fk_error(failure, options);
 }
 
 }  // namespace detail

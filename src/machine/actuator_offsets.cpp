@@ -45,6 +45,17 @@ Result<FkSolution> ActuatorOffsets::forward_warm(const ActuatorVector& actuators
   return inner_->forward_warm(geometric, guess, options, workspace);
 }
 
+bool ActuatorOffsets::forward_warm_quiet(const ActuatorVector& actuators, const Pose& guess,
+                                         const FkOptions& options, FkWorkspace& workspace, FkSolution& out,
+                                         ErrorCode& failure) const {
+  if (actuators.size() != offsets_.size()) {
+    failure = ErrorCode::bad_input;
+    return false;
+  }
+  const ActuatorVector geometric = actuators + offsets_;
+  return inner_->forward_warm_quiet(geometric, guess, options, workspace, out, failure);
+}
+
 Result<std::vector<FkSolution>> ActuatorOffsets::forward_all(const ActuatorVector& actuators,
                                                              const FkOptions& options) const {
   if (actuators.size() != offsets_.size()) return wrong_reading_count(actuators, actuator_count());

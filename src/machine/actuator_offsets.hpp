@@ -32,6 +32,8 @@ class ActuatorOffsets final : public Mechanism {
   /// The inner solve of the readings plus the offsets.
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
+  bool forward_warm_quiet(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
+                          FkWorkspace& workspace, FkSolution& out, ErrorCode& failure) const override;
   Result<FkSolution> forward_warm(const ActuatorVector& actuators, const Pose& guess,
                                   const FkOptions& options, FkWorkspace& workspace) const override;
   /// The inner mechanism's workspace (it owns it, so its forward_warm uses it).

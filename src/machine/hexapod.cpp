@@ -70,12 +70,25 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
     return make_error(ErrorCode::bad_input,
                       fmt::format("a hexapod needs 6 strut lengths, got {}", actuators.size()));
   }
+  FkSolution solution;
+  PlatformFkFailure failure;
+  bool other_mode = false;
+  if (forward_quiet(actuators, guess, options, workspace, solution, failure, other_mode)) return solution;
+  if (other_mode) return another_assembly_mode_error(solution.pose);
+  return detail::platform_fk_error(failure, options);
+}
+
+bool Hexapod::forward_quiet(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
+                            PlatformFkWorkspace<6>& workspace, FkSolution& out, PlatformFkFailure& failure,
+                            bool& other_mode) const {
+  other_mode = false;
   FkDiagnostics diagnostics;
   // The guess's mode is known when it is the previous solution on this path.
   const int known_guess_mode = workspace.continues_path(guess) ? workspace.last_solution_mode : -1;
-  auto solution =
-      detail::solve_platform_fk_fixed<6>(*this, actuators, guess, options, &diagnostics, &workspace);
-  if (!solution) return solution;
+  if (!detail::solve_platform_fk_quiet<6>(*this, actuators, guess, options, &diagnostics, &workspace, out,
+                                          failure)) {
+    return false;
+  }
   // The determinants come from the solver's own factorisations (at the guess, and one converging step before
   // the solution), so the check costs only the side-of-base test.
   // Near a singularity the last factorisation (one step before the solution) may sit on the other side of it:
@@ -84,17 +97,18 @@ Result<FkSolution> Hexapod::forward(const ActuatorVector& actuators, const Pose&
   const double determinant =
       std::abs(diagnostics.final_determinant) >= kTrustedDeterminantFraction * std::abs(home_determinant_)
           ? diagnostics.final_determinant
-          : twist_jacobian(solution->pose).determinant();
-  const int mode = assembly_mode(solution->pose, determinant);
-  solution->branch = mode == home_mode_ ? 0 : mode + 1;
+          : twist_jacobian(out.pose).determinant();
+  const int mode = assembly_mode(out.pose, determinant);
+  out.branch = mode == home_mode_ ? 0 : mode + 1;
   workspace.last_solution_mode = mode;
   const int guess_mode =
       known_guess_mode >= 0 ? known_guess_mode : assembly_mode(guess, diagnostics.guess_determinant);
   if (options.require_same_branch && mode != guess_mode) {
     workspace.reset();
-    return another_assembly_mode_error(solution->pose);
+    other_mode = true;
+    return false;
   }
-  return solution;
+  return true;
 }
 
 Result<FkSolution> Hexapod::forward_warm(const ActuatorVector& actuators, const Pose& guess,
@@ -102,6 +116,21 @@ Result<FkSolution> Hexapod::forward_warm(const ActuatorVector& actuators, const 
   // The owner check makes the downcast safe: only this hexapod's make_fk_workspace made such a workspace.
   if (workspace.owner() != this) return forward(actuators, guess, options);
   return forward(actuators, guess, options, static_cast<HexapodFkWorkspace&>(workspace).platform);
+}
+
+bool Hexapod::forward_warm_quiet(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
+                                 FkWorkspace& workspace, FkSolution& out, ErrorCode& failure) const {
+  if (workspace.owner() != this || actuators.size() != 6) {
+    return Mechanism::forward_warm_quiet(actuators, guess, options, workspace, out, failure);
+  }
+  PlatformFkFailure reason;
+  bool other_mode = false;
+  if (forward_quiet(actuators, guess, options, static_cast<HexapodFkWorkspace&>(workspace).platform, out,
+                    reason, other_mode)) {
+    return true;
+  }
+  failure = other_mode ? ErrorCode::wrong_branch : reason.code();
+  return false;
 }
 
 std::unique_ptr<FkWorkspace> Hexapod::make_fk_workspace() const {

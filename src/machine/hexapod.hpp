@@ -50,6 +50,9 @@ class Hexapod final : public Mechanism {
   /// The platform solver with the workspace's factorisation (a HexapodFkWorkspace from make_fk_workspace).
   Result<FkSolution> forward_warm(const ActuatorVector& actuators, const Pose& guess,
                                   const FkOptions& options, FkWorkspace& workspace) const override;
+  /// forward_warm without a message: no allocation, failing or not.
+  bool forward_warm_quiet(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
+                          FkWorkspace& workspace, FkSolution& out, ErrorCode& failure) const override;
   std::unique_ptr<FkWorkspace> make_fk_workspace() const override;
   /// strut_lengths(); false when a strut would have zero length (as inverse()).
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
@@ -68,6 +71,11 @@ class Hexapod final : public Mechanism {
   /// (one workspace per path; the first call factorises). The hot path of a servo loop.
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
                              PlatformFkWorkspace<6>& workspace) const;
+  /// The same, with the failure as data: false with `failure`, or with `other_mode` set when Newton converged
+  /// in another assembly mode than the guess's (`out` then holds that solution). Never allocates.
+  bool forward_quiet(const ActuatorVector& actuators, const Pose& guess, const FkOptions& options,
+                     PlatformFkWorkspace<6>& workspace, FkSolution& out, PlatformFkFailure& failure,
+                     bool& other_mode) const;
 
   /// Hot path: strut lengths of a pose, no checks, no allocation.
   void strut_lengths(const Pose& pose, double* lengths_mm) const noexcept {

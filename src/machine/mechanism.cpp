@@ -44,6 +44,18 @@ Result<std::vector<FkSolution>> Mechanism::forward_all(const ActuatorVector&, co
                   to_string(type())));
 }
 
+bool Mechanism::forward_warm_quiet(const ActuatorVector& actuators, const Pose& guess,
+                                   const FkOptions& options, FkWorkspace& workspace, FkSolution& out,
+                                   ErrorCode& failure) const {
+  auto solution = forward_warm(actuators, guess, options, workspace);
+  if (!solution) {
+    failure = solution.error().code;
+    return false;
+  }
+  out = solution.value();
+  return true;
+}
+
 Result<FkSolution> Mechanism::forward_warm(const ActuatorVector& actuators, const Pose& guess,
                                            const FkOptions& options, FkWorkspace& /*workspace*/) const {
   return forward(actuators, guess, options);

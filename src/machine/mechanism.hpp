@@ -137,6 +137,13 @@ class Mechanism {
   /// (A name of its own, not a forward() overload: mechanisms override forward() without hiding this.)
   virtual Result<FkSolution> forward_warm(const ActuatorVector& actuators, const Pose& guess,
                                           const FkOptions& options, FkWorkspace& workspace) const;
+  /// forward_warm for a real-time servo loop (LinuxCNC's module): true with `out`, or false with the reason
+  /// in `failure` and no message. The hexapods (and drive offsets over them) neither allocate nor throw,
+  /// failing or not; the default calls forward_warm, so elsewhere a failure allocates its message (and drops
+  /// it).
+  virtual bool forward_warm_quiet(const ActuatorVector& actuators, const Pose& guess,
+                                  const FkOptions& options, FkWorkspace& workspace, FkSolution& out,
+                                  ErrorCode& failure) const;
   /// A workspace for forward_warm (allocates: call at set-up, never per tick).
   virtual std::unique_ptr<FkWorkspace> make_fk_workspace() const;
   /// All assembly modes, where the mechanism can enumerate them.

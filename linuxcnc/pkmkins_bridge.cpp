@@ -1,0 +1,200 @@
+// pkm's kinematics behind the C functions of pkmkins_bridge.h: the machine file is read once, at module load;
+// the servo-thread calls then use only the Mechanism interface's real-time forms (actuator_values, and
+// forward_warm_quiet with a workspace made at load, which reports a failure without building a message).
+#include "pkmkins_bridge.h"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <new>
+#include <string>
+
+#include "core/pose.hpp"
+#include "core/units.hpp"
+#include "io/machine_file.hpp"
+#include "machine/machine.hpp"
+#include "machine/mechanism.hpp"
+
+struct pkmkins_machine {
+  pkm::Machine machine;
+  std::unique_ptr<pkm::FkWorkspace> workspace;
+  pkm::AngleConvention convention{};
+  int joints = 0;
+  bool angular_joints = false;
+  char coordinates[7] = {};
+  // The last good forward solution: the next solve's guess, and the turn its angles are unwrapped to.
+  pkm::Pose last_pose;
+  pkm::PoseVector last_world_mm_rad = pkm::PoseVector::Zero();
+  pkm::FkOptions options;
+  long forward_solves = 0;
+  long forward_failures = 0;
+  int last_iterations = 0;
+  pkm::ErrorCode last_failure{};
+  // Angular joints (carriages on a circle) turn endlessly, but IK gives each angle within half a turn of its
+  // home: the last joints LinuxCNC commanded or read keep the next ones on the same turn.
+  double last_joints[pkm::kMaxActuators] = {};
+  pkm::AxisMask controlled;
+};
+
+namespace {
+
+double joint_from_actuator(const pkmkins_machine& m, double value) {
+  return m.angular_joints ? pkm::deg_from_rad(value) : value;
+}
+double actuator_from_joint(const pkmkins_machine& m, double value) {
+  return m.angular_joints ? pkm::rad_from_deg(value) : value;
+}
+
+// The angle equal to `angle` modulo a full turn `turn` that is nearest to `reference`.
+double unwrapped_near(double angle, double reference, double turn) {
+  return angle + turn * std::round((reference - angle) / turn);
+}
+
+void remember_joints(pkmkins_machine& m, const double* joints) {
+  for (int j = 0; j < m.joints; ++j) m.last_joints[j] = joints[j];
+}
+
+pkm::PoseVector pose_vector_from_world(const double world[6]) {
+  pkm::PoseVector v;
+  v << world[0], world[1], world[2], pkm::rad_from_deg(world[3]), pkm::rad_from_deg(world[4]),
+      pkm::rad_from_deg(world[5]);
+  return v;
+}
+
+void world_from_pose_vector(const pkm::PoseVector& v, double world[6]) {
+  for (int i = 0; i < 3; ++i) world[i] = v[i];
+  for (int i = 3; i < 6; ++i) world[i] = pkm::deg_from_rad(v[i]);
+}
+
+void copy_message(const std::string& message, char* error, std::size_t error_size) {
+  if (error == nullptr || error_size == 0) return;
+  std::snprintf(error, error_size, "%s", message.c_str());
+}
+
+}  // namespace
+
+extern "C" {
+
+pkmkins_machine* pkmkins_load(const char* machine_file, char* error, size_t error_size) {
+  if (machine_file == nullptr || machine_file[0] == '\0') {
+    copy_message("no machine file given (module parameter machine=PATH)", error, error_size);
+    return nullptr;
+  }
+  try {
+    auto loaded = pkm::load_machine_file(machine_file);
+    if (!loaded) {
+      copy_message(loaded.error().message, error, error_size);
+      return nullptr;
+    }
+    auto m = std::make_unique<pkmkins_machine>();
+    m->machine = std::move(loaded.value());
+    const pkm::Mechanism& mechanism = *m->machine.mechanism;
+    m->workspace = mechanism.make_fk_workspace();
+    m->convention = mechanism.convention();
+    m->joints = mechanism.actuator_count();
+    m->angular_joints = mechanism.actuators_are_angles();
+    const pkm::AxisMask axes = mechanism.controlled_axes();
+    m->controlled = axes;
+    int n = 0;
+    for (int i = 0; i < 6; ++i) {
+      if (axes.controlled[static_cast<std::size_t>(i)]) m->coordinates[n++] = "XYZABC"[i];
+    }
+    m->coordinates[n] = '\0';
+    m->last_pose = mechanism.home();
+    m->last_world_mm_rad = pkm::vector_from_pose(m->convention, mechanism.home());
+    pkm::ActuatorVector home_actuators(m->joints);
+    if (!mechanism.actuator_values(mechanism.home(), home_actuators.data())) {
+      copy_message(m->machine.source + ": the home pose is out of the machine's reach", error, error_size);
+      return nullptr;
+    }
+    if (auto in_range = pkm::check_actuator_range(m->machine, home_actuators); !in_range) {
+      copy_message("at the home pose: " + in_range.error().message, error, error_size);
+      return nullptr;
+    }
+    for (int j = 0; j < m->joints; ++j) m->last_joints[j] = joint_from_actuator(*m, home_actuators[j]);
+    return m.release();
+  } catch (const std::exception& e) {  // out of memory while loading: nothing else throws here
+    copy_message(e.what(), error, error_size);
+    return nullptr;
+  }
+}
+
+void pkmkins_free(pkmkins_machine* machine) {
+  delete machine;
+}
+
+int pkmkins_joint_count(const pkmkins_machine* machine) {
+  return machine->joints;
+}
+
+const char* pkmkins_coordinates(const pkmkins_machine* machine) {
+  return machine->coordinates;
+}
+
+int pkmkins_home(pkmkins_machine* m, double world[6], double* joints) {
+  const pkm::Mechanism& mechanism = *m->machine.mechanism;
+  m->last_pose = mechanism.home();
+  m->last_world_mm_rad = pkm::vector_from_pose(m->convention, mechanism.home());
+  m->workspace->reset();
+  world_from_pose_vector(m->last_world_mm_rad, world);
+  double actuators[pkm::kMaxActuators];
+  if (!mechanism.actuator_values(mechanism.home(), actuators)) return -1;
+  for (int j = 0; j < m->joints; ++j) joints[j] = joint_from_actuator(*m, actuators[j]);
+  remember_joints(*m, joints);
+  return 0;
+}
+
+int pkmkins_inverse(pkmkins_machine* m, const double world[6], double* joints) {
+  pkm::PoseVector v = pose_vector_from_world(world);
+  for (int i = 0; i < 6; ++i) {
+    if (std::isfinite(v[i])) continue;
+    // The coordinates the machine does not control do not enter its IK; the others must be numbers.
+    if (m->controlled.controlled[static_cast<std::size_t>(i)]) return -1;
+    v[i] = 0.0;
+  }
+  const pkm::Pose pose = pkm::pose_from_vector(m->convention, v);
+  double actuators[pkm::kMaxActuators];
+  if (!m->machine.mechanism->actuator_values(pose, actuators)) return -1;
+  for (int j = 0; j < m->joints; ++j) {
+    if (!std::isfinite(actuators[j])) return -1;
+    joints[j] = joint_from_actuator(*m, actuators[j]);
+    if (m->angular_joints) joints[j] = unwrapped_near(joints[j], m->last_joints[j], 360.0);
+  }
+  remember_joints(*m, joints);
+  return 0;
+}
+
+int pkmkins_forward(pkmkins_machine* m, const double* joints, double world[6]) {
+  ++m->forward_solves;
+  pkm::ActuatorVector actuators(m->joints);
+  for (int j = 0; j < m->joints; ++j) actuators[j] = actuator_from_joint(*m, joints[j]);
+  if (!actuators.allFinite()) {
+    ++m->forward_failures;
+    return -1;
+  }
+  pkm::FkSolution solution;
+  pkm::ErrorCode failure{};
+  if (!m->machine.mechanism->forward_warm_quiet(actuators, m->last_pose, m->options, *m->workspace, solution,
+                                                failure)) {
+    ++m->forward_failures;
+    m->last_failure = failure;
+    return -1;
+  }
+  m->last_iterations = solution.iterations;
+  pkm::PoseVector v = pkm::vector_from_pose(m->convention, solution.pose);
+  for (int i = 3; i < 6; ++i)
+    v[i] = unwrapped_near(v[i], m->last_world_mm_rad[i], 2.0 * 3.14159265358979323846);
+  m->last_pose = solution.pose;
+  remember_joints(*m, joints);
+  m->last_world_mm_rad = v;
+  world_from_pose_vector(v, world);
+  return 0;
+}
+
+void pkmkins_forward_counts(const pkmkins_machine* m, long* solves, long* failures, int* last_iterations) {
+  *solves = m->forward_solves;
+  *failures = m->forward_failures;
+  *last_iterations = m->last_iterations;
+}
+
+}  // extern "C"

@@ -1,0 +1,305 @@
+#include "pipeline/linuxcnc_config.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/units.hpp"
+#include "io/input_file.hpp"
+#include "io/output_set.hpp"
+
+namespace pkm {
+
+std::string_view to_string(LinuxcncKinematics kinematics) {
+  switch (kinematics) {
+    case LinuxcncKinematics::genhexkins:
+      return "genhexkins";
+    case LinuxcncKinematics::trivkins:
+      return "trivkins";
+    case LinuxcncKinematics::pkmkins:
+      break;
+  }
+  return "pkmkins";
+}
+
+namespace {
+
+constexpr const char* kAxisLetters = "XYZABC";
+
+struct JointSettings {
+  double min = 0.0, max = 0.0, speed = 0.0, accel = 0.0;  // LinuxCNC units: mm or deg
+};
+
+Error limits_error(const Machine& machine, std::string_view key) {
+  Error e =
+      make_error(ErrorCode::bad_input,
+                 fmt::format("{}: limits.{} is needed for LinuxCNC's joints (limits, speed, acceleration)",
+                             machine.source, key));
+  e.location.file = machine.source;
+  e.location.key = fmt::format("limits.{}", key);
+  return e;
+}
+
+// Carriages on a circle (the rotopod) turn endlessly: without a range in the machine file their joints get
+// one of a thousand turns each way, which LinuxCNC's joint checks never reach.
+constexpr double kEndlessJointRangeDeg = 360000.0;
+
+Result<JointSettings> joint_settings(const Machine& machine) {
+  const ActuatorLimits& l = machine.limits;
+  const bool angles = machine.mechanism->actuators_are_angles();
+  if (!l.min && !angles) return limits_error(machine, "actuator_min");
+  if (!l.max && !angles) return limits_error(machine, "actuator_max");
+  if (!l.speed) return limits_error(machine, "actuator_speed");
+  if (!l.accel) return limits_error(machine, "actuator_accel");
+  const double unit = angles ? deg_from_rad(1.0) : 1.0;
+  return JointSettings{l.min ? *l.min * unit : -kEndlessJointRangeDeg,
+                       l.max ? *l.max * unit : kEndlessJointRangeDeg, *l.speed * unit, *l.accel * unit};
+}
+
+std::string number(double value) {
+  return fmt::format("{:.17g}", value);
+}
+
+struct JointSection {
+  bool angular = false;
+  JointSettings limits;
+  double home = 0.0;
+};
+
+// The machine's actuators as LinuxCNC joints, at their home positions.
+std::vector<JointSection> actuator_joints(const Machine& machine, const JointSettings& s,
+                                          const std::vector<double>& home) {
+  std::vector<JointSection> joints;
+  for (double h : home) joints.push_back({machine.mechanism->actuators_are_angles(), s, h});
+  return joints;
+}
+
+// The controlled coordinates as joints of trivkins, and the limits of LinuxCNC's axes: the same program
+// through the same motion controller with no kinematics is the baseline of the servo-thread time comparison.
+std::vector<JointSection> coordinate_joints(const Machine& machine, const PoseVector& home,
+                                            const JointSettings& actuators) {
+  std::vector<JointSection> joints;
+  const Mechanism& m = *machine.mechanism;
+  const double stroke_mm =
+      m.actuators_are_angles() ? 2.0 * m.platform_size_mm() : actuators.max - actuators.min;
+  const double angular_accel = deg_from_rad(machine.motion.path_accel_mm_s2 / m.platform_size_mm());
+  const AxisMask axes = m.controlled_axes();
+  for (int i = 0; i < 6; ++i) {
+    if (!axes.controlled[static_cast<std::size_t>(i)]) continue;
+    const bool linear = i < 3;
+    const double centre = linear ? home[i] : deg_from_rad(home[i]);
+    const double reach = linear ? stroke_mm : 180.0;
+    JointSettings limits{
+        centre - reach, centre + reach,
+        linear ? machine.motion.rapid_mm_min / 60.0 : machine.motion.angular_feed_deg_min / 60.0,
+        linear ? machine.motion.path_accel_mm_s2 : angular_accel};
+    joints.push_back({!linear, limits, centre});
+  }
+  return joints;
+}
+
+// The whole platform's limits in LinuxCNC's axes (coordinate_joints). The joints carry the machine's real
+// limits (LinuxCNC checks them on every joint command), so the axes only bound the planner: home ± the
+// actuator stroke for positions and home ± 180° for angles.
+std::string axis_sections(const Machine& machine, const PoseVector& home, const JointSettings& actuators) {
+  const std::vector<JointSection> axes = coordinate_joints(machine, home, actuators);
+  const AxisMask controlled = machine.mechanism->controlled_axes();
+  std::string out;
+  std::size_t k = 0;
+  for (int i = 0; i < 6; ++i) {
+    if (!controlled.controlled[static_cast<std::size_t>(i)]) continue;
+    const JointSettings& l = axes[k++].limits;
+    out +=
+        fmt::format("[AXIS_{}]\nMIN_LIMIT = {}\nMAX_LIMIT = {}\nMAX_VELOCITY = {}\nMAX_ACCELERATION = {}\n\n",
+                    kAxisLetters[i], number(l.min), number(l.max), number(l.speed), number(l.accel));
+  }
+  return out;
+}
+
+std::string joint_sections(const std::vector<JointSection>& joints) {
+  std::string out;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const JointSection& s = joints[j];
+    // No home switches in a simulated machine: homing takes the joint's position as HOME_OFFSET (search and
+    // latch speeds 0), and every joint homes at once, where the machine file's home pose puts it.
+    out += fmt::format(
+        "[JOINT_{}]\nTYPE = {}\nMIN_LIMIT = {}\nMAX_LIMIT = {}\nMAX_VELOCITY = {}\nMAX_ACCELERATION = {}\n"
+        "HOME = {}\nHOME_OFFSET = {}\nHOME_SEARCH_VEL = 0\nHOME_LATCH_VEL = 0\nHOME_SEQUENCE = 0\n\n",
+        j, s.angular ? "ANGULAR" : "LINEAR", number(s.limits.min), number(s.limits.max),
+        number(s.limits.speed), number(s.limits.accel), number(s.home), number(s.home));
+  }
+  return out;
+}
+
+std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& options,
+                     const std::string& kinematics, const LinuxcncConfig& config, const JointSettings& joints,
+                     const PoseVector& home) {
+  const Mechanism& m = *machine.mechanism;
+  const AxisMask axes = m.controlled_axes();
+  std::string coordinates, origin;
+  for (int i = 0; i < 6; ++i) {
+    if (!axes.controlled[static_cast<std::size_t>(i)]) continue;
+    coordinates += fmt::format("{}{}", coordinates.empty() ? "" : " ", kAxisLetters[i]);
+    if (i < 3) origin += fmt::format(" {}{}", kAxisLetters[i], number(machine.motion.program_origin_mm[i]));
+  }
+  // The world home: kinematics whose forward solution iterates (genhexkins) start their homed pose from it.
+  std::string home_text;
+  for (int i = 0; i < 6; ++i)
+    home_text += fmt::format("{}{}", i ? " " : "", number(i < 3 ? home[i] : deg_from_rad(home[i])));
+  const std::vector<JointSection> joint_list = options.kinematics == LinuxcncKinematics::trivkins
+                                                   ? coordinate_joints(machine, home, joints)
+                                                   : actuator_joints(machine, joints, config.home_joints);
+  std::string hal_files = "HALFILE = machine.hal\n";
+  if (options.kinematics == LinuxcncKinematics::genhexkins) hal_files += "HALFILE = genhexkins.hal\n";
+  return fmt::format(
+      "# LinuxCNC configuration of {name}, written by `pkm linuxcnc config` from {source}.\n"
+      "# Machine coordinates are pkm's base frame (the tool point, mm) and the machine file's angles "
+      "({conv}, deg);\n"
+      "# G54 is the machine file's program origin (motion.program_origin_mm). Regenerate rather than edit: "
+      "the\n"
+      "# joints' limits and homes come from the machine file.\n\n"
+      "[EMC]\nVERSION = 1.1\nMACHINE = {name}\n\n"
+      "[DISPLAY]\nDISPLAY = {display}\nPOSITION_OFFSET = RELATIVE\nPOSITION_FEEDBACK = COMMANDED\n"
+      "MAX_FEED_OVERRIDE = 1.5\n\n"
+      "[RS274NGC]\nPARAMETER_FILE = pkm.var\nRS274NGC_STARTUP_CODE = G21 G90 G10 L2 P1{origin}\n\n"
+      "[EMCMOT]\nEMCMOT = motmod\nCOMM_TIMEOUT = 1.0\nSERVO_PERIOD = {period}\n\n"
+      "[TASK]\nTASK = milltask\nCYCLE_TIME = 0.010\n\n"
+      "[HAL]\n{hal}\n"
+      "[TRAJ]\nCOORDINATES = {coordinates}\nLINEAR_UNITS = mm\nANGULAR_UNITS = degree\nHOME = {home}\n"
+      "DEFAULT_LINEAR_VELOCITY = {feed}\nMAX_LINEAR_VELOCITY = {rapid}\nMAX_LINEAR_ACCELERATION = {accel}\n"
+      "DEFAULT_ANGULAR_VELOCITY = {angular}\nMAX_ANGULAR_VELOCITY = {angular}\n\n"
+      "[EMCIO]\nEMCIO = io\nCYCLE_TIME = 0.100\nTOOL_TABLE = tool.tbl\n\n"
+      "[KINS]\nKINEMATICS = {kinematics}\nJOINTS = {joints}\n\n"
+      "{joint_sections}{axis_sections}",
+      fmt::arg("name", machine.name.empty() ? std::string("pkm machine") : machine.name),
+      fmt::arg("source", machine.source), fmt::arg("conv", to_string(m.convention())),
+      fmt::arg("display", options.display), fmt::arg("origin", origin),
+      fmt::arg("period", config.servo_period_ns), fmt::arg("hal", hal_files),
+      fmt::arg("coordinates", coordinates), fmt::arg("home", home_text),
+      fmt::arg("feed", number(machine.motion.max_feed_mm_min / 60.0)),
+      fmt::arg("rapid", number(machine.motion.rapid_mm_min / 60.0)),
+      fmt::arg("accel", number(machine.motion.path_accel_mm_s2)),
+      fmt::arg("angular", number(machine.motion.angular_feed_deg_min / 60.0)),
+      fmt::arg("kinematics", kinematics), fmt::arg("joints", joint_list.size()),
+      fmt::arg("joint_sections", joint_sections(joint_list)),
+      fmt::arg("axis_sections", axis_sections(machine, home, joints)));
+}
+
+std::string hal_text(const Machine& machine, int joints) {
+  std::string out = fmt::format(
+      "# Servo loop of a simulated {}: motion runs in the servo thread through the [KINS] kinematics, and "
+      "every\n"
+      "# joint is where it is commanded (a real machine connects its drives here instead).\n"
+      "loadrt [KINS]KINEMATICS\n"
+      "loadrt [EMCMOT]EMCMOT servo_period_nsec=[EMCMOT]SERVO_PERIOD num_joints=[KINS]JOINTS\n"
+      "addf motion-command-handler servo-thread\naddf motion-controller servo-thread\n\n",
+      machine.name.empty() ? std::string("machine") : machine.name);
+  for (int j = 0; j < joints; ++j)
+    out += fmt::format("net j{0}-pos joint.{0}.motor-pos-cmd => joint.{0}.motor-pos-fb\n", j);
+  out +=
+      "\nnet estop-loop iocontrol.0.user-enable-out => iocontrol.0.emc-enable-in\n"
+      "net tool-prepare-loop iocontrol.0.tool-prepare => iocontrol.0.tool-prepared\n"
+      "net tool-change-loop iocontrol.0.tool-change => iocontrol.0.tool-changed\n";
+  return out;
+}
+
+// genhexkins' joint coordinates: base joints in the base frame and platform joints in the frame of LinuxCNC's
+// Cartesian position, which is pkm's tool point with the platform's axes. Read off the mechanism at home
+// through the interface; genhexkins can describe only six distance actuators with the whole pose free, in abc
+// angles.
+Result<std::string> genhexkins_text(const Machine& machine) {
+  const Mechanism& m = *machine.mechanism;
+  StrutJointPoints joints;
+  if (!m.has_distance_actuators() || m.actuator_count() != 6 || m.controlled_axes().count() != 6 ||
+      m.convention() != AngleConvention::abc || m.strut_joints(m.home(), joints) != 6) {
+    Error e =
+        make_error(ErrorCode::bad_input,
+                   fmt::format("{}: genhexkins describes only hexapods with six strut-length actuators and "
+                               "LinuxCNC's angles (angles: abc); use pkmkins for this machine",
+                               machine.source));
+    e.location.file = machine.source;
+    e.location.key = "type";
+    return e;
+  }
+  std::string out =
+      "# LinuxCNC's genhexkins with this machine's joints (platform joints in the tool frame, mm).\n";
+  for (int j = 0; j < 6; ++j) {
+    const Eigen::Vector3d base = joints.base_mm[j];
+    const Eigen::Vector3d platform =
+        m.home().rotation.transpose() * (joints.platform_mm[j] - m.home().position_mm);
+    for (int k = 0; k < 3; ++k)
+      out += fmt::format("setp genhexkins.base.{}.{} {}\n", j, "xyz"[k], number(base[k]));
+    for (int k = 0; k < 3; ++k)
+      out += fmt::format("setp genhexkins.platform.{}.{} {}\n", j, "xyz"[k], number(platform[k]));
+  }
+  return out;
+}
+
+}  // namespace
+
+Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const LinuxcncConfigOptions& options) {
+  const Mechanism& m = *machine.mechanism;
+  auto settings = joint_settings(machine);
+  if (!settings) return settings.error();
+  LinuxcncConfig config;
+  const auto home_actuators = m.inverse(m.home());
+  if (!home_actuators) return home_actuators.error();
+  if (auto in_range = check_actuator_range(machine, *home_actuators); !in_range) return in_range.error();
+  const double unit = m.actuators_are_angles() ? deg_from_rad(1.0) : 1.0;
+  for (int j = 0; j < m.actuator_count(); ++j) config.home_joints.push_back((*home_actuators)[j] * unit);
+  const AxisMask axes = m.controlled_axes();
+  for (int i = 0; i < 6; ++i)
+    if (axes.controlled[static_cast<std::size_t>(i)]) config.coordinates += kAxisLetters[i];
+  config.servo_period_ns = static_cast<int>(std::lround(machine.drives.period_ms.value_or(1.0) * 1e6));
+
+  std::error_code ec;
+  const std::string directory =
+      std::filesystem::absolute(options.out_directory, ec).lexically_normal().string();
+  // loadrt splits its line at spaces, so the machine file's path in the module's argument cannot have one.
+  if (directory.find_first_of(" \t\"'") != std::string::npos) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("{}: LinuxCNC's loadrt cannot pass a path with spaces or quotes to pkmkins; "
+                    "choose another --out",
+                    directory));
+  }
+  std::string kinematics = std::string(to_string(options.kinematics));
+  std::string genhexkins;
+  if (options.kinematics == LinuxcncKinematics::genhexkins) {
+    auto text = genhexkins_text(machine);
+    if (!text) return text.error();
+    genhexkins = std::move(text.value());
+  } else if (options.kinematics == LinuxcncKinematics::trivkins) {
+    kinematics += " coordinates=" + config.coordinates;
+  } else {
+    kinematics += " machine=" + directory + "/machine.yaml";
+  }
+  auto machine_text = read_input_file(machine.source, "machine file");
+  if (!machine_text) return machine_text.error();
+
+  OutputSet outputs;
+  if (auto made = outputs.use_directory(directory); !made) return made.error();
+  const PoseVector home = vector_from_pose(m.convention(), m.home());
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"machine.ini", ini_text(machine, options, kinematics, config, *settings, home)},
+      {"machine.hal",
+       hal_text(machine, options.kinematics == LinuxcncKinematics::trivkins ? m.controlled_axes().count()
+                                                                            : m.actuator_count())},
+      {"machine.yaml", *machine_text},
+      {"tool.tbl", "T1 P1 D0 Z0 ;no tool length: programs run at pkm's tool point\n"}};
+  if (!genhexkins.empty()) files.emplace_back("genhexkins.hal", genhexkins);
+  for (const auto& [name, text] : files) {
+    std::ofstream out(outputs.staged_path(name), std::ios::binary);
+    out << text;
+    if (!out.flush()) {
+      return make_error(ErrorCode::io, fmt::format("cannot write {}/{}", directory, name));
+    }
+    config.files.push_back(name);
+  }
+  if (auto committed = outputs.commit(); !committed) return committed.error();
+  return config;
+}
+
+}  // namespace pkm
