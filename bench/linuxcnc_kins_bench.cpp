@@ -94,6 +94,14 @@ std::string format_name(const char* fmt, va_list args) {
   return name;
 }
 
+// Hands a new pin's storage of one type to the module, as HAL's *_new functions do; -1 when there is none.
+template <class T>
+int place_pin(PinStorage* storage, volatile T** data_ptr_addr, T PinStorage::*member) {
+  if (storage == nullptr) return -1;
+  *data_ptr_addr = &(storage->*member);
+  return 0;
+}
+
 PinStorage& pin(const std::string& name) {
   const auto it = pins().find(name);
   if (it == pins().end()) throw std::runtime_error("no HAL pin " + name);
@@ -122,47 +130,35 @@ void* hal_malloc(long int size) {
 }
 
 int hal_pin_bit_new(const char* name, int, volatile bool** data_ptr_addr, int) {
-  PinStorage* p = new_pin(name);
-  if (p == nullptr) return -1;
-  *data_ptr_addr = &p->bit;
-  return 0;
+  return place_pin(new_pin(name), data_ptr_addr, &PinStorage::bit);
 }
 
 int hal_pin_s32_new(const char* name, int, volatile std::int32_t** data_ptr_addr, int) {
-  PinStorage* p = new_pin(name);
-  if (p == nullptr) return -1;
-  *data_ptr_addr = &p->s32;
-  return 0;
+  return place_pin(new_pin(name), data_ptr_addr, &PinStorage::s32);
 }
 
 int hal_pin_bit_newf(int, volatile bool** data_ptr_addr, int, const char* fmt, ...) {
   va_list args;
   va_start(args, fmt);
-  PinStorage* p = new_pin(format_name(fmt, args));
+  const std::string name = format_name(fmt, args);
   va_end(args);
-  if (p == nullptr) return -1;
-  *data_ptr_addr = &p->bit;
-  return 0;
+  return place_pin(new_pin(name), data_ptr_addr, &PinStorage::bit);
 }
 
 int hal_pin_u32_newf(int, volatile std::uint32_t** data_ptr_addr, int, const char* fmt, ...) {
   va_list args;
   va_start(args, fmt);
-  PinStorage* p = new_pin(format_name(fmt, args));
+  const std::string name = format_name(fmt, args);
   va_end(args);
-  if (p == nullptr) return -1;
-  *data_ptr_addr = &p->u32;
-  return 0;
+  return place_pin(new_pin(name), data_ptr_addr, &PinStorage::u32);
 }
 
 int hal_pin_float_newf(int, volatile double** data_ptr_addr, int, const char* fmt, ...) {
   va_list args;
   va_start(args, fmt);
-  PinStorage* p = new_pin(format_name(fmt, args));
+  const std::string name = format_name(fmt, args);
   va_end(args);
-  if (p == nullptr) return -1;
-  *data_ptr_addr = &p->real;
-  return 0;
+  return place_pin(new_pin(name), data_ptr_addr, &PinStorage::real);
 }
 
 void rtapi_print(const char* fmt, ...) {
