@@ -18,10 +18,9 @@ PROGRAM ?= examples/programs/pocket.ngc
 FUZZ_SECONDS ?= 60
 # make sanitize also runs each libFuzzer harness for this long (0: not at all); its build has them.
 SANITIZE_FUZZ_SECONDS ?= 6
-# Four convergence studies that repeat whole runs many times over (20-35 s each under the sanitizers, a quarter of
-# that suite's time): their code runs under the sanitizers in the shorter tests of the same folders (servo runs,
-# the elastic response, the energy law), and they run in make test. SANITIZE_SKIP= runs them too.
-SANITIZE_SKIP ?= ^(ServoProgram\.ContourErrorTendsToThePlansPathErrorAsTheCurrentLoopGetsFaster|ServoProgram\.CoupledAndDecoupledPlantsAgreeOnlyWhereTheCouplingIsSmall|ElasticExcitation\.StifferStrutsFollowTheKinematicMotionWithAnErrorFallingAsOneOverC|EnergySpeedSweep\.TheStaticLawsSavingFallsFasterWithSpeedThanTheDynamicLaws)$$
+# The whole-run tests that make sanitize leaves to make test (tests/sanitizer_skip.txt, one ctest name per line);
+# SANITIZE_SKIP= runs them too.
+SANITIZE_SKIP ?= ^($(shell grep -v '^\#' tests/sanitizer_skip.txt | grep . | paste -sd'|'))$$
 
 .PHONY: deps configure build python linuxcnc run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
 

@@ -29,7 +29,6 @@ struct pkmkins_machine {
   long forward_solves = 0;
   long forward_failures = 0;
   int last_iterations = 0;
-  pkm::ErrorCode last_failure{};
   // Angular joints (carriages on a circle) turn endlessly, but IK gives each angle within half a turn of its
   // home: the last joints LinuxCNC commanded or read keep the next ones on the same turn.
   double last_joints[pkm::kMaxActuators] = {};
@@ -173,11 +172,10 @@ int pkmkins_forward(pkmkins_machine* m, const double* joints, double world[6]) {
     return -1;
   }
   pkm::FkSolution solution;
-  pkm::ErrorCode failure{};
+  pkm::ErrorCode failure{};  // LinuxCNC learns only that it failed: −1
   if (!m->machine.mechanism->forward_warm_quiet(actuators, m->last_pose, m->options, *m->workspace, solution,
                                                 failure)) {
     ++m->forward_failures;
-    m->last_failure = failure;
     return -1;
   }
   m->last_iterations = solution.iterations;
