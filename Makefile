@@ -24,8 +24,11 @@ SANITIZE_SKIP ?= ^($(shell grep -v '^\#' tests/sanitizer_skip.txt | grep . | pas
 
 .PHONY: deps configure build python linuxcnc run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
 
+# make test and make linuxcnc also install LinuxCNC (the module builds against it; the tests run it); make run
+# does not need it.
 deps:
-	@bash scripts/install-deps.sh
+	@bash scripts/install-deps.sh $(DEPS_FLAGS)
+test linuxcnc: DEPS_FLAGS = --with-linuxcnc
 
 # The library and the tests compile as unity builds (batches of 8 files): on CI's 2 cores that halves the build
 # time. The benchmarks build in their own directory (make bench), so that make test does not wait for them.

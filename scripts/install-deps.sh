@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Installs pkm's build and test dependencies from Debian packages (idempotent).
 # Runs apt-get only for packages that are missing; uses sudo when not root.
-#   --with-linuxcnc  LinuxCNC (linuxcnc-uspace, with its rs274 interpreter for the conformance suite,
-#                    scripts/regen-rs274-golden.sh) is installed in every case: the kinematics module pkmkins
-#                    builds against linuxcnc-uspace-dev, and make test runs LinuxCNC headless (docs/linuxcnc.md)
+#   --with-linuxcnc  also LinuxCNC (linuxcnc-uspace and linuxcnc-uspace-dev): the kinematics module pkmkins builds
+#                    against it and make test runs it headless (docs/linuxcnc.md); its rs274 interpreter is
+#                    the peer of the conformance suite (scripts/regen-rs274-golden.sh)
 #   --with-browser   also Debian's Chromium, for the report's browser test (tests/browser/)
 #   --with-fuzz      also clang with libFuzzer's runtime and llvm-symbolizer, for make fuzz (fuzz/)
 # Node.js and npm build the HTML report's page (web/); a machine that has them already (any source) keeps its own.
@@ -14,8 +14,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libnlopt-cxx-dev libboost-dev libtbb-dev
   clang-format cppcheck
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-matplotlib
-  linuxcnc-uspace linuxcnc-uspace-dev
 )
+if [ "${1:-}" = "--with-linuxcnc" ]; then packages+=(linuxcnc-uspace linuxcnc-uspace-dev); fi
 if [ "${1:-}" = "--with-browser" ]; then packages+=(chromium); fi
 if [ "${1:-}" = "--with-fuzz" ]; then packages+=(clang libclang-rt-dev llvm); fi
 if ! command -v node > /dev/null || ! command -v npm > /dev/null; then packages+=(nodejs npm); fi
