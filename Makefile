@@ -80,7 +80,7 @@ sanitize:
 
 # Formatting must match .clang-format; cppcheck must find nothing.
 lint: deps
-	@find src apps tests bench fuzz python linuxcnc -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
+	@find src apps tests bench fuzz python linuxcnc tools -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
 	@cppcheck -j $(JOBS) --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
 		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps linuxcnc/pkmkins_bridge.cpp
 	@echo "lint: clean"
@@ -134,7 +134,7 @@ consumer: build
 	$(BUILD)/consumer/pkm_plan_consumer examples/machines/hexapod_ch5.yaml
 
 format:
-	@find src apps tests bench fuzz python linuxcnc -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+	@find src apps tests bench fuzz python linuxcnc tools -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
 
 tidy: build
 	@find src apps -name '*.cpp' | xargs clang-tidy -p $(BUILD) --quiet

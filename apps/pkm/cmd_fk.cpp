@@ -69,18 +69,32 @@ void add_fk_command(CLI::App& app, int& exit_code) {
       return;
     }
     if (*all) {
-      auto solutions = mech.forward_all(*q);
-      if (!solutions) {
-        exit_code = report_error("fk", solutions.error());
+      auto modes = mech.assembly_modes(*q);
+      if (!modes) {
+        exit_code = report_error("fk", modes.error());
         return;
       }
+      const AssemblyModeReport& report = modes->report;
       if (*json) {
         nlohmann::json list = nlohmann::json::array();
-        for (const auto& s : *solutions) list.push_back(solution_json(mech, s));
-        print_json({{"solutions", list}});
+        for (const auto& s : modes->solutions) list.push_back(solution_json(mech, s));
+        nlohmann::json seen = {{"method", report.method}, {"real", report.real}, {"failed", report.failed}};
+        // −1: the method does not see them (written as null).
+        auto count = [](int n) { return n < 0 ? nlohmann::json(nullptr) : nlohmann::json(n); };
+        seen["complex"] = count(report.complex);
+        seen["at_infinity"] = count(report.at_infinity);
+        seen["singular"] = count(report.singular);
+        print_json({{"solutions", list}, {"report", seen}});
       } else {
-        std::cout << solutions->size() << " assembly modes (nearest to home first):\n";
-        for (const auto& s : *solutions) print_solution(mech, s);
+        std::cout << modes->solutions.size() << " assembly modes (nearest to home first), by "
+                  << report.method;
+        if (report.complex >= 0) {
+          std::cout << "; besides them " << report.complex << " complex, " << report.at_infinity
+                    << " at infinity, " << report.singular << " singular";
+        }
+        if (report.failed > 0) std::cout << "; " << report.failed << " paths could not be followed";
+        std::cout << ":\n";
+        for (const auto& s : modes->solutions) print_solution(mech, s);
       }
       exit_code = 0;
       return;

@@ -63,6 +63,13 @@ Result<std::vector<FkSolution>> ActuatorOffsets::forward_all(const ActuatorVecto
   return inner_->forward_all(geometric, options);
 }
 
+Result<AssemblyModes> ActuatorOffsets::assembly_modes(const ActuatorVector& actuators,
+                                                      const FkOptions& options) const {
+  if (actuators.size() != offsets_.size()) return wrong_reading_count(actuators, actuator_count());
+  const ActuatorVector geometric = actuators + offsets_;
+  return inner_->assembly_modes(geometric, options);
+}
+
 bool ActuatorOffsets::actuator_values(const Pose& pose, double* out) const noexcept {
   if (!inner_->actuator_values(pose, out)) return false;
   for (int j = 0; j < offsets_.size(); ++j) out[j] -= offsets_[j];

@@ -40,6 +40,8 @@ class ActuatorOffsets final : public Mechanism {
   std::unique_ptr<FkWorkspace> make_fk_workspace() const override { return inner_->make_fk_workspace(); }
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                               const FkOptions& options = {}) const override;
+  Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
+                                       const FkOptions& options = {}) const override;
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override { return inner_->jacobian(pose); }
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override {

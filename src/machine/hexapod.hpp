@@ -42,8 +42,12 @@ class Hexapod final : public Mechanism {
   Result<ActuatorVector> inverse(const Pose& pose) const override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
+  /// Every assembly mode: the 40-path parameter homotopy of kinematics/stewart_all_modes.hpp, united with a
+  /// 1-D scan for merged joints (6-3, or 3-6 for the inverse motion) (hexapod_assembly_modes.cpp).
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                               const FkOptions& options = {}) const override;
+  Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
+                                       const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// Base joints A_j and platform joints p + R·b'_j.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;

@@ -241,29 +241,39 @@ Result<FkSolution> HexapodRefined::forward(const ActuatorVector& actuators, cons
   return solution;
 }
 
-Result<std::vector<FkSolution>> HexapodRefined::forward_all(const ActuatorVector& actuators,
-                                                            const FkOptions& options) const {
+Result<AssemblyModes> HexapodRefined::assembly_modes(const ActuatorVector& actuators,
+                                                     const FkOptions& options) const {
   if (actuators.size() != 6)
     return make_error(ErrorCode::bad_input, "a refined hexapod needs 6 strut lengths");
   // Joint errors move the solutions by about their own size, so the ideal modes are close guesses.
-  auto ideal_solutions = ideal_.forward_all(actuators, options);
-  if (!ideal_solutions) return ideal_solutions.error();
+  auto ideal_modes = ideal_.assembly_modes(actuators, options);
+  if (!ideal_modes) return ideal_modes.error();
   FkOptions polish = options;
   polish.require_same_branch = false;
-  std::vector<FkSolution> solutions;
-  for (const auto& ideal_solution : *ideal_solutions) {
+  AssemblyModes modes;
+  modes.report = ideal_modes->report;
+  modes.report.method += ", polished on the refined model";
+  for (const auto& ideal_solution : ideal_modes->solutions) {
     auto polished = solve_platform_fk(*this, true, actuators, ideal_solution.pose, polish);
     if (!polished) continue;
-    if (contains_solution(solutions, polished->pose)) continue;
+    if (contains_solution(modes.solutions, polished->pose)) continue;
     const int mode = assembly_mode(polished->pose);
     polished->branch = mode == home_mode_ ? 0 : mode + 1;
-    solutions.push_back(*polished);
+    modes.solutions.push_back(*polished);
   }
-  if (solutions.empty()) {
+  modes.report.real = static_cast<int>(modes.solutions.size());
+  if (modes.solutions.empty()) {
     return make_error(ErrorCode::unreachable,
                       "no assembly of the platform fits these strut lengths and joints");
   }
-  return solutions;
+  return modes;
+}
+
+Result<std::vector<FkSolution>> HexapodRefined::forward_all(const ActuatorVector& actuators,
+                                                            const FkOptions& options) const {
+  auto modes = assembly_modes(actuators, options);
+  if (!modes) return modes.error();
+  return std::move(modes->solutions);
 }
 
 int HexapodRefined::strut_joints(const Pose& pose, StrutJointPoints& out) const {

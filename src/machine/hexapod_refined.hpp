@@ -83,9 +83,11 @@ class HexapodRefined final : public Mechanism {
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
-  /// Every assembly mode of a 6-3 layout: the ideal hexapod's modes, each polished with the real joints.
+  /// Every assembly mode: the ideal hexapod's modes (any layout), each polished with the real joints.
   Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                               const FkOptions& options = {}) const override;
+  Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
+                                       const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// The ideal joint centres, as Hexapod (the calibrated offsets, a fraction of a mm, move a joint's angle
   /// by less than offset/length: far below any swing limit's resolution).

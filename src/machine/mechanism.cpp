@@ -44,6 +44,17 @@ Result<std::vector<FkSolution>> Mechanism::forward_all(const ActuatorVector&, co
                   to_string(type())));
 }
 
+Result<AssemblyModes> Mechanism::assembly_modes(const ActuatorVector& actuators,
+                                                const FkOptions& options) const {
+  auto solutions = forward_all(actuators, options);
+  if (!solutions) return solutions.error();
+  AssemblyModes modes;
+  modes.report.method = "enumeration";
+  modes.report.real = static_cast<int>(solutions->size());
+  modes.solutions = std::move(*solutions);
+  return modes;
+}
+
 bool Mechanism::forward_warm_quiet(const ActuatorVector& actuators, const Pose& guess,
                                    const FkOptions& options, FkWorkspace& workspace, FkSolution& out,
                                    ErrorCode& failure) const {

@@ -86,6 +86,22 @@ struct GeometryGroup {
   int columns() const { return static_cast<int>(column_names.size()); }
 };
 
+/// What an enumeration of assembly modes saw beyond the real solutions it returns, so that a user knows what
+/// was not returned and why (Mechanism::assembly_modes). Counts are −1 where the method cannot see them.
+struct AssemblyModeReport {
+  std::string method;    ///< how the modes were found, in words
+  int real = 0;          ///< real assembly modes returned
+  int complex = -1;      ///< complex (non-real) solutions of the same equations
+  int at_infinity = -1;  ///< solutions this geometry loses to infinity (special layouts)
+  int singular = -1;     ///< solutions where two or more modes meet (or a continuum of poses)
+  int failed = 0;        ///< paths or brackets that could not be followed to the end
+};
+
+struct AssemblyModes {
+  std::vector<FkSolution> solutions;  ///< as forward_all()
+  AssemblyModeReport report;
+};
+
 class Mechanism;
 
 /// State a mechanism carries from one forward-kinematics call to the next along a path (Pinocchio's data to
@@ -146,9 +162,14 @@ class Mechanism {
                                   ErrorCode& failure) const;
   /// A workspace for forward_warm (allocates: call at set-up, never per tick).
   virtual std::unique_ptr<FkWorkspace> make_fk_workspace() const;
-  /// All assembly modes, where the mechanism can enumerate them.
+  /// All assembly modes, where the mechanism can enumerate them: the real poses that give these actuator
+  /// values, each polished by Newton and labelled (FkSolution::branch), nearest to home first.
   virtual Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
                                                       const FkOptions& options = {}) const;
+  /// forward_all with what the enumeration saw besides (complex solutions, solutions lost to infinity,
+  /// singular ones). The default reports the solutions of forward_all only.
+  virtual Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
+                                               const FkOptions& options = {}) const;
   /// Hot-path inverse kinematics: writes actuator_count() values to `out` (mm, or rad for angular actuators)
   /// and returns true; false when the pose is out of reach (`out` unspecified). Builds no Result and no
   /// message: it runs at every interpolation period. The default calls inverse(), which allocates only when

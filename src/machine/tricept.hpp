@@ -49,6 +49,18 @@ class Tricept final : public Mechanism {
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
+  /// Every assembly mode (tool points with these strut lengths): Newton from a fixed grid over the reachable
+  /// half-space (tricept_assembly_modes.cpp), nearest to home first.
+  Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
+                                              const FkOptions& options = {}) const override;
+  Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
+                                       const FkOptions& options = {}) const override;
+  /// assembly_modes on a grid of `directions` (Fibonacci hemisphere) × `radii`: the tests check that a
+  /// denser grid than the default finds nothing more.
+  Result<AssemblyModes> assembly_modes_on_grid(const ActuatorVector& actuators, int directions,
+                                               int radii) const;
+  static constexpr int kAssemblyGridDirections = 300;
+  static constexpr int kAssemblyGridRadii = 8;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// The three telescopic struts (universal base joints, spherical flange joints) at the completed pose; the
   /// central leg's cardan is not a strut joint and is not included.

@@ -75,11 +75,47 @@ TEST(Cli, FkAllListsAssemblyModesNearestFirst) {
   EXPECT_NEAR(j["solutions"][0]["pose"][2].get<double>(), 700.0, 1e-8);
 }
 
-TEST(Cli, FkAllOnASixSixHexapodSaysWhy) {
-  const CliRun r = cli_run("fk --machine " + example("hexapod_genhexkins.yaml") +
-                           " --actuators 600,600,600,600,600,600 --all");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.out.find("6-3"), std::string::npos) << r.out;
+TEST(Cli, FkAllOnASixSixHexapodListsEveryModeWithWhatTheHomotopySaw) {
+  // hexapod_ch3_delta30.yaml: platform joints 30° apart, a 6-6 layout (issue 20). The home pose's lengths.
+  const CliRun ik =
+      cli_run("ik --machine " + example("hexapod_ch3_delta30.yaml") + " --pose 0,0,700,0,0,0 --json");
+  ASSERT_EQ(ik.exit_code, 0) << ik.out;
+  std::string actuators;
+  for (const auto& v : nlohmann::json::parse(ik.out)["actuators"]) append_number(actuators, v.get<double>());
+  const CliRun r = cli_run("fk --machine " + example("hexapod_ch3_delta30.yaml") + " --actuators " +
+                           actuators + " --all --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_GE(j["solutions"].size(), 2u);
+  EXPECT_EQ(j["solutions"].size() % 2, 0u);
+  // Nearest to home first: the home pose itself, in the home mode.
+  EXPECT_NEAR(j["solutions"][0]["pose"][2].get<double>(), 700.0, 1e-8);
+  EXPECT_EQ(j["solutions"][0]["branch"].get<int>(), 0);
+  const auto& report = j["report"];
+  EXPECT_NE(report["method"].get<std::string>().find("homotopy"), std::string::npos);
+  EXPECT_EQ(report["real"].get<int>() + report["complex"].get<int>() + report["at_infinity"].get<int>() +
+                report["failed"].get<int>(),
+            40);
+  const CliRun text =
+      cli_run("fk --machine " + example("hexapod_ch3_delta30.yaml") + " --actuators " + actuators + " --all");
+  ASSERT_EQ(text.exit_code, 0) << text.out;
+  EXPECT_NE(text.out.find("complex"), std::string::npos) << text.out;
+}
+
+TEST(Cli, FkAllOnGenhexkinsScansTheInverseMotion) {
+  // LinuxCNC's genhexkins layout has its base joints merged in pairs (3-6).
+  const CliRun ik =
+      cli_run("ik --machine " + example("hexapod_genhexkins.yaml") + " --pose 10,-20,520,3,-2,5 --json");
+  ASSERT_EQ(ik.exit_code, 0) << ik.out;
+  std::string actuators;
+  for (const auto& v : nlohmann::json::parse(ik.out)["actuators"]) append_number(actuators, v.get<double>());
+  const CliRun r = cli_run("fk --machine " + example("hexapod_genhexkins.yaml") + " --actuators " +
+                           actuators + " --all --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NE(j["report"]["method"].get<std::string>().find("3-6"), std::string::npos) << r.out;
+  EXPECT_NEAR(j["solutions"][0]["pose"][0].get<double>(), 10.0, 1e-8);
+  EXPECT_NEAR(j["solutions"][0]["pose"][5].get<double>(), 5.0, 1e-8);
 }
 
 TEST(Cli, PlanarPoseTakesPhi) {

@@ -1,0 +1,66 @@
+#pragma once
+// Path tracking for the Stewart platform's Study-coordinate system (kinematics/stewart_system.hpp): one
+// solution is followed while the parameters move along a straight segment from `from` (t = 0) to `to` (t =
+// 1).
+//
+// Predictor: the classical 4th-order Runge–Kutta step of dx/dt = −J⁻¹·∂f/∂t. Corrector: Newton at the new t,
+// accepted only when it contracts at once (the second correction at most a tenth of the first) and reaches
+// the corrector tolerance within three iterations; otherwise the step is halved. These two rules are what
+// keeps a path from jumping onto a neighbouring one. Paths whose |x| grows past `infinity_norm` are reported
+// as diverging (a solution at infinity of the target, e.g. the lost assembly modes of a special geometry);
+// paths whose step falls below `min_step` stop where they are and are reported as failed, unless t is
+// already within `endgame_start` of 1, where the endpoint is then refined by Newton and classified. Fixed
+// sizes throughout: tracking allocates nothing.
+#include "kinematics/stewart_system.hpp"
+
+namespace pkm {
+
+struct PathTrackOptions {
+  double initial_step = 0.05;
+  double max_step = 0.2;
+  double min_step = 1e-13;
+  int max_steps = 4000;
+  /// Newton stops when |Δx| ≤ corrector_tolerance·(1 + |x|).
+  double corrector_tolerance = 1e-7;
+  /// The predictor error (first Newton correction relative to 1 + |x|) that the step size aims at; a first
+  /// correction above 0.05 rejects the step.
+  double step_error_target = 1e-3;
+  /// |x| beyond which a path is diverging (a chart with |cᵀe| = 1 keeps real poses of a scaled problem far
+  /// below this).
+  double infinity_norm = 1e7;
+  /// Within this distance of t = 1, a path whose remoteness (|g|/|e| or |e|²/|eᵀe|, about 1 at real poses of
+  /// the scaled problem) is above divergence_norm and still grows like (1 − t)^(−0.2) or faster is reported
+  /// at infinity without following it further.
+  double divergence_zone = 1e-2;
+  double divergence_norm = 50.0;
+  /// Near t = 1 a path that stalls is refined at t = 1 instead of being reported as failed.
+  double endgame_start = 1e-6;
+};
+
+enum class PathEnd {
+  finite,       ///< reached t = 1; Newton converged there
+  at_infinity,  ///< |x| diverged as t → 1: the target lost this solution
+  failed        ///< the step size collapsed before t = 1 (reported, not hidden)
+};
+
+struct TrackedPath {
+  StudyPoint x;
+  PathEnd end = PathEnd::failed;
+  int steps = 0;
+  int rejected = 0;  ///< steps halved and tried again
+  double t = 0.0;
+  /// min |U_ii| / max |U_ii| of the LU factors of the Jacobian at the end: ≈ 0 at a singular (multiple or
+  /// non-isolated) solution.
+  double pivot_ratio = 0.0;
+};
+
+TrackedPath track_stewart_path(const StewartSystem& system, const StewartParameters& from,
+                               const StewartParameters& to, const StudyPoint& start,
+                               const PathTrackOptions& options = {});
+
+/// Newton on the system at fixed parameters from `x` (in place): up to `iterations` steps, until the step is
+/// below tolerance·(1 + |x|). Returns the last step's size relative to (1 + |x|), and the LU pivot ratio.
+double refine_stewart_point(const StewartSystem& system, const StewartParameters& p, StudyPoint& x,
+                            int iterations, double tolerance, double& pivot_ratio);
+
+}  // namespace pkm
