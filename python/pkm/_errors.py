@@ -65,7 +65,7 @@ class LimitExceededError(Error):
 
 
 class UnsupportedError(Error):
-    """The mechanism does not offer this operation (for example all assembly modes of a 6-6 hexapod)."""
+    """The mechanism does not offer this operation (for example all assembly modes of a glide machine)."""
 
 
 class FileIOError(Error, OSError):

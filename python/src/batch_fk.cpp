@@ -298,7 +298,7 @@ void bind_fk(MachineClass& cls) {
 
 Returns a list of dicts, nearest to home first: pose ((6,) array, [x, y, z mm, a, b, c rad] in
 angle_convention), branch (assembly-mode label, 0 = the home pose's), iterations, residual_mm. Raises
-pkm.UnsupportedError for mechanisms that cannot enumerate their modes (6-6 hexapods, glides, tricept, ...).)");
+pkm.UnsupportedError for mechanisms that cannot enumerate their modes (glides, rotopod, ...).)");
 }
 
 }  // namespace pkm::python

@@ -169,9 +169,11 @@ def test_errors_argument_is_checked(hexapod):
 
 
 def test_fk_all_unsupported_and_guess_checked(hexapod):
-    genhexkins = pkm.Machine.load(HEXAPOD_CH5.parent / "hexapod_genhexkins.yaml")  # a 6-6 hexapod
+    hexaglide = pkm.Machine.load(HEXAPOD_CH5.parent / "hexaglide.yaml")  # a glide: no enumeration of its modes
     with pytest.raises(pkm.UnsupportedError):
-        genhexkins.fk_all(genhexkins.ik(genhexkins.home))
+        hexaglide.fk_all(hexaglide.ik(hexaglide.home))
+    genhexkins = pkm.Machine.load(HEXAPOD_CH5.parent / "hexapod_genhexkins.yaml")  # every hexapod enumerates
+    assert len(genhexkins.fk_all(genhexkins.ik(genhexkins.home))) >= 2
     with pytest.raises(ValueError, match="guess"):
         hexapod.fk(hexapod.ik(hexapod.home), guess=np.zeros(5))
 
