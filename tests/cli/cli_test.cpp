@@ -81,7 +81,8 @@ TEST(Cli, FkAllOnASixSixHexapodListsEveryModeWithWhatTheHomotopySaw) {
       cli_run("ik --machine " + example("hexapod_ch3_delta30.yaml") + " --pose 0,0,700,0,0,0 --json");
   ASSERT_EQ(ik.exit_code, 0) << ik.out;
   std::string actuators;
-  const auto lengths = nlohmann::json::parse(ik.out)["actuators"];  // a copy: the parsed document is a temporary
+  const auto lengths =
+      nlohmann::json::parse(ik.out)["actuators"];  // a copy: the parsed document is a temporary
   for (const auto& v : lengths) append_number(actuators, v.get<double>());
   const CliRun r = cli_run("fk --machine " + example("hexapod_ch3_delta30.yaml") + " --actuators " +
                            actuators + " --all --json");
@@ -109,7 +110,8 @@ TEST(Cli, FkAllOnGenhexkinsScansTheInverseMotion) {
       cli_run("ik --machine " + example("hexapod_genhexkins.yaml") + " --pose 10,-20,520,3,-2,5 --json");
   ASSERT_EQ(ik.exit_code, 0) << ik.out;
   std::string actuators;
-  const auto lengths = nlohmann::json::parse(ik.out)["actuators"];  // a copy: the parsed document is a temporary
+  const auto lengths =
+      nlohmann::json::parse(ik.out)["actuators"];  // a copy: the parsed document is a temporary
   for (const auto& v : lengths) append_number(actuators, v.get<double>());
   const CliRun r = cli_run("fk --machine " + example("hexapod_genhexkins.yaml") + " --actuators " +
                            actuators + " --all --json");
