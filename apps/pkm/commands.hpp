@@ -9,6 +9,7 @@ void add_fk_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
 void add_jacobian_command(CLI::App& app, int& exit_code);
 void add_modes_command(CLI::App& app, int& exit_code);
+void add_modes_margin_command(CLI::App& app, int& exit_code);
 void add_compliance_command(CLI::App& app, int& exit_code);
 void add_stiffness_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_check_command(app, exit_code);
   pkm::cli::add_jacobian_command(app, exit_code);
   pkm::cli::add_modes_command(app, exit_code);
+  pkm::cli::add_modes_margin_command(app, exit_code);
   pkm::cli::add_compliance_command(app, exit_code);
   pkm::cli::add_stiffness_command(app, exit_code);
   pkm::cli::add_bench_command(app, exit_code);

@@ -75,15 +75,21 @@ TEST(Cli, FkAllListsAssemblyModesNearestFirst) {
   EXPECT_NEAR(j["solutions"][0]["pose"][2].get<double>(), 700.0, 1e-8);
 }
 
-TEST(Cli, FkAllOnASixSixHexapodListsEveryModeWithWhatTheHomotopySaw) {
-  // hexapod_ch3_delta30.yaml: platform joints 30° apart, a 6-6 layout (issue 20). The home pose's lengths.
-  const CliRun ik =
-      cli_run("ik --machine " + example("hexapod_ch3_delta30.yaml") + " --pose 0,0,700,0,0,0 --json");
-  ASSERT_EQ(ik.exit_code, 0) << ik.out;
+// `pkm ik` of a pose on a shipped machine, as an --actuators list ("" when ik fails).
+std::string ik_actuators(const std::string& machine, const std::string& pose) {
+  const CliRun ik = cli_run("ik --machine " + example(machine) + " --pose " + pose + " --json");
+  if (ik.exit_code != 0) return "";
   std::string actuators;
   const auto lengths =
       nlohmann::json::parse(ik.out)["actuators"];  // a copy: the parsed document is a temporary
   for (const auto& v : lengths) append_number(actuators, v.get<double>());
+  return actuators;
+}
+
+TEST(Cli, FkAllOnASixSixHexapodListsEveryModeWithWhatTheHomotopySaw) {
+  // hexapod_ch3_delta30.yaml: platform joints 30° apart, a 6-6 layout (issue 20). The home pose's lengths.
+  const std::string actuators = ik_actuators("hexapod_ch3_delta30.yaml", "0,0,700,0,0,0");
+  ASSERT_FALSE(actuators.empty());
   const CliRun r = cli_run("fk --machine " + example("hexapod_ch3_delta30.yaml") + " --actuators " +
                            actuators + " --all --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -106,13 +112,8 @@ TEST(Cli, FkAllOnASixSixHexapodListsEveryModeWithWhatTheHomotopySaw) {
 
 TEST(Cli, FkAllOnGenhexkinsScansTheInverseMotion) {
   // LinuxCNC's genhexkins layout has its base joints merged in pairs (3-6).
-  const CliRun ik =
-      cli_run("ik --machine " + example("hexapod_genhexkins.yaml") + " --pose 10,-20,520,3,-2,5 --json");
-  ASSERT_EQ(ik.exit_code, 0) << ik.out;
-  std::string actuators;
-  const auto lengths =
-      nlohmann::json::parse(ik.out)["actuators"];  // a copy: the parsed document is a temporary
-  for (const auto& v : lengths) append_number(actuators, v.get<double>());
+  const std::string actuators = ik_actuators("hexapod_genhexkins.yaml", "10,-20,520,3,-2,5");
+  ASSERT_FALSE(actuators.empty());
   const CliRun r = cli_run("fk --machine " + example("hexapod_genhexkins.yaml") + " --actuators " +
                            actuators + " --all --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
