@@ -18,6 +18,9 @@ PROGRAM ?= examples/programs/pocket.ngc
 FUZZ_SECONDS ?= 60
 # make sanitize also runs each libFuzzer harness for this long (0: not at all); its build has them.
 SANITIZE_FUZZ_SECONDS ?= 6
+# The Release build's optimisation flags when set (CI: "-O1 -DNDEBUG", the suite checks results, not speed;
+# make bench measures speed in its own -O3 build). Empty: CMake's Release default (-O3 -DNDEBUG).
+RELEASE_FLAGS ?=
 # The whole-run tests that make sanitize leaves to make test (tests/sanitizer_skip.txt, one ctest name per line);
 # SANITIZE_SKIP= runs them too.
 SANITIZE_SKIP ?= ^($(shell grep -v '^\#' tests/sanitizer_skip.txt | grep . | paste -sd'|'))$$
@@ -33,7 +36,7 @@ test linuxcnc: DEPS_FLAGS = --with-linuxcnc
 # The library and the tests compile as unity builds (batches of 8 files): on CI's 2 cores that halves the build
 # time. The benchmarks build in their own directory (make bench), so that make test does not wait for them.
 configure: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_BUILD_BENCH=OFF > /dev/null
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_BUILD_BENCH=OFF $(if $(RELEASE_FLAGS),-DCMAKE_CXX_FLAGS_RELEASE="$(RELEASE_FLAGS)") > /dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
@@ -70,9 +73,9 @@ test: build
 sanitize:
 	@bash scripts/install-deps.sh --with-fuzz
 	@mkdir -p build-asan
-	@cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g0" -DPKM_SANITIZE=ON -DPKM_PYTHON=OFF -DPKM_FUZZ=ON -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
+	@cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g0" -DPKM_SANITIZE=ON -DPKM_PYTHON=OFF -DPKM_FUZZ=$(if $(filter 0,$(SANITIZE_FUZZ_SECONDS)),OFF,ON) -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
 	@grep "building without the HTML report page: Node.js or npm not found" build-asan/configure.log
-	@cmake --build build-asan -j $(JOBS)
+	@cmake --build build-asan -j $(JOBS) --target pkm_tests $(if $(filter 0,$(SANITIZE_FUZZ_SECONDS)),,pkm_fuzzers)
 	@mkdir -p build-asan/Testing/Temporary
 	@[ -f build-asan/Testing/Temporary/CTestCostData.txt ] || cp tests/sanitizer_test_costs.txt build-asan/Testing/Temporary/CTestCostData.txt
 	cd build-asan && PKM_GENERATED_PROGRAMS=2 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '$(SANITIZE_SKIP)'

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -218,6 +219,7 @@ Result<AssemblyModes> Hexapod::assembly_modes(const ActuatorVector& q, const FkO
   for (const StewartModeCandidate& mode : all.real) candidates.push_back(mode.pose);
   FkOptions polish = options;
   polish.require_same_branch = false;
+  int unpolished_singular = 0;
   for (const Pose& guess : candidates) {
     auto polished = solve_platform_fk(*this, true, q, guess, polish);
     if (polished && !contains_solution(modes.solutions, polished->pose)) {
@@ -225,16 +227,16 @@ Result<AssemblyModes> Hexapod::assembly_modes(const ActuatorVector& q, const FkO
       polished->branch = mode == home_mode_ ? 0 : mode + 1;
       modes.solutions.push_back(*polished);
     } else if (!polished && polished.error().code == ErrorCode::singular) {
-      ++report.singular;  // a real solution where modes meet: Newton cannot polish it to the usual tolerance
+      ++unpolished_singular;  // a real solution where modes meet: Newton cannot polish it to the tolerance
     }
   }
   report.real = static_cast<int>(modes.solutions.size());
-  if (modes.solutions.empty() && report.singular > 0) {
-    return make_error(
-        ErrorCode::singular,
-        "these strut lengths fit only singular assemblies of the platform (a continuum of poses, "
-        "as on architecturally singular layouts: similar planar base and platform on a conic, "
-        "Griffis-Duffy-like); no isolated assembly mode to return");
+  // The scan and the homotopy may both have seen the same singular solution: count the larger of the two.
+  report.singular = std::max(report.singular, unpolished_singular);
+  if (modes.solutions.empty() && unpolished_singular > 0) {
+    return make_error(ErrorCode::singular,
+                      "these strut lengths fit only singular assemblies of the platform (where two assembly "
+                      "modes meet): none can be polished to an isolated mode");
   }
   if (modes.solutions.empty()) {
     return make_error(ErrorCode::unreachable, "no assembly of the platform fits these strut lengths");
