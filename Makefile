@@ -18,7 +18,7 @@ PROGRAM ?= examples/programs/pocket.ngc
 FUZZ_SECONDS ?= 60
 # make sanitize also runs each libFuzzer harness for this long (0: not at all); its build has them.
 SANITIZE_FUZZ_SECONDS ?= 6
-# The Release build's optimisation flags when set (CI: "-O1 -DNDEBUG", the suite checks results, not speed;
+# The Release build's flags when set (CI: "-O1 -DNDEBUG ...", the suite checks results, not speed;
 # make bench measures speed in its own -O3 build). Empty: CMake's Release default (-O3 -DNDEBUG).
 RELEASE_FLAGS ?=
 # The whole-run tests that make sanitize leaves to make test (tests/sanitizer_skip.txt, one ctest name per line);
@@ -62,12 +62,13 @@ test: build
 
 # Under the sanitizers the generated-program suite runs 2 programs per machine (make test: 16; make nightly: 300).
 # -g0: function names in the sanitizers' stack traces, no line tables (CI's compile time).
-# Built as on a machine without Node.js (PKM_NODE not found): the library, CLI and tests must configure and build
+# Built as on a machine without Node.js (PKM_NODE not found): the library and tests must configure and build
 # without the report page, and configuring must say so in one line (the Release build of make test has the page).
+# Only the tests are built: the CLI and its tests (tests/cli/) are left to make test (CI's time on 2 cores).
 # Built with clang (installed with the fuzzing tools): it compiles the instrumented code about 1.5x faster than GCC.
-# The same build has the libFuzzer harnesses (PKM_FUZZ), run for SANITIZE_FUZZ_SECONDS each after the tests over
-# their seeds and reproducers: CI builds the library once for both. Only the harnesses have coverage
-# instrumentation there (on the whole library it doubles the suite's time); make fuzz is the coverage-guided run. A fresh build directory
+# Unless SANITIZE_FUZZ_SECONDS is 0 (CI), the same build has the libFuzzer harnesses (PKM_FUZZ), run for that long
+# each after the tests over their seeds and reproducers. Only the harnesses have coverage instrumentation there
+# (on the whole library it doubles the suite's time); make fuzz is the coverage-guided run. A fresh build directory
 # starts from tests/sanitizer_test_costs.txt (the tests above 1 s under the sanitizers, as ctest measured them),
 # so that ctest starts the longest first and the two cores end together.
 sanitize:
