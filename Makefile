@@ -64,7 +64,7 @@ test: build
 # -g0: function names in the sanitizers' stack traces, no line tables (CI's compile time).
 # Built as on a machine without Node.js (PKM_NODE not found): the library and tests must configure and build
 # without the report page, and configuring must say so in one line (the Release build of make test has the page).
-# Only the tests are built: the CLI and its tests (tests/cli/) are left to make test (CI's time on 2 cores).
+# The CLI's own tests (tests/cli/) are left to make test (CI's time on 2 cores); the CLI is built, other tests run it.
 # Built with clang (installed with the fuzzing tools): it compiles the instrumented code about 1.5x faster than GCC.
 # Unless SANITIZE_FUZZ_SECONDS is 0 (CI), the same build has the libFuzzer harnesses (PKM_FUZZ), run for that long
 # each after the tests over their seeds and reproducers. Only the harnesses have coverage instrumentation there
@@ -76,7 +76,7 @@ sanitize:
 	@mkdir -p build-asan
 	@cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g0" -DPKM_SANITIZE=ON -DPKM_PYTHON=OFF -DPKM_FUZZ=$(if $(filter 0,$(SANITIZE_FUZZ_SECONDS)),OFF,ON) -DPKM_BUILD_BENCH=OFF -DPKM_WERROR=ON -DPKM_UNITY_LIB=ON -DPKM_UNITY_TESTS=ON -DPKM_NODE=/none/node -DPKM_NPM=/none/npm > build-asan/configure.log
 	@grep "building without the HTML report page: Node.js or npm not found" build-asan/configure.log
-	@cmake --build build-asan -j $(JOBS) --target pkm_tests $(if $(filter 0,$(SANITIZE_FUZZ_SECONDS)),,pkm_fuzzers)
+	@cmake --build build-asan -j $(JOBS) --target pkm_tests pkm $(if $(filter 0,$(SANITIZE_FUZZ_SECONDS)),,pkm_fuzzers)
 	@mkdir -p build-asan/Testing/Temporary
 	@[ -f build-asan/Testing/Temporary/CTestCostData.txt ] || cp tests/sanitizer_test_costs.txt build-asan/Testing/Temporary/CTestCostData.txt
 	cd build-asan && PKM_GENERATED_PROGRAMS=2 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '$(SANITIZE_SKIP)'
