@@ -142,6 +142,7 @@ Result<PlayerStatistics> play(StepStreamReader& source, StepSink& sink, const Pl
   }
   const std::int64_t end = player_now_ns();
   statistics.periods = released;
+  statistics.first_deadline_ns = t0;
   statistics.wall_time_s = released ? static_cast<double>(end - t0) * 1e-9 : 0.0;
   statistics.max_lateness_us = lateness.max_us();
   statistics.min_lateness_us = lateness.min_us();

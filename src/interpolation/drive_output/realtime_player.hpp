@@ -41,6 +41,8 @@ struct PlayerStatistics {
   bool memory_locked = false;
   bool realtime_priority = false;
   double wall_time_s = 0.0;  ///< from t0 (the first deadline) to the end of the last release
+  /// t0 on CLOCK_MONOTONIC (ns): period k is due at t0 + k·h, so a sink can check it was never fed early.
+  std::int64_t first_deadline_ns = 0;
 };
 
 /// Plays `source` from its current position into `sink`, one period every h, then finishes the sink. On an
