@@ -45,19 +45,23 @@ Status free_platform_state(const FreePlatformModel& model, const Pose& pose, Mec
   auto completed = mechanism.complete_pose(pose);
   if (!completed) return completed.error();
   state.pose = *completed;
-  state.struts = mechanism.strut_ends(state.pose, state.ends);
-  if (state.struts != model.struts || !mechanism.actuator_values(state.pose, state.actuators.data()) ||
-      !mechanism.twist_jacobian(state.pose, state.twist_jacobian)) {
+  state.struts = mechanism.strut_state(state.pose, state.ends, state.actuators.data(), state.twist_jacobian);
+  if (state.struts != model.struts) {
     return make_error(ErrorCode::unreachable, "the platform left the mechanism's reach");
   }
   for (int j = 0; j < state.struts; ++j) {
     const Eigen::Vector3d d = state.ends.platform_mm[j] - state.ends.base_mm[j];
     mechanism.base_joint_motion(j, state.actuators[j], state.base_first[j], state.base_second[j]);
     state.base_moves[j] = state.base_first[j].squaredNorm() > 0.0;
-    if (!(d.squaredNorm() > 0.0) || (state.base_moves[j] && !(std::abs(d.dot(state.base_first[j])) > 0.0))) {
+    const double length = d.norm();
+    if (!(length > 0.0) || (state.base_moves[j] && !(std::abs(d.dot(state.base_first[j])) > 0.0))) {
       return make_error(ErrorCode::singular,
                         fmt::format("strut {} has zero length or is across its carriage's path", j + 1));
     }
+    // Normalised once here for rigid_terms (a square root and a division per strut are a tenth of the
+    // elastic right-hand side).
+    state.strut_length_mm[j] = length;
+    state.strut_u[j] = d / length;
   }
   const Eigen::Matrix3d& r = state.pose.rotation;
   state.platform_kg = model.platform_kg;

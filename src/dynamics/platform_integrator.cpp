@@ -7,11 +7,12 @@
 #include <array>
 #include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
 #include <boost/numeric/odeint/stepper/dense_output_runge_kutta.hpp>
-#include <boost/numeric/odeint/stepper/generation.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <exception>
 #include <functional>
 #include <string>
+
+#include "dynamics/pi_step_adjuster.hpp"
 
 namespace pkm::dynamics {
 namespace {
@@ -23,7 +24,9 @@ namespace odeint = boost::numeric::odeint;
 constexpr int kPositionAt = 0, kQuaternionAt = 3, kRatesAt = 7, kAuxiliaryAt = 13, kStateSize = 19;
 using State = std::array<double, kStateSize>;
 using Stepper = odeint::runge_kutta_dopri5<State>;
-using DenseStepper = odeint::result_of::make_dense_output<Stepper>::type;
+using ErrorChecker = odeint::default_error_checker<double, Stepper::algebra_type, Stepper::operations_type>;
+using Controller = odeint::controlled_runge_kutta<Stepper, ErrorChecker, PiStepAdjuster<double, double>>;
+using DenseStepper = odeint::dense_output_runge_kutta<Controller>;
 
 // The first step, as a fraction of τ: the controller finds its own within a few steps.
 constexpr double kFirstStepOfTimeScale = 0.05;
@@ -51,7 +54,8 @@ struct PlatformIntegrator::Impl {
       : model(&m),
         integration(i),
         name(n),
-        stepper(odeint::make_dense_output(i.abs_tolerance_mm, i.rel_tolerance, i.max_step_s, Stepper())) {}
+        stepper(Controller(ErrorChecker(i.abs_tolerance_mm, i.rel_tolerance),
+                           PiStepAdjuster<double, double>(i.max_step_s), Stepper())) {}
 
   Pose pose_of(const State& s) const {
     Pose p;

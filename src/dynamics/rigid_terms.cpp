@@ -17,38 +17,39 @@ void add_joint_block(const Eigen::Matrix3d& s, const Eigen::Matrix3d& x, Matrix6
 }
 
 /// Σ_j G_jᵀ S_j G_j for struts on fixed base joints, where S = σ I + κ u uᵀ: Σ σ GᵀG (GᵀG = [I, −X; X, −X²],
-/// X = [arm]×, −X² = |arm|² I − arm armᵀ) plus the rank-one terms κ j jᵀ with j = (u, arm × u) (from S X =
-/// σ X − κ u nᵀ and X S X = σ X² − κ n nᵀ, n = X u). Gathered strut by strut, added once.
+/// X = [arm]×, −X² = |arm|² I − arm armᵀ) plus the rank-one terms κ j jᵀ with j = (u, n), n = arm × u (from
+/// S X = σ X − κ u nᵀ and X S X = σ X² − κ n nᵀ). Gathered strut by strut in 3 × 3 blocks (small fixed
+/// products Eigen writes out in place), added once.
 struct FixedJointBlocks {
-  double sigma = 0.0;
+  double sigma = 0.0, sigma_square = 0.0;  // Σ σ, Σ σ |arm|²
   Eigen::Vector3d sigma_arm = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d sigma_turn = Eigen::Matrix3d::Zero();
-  // Columns j_j and κ_j j_j; unused columns stay zero, so one fixed-size product adds them all.
-  Eigen::Matrix<double, 6, kMaxActuators> rows = Eigen::Matrix<double, 6, kMaxActuators>::Zero();
-  Eigen::Matrix<double, 6, kMaxActuators> weighted = Eigen::Matrix<double, 6, kMaxActuators>::Zero();
-  int count = 0;
+  Eigen::Matrix3d sigma_outer = Eigen::Matrix3d::Zero();  // Σ σ arm armᵀ
+  Eigen::Matrix3d uu = Eigen::Matrix3d::Zero(), un = Eigen::Matrix3d::Zero(), nn = Eigen::Matrix3d::Zero();
 
   /// σ GᵀG for a body whose velocity is that of the point at `arm` (the platform: σ = m, no rank-one part).
   void add_point(double s, const Eigen::Vector3d& arm) {
     sigma += s;
-    sigma_arm += s * arm;
-    sigma_turn.noalias() -= (s * arm) * arm.transpose();
-    sigma_turn.diagonal().array() += s * arm.squaredNorm();
+    const Eigen::Vector3d weighted = s * arm;
+    sigma_arm += weighted;
+    sigma_square += weighted.dot(arm);
+    sigma_outer.noalias() += weighted * arm.transpose();
   }
   void add(double s, double kappa, const Eigen::Vector3d& u, const Eigen::Vector3d& arm) {
     add_point(s, arm);
-    rows.block<3, 1>(0, count) = u;
-    rows.block<3, 1>(3, count) = arm.cross(u);
-    weighted.col(count) = kappa * rows.col(count);
-    ++count;
+    const Eigen::Vector3d n = arm.cross(u);
+    const Eigen::Vector3d weighted_u = kappa * u;
+    uu.noalias() += weighted_u * u.transpose();
+    un.noalias() += weighted_u * n.transpose();
+    nn.noalias() += (kappa * n) * n.transpose();
   }
   void add_to(Matrix6& m) const {
     const Eigen::Matrix3d x = skew(sigma_arm);
+    m.topLeftCorner<3, 3>() += uu;
     m.topLeftCorner<3, 3>().diagonal().array() += sigma;
-    m.topRightCorner<3, 3>() -= x;
-    m.bottomLeftCorner<3, 3>() += x;
-    m.bottomRightCorner<3, 3>() += sigma_turn;
-    m.noalias() += weighted * rows.transpose();
+    m.topRightCorner<3, 3>() += un - x;
+    m.bottomLeftCorner<3, 3>() += un.transpose() + x;
+    m.bottomRightCorner<3, 3>() += nn - sigma_outer;
+    m.bottomRightCorner<3, 3>().diagonal().array() += sigma_square;
   }
 };
 
@@ -86,44 +87,46 @@ void rigid_terms(const MechanismState& state, const DynamicsParameters& paramete
     const StrutDynamics& p = parameters.struts[j];
     const Eigen::Vector3d& b = state.ends.platform_mm[j];
     const Eigen::Vector3d arm = b - state.pose.position_mm;
-    const Eigen::Vector3d d = b - state.ends.base_mm[j];
-    const double length = d.norm(), inverse_length = 1.0 / length;
-    const Eigen::Vector3d u = d * inverse_length;
+    const double length = state.strut_length_mm[j], inverse_length = 1.0 / length;
+    const Eigen::Vector3d& u = state.strut_u[j];
     // The joint's velocity and acceleration at zero twist rate.
     const Eigen::Vector3d b_v = v + w.cross(arm);
     const Eigen::Vector3d b_a = w.cross(w.cross(arm));
     const double transverse = p.lower.transverse_inertia_kg_mm2 + p.upper.transverse_inertia_kg_mm2;
     if (!state.base_moves[j]) {
       // A fixed base joint (W = 0): U = P/L, and with [u]× P = [u]× and (I − aP)ᵀ(I − aP) = uuᵀ + (1 − a)² P,
-      // S = m_u uuᵀ + σ P, σ = m_l (c_l/L)² + m_u (1 − c_u/L)² + I_t/L².
-      const double lower_arm = p.lower.com_mm * inverse_length, upper_arm = p.upper.com_mm * inverse_length;
-      const double sigma = p.lower.mass_kg * lower_arm * lower_arm +
-                           p.upper.mass_kg * (1.0 - upper_arm) * (1.0 - upper_arm) +
-                           transverse * inverse_length * inverse_length;
-      fixed.add(sigma, p.upper.mass_kg - sigma, u, arm);
+      // S = m_u uuᵀ + σ P, σ = m_l (c_l/L)² + m_u (1 − c_u/L)² + I_t/L² = J/L² + m_u − 2 m_u c_u/L with
+      // J = m_l c_l² + m_u c_u² + I_t (the struts' turning inertia about the base joint), κ = m_u − σ.
+      const double upper_moment = p.upper.mass_kg * p.upper.com_mm;  // m_u c_u
+      const double turning = p.lower.mass_kg * p.lower.com_mm * p.lower.com_mm +
+                             upper_moment * p.upper.com_mm + transverse;  // J
+      const double sigma =
+          turning * inverse_length * inverse_length + p.upper.mass_kg - 2.0 * upper_moment * inverse_length;
+      const double kappa = p.upper.mass_kg - sigma;
+      fixed.add(sigma, kappa, u, arm);
+      // The parts' rates of momentum carried back to the joint (lower part m_l c_l ü, upper part
+      // m_u (b̈ − c_u ü), turn I_t u × ü, through Pᵀ = P and turnᵀ τ = τ × u / L) collect, with
+      // ü = (P b̈ − 2 L̇ u̇)/L − |u̇|² u (u·ü = −|u̇|²), into
+      //   S b̈ + m_u c_u |u̇|² u − 2 (m_u c_u/L − κ) L̇ u̇:
+      // the mass-matrix term at the joint's acceleration plus the struts' centripetal and Coriolis parts.
       const double length_rate = u.dot(b_v);
       const Eigen::Vector3d u_rate = (b_v - length_rate * u) * inverse_length;
-      const double length_accel = u.dot(b_a) + length * u_rate.squaredNorm();
-      const Eigen::Vector3d u_accel = (b_a - length_accel * u - 2.0 * length_rate * u_rate) * inverse_length;
-      const Eigen::Vector3d lower_force = p.lower.mass_kg * p.lower.com_mm * u_accel;
-      const Eigen::Vector3d upper_force = p.upper.mass_kg * (b_a - p.upper.com_mm * u_accel);
-      const Eigen::Vector3d moment = transverse * u.cross(u_accel);
-      // Carried back: Pᵀ = P, turnᵀ τ = ([u]×/L)ᵀ τ = τ × u / L.
-      const Eigen::Vector3d across_force = lower_arm * lower_force - upper_arm * upper_force;
       const Eigen::Vector3d joint_momentum =
-          upper_force + across_force - u.dot(across_force) * u + moment.cross(u) * inverse_length;
+          sigma * b_a + (kappa * u.dot(b_a) + upper_moment * u_rate.squaredNorm()) * u -
+          (2.0 * (upper_moment * inverse_length - kappa) * length_rate) * u_rate;
       joint_momentum_sum += joint_momentum;
       joint_momentum_moment += arm.cross(joint_momentum);
-      const Eigen::Vector3d across_weight =
-          (p.lower.mass_kg * lower_arm - p.upper.mass_kg * upper_arm) * gravity;
+      // The weights the same way: m_u g + ((m_l c_l − m_u c_u)/L) P g.
+      const double across_weight = (p.lower.mass_kg * p.lower.com_mm - upper_moment) * inverse_length;
       const Eigen::Vector3d joint_weight =
-          p.upper.mass_kg * gravity + across_weight - u.dot(across_weight) * u;
+          p.upper.mass_kg * gravity + across_weight * (gravity - u.dot(gravity) * u);
       joint_weight_sum += joint_weight;
       joint_weight_moment += arm.cross(joint_weight);
       continue;
     }
     // A carriage on its guide.
     const Eigen::Vector3d& first = state.base_first[j];
+    const Eigen::Vector3d d = length * u;
     const double along = d.dot(first);
     const Eigen::Matrix3d carriage = first * d.transpose() / along;  // W
     const double q_rate = d.dot(b_v) / along;

@@ -23,8 +23,8 @@ struct RigidTerms {
 };
 
 /// M, bias (for the platform moving with `twist`) and applied (gravity, and `load` in N and N·mm about the
-/// tool point) in the coordinates of `basis`, at a state with its pose, struts' ends, base-joint motion and
-/// platform body filled (mechanism_state fills more). Never allocates.
+/// tool point) in the coordinates of `basis`, at a state with its pose, struts' ends, their unit directions
+/// and lengths, base-joint motion and platform body filled (mechanism_state fills more). Never allocates.
 void rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const TwistBasis& basis,
                  const Twist& twist, const statics::Wrench& load, RigidTerms& out);
 

@@ -155,6 +155,25 @@ int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   return 6;
 }
 
+int Hexapod::strut_state(const Pose& pose, StrutJointPoints& ends, double* actuators,
+                         JacobianMatrix& twist_rows) const noexcept {
+  twist_rows.resize(6, 6);
+  for (int j = 0; j < 6; ++j) {
+    const Eigen::Vector3d arm = pose.rotation * geometry_.platform_joints_mm[j];
+    ends.base_mm[j] = geometry_.base_joints_mm[j];
+    ends.platform_mm[j] = arm + pose.position_mm;
+    const Eigen::Vector3d d = ends.platform_mm[j] - ends.base_mm[j];
+    actuators[j] = d.norm();
+    if (!(actuators[j] > 0.0)) return -1;  // as actuator_values()
+    const Eigen::Vector3d unit = d / actuators[j];
+    twist_rows.block<1, 3>(j, 0) = unit.transpose();
+    twist_rows.block<1, 3>(j, 3) = arm.cross(unit).transpose();
+  }
+  ends.platform_rotation = pose.rotation;
+  ends.mounts_turn = false;
+  return 6;
+}
+
 Result<JacobianMatrix> Hexapod::jacobian(const Pose& pose) const {
   const JacobianMatrix twist = twist_jacobian(pose);
   return coordinate_jacobian(twist, convention_, angles_from_rotation(convention_, pose.rotation),

@@ -64,6 +64,9 @@ class Hexapod final : public Mechanism {
     out = twist_jacobian(pose);
     return true;
   }
+  /// One pass over the struts: each joint, length and direction computed once.
+  int strut_state(const Pose& pose, StrutJointPoints& ends, double* actuators,
+                  JacobianMatrix& twist_rows) const noexcept override;
   bool has_distance_actuators() const override { return true; }
   /// base_joints A1..A6 (base frame) and platform_joints_from_tool B1..B6 (tool frame), 6 × 3 mm each.
   std::vector<GeometryGroup> geometry_parameters() const override;

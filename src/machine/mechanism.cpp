@@ -106,6 +106,13 @@ bool Mechanism::twist_jacobian(const Pose& /*pose*/, JacobianMatrix& /*out*/) co
   return false;
 }
 
+int Mechanism::strut_state(const Pose& pose, StrutJointPoints& ends, double* actuators,
+                           JacobianMatrix& twist_rows) const noexcept {
+  const int struts = strut_ends(pose, ends);
+  if (struts < 0 || !actuator_values(pose, actuators) || !twist_jacobian(pose, twist_rows)) return -1;
+  return struts;
+}
+
 double Mechanism::platform_size_mm() const {
   StrutJointPoints joints;
   const Pose& at = home();

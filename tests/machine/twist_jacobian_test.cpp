@@ -4,6 +4,7 @@
 // (tripod, tricept: their constraints differentiated) against central differences of complete_pose.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <random>
 
 #include "core/rotation.hpp"
@@ -42,6 +43,57 @@ TEST(TwistJacobian, TimesTheControlledTwistsIsTheCoordinateJacobianOnEveryShippe
         << product << "\njacobian:\n"
         << *coordinate;
   }
+}
+
+// Mechanism::strut_state (one call for the dynamics' right-hand sides; the hexapod overrides it with one pass
+// over its struts) gives what strut_ends, actuator_values and twist_jacobian give, at random poses of every
+// shipped machine with struts; and −1 where actuator_values fails (a strut of zero length).
+TEST(TwistJacobian, StrutStateEqualsTheThreeSeparateCalls) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> shift(-15.0, 15.0), tilt(-0.05, 0.05);
+  for (const char* file :
+       {"hexapod_ch5.yaml", "hexapod_ch3_delta30.yaml", "hexapod_genhexkins.yaml", "hexapod_refined.yaml",
+        "tripod.yaml", "tricept.yaml", "hexaglide.yaml", "triglide.yaml", "rotopod.yaml", "planar3.yaml"}) {
+    const Machine m = test::machine_from_example(std::string("examples/machines/") + file);
+    const Mechanism& mech = *m.mechanism;
+    const AxisMask mask = mech.controlled_axes();
+    for (int trial = 0; trial < 10; ++trial) {
+      SCOPED_TRACE(std::string(file) + " trial " + std::to_string(trial));
+      PoseVector c = vector_from_pose(mech.convention(), mech.home());
+      for (int axis = 0; axis < 6; ++axis) {
+        if (mask.controlled[axis]) c[axis] += axis < 3 ? shift(rng) : tilt(rng);
+      }
+      const auto completed = mech.complete_pose(pose_from_vector(mech.convention(), c));
+      ASSERT_TRUE(completed.ok()) << completed.error().message;
+      StrutJointPoints ends, fused_ends;
+      std::array<double, kMaxActuators> values{}, fused_values{};
+      JacobianMatrix twist, fused_twist;
+      const int struts = mech.strut_ends(*completed, ends);
+      ASSERT_TRUE(mech.actuator_values(*completed, values.data()));
+      ASSERT_TRUE(mech.twist_jacobian(*completed, twist));
+      ASSERT_EQ(mech.strut_state(*completed, fused_ends, fused_values.data(), fused_twist), struts);
+      constexpr double kRounding = 1e-12;
+      for (int j = 0; j < struts; ++j) {
+        EXPECT_LE((fused_ends.base_mm[j] - ends.base_mm[j]).norm(), kRounding * 1e3) << j;
+        EXPECT_LE((fused_ends.platform_mm[j] - ends.platform_mm[j]).norm(), kRounding * 1e3) << j;
+      }
+      for (int a = 0; a < mech.actuator_count(); ++a)
+        EXPECT_NEAR(fused_values[a], values[a], kRounding * 1e3);
+      ASSERT_EQ(fused_twist.rows(), twist.rows());
+      ASSERT_EQ(fused_twist.cols(), twist.cols());
+      EXPECT_LE((fused_twist - twist).cwiseAbs().maxCoeff(), kRounding * (1.0 + twist.cwiseAbs().maxCoeff()));
+    }
+  }
+  // A platform joint on its base joint: the hexapod's strut 1 has zero length.
+  const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  const Mechanism& mech = *m.mechanism;
+  StrutJointPoints ends;
+  mech.strut_ends(mech.home(), ends);
+  Pose collapsed = mech.home();
+  collapsed.position_mm += ends.base_mm[0] - ends.platform_mm[0];
+  std::array<double, kMaxActuators> values{};
+  JacobianMatrix twist;
+  EXPECT_EQ(mech.strut_state(collapsed, ends, values.data(), twist), -1);
 }
 
 // Column c of T_c against the central difference of complete_pose over ±h in controlled coordinate c (the
