@@ -1,6 +1,7 @@
 #include "kinematics/stewart_homotopy.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "kinematics/complex_lu.hpp"
@@ -10,6 +11,10 @@ namespace {
 
 using StudyLu = ComplexLu<8>;
 
+// The predictor's order: Taylor coefficients up to x_4, from the Padé approximant of type (3, 1), whose error
+// is O(h⁵) as Runge–Kutta 4's was. Order 5 took 9 % fewer steps for as many operations; order 3, 21 % more.
+constexpr int kTaylorOrder = 4;
+
 // One straight parameter segment: p(t) = from + t·rate.
 struct ParameterSegment {
   const StewartSystem& system;
@@ -17,15 +22,6 @@ struct ParameterSegment {
   StewartParameters rate;
   StewartParameters at(double t) const { return from.lerp_rate(rate, t); }
 };
-
-// dx/dt at (t, x): −J⁻¹ ∂f/∂t.
-StudyPoint path_velocity(const ParameterSegment& segment, double t, const StudyPoint& x, StudyJacobian& jx,
-                         StudyLu& lu) {
-  StudyPoint ft;
-  segment.system.linearise(segment.at(t), &segment.rate, x, nullptr, jx, &ft);
-  lu.compute(jx);
-  return -lu.solve(ft);
-}
 
 double relative_step(const StudyPoint& step, const StudyPoint& x) {
   return step.norm() / (1.0 + x.norm());
@@ -39,6 +35,29 @@ double pose_remoteness(const StudyPoint& x) {
   Complex ee = 0.0;
   for (int i = 0; i < 4; ++i) ee += x[i] * x[i];
   return std::max(x.tail<4>().norm() / e, e * e / std::abs(ee));
+}
+
+// The predictor: the Padé approximant of type (order − 1, 1) of each coordinate's Taylor polynomial, which
+// follows a path towards a nearby pole (a solution running off to infinity, or a fast turn near another
+// path) further than the polynomial does; the plain Taylor polynomial where the last two coefficients give no
+// usable pole (a negligible second-to-last coefficient, or a pole so close beyond the step, |1 − h/pole| <
+// 0.2, that the approximant would blow up).
+StudyPoint pade_prediction(const std::array<StudyPoint, kTaylorOrder + 1>& taylor, double h) {
+  using complex_arithmetic::abs2;
+  using complex_arithmetic::mul;
+  using complex_arithmetic::reciprocal;
+  StudyPoint x;
+  for (int c = 0; c < 8; ++c) {
+    const Complex a = taylor[kTaylorOrder - 1][c], b = taylor.back()[c];
+    Complex v = a + h * b;
+    if (abs2(a) > 1e-28 * (1.0 + abs2(taylor[0][c]))) {
+      const Complex q = 1.0 - h * mul(b, reciprocal(a));
+      if (abs2(q) >= 0.04) v = mul(a, reciprocal(q));
+    }
+    for (int k = kTaylorOrder - 2; k >= 0; --k) v = taylor[k][c] + h * v;
+    x[c] = v;
+  }
+  return x;
 }
 
 }  // namespace
@@ -69,34 +88,35 @@ TrackedPath track_stewart_path(const StewartSystem& system, const StewartParamet
   TrackedPath path;
   path.x = start;
   double t = 0.0;
-  double h = options.initial_step;
   StudyJacobian jx;
   StudyLu lu;
   StudyPoint f;
-  // dx/dt at the current point: from the corrector's last factorisation (a step of at most the corrector
-  // tolerance away) once the path is under way, which saves one factorisation per step.
-  StudyPoint k1 = path_velocity(segment, t, path.x, jx, lu);
-  StudyPoint ft;
+  // The Taylor coefficients of the path at the current point, from a factorisation of the Jacobian there.
+  std::array<StudyPoint, kTaylorOrder + 1> taylor;
+  StewartParameters p = segment.at(t);
+  system.linearise(p, nullptr, path.x, nullptr, jx, nullptr);
+  lu.compute(jx);
+  taylor[0] = path.x;
+  system.path_taylor(p, segment.rate, lu, kTaylorOrder, taylor.data());
+  // The first step where the last Taylor term reaches the error target (the paths start out smooth: a fixed
+  // first step wastes a step or two growing), but at least initial_step.
+  double h = options.initial_step;
+  const double first_guess =
+      std::pow(options.step_error_target * (1.0 + path.x.norm()) / taylor.back().norm(), 1.0 / kTaylorOrder);
+  if (std::isfinite(first_guess)) h = std::max(h, std::min(first_guess, options.max_step));
   while (t < 1.0 && path.steps < options.max_steps) {
     ++path.steps;
     h = std::min({h, options.max_step, 1.0 - t});
-    const StudyPoint& x = path.x;
-    // Runge–Kutta 4 predictor.
-    const StudyPoint k2 = path_velocity(segment, t + 0.5 * h, x + 0.5 * h * k1, jx, lu);
-    const StudyPoint k3 = path_velocity(segment, t + 0.5 * h, x + 0.5 * h * k2, jx, lu);
-    const StudyPoint k4 = path_velocity(segment, t + h, x + h * k3, jx, lu);
-    StudyPoint candidate = x + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    StudyPoint candidate = pade_prediction(taylor, h);
     // Newton corrector at t + h.
     const double t_next = (1.0 - t - h) < 1e-15 ? 1.0 : t + h;
-    const StewartParameters p = segment.at(t_next);
+    p = segment.at(t_next);
     bool converged = false;
-    double first = 0.0;
-    StudyPoint k1_next;
+    double first = 0.0, previous = 0.0;
     for (int i = 0; i < 3; ++i) {
-      system.linearise(p, &segment.rate, candidate, &f, jx, &ft);
+      system.linearise(p, nullptr, candidate, &f, jx, nullptr);
       lu.compute(jx);
       const StudyPoint step = lu.solve(f);
-      k1_next = -lu.solve(ft);
       candidate -= step;
       const double size = relative_step(step, candidate);
       if (!std::isfinite(size)) break;
@@ -106,10 +126,16 @@ TrackedPath track_stewart_path(const StewartSystem& system, const StewartParamet
       } else if (size > 0.1 * first && size > options.corrector_tolerance) {
         break;  // not contracting: too close to another path, or a singularity
       }
-      if (size <= options.corrector_tolerance) {
+      // Converged when this correction, or the error it leaves: Newton contracts at least as fast as the last
+      // two corrections did, so what is left after this one is about size·(size/previous) (Deuflhard's
+      // estimate; the factor 0.5 for its roughness). This saves the third factorisation of most steps, whose
+      // correction would be far below the tolerance.
+      if (size <= options.corrector_tolerance ||
+          (i > 0 && size * size <= 0.5 * options.corrector_tolerance * previous)) {
         converged = true;
         break;
       }
+      previous = size;
     }
     if (converged) {
       // A path still growing fast near t = 1 is on its way to infinity: |x| ~ (1 − t)^(−k) there, while a
@@ -120,22 +146,30 @@ TrackedPath track_stewart_path(const StewartSystem& system, const StewartParamet
                              candidate.norm() > options.divergence_norm &&
                              std::log(size_after / size_before) > 0.2 * std::log((1.0 - t) / (1.0 - t_next));
       path.x = candidate;
-      k1 = k1_next;
       t = t_next;
       if (diverging) {
         path.end = PathEnd::at_infinity;
         path.t = t;
         return path;
       }
-      // The first correction is the predictor's error, O(h⁵) for Runge–Kutta 4: aim the next one at
+      // The first correction is the predictor's error, O(h^(order + 1)): aim the next one at
       // step_error_target.
-      const double growth = first > 0 ? std::pow(options.step_error_target / first, 0.2) : 2.0;
+      const double growth =
+          first > 0 ? std::pow(options.step_error_target / first, 1.0 / (kTaylorOrder + 1)) : 2.0;
       h *= std::clamp(0.9 * growth, 0.5, 2.0);
       // (Remoteness alone is no test here: a complex path may pass near the isotropic cone on its way.)
       if (path.x.norm() > options.infinity_norm) {
         path.end = PathEnd::at_infinity;
         path.t = t;
         return path;
+      }
+      if (t < 1.0) {
+        // The Taylor coefficients at the new point, with the corrector's last factorisation: of the Jacobian
+        // one correction (below the square root of the tolerance) away, which perturbs them far less than the
+        // predictor error the step aims at. One factorisation per step is thus shared by corrector and
+        // predictor.
+        taylor[0] = path.x;
+        system.path_taylor(p, segment.rate, lu, kTaylorOrder, taylor.data());
       }
     } else {
       h *= 0.5;

@@ -3,24 +3,29 @@
 // solution is followed while the parameters move along a straight segment from `from` (t = 0) to `to` (t =
 // 1).
 //
-// Predictor: the classical 4th-order Runge–Kutta step of dx/dt = −J⁻¹·∂f/∂t. Corrector: Newton at the new t,
-// accepted only when it contracts at once (the second correction at most a tenth of the first) and reaches
-// the corrector tolerance within three iterations; otherwise the step is halved. These two rules are what
-// keeps a path from jumping onto a neighbouring one. Paths whose |x| grows past `infinity_norm` are reported
-// as diverging (a solution at infinity of the target, e.g. the lost assembly modes of a special geometry);
-// paths whose step falls below `min_step` stop where they are and are reported as failed, unless t is
-// already within `endgame_start` of 1, where the endpoint is then refined by Newton and classified. Fixed
-// sizes throughout: tracking allocates nothing.
+// Predictor: the Taylor coefficients of the path up to order 4 at the current point (each −J⁻¹ times a
+// residual of the lower orders, all with one factorisation: StewartSystem::path_taylor), evaluated as a Padé
+// approximant of type (3, 1); its error is O(h⁵), as the Runge–Kutta 4 predictor's was, for one solve per
+// order instead of three more factorisations. Corrector: Newton at the new t, accepted only when it contracts
+// at once (the second correction at most a tenth of the first) and converges within three iterations
+// (correction, or the error it leaves by the contraction seen, below the corrector tolerance); otherwise the
+// step is halved. These two rules are what keeps a path from jumping onto a neighbouring one. Paths whose |x|
+// grows past `infinity_norm` are reported as diverging (a solution at infinity of the target, e.g. the lost
+// assembly modes of a special geometry); paths whose step falls below `min_step` stop where they are and are
+// reported as failed, unless t is already within `endgame_start` of 1, where the endpoint is then refined by
+// Newton and classified. Fixed sizes throughout: tracking allocates nothing.
 #include "kinematics/stewart_system.hpp"
 
 namespace pkm {
 
 struct PathTrackOptions {
+  /// The first step, or more where the last Taylor term of the path there stays within step_error_target.
   double initial_step = 0.05;
   double max_step = 0.2;
   double min_step = 1e-13;
   int max_steps = 4000;
-  /// Newton stops when |Δx| ≤ corrector_tolerance·(1 + |x|).
+  /// Newton stops when |Δx| ≤ corrector_tolerance·(1 + |x|), or when the error left after Δx, estimated
+  /// from the contraction of the last two corrections (|Δx|²/|Δx_previous|), is at most half of that.
   double corrector_tolerance = 1e-7;
   /// The predictor error (first Newton correction relative to 1 + |x|) that the step size aims at; a first
   /// correction above 0.05 rejects the step.

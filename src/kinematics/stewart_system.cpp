@@ -138,6 +138,85 @@ void StewartSystem::linearise(const StewartParameters& p, const StewartParameter
   }
 }
 
+namespace {
+using Quad = std::array<Complex, 4>;
+
+// M e for one leg (see leg_quaternion), on one coefficient of a series.
+inline Quad leg_product(const Eigen::Vector3cd& d, const Eigen::Vector3cd& s, const Complex* e) {
+  return {mul(d[0], e[1]) + mul(d[1], e[2]) + mul(d[2], e[3]),
+          mul(e[2], s[2]) - mul(e[3], s[1]) - mul(e[0], d[0]),
+          mul(e[3], s[0]) - mul(e[1], s[2]) - mul(e[0], d[1]),
+          mul(e[1], s[1]) - mul(e[2], s[0]) - mul(e[0], d[2])};
+}
+inline Complex dot4(const Complex* a, const Complex* b) {
+  return mul(a[0], b[0]) + mul(a[1], b[1]) + mul(a[2], b[2]) + mul(a[3], b[3]);
+}
+inline Complex dot4(const Quad& a, const Quad& b) {
+  return dot4(a.data(), b.data());
+}
+
+// path_taylor for a fixed order (the loops unrolled). With u = 2g + y, the leg equation is uᵀu − L² eᵀe.
+template <int Order>
+void path_taylor_of_order(const StewartParameters& p, const StewartParameters& dp, const ComplexLu<8>& lu,
+                          StudyPoint* taylor) {
+  // u_i = 2 g_i + M e_i + M' e_{i−1} per leg and known order i; at order k (u_k without its x_k part) only
+  // M' e_{k−1} is left.
+  std::array<std::array<Quad, Order + 1>, 6> u;
+  for (int k = 1; k <= Order; ++k) {
+    const StudyPoint& last = taylor[k - 1];  // the newest known coefficient
+    for (int j = 0; j < 6; ++j) {
+      const Quad moved = leg_product(dp.d[j], dp.s[j], last.data());
+      if (k == 1) {
+        u[j][0] = leg_product(p.d[j], p.s[j], last.data());
+      } else {
+        const Quad fixed = leg_product(p.d[j], p.s[j], last.data());
+        for (int c = 0; c < 4; ++c) u[j][k - 1][c] += fixed[c];
+      }
+      for (int c = 0; c < 4; ++c) u[j][k - 1][c] += 2.0 * last[4 + c];
+      u[j][k] = moved;
+    }
+    // eᵀe and eᵀg at order k (x_k = 0), eᵀe at order k − 1.
+    Complex ee = 0.0, eg = 0.0, ee_below = 0.0;
+    for (int i = 1; i < k; ++i) {
+      ee += dot4(taylor[i].data(), taylor[k - i].data());
+      eg += dot4(taylor[i].data(), taylor[k - i].data() + 4);
+    }
+    for (int i = 0; i < k; ++i) ee_below += dot4(taylor[i].data(), taylor[k - 1 - i].data());
+    StudyPoint r;
+    for (int j = 0; j < 6; ++j) {
+      // uᵀu at order k: the symmetric pairs once, doubled.
+      Complex uu = 0.0;
+      for (int i = 0; 2 * i < k; ++i) uu += dot4(u[j][i], u[j][k - i]);
+      uu *= 2.0;
+      if (k % 2 == 0) uu += dot4(u[j][k / 2], u[j][k / 2]);
+      r[j] = uu - mul(p.length_squared[j], ee) - mul(dp.length_squared[j], ee_below);
+    }
+    r[6] = eg;
+    r[7] = 0.0;  // the chart is linear in x and does not move
+    taylor[k] = -lu.solve(r);
+  }
+}
+}  // namespace
+
+void StewartSystem::path_taylor(const StewartParameters& p, const StewartParameters& dp,
+                                const ComplexLu<8>& lu, int order, StudyPoint* taylor) const {
+  // Series arithmetic on x(s) = Σ x_i s^i with the unknown x_k taken as zero: the coefficient of s^k of each
+  // product is then r_k (the J·x_k part is what is left out). The parameters are linear in s: M(s) = M + s·M'
+  // and L²(s) = L² + s·dL², so y(s) = M(s) e(s) has y_i = M e_i + M' e_{i−1}. The series of u = 2g + y is
+  // kept per leg, so that each order adds one pair of leg products per leg. Order 1 is the velocity
+  // −J⁻¹·∂f/∂t.
+  switch (order) {
+    case 1:
+      return path_taylor_of_order<1>(p, dp, lu, taylor);
+    case 2:
+      return path_taylor_of_order<2>(p, dp, lu, taylor);
+    case 3:
+      return path_taylor_of_order<3>(p, dp, lu, taylor);
+    default:
+      return path_taylor_of_order<4>(p, dp, lu, taylor);
+  }
+}
+
 std::array<Complex, 6> StewartSystem::lengths_through(const StewartParameters& p, const StudyPoint& x) const {
   const Eigen::Vector4cd e = x.head<4>();
   const Eigen::Vector4cd g = x.tail<4>();

@@ -17,6 +17,8 @@
 #include <array>
 #include <complex>
 
+#include "kinematics/complex_lu.hpp"
+
 namespace pkm {
 
 using Complex = std::complex<double>;
@@ -56,6 +58,14 @@ class StewartSystem {
   /// needed only with ft.
   void linearise(const StewartParameters& p, const StewartParameters* dp, const StudyPoint& x, StudyPoint* f,
                  StudyJacobian& jx, StudyPoint* ft) const;
+
+  /// The Taylor coefficients of the solution path through x(0) = taylor[0] as the parameters move from `p` at
+  /// rate `dp`: x(s) = Σ taylor[k]·s^k. Given taylor[0] and `lu`, a factorisation of the Jacobian at (or
+  /// near) taylor[0], fills in taylor[1] … taylor[order] (order ≤ 4). Each order costs one pass over the legs
+  /// and one solve: the coefficient of s^k of f(x(s), p + s·dp) is J·x_k + r_k with r_k depending on the
+  /// lower orders only, so x_k = −J⁻¹ r_k (x_1 is the velocity −J⁻¹·∂f/∂t).
+  void path_taylor(const StewartParameters& p, const StewartParameters& dp, const ComplexLu<8>& lu, int order,
+                   StudyPoint* taylor) const;
 
   /// The squared lengths that make `x` a solution at the joints of `p` (its lengths are ignored): how a start
   /// instance with a known solution is made (monodromy).

@@ -164,6 +164,37 @@ TEST(StewartSystem, LinearisationMatchesCentralDifferencesOfTheEquations) {
   }
 }
 
+TEST(StewartSystem, TheTaylorCoefficientsOfAPathPredictItToTheirOrder) {
+  // The predictor's coefficients (path_taylor): the Taylor polynomial of order K, against the path itself
+  // (Newton at t = h from the prediction), must be off by O(h^(K+1)): halving h divides the error by 2^(K+1).
+  const StewartStartSystem& start = stewart_start_system();
+  const StewartSystem system(start.chart);
+  std::mt19937_64 rng(43);
+  const StewartParameters rate = random_complex_parameters(rng).minus(start.parameters);
+  for (int root = 0; root < 3; ++root) {
+    StudyJacobian jx;
+    ComplexLu<8> lu;
+    system.linearise(start.parameters, nullptr, start.roots[root], nullptr, jx, nullptr);
+    ASSERT_TRUE(lu.compute(jx));
+    std::array<StudyPoint, 5> taylor;
+    taylor[0] = start.roots[root];
+    system.path_taylor(start.parameters, rate, lu, 4, taylor.data());
+    for (int order = 1; order <= 4; ++order) {
+      std::array<double, 2> error;
+      for (int i = 0; i < 2; ++i) {
+        const double h = 0.01 / (1 << i);
+        StudyPoint predicted = taylor[order];
+        for (int k = order - 1; k >= 0; --k) predicted = taylor[k] + h * predicted;
+        StudyPoint x = predicted;
+        double pivot_ratio = 0.0;
+        refine_stewart_point(system, start.parameters.lerp_rate(rate, h), x, 10, 1e-15, pivot_ratio);
+        error[i] = (x - predicted).norm();
+      }
+      EXPECT_GT(error[0] / error[1], 0.7 * (2 << order)) << "root " << root << ", order " << order;
+    }
+  }
+}
+
 TEST(StewartSystem, ARealPoseSolvesItsOwnEquationsAndComesBack) {
   std::mt19937_64 rng(42);
   for (int trial = 0; trial < 20; ++trial) {
