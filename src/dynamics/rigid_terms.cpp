@@ -96,7 +96,7 @@ void rigid_terms(const MechanismState& state, const DynamicsParameters& paramete
     if (!state.base_moves[j]) {
       // A fixed base joint (W = 0): U = P/L, and with [u]× P = [u]× and (I − aP)ᵀ(I − aP) = uuᵀ + (1 − a)² P,
       // S = m_u uuᵀ + σ P, σ = m_l (c_l/L)² + m_u (1 − c_u/L)² + I_t/L² = J/L² + m_u − 2 m_u c_u/L with
-      // J = m_l c_l² + m_u c_u² + I_t (the struts' turning inertia about the base joint), κ = m_u − σ.
+      // the shorthand J = m_l c_l² + m_u c_u² + I_t, and κ = m_u − σ.
       const double upper_moment = p.upper.mass_kg * p.upper.com_mm;  // m_u c_u
       const double turning = p.lower.mass_kg * p.lower.com_mm * p.lower.com_mm +
                              upper_moment * p.upper.com_mm + transverse;  // J
