@@ -12,8 +12,9 @@ namespace pkm::dynamics {
 /// a pivot is not positive: a is not positive definite. Right-looking: each pivot's updates of the remaining
 /// lower triangle, and each solve's updates of the remaining right-hand side, are independent of one another,
 /// so they overlap in the processor instead of queueing on one running sum.
-template <int N>
-bool cholesky_solve(const Eigen::Matrix<double, N, N>& a, const Eigen::Matrix<double, N, 1>& b,
+/// `a` may have run-time sizes (N × N at run time): it is read once, into the fixed-size factors.
+template <int N, class MatrixA>
+bool cholesky_solve(const Eigen::MatrixBase<MatrixA>& a, const Eigen::Matrix<double, N, 1>& b,
                     Eigen::Matrix<double, N, 1>& x) {
   Eigen::Matrix<double, N, N> f = a;  // becomes L (unit lower, strictly below the diagonal) and D
   Eigen::Matrix<double, N, 1> inverse_d;

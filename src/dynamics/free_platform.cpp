@@ -17,6 +17,7 @@ Status make_free_platform_model(const Mechanism& mechanism, const DynamicsParame
     model.coordinates = static_cast<int>(model.basis.cols());
     model.struts = mechanism.actuator_count();
   }
+  model.base_joints_fixed = mechanism.has_distance_actuators();
   if (mechanism.actuators_are_angles()) {
     return make_error(
         ErrorCode::unsupported,
@@ -51,7 +52,12 @@ Status free_platform_state(const FreePlatformModel& model, const Pose& pose, Mec
   }
   for (int j = 0; j < state.struts; ++j) {
     const Eigen::Vector3d d = state.ends.platform_mm[j] - state.ends.base_mm[j];
-    mechanism.base_joint_motion(j, state.actuators[j], state.base_first[j], state.base_second[j]);
+    if (model.base_joints_fixed) {
+      state.base_first[j].setZero();
+      state.base_second[j].setZero();
+    } else {
+      mechanism.base_joint_motion(j, state.actuators[j], state.base_first[j], state.base_second[j]);
+    }
     state.base_moves[j] = state.base_first[j].squaredNorm() > 0.0;
     const double length = d.norm();
     if (!(length > 0.0) || (state.base_moves[j] && !(std::abs(d.dot(state.base_first[j])) > 0.0))) {

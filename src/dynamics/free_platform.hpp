@@ -23,9 +23,12 @@ using CoordinateVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 struct FreePlatformModel {
   const Mechanism* mechanism = nullptr;
   const DynamicsParameters* parameters = nullptr;
-  TwistBasis basis;
+  TwistBasis basis;  ///< platform_twist_basis: the identity when there are six coordinates
   int coordinates = 0;
   int struts = 0;
+  /// Every strut's base joint is fixed to the base (Mechanism::has_distance_actuators: each actuator is a
+  /// distance from a base-fixed point), so base_joint_motion need not be asked at every evaluation.
+  bool base_joints_fixed = false;
   /// The platform with its payload as one body (tool frame: centre of mass mm, inertia about it kg·mm²),
   /// combined once instead of at every evaluation.
   double platform_kg = 0.0;

@@ -43,6 +43,7 @@ struct PlatformIntegrator::Impl {
   Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();  // the tool point at start(); x holds the offset
   PlatformScales scales;
   std::array<double, 6> rate_scale{};  // per coordinate: τ or τ·L
+  std::array<double, 6> inverse_rate_scale{};
   int auxiliary_count = 0;
   PlatformRightHandSide* equations = nullptr;
   CoordinateVector rates, accelerations;
@@ -68,7 +69,7 @@ struct PlatformIntegrator::Impl {
 
   void rates_of(const State& s, CoordinateVector& out) const {
     out.resize(model->coordinates);
-    for (int k = 0; k < model->coordinates; ++k) out[k] = s[kRatesAt + k] / rate_scale[k];
+    for (int k = 0; k < model->coordinates; ++k) out[k] = s[kRatesAt + k] * inverse_rate_scale[k];
   }
 
   void auxiliary_of(const State& s, AuxiliaryVector& out) const {
@@ -91,7 +92,10 @@ struct PlatformIntegrator::Impl {
       failure = status;
       return;
     }
-    const Eigen::Matrix<double, 6, 1> twist = model->basis * rates;
+    // The basis of six coordinates is the identity (platform_twist_basis).
+    const Eigen::Matrix<double, 6, 1> twist = model->coordinates == 6
+                                                  ? Eigen::Matrix<double, 6, 1>(rates)
+                                                  : Eigen::Matrix<double, 6, 1>(model->basis * rates);
     for (int i = 0; i < 3; ++i) ds[kPositionAt + i] = twist[i];
     // q̇ = ½ (0, ω) ⊗ q: ẇ = −½ ω·v, v̇ = ½ (w ω + ω × v); linear in q, so the scale L carries through.
     const Eigen::Vector3d omega = twist.tail<3>();
@@ -122,6 +126,7 @@ void PlatformIntegrator::start(double time_s, const Pose& pose, const Coordinate
   for (int k = 0; k < model.coordinates; ++k) {
     const bool angular = model.basis.col(k).tail<3>().squaredNorm() > 0.0;
     s.rate_scale[k] = scales.time_scale_s * (angular ? scales.length_mm : 1.0);
+    s.inverse_rate_scale[k] = 1.0 / s.rate_scale[k];
   }
   s.origin_mm = pose.position_mm;
   s.x.fill(0.0);
