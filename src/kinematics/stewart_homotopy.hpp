@@ -3,33 +3,42 @@
 // solution is followed while the parameters move along a straight segment from `from` (t = 0) to `to` (t =
 // 1).
 //
-// Predictor: the Taylor coefficients of the path up to order 4 at the current point (each −J⁻¹ times a
-// residual of the lower orders, all with one factorisation: StewartSystem::path_taylor), evaluated as a Padé
-// approximant of type (3, 1); its error is O(h⁵), as the Runge–Kutta 4 predictor's was, for one solve per
-// order instead of three more factorisations. Corrector: Newton at the new t, accepted only when it contracts
-// at once (the second correction at most a tenth of the first) and converges within three iterations
-// (correction, or the error it leaves by the contraction seen, below the corrector tolerance); otherwise the
-// step is halved. These two rules are what keeps a path from jumping onto a neighbouring one. Paths whose |x|
-// grows past `infinity_norm` are reported as diverging (a solution at infinity of the target, e.g. the lost
-// assembly modes of a special geometry); paths whose step falls below `min_step` stop where they are and are
-// reported as failed, unless t is already within `endgame_start` of 1, where the endpoint is then refined by
-// Newton and classified. Fixed sizes throughout: tracking allocates nothing.
+// Predictor: the Taylor coefficients of the path up to order 5 at the current point (each −J⁻¹ times a
+// residual of the lower orders, all with one factorisation), evaluated as a Padé approximant of type (4, 1).
+// Step size, chosen before the step (a priori): the predictor error estimated from the Taylor coefficients
+// there (‖x₅ − x₄²/x₃‖·h⁵, the leading error of the (3, 1) approximant) aimed at the smaller of
+// step_error_target and the first correction Newton would contract by contraction_target, given its
+// contraction ω measured on the last steps (Timme 2021, "Mixed precision path tracking for polynomial
+// homotopy continuation", sizes steps from such estimates). Corrector: Newton at the new t, accepted only
+// when it contracts at once (the second correction at most a tenth of the first) and converges within three
+// iterations (correction, or the error it leaves by the contraction seen, below the corrector tolerance);
+// otherwise the step is resized from the error it showed. These two rules are what keeps a path from jumping
+// onto a neighbouring one. Paths whose |x| grows past `infinity_norm` are reported as diverging (a solution
+// at infinity of the target, e.g. the lost assembly modes of a special geometry); paths whose step falls
+// below `min_step` stop where they are and are reported as failed, unless t is already within `endgame_start`
+// of 1, where the endpoint is then refined by Newton and classified. The arithmetic is on pairs of doubles
+// (kinematics/stewart_lanes.hpp); fixed sizes throughout: tracking allocates nothing.
 #include "kinematics/stewart_system.hpp"
 
 namespace pkm {
 
 struct PathTrackOptions {
-  /// The first step, or more where the last Taylor term of the path there stays within step_error_target.
+  /// The first step, or more where the estimated predictor error there stays within step_error_target.
   double initial_step = 0.05;
   double max_step = 0.2;
   double min_step = 1e-13;
   int max_steps = 4000;
   /// Newton stops when |Δx| ≤ corrector_tolerance·(1 + |x|), or when the error left after Δx, estimated
-  /// from the contraction of the last two corrections (|Δx|²/|Δx_previous|), is at most half of that.
-  double corrector_tolerance = 1e-7;
+  /// from the contraction of the last two corrections (|Δx|²/|Δx_previous|), is at most half of that. Along
+  /// the path this only has to stay well below the next step's predictor error (the end at t = 1 is refined
+  /// to 1e-15 separately): 1e-5 saves the third iteration of most steps that 1e-7 needed.
+  double corrector_tolerance = 1e-5;
   /// The predictor error (first Newton correction relative to 1 + |x|) that the step size aims at; a first
   /// correction above 0.05 rejects the step.
   double step_error_target = 1e-3;
+  /// The contraction θ = |Δx₁|/|Δx₀| of Newton's first two corrections that the step size aims at (the step
+  /// is rejected above 0.1).
+  double contraction_target = 0.02;
   /// |x| beyond which a path is diverging (a chart with |cᵀe| = 1 keeps real poses of a scaled problem far
   /// below this).
   double infinity_norm = 1e7;

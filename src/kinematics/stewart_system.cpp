@@ -212,8 +212,10 @@ void StewartSystem::path_taylor(const StewartParameters& p, const StewartParamet
       return path_taylor_of_order<2>(p, dp, lu, taylor);
     case 3:
       return path_taylor_of_order<3>(p, dp, lu, taylor);
-    default:
+    case 4:
       return path_taylor_of_order<4>(p, dp, lu, taylor);
+    default:
+      return path_taylor_of_order<5>(p, dp, lu, taylor);
   }
 }
 

@@ -61,7 +61,7 @@ class StewartSystem {
 
   /// The Taylor coefficients of the solution path through x(0) = taylor[0] as the parameters move from `p` at
   /// rate `dp`: x(s) = Σ taylor[k]·s^k. Given taylor[0] and `lu`, a factorisation of the Jacobian at (or
-  /// near) taylor[0], fills in taylor[1] … taylor[order] (order ≤ 4). Each order costs one pass over the legs
+  /// near) taylor[0], fills in taylor[1] … taylor[order] (order ≤ 5). Each order costs one pass over the legs
   /// and one solve: the coefficient of s^k of f(x(s), p + s·dp) is J·x_k + r_k with r_k depending on the
   /// lower orders only, so x_k = −J⁻¹ r_k (x_1 is the velocity −J⁻¹·∂f/∂t).
   void path_taylor(const StewartParameters& p, const StewartParameters& dp, const ComplexLu<8>& lu, int order,

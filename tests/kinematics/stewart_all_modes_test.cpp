@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <random>
 
+#include "kinematics/stewart_lanes.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/solution_set.hpp"
 
@@ -191,6 +192,58 @@ TEST(StewartSystem, TheTaylorCoefficientsOfAPathPredictItToTheirOrder) {
         error[i] = (x - predicted).norm();
       }
       EXPECT_GT(error[0] / error[1], 0.7 * (2 << order)) << "root " << root << ", order " << order;
+    }
+  }
+}
+
+TEST(StewartLanes, TheTrackersPairedArithmeticEqualsTheReference) {
+  // The tracker's two-lane kernels (stewart_lanes.hpp) against StewartSystem and ComplexLu<8>: equations,
+  // Jacobian, a solve, and the Taylor coefficients to order 5, near every start solution.
+  std::mt19937_64 rng(5);
+  const StewartStartSystem& start = stewart_start_system();
+  const StewartSystem system(start.chart);
+  const StewartParameters target = random_complex_parameters(rng);
+  const StewartParameters rate = target.minus(start.parameters);
+  const stewart_lanes::Legs legs = stewart_lanes::Legs::of(start.parameters);
+  const stewart_lanes::Legs legs_rate = stewart_lanes::Legs::of(rate);
+  for (std::size_t r = 0; r < start.roots.size(); ++r) {
+    StudyPoint x = start.roots[r];
+    for (int i = 0; i < 8; ++i) x[i] += 0.01 * random_complex_value(rng);
+    StudyPoint f;
+    StudyJacobian jx;
+    system.linearise(start.parameters, nullptr, x, &f, jx, nullptr);
+    stewart_lanes::Vec8 lane_f;
+    stewart_lanes::Mat8 lane_jx;
+    stewart_lanes::linearise(legs, start.chart, stewart_lanes::Vec8::of(x), &lane_f, lane_jx);
+    EXPECT_LT((lane_f.point() - f).norm(), 1e-14 * f.norm()) << "root " << r;
+    for (int c = 0; c < 8; ++c) {
+      for (int i = 0; i < 8; ++i) {
+        const Complex entry(lane_jx.column[c][i / 2].re[i % 2], lane_jx.column[c][i / 2].im[i % 2]);
+        EXPECT_LT(std::abs(entry - jx(i, c)), 1e-14 * jx.norm())
+            << "root " << r << ", (" << i << ", " << c << ")";
+      }
+    }
+    ComplexLu<8> lu;
+    ASSERT_TRUE(lu.compute(jx));
+    stewart_lanes::LaneLu lane_lu;
+    ASSERT_TRUE(lane_lu.compute(lane_jx));
+    EXPECT_NEAR(lane_lu.pivot_ratio(), lu.pivot_ratio(), 1e-12);
+    const StudyPoint solved = lu.solve(f);
+    EXPECT_LT((lane_lu.solve(stewart_lanes::Vec8::of(f)).point() - solved).norm(), 1e-12 * solved.norm());
+
+    std::array<StudyPoint, 6> taylor;
+    taylor[0] = start.roots[r];
+    system.linearise(start.parameters, nullptr, taylor[0], nullptr, jx, nullptr);
+    ASSERT_TRUE(lu.compute(jx));
+    system.path_taylor(start.parameters, rate, lu, 5, taylor.data());
+    std::array<stewart_lanes::Vec8, 6> lane_taylor;
+    lane_taylor[0] = stewart_lanes::Vec8::of(taylor[0]);
+    stewart_lanes::linearise(legs, start.chart, lane_taylor[0], nullptr, lane_jx);
+    ASSERT_TRUE(lane_lu.compute(lane_jx));
+    stewart_lanes::path_taylor<5>(legs, legs_rate, lane_lu, lane_taylor.data());
+    for (int k = 1; k <= 5; ++k) {
+      EXPECT_LT((lane_taylor[k].point() - taylor[k]).norm(), 1e-11 * taylor[k].norm())
+          << "root " << r << ", order " << k;
     }
   }
 }
