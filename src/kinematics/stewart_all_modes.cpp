@@ -36,6 +36,16 @@ bool known_study_point(const std::vector<StudyPoint>& roots, const StudyPoint& x
   return std::any_of(roots.begin(), roots.end(), [&](const StudyPoint& r) { return same_study_point(r, x); });
 }
 
+/// x with the common complex factor removed: divided by its largest rotation coordinate. The Study
+/// coordinates are projective (each path's end is scaled by the complex chart), so this is what compares two
+/// endpoints; a real pose has a real representative, and the conjugate of this form is the form of the
+/// conjugate solution.
+StudyPoint without_common_factor(const StudyPoint& x) {
+  int k = 0;
+  x.head<4>().cwiseAbs().maxCoeff(&k);
+  return x / x[k];
+}
+
 // Follows x along from → via_1 → via_2 → from; false when a leg does not end at a regular finite solution.
 bool monodromy_loop(const StewartSystem& system, const StewartParameters& from,
                     const StewartParameters& via_1, const StewartParameters& via_2, StudyPoint& x) {
@@ -126,10 +136,36 @@ StewartAllModes stewart_all_modes(const std::array<Eigen::Vector3d, 6>& base_mm,
   StewartAllModes result;
   std::vector<TrackedPath> ends;
   ends.reserve(start.roots.size());
+  // The target is real, so the conjugate of a solution is one too. Once the distinct regular endpoints and
+  // their conjugates number the start system's 40 (the generic root count), every solution is known, and each
+  // path not yet followed ends at one of the complex ones no followed path reached: it is not followed (about
+  // a tenth of the paths on general geometries). A path that jumped onto another's solution cannot fake this:
+  // the solution it lost is then counted only through its conjugate, and a lost real one keeps the count
+  // below 40.
+  std::vector<StudyPoint> known;
+  known.reserve(start.roots.size());
   for (const StudyPoint& root : start.roots) {
     ends.push_back(track_stewart_path(system, start.parameters, target, root, options.tracking));
-    result.steps += ends.back().steps;
+    const TrackedPath& end = ends.back();
+    result.steps += end.steps;
+    if (end.end != PathEnd::finite || !(end.pivot_ratio > 1e-8)) continue;
+    // Compared at the accuracy of the endpoints (that of telling a real one): two distinct solutions closer
+    // than that only keep the count below 40, which costs the saving, never a solution.
+    const StudyPoint x = without_common_factor(end.x);
+    const double tolerance = options.real_tolerance * x.norm();
+    const auto is_known = [&](const StudyPoint& y) {
+      return std::any_of(known.begin(), known.end(),
+                         [&](const StudyPoint& k) { return (k - y).norm() <= tolerance; });
+    };
+    if (is_known(x)) continue;
+    known.push_back(x);
+    if (x.imag().norm() > tolerance && !is_known(x.conjugate())) known.push_back(x.conjugate());
+    if (options.stop_when_all_known && known.size() >= start.roots.size()) break;
   }
+  const int not_followed = static_cast<int>(start.roots.size() - ends.size());
+  result.finite += not_followed;
+  result.complex += not_followed;
+  result.skipped = not_followed;
   // Two regular paths cannot end at the same regular solution: one of them jumped. Follow both again with
   // small steps.
   PathTrackOptions careful = options.tracking;
@@ -161,11 +197,7 @@ StewartAllModes stewart_all_modes(const std::array<Eigen::Vector3d, 6>& base_mm,
     }
     ++result.finite;
     if (end.pivot_ratio < 1e-8) ++result.singular;
-    // Remove the common complex factor: the largest rotation coordinate made real and positive.
-    int k = 0;
-    end.x.head<4>().cwiseAbs().maxCoeff(&k);
-    const Complex factor = std::conj(end.x[k]) / std::abs(end.x[k]);
-    const StudyPoint x = end.x * factor;
+    const StudyPoint x = without_common_factor(end.x);
     const double imaginary = x.imag().norm() / x.norm();
     if (imaginary > options.real_tolerance) {
       ++result.complex;

@@ -49,13 +49,18 @@ struct StewartAllModes {
   int singular = 0;     ///< finite endpoints with a singular Jacobian
   int failed = 0;       ///< paths whose step size collapsed before t = 1
   int retracked = 0;    ///< paths followed again with smaller steps after two ended at the same solution
-  int steps = 0;        ///< predictor–corrector steps over all paths
+  /// paths not followed because the followed ones and their conjugates already gave all 40 solutions (they
+  /// are counted as finite and complex: each ends at one of the conjugates)
+  int skipped = 0;
+  int steps = 0;  ///< predictor–corrector steps over all paths
 };
 
 struct StewartAllModesOptions {
   PathTrackOptions tracking;
   /// An endpoint whose Study coordinates have |Im|/|x| at most this (after the common factor) is real.
   double real_tolerance = 1e-6;
+  /// Stop following paths once the endpoints and their conjugates number 40 (StewartAllModes::skipped).
+  bool stop_when_all_known = true;
 };
 
 /// All assembly modes for base joints A_j (base frame), platform joints b_j (platform/tool frame) and strut
