@@ -17,6 +17,7 @@ using stewart_lanes::Vec8;
 // 1) of x_0 … x_5, and x_5 also gives the step its error estimate (pade_error_coefficient).
 constexpr int kTaylorOrder = 5;
 using Taylor = std::array<Vec8, kTaylorOrder + 1>;
+static_assert(kTaylorOrder == 5, "pade_error_coefficient reads x_3, x_4 and x_5 = back()");
 
 double relative_step(const Vec8& step, const Vec8& x) {
   return step.norm() / (1.0 + x.norm());
@@ -47,7 +48,7 @@ Vec8 pade_prediction(const Taylor& taylor, double h) {
   using complex_arithmetic::reciprocal;
   Vec8 x;
   for (int c = 0; c < 8; ++c) {
-    const Complex a = taylor[top - 1].get(c), b = taylor[top].get(c);
+    const Complex a = taylor[top - 1].get(c), b = taylor.back().get(c);  // .back(): taylor[top]
     Complex v = a + h * b;
     if (abs2(a) > 1e-28 * (1.0 + abs2(taylor[0].get(c)))) {
       const Complex q = 1.0 - h * mul(b, reciprocal(a));
@@ -72,7 +73,7 @@ double pade_error_coefficient(const Taylor& taylor) {
   double sum = 0.0;
   for (int c = 0; c < 8; ++c) {
     const Complex a = taylor[3].get(c), b = taylor[4].get(c);
-    Complex d = taylor[5].get(c);
+    Complex d = taylor.back().get(c);  // x_5
     if (abs2(a) > 1e-28 * (1.0 + abs2(taylor[0].get(c)))) d -= mul(mul(b, b), reciprocal(a));
     sum += abs2(d);
   }
