@@ -65,6 +65,8 @@ test: build
 # Built as on a machine without Node.js (PKM_NODE not found): the library and tests must configure and build
 # without the report page, and configuring must say so in one line (the Release build of make test has the page).
 # The CLI's own tests (tests/cli/) are left to make test (CI's time on 2 cores); the CLI is built, other tests run it.
+# The instrumentation covers the library, the CLI and the LinuxCNC bridge; the tests' own code links the runtime
+# uninstrumented (CMakeLists.txt, pkm_sanitized), and UBSan's vptr check is off.
 # Built with clang (installed with the fuzzing tools): it compiles the instrumented code about 1.5x faster than GCC.
 # Unless SANITIZE_FUZZ_SECONDS is 0 (CI), the same build has the libFuzzer harnesses (PKM_FUZZ), run for that long
 # each after the tests over their seeds and reproducers. Only the harnesses have coverage instrumentation there

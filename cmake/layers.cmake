@@ -26,7 +26,8 @@ function(pkm_layer target alias)
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${alias})
   target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>)
   # The warning (and sanitizer) flags, not linked as a target: an installed layer does not depend on them.
-  target_compile_options(${target} PRIVATE $<TARGET_PROPERTY:pkm_warnings,INTERFACE_COMPILE_OPTIONS>)
+  target_compile_options(${target} PRIVATE $<TARGET_PROPERTY:pkm_warnings,INTERFACE_COMPILE_OPTIONS>
+                                           $<TARGET_PROPERTY:pkm_sanitized,INTERFACE_COMPILE_OPTIONS>)
   if(PKM_UNITY_LIB)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${PKM_UNITY_BATCH})
   endif()
