@@ -14,6 +14,10 @@ Hexapod::Hexapod(const HexapodGeometry& geometry, AngleConvention convention, co
       convention_(convention),
       base_plane_(geometry.base_joints_mm, geometry.platform_joints_mm, home) {
   home_ = home;
+  for (int j = 0; j < 6; ++j) {
+    platform_rows_.col(j) = geometry_.platform_joints_mm[j];
+    base_rows_.col(j) = geometry_.base_joints_mm[j];
+  }
   home_determinant_ = twist_jacobian(home_).determinant();
   home_mode_ = assembly_mode(home_);
 
@@ -157,17 +161,33 @@ int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
 
 int Hexapod::strut_state(const Pose& pose, StrutJointPoints& ends, double* actuators,
                          JacobianMatrix& twist_rows) const noexcept {
+  // All six struts at once: each quantity a row of six values (the same operations, in the same order, as
+  // actuator_values() and twist_jacobian() make strut by strut; tests/machine/twist_jacobian_test.cpp).
+  using Lanes = Eigen::Array<double, 1, 6>;
+  const Eigen::Matrix3d& r = pose.rotation;
+  const Lanes px = platform_rows_.row(0).array(), py = platform_rows_.row(1).array(),
+              pz = platform_rows_.row(2).array();
+  const Lanes arm_x = r(0, 0) * px + r(0, 1) * py + r(0, 2) * pz;  // R b_j: the joint from the tool point
+  const Lanes arm_y = r(1, 0) * px + r(1, 1) * py + r(1, 2) * pz;
+  const Lanes arm_z = r(2, 0) * px + r(2, 1) * py + r(2, 2) * pz;
+  const Lanes joint_x = arm_x + pose.position_mm.x(), joint_y = arm_y + pose.position_mm.y(),
+              joint_z = arm_z + pose.position_mm.z();
+  const Lanes dx = joint_x - base_rows_.row(0).array(), dy = joint_y - base_rows_.row(1).array(),
+              dz = joint_z - base_rows_.row(2).array();
+  const Lanes length = (dx * dx + dy * dy + dz * dz).sqrt();
+  if (!(length > 0.0).all()) return -1;  // as actuator_values()
+  const Lanes ux = dx / length, uy = dy / length, uz = dz / length;
   twist_rows.resize(6, 6);
+  twist_rows.col(0) = ux.transpose();
+  twist_rows.col(1) = uy.transpose();
+  twist_rows.col(2) = uz.transpose();
+  twist_rows.col(3) = (arm_y * uz - arm_z * uy).transpose();  // arm × u
+  twist_rows.col(4) = (arm_z * ux - arm_x * uz).transpose();
+  twist_rows.col(5) = (arm_x * uy - arm_y * ux).transpose();
   for (int j = 0; j < 6; ++j) {
-    const Eigen::Vector3d arm = pose.rotation * geometry_.platform_joints_mm[j];
     ends.base_mm[j] = geometry_.base_joints_mm[j];
-    ends.platform_mm[j] = arm + pose.position_mm;
-    const Eigen::Vector3d d = ends.platform_mm[j] - ends.base_mm[j];
-    actuators[j] = d.norm();
-    if (!(actuators[j] > 0.0)) return -1;  // as actuator_values()
-    const Eigen::Vector3d unit = d / actuators[j];
-    twist_rows.block<1, 3>(j, 0) = unit.transpose();
-    twist_rows.block<1, 3>(j, 3) = arm.cross(unit).transpose();
+    ends.platform_mm[j] = Eigen::Vector3d(joint_x[j], joint_y[j], joint_z[j]);
+    actuators[j] = length[j];
   }
   ends.platform_rotation = pose.rotation;
   ends.mounts_turn = false;

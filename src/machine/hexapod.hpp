@@ -119,6 +119,9 @@ class Hexapod final : public Mechanism {
   int assembly_mode(const Pose& pose, double jacobian_determinant) const;
 
   HexapodGeometry geometry_;
+  /// The joints by coordinate, row k holding component k of the six (strut_state works on all six struts at
+  /// once, two per instruction).
+  Eigen::Matrix<double, 3, 6, Eigen::RowMajor> platform_rows_, base_rows_;
   AngleConvention convention_;
   BasePlane base_plane_;
   int home_mode_ = 0;
