@@ -1,7 +1,7 @@
 # cmake --install: the layers an outside project can link, as pkm:: targets of the export set pkmTargets, with
 # the headers of their folders under include/pkm/ (so that #include "machine/hexapod.hpp" works) and
 # pkmConfig.cmake:
-#   pkm::kinematics  core/ machine/ kinematics/                 needs Eigen only
+#   pkm::kinematics  core/ machine/ kinematics/                 needs Eigen and the system's threads only
 #   pkm::io          io/ (machine files and other inputs)       + yaml-cpp, fmt, nlohmann_json
 #   pkm::motion      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/ stiffness/   + NLopt, Boost headers
 # A consumer: find_package(pkm REQUIRED [COMPONENTS kinematics io motion]) and target_link_libraries(app PRIVATE

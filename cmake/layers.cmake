@@ -1,7 +1,7 @@
 # The library as layered static libraries, one or more src/ folders each (docs/libraries.md). A layer may include
 # the headers of the layers below it only:
 #
-#   pkm_kinematics (pkm::kinematics)  core/ machine/ kinematics/   PUBLIC Eigen (fmt header-only, PRIVATE)
+#   pkm_kinematics (pkm::kinematics)  core/ machine/ kinematics/   PUBLIC Eigen, Threads (fmt header-only, PRIVATE)
 #   pkm_io         (pkm::io)          io/                          PUBLIC kinematics, yaml-cpp, fmt, nlohmann_json
 #   pkm_motion     (pkm::motion)      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/ stiffness/
 #                                     calibration/ workspace/ servo/ PUBLIC io; PRIVATE NLopt, Boost (headers), TBB
@@ -46,7 +46,8 @@ set_target_properties(pkm_kinematics PROPERTIES POSITION_INDEPENDENT_CODE ON)
 target_include_directories(pkm_kinematics PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/pkm>)
 target_include_directories(pkm_kinematics PRIVATE $<TARGET_PROPERTY:fmt::fmt,INTERFACE_INCLUDE_DIRECTORIES>)
 target_compile_definitions(pkm_kinematics PRIVATE FMT_HEADER_ONLY)
-target_link_libraries(pkm_kinematics PUBLIC Eigen3::Eigen)
+# Threads: one all-modes solve may follow its homotopy paths on several threads (stewart_all_modes.cpp).
+target_link_libraries(pkm_kinematics PUBLIC Eigen3::Eigen Threads::Threads)
 target_precompile_headers(pkm_kinematics PRIVATE ${PKM_LIB_PCH})
 
 # Input and output files: machine files (YAML), pose input, the guarded file reader, atomic outputs and sets.
@@ -74,3 +75,11 @@ target_precompile_headers(pkm_pipeline REUSE_FROM pkm_io)
 
 add_library(pkm_lib INTERFACE)
 target_link_libraries(pkm_lib INTERFACE pkm_pipeline pkm_report pkm_motion pkm_io pkm_kinematics)
+
+# The path tracker's AVX2/FMA build (kinematics/stewart_homotopy.cpp, chosen at run time) needs its
+# multiply–adds contracted into fused ones, which ISO C++ mode leaves off. The baseline x86-64 target has no
+# fused instruction, so this changes nothing else in the file. Out of the unity batches and the precompiled
+# header, so that the option stays on this file alone.
+set_source_files_properties(${PROJECT_SOURCE_DIR}/src/kinematics/stewart_homotopy.cpp
+                            PROPERTIES COMPILE_OPTIONS "-ffp-contract=fast" SKIP_UNITY_BUILD_INCLUSION ON
+                                       SKIP_PRECOMPILE_HEADERS ON)

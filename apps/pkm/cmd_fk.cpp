@@ -69,7 +69,9 @@ void add_fk_command(CLI::App& app, int& exit_code) {
       return;
     }
     if (*all) {
-      auto modes = mech.assembly_modes(*q);
+      FkOptions every_core;
+      every_core.threads = 0;  // one solve: its paths on every core
+      auto modes = mech.assembly_modes(*q, every_core);
       if (!modes) {
         exit_code = report_error("fk", modes.error());
         return;

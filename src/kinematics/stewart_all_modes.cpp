@@ -2,7 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
+#include <mutex>
 #include <random>
+#include <thread>
 
 namespace pkm {
 namespace {
@@ -55,6 +58,76 @@ bool monodromy_loop(const StewartSystem& system, const StewartParameters& from,
     x = path.x;
   }
   return true;
+}
+
+// The target is real, so the conjugate of a solution is one too. Once the distinct regular endpoints and
+// their conjugates number the start system's 40 (the generic root count), every solution is known, and each
+// path not yet followed ends at one of the complex ones no followed path reached: it is not followed (about a
+// tenth of the paths on general geometries). A path that jumped onto another's solution cannot fake this: the
+// solution it lost is then counted only through its conjugate, and a lost real one keeps the count below 40.
+class KnownSolutions {
+ public:
+  KnownSolutions(std::size_t all, double real_tolerance) : all_(all), real_tolerance_(real_tolerance) {
+    known_.reserve(all);
+  }
+  /// Counts a path's end; true once every solution is known.
+  bool add(const TrackedPath& end) {
+    if (end.end != PathEnd::finite || !(end.pivot_ratio > 1e-8)) return false;
+    // Compared at the accuracy of the endpoints (that of telling a real one): two distinct solutions closer
+    // than that only keep the count below 40, which costs the saving, never a solution.
+    const StudyPoint x = without_common_factor(end.x);
+    const double tolerance = real_tolerance_ * x.norm();
+    const auto is_known = [&](const StudyPoint& y) {
+      return std::any_of(known_.begin(), known_.end(),
+                         [&](const StudyPoint& k) { return (k - y).norm() <= tolerance; });
+    };
+    if (!is_known(x)) {
+      known_.push_back(x);
+      if (x.imag().norm() > tolerance && !is_known(x.conjugate())) known_.push_back(x.conjugate());
+    }
+    return known_.size() >= all_;
+  }
+
+ private:
+  std::size_t all_;
+  double real_tolerance_;
+  std::vector<StudyPoint> known_;
+};
+
+// The start system's paths to `target`, handed out in index order to `options.threads` threads (the paths
+// are independent; one thread: this one alone) until every solution is known. Every path handed out is
+// followed to its end, so the paths followed are always the first ones: ends[k] is the path from root k.
+// With more threads a few more paths may be followed than with one (those in flight when the last solution
+// turns up); the solutions found are the same.
+std::vector<TrackedPath> follow_start_paths(const StewartSystem& system, const StewartStartSystem& start,
+                                            const StewartParameters& target,
+                                            const StewartAllModesOptions& options, int& steps) {
+  const int count = static_cast<int>(start.roots.size());
+  std::vector<TrackedPath> ends(start.roots.size());
+  KnownSolutions known(start.roots.size(), options.real_tolerance);
+  std::mutex known_mutex;
+  std::atomic<int> next{0};
+  std::atomic<bool> all_known{false};
+  const auto follow = [&] {
+    while (!all_known.load(std::memory_order_relaxed)) {
+      const int k = next.fetch_add(1);
+      if (k >= count) return;
+      ends[k] = track_stewart_path(system, start.parameters, target, start.roots[k], options.tracking);
+      if (!options.stop_when_all_known) continue;
+      const std::lock_guard<std::mutex> lock(known_mutex);
+      if (known.add(ends[k])) all_known.store(true, std::memory_order_relaxed);
+    }
+  };
+  const int hardware = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  const int threads = std::clamp(options.threads > 0 ? options.threads : hardware, 1, count);
+  std::vector<std::thread> helpers;
+  helpers.reserve(threads - 1);
+  for (int i = 1; i < threads; ++i) helpers.emplace_back(follow);
+  follow();
+  for (std::thread& helper : helpers) helper.join();
+  ends.resize(std::min(next.load(), count));
+  for (const TrackedPath& end : ends) steps += end.steps;
+  return ends;
 }
 
 }  // namespace
@@ -134,34 +207,7 @@ StewartAllModes stewart_all_modes(const std::array<Eigen::Vector3d, 6>& base_mm,
   const StewartParameters target = StewartParameters::from_joints(base, platform, length_squared);
 
   StewartAllModes result;
-  std::vector<TrackedPath> ends;
-  ends.reserve(start.roots.size());
-  // The target is real, so the conjugate of a solution is one too. Once the distinct regular endpoints and
-  // their conjugates number the start system's 40 (the generic root count), every solution is known, and each
-  // path not yet followed ends at one of the complex ones no followed path reached: it is not followed (about
-  // a tenth of the paths on general geometries). A path that jumped onto another's solution cannot fake this:
-  // the solution it lost is then counted only through its conjugate, and a lost real one keeps the count
-  // below 40.
-  std::vector<StudyPoint> known;
-  known.reserve(start.roots.size());
-  for (const StudyPoint& root : start.roots) {
-    ends.push_back(track_stewart_path(system, start.parameters, target, root, options.tracking));
-    const TrackedPath& end = ends.back();
-    result.steps += end.steps;
-    if (end.end != PathEnd::finite || !(end.pivot_ratio > 1e-8)) continue;
-    // Compared at the accuracy of the endpoints (that of telling a real one): two distinct solutions closer
-    // than that only keep the count below 40, which costs the saving, never a solution.
-    const StudyPoint x = without_common_factor(end.x);
-    const double tolerance = options.real_tolerance * x.norm();
-    const auto is_known = [&](const StudyPoint& y) {
-      return std::any_of(known.begin(), known.end(),
-                         [&](const StudyPoint& k) { return (k - y).norm() <= tolerance; });
-    };
-    if (is_known(x)) continue;
-    known.push_back(x);
-    if (x.imag().norm() > tolerance && !is_known(x.conjugate())) known.push_back(x.conjugate());
-    if (options.stop_when_all_known && known.size() >= start.roots.size()) break;
-  }
+  std::vector<TrackedPath> ends = follow_start_paths(system, start, target, options, result.steps);
   const int not_followed = static_cast<int>(start.roots.size() - ends.size());
   result.finite += not_followed;
   result.complex += not_followed;

@@ -61,6 +61,8 @@ struct StewartAllModesOptions {
   double real_tolerance = 1e-6;
   /// Stop following paths once the endpoints and their conjugates number 40 (StewartAllModes::skipped).
   bool stop_when_all_known = true;
+  /// Threads following the paths (each path is independent): 1 this thread only, 0 one per processor core.
+  int threads = 1;
 };
 
 /// All assembly modes for base joints A_j (base frame), platform joints b_j (platform/tool frame) and strut

@@ -6,6 +6,14 @@
 
 #include "kinematics/stewart_lanes.hpp"
 
+// The kernels' AVX2/FMA copy needs GCC or Clang on x86-64 (function target attributes and
+// __builtin_cpu_supports); elsewhere only the baseline tracker is built.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define PKM_STEWART_WIDE_KERNELS 1
+#else
+#define PKM_STEWART_WIDE_KERNELS 0
+#endif
+
 namespace pkm {
 namespace {
 using stewart_lanes::LaneLu;
@@ -103,9 +111,13 @@ double refine_stewart_point(const StewartSystem& system, const StewartParameters
   return last;
 }
 
-TrackedPath track_stewart_path(const StewartSystem& system, const StewartParameters& from,
-                               const StewartParameters& to, const StudyPoint& start,
-                               const PathTrackOptions& options) {
+namespace {
+
+// The tracker itself; track_stewart_path runs it as compiled for the baseline processor or, where the
+// processor has them, as the copy below with its kernels built for AVX2 and FMA.
+TrackedPath follow_path(const StewartSystem& system, const StewartParameters& from,
+                        const StewartParameters& to, const StudyPoint& start,
+                        const PathTrackOptions& options) {
   const Legs origin = Legs::of(from), rate = Legs::of(to.minus(from));
   const Eigen::Vector4cd& chart = system.chart();
   TrackedPath path;
@@ -239,6 +251,48 @@ TrackedPath track_stewart_path(const StewartSystem& system, const StewartParamet
                  ? PathEnd::at_infinity
                  : PathEnd::failed;
   return path;
+}
+
+#if PKM_STEWART_WIDE_KERNELS
+// The same tracker with every kernel it calls inlined (flatten) and compiled for AVX2 with fused
+// multiply–add: the pairs of doubles stay pairs, but each complex multiply–add takes two fused instructions
+// instead of four, the three-operand forms drop the register copies of SSE2's two-operand ones, and the
+// triangular solves, which are latency-bound chains (one unknown after another), get shorter links. Only
+// what is inlined here is compiled for AVX2: no function shared with the rest of the program (the library's
+// inline functions, Eigen's) is emitted with these instructions, so the baseline build stays runnable on
+// any x86-64 processor.
+[[gnu::target("avx2,fma"), gnu::flatten]] TrackedPath follow_path_wide(const StewartSystem& system,
+                                                                       const StewartParameters& from,
+                                                                       const StewartParameters& to,
+                                                                       const StudyPoint& start,
+                                                                       const PathTrackOptions& options) {
+  return follow_path(system, from, to, start, options);
+}
+
+bool wide_kernels_available() {
+  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return available;
+}
+#endif
+
+}  // namespace
+
+bool stewart_wide_kernels_available() {
+#if PKM_STEWART_WIDE_KERNELS
+  return wide_kernels_available();
+#else
+  return false;
+#endif
+}
+
+TrackedPath track_stewart_path(const StewartSystem& system, const StewartParameters& from,
+                               const StewartParameters& to, const StudyPoint& start,
+                               const PathTrackOptions& options) {
+#if PKM_STEWART_WIDE_KERNELS
+  if (options.wide_kernels && wide_kernels_available())
+    return follow_path_wide(system, from, to, start, options);
+#endif
+  return follow_path(system, from, to, start, options);
 }
 
 }  // namespace pkm

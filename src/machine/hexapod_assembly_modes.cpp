@@ -210,7 +210,9 @@ Result<AssemblyModes> Hexapod::assembly_modes(const ActuatorVector& q, const FkO
   }
   std::array<double, 6> lengths_mm;
   for (int j = 0; j < 6; ++j) lengths_mm[j] = q[j];
-  const StewartAllModes all = stewart_all_modes(base, platform, lengths_mm);
+  StewartAllModesOptions homotopy;
+  homotopy.threads = options.threads;
+  const StewartAllModes all = stewart_all_modes(base, platform, lengths_mm, homotopy);
   report.method += "parameter homotopy from a generic 6-6 instance (40 paths)";
   report.complex = all.complex;
   report.at_infinity = all.at_infinity;

@@ -48,6 +48,9 @@ struct FkOptions {
   /// Reject a solution in another assembly mode than the guess's: along a path the guess is the previous
   /// pose, so a change of mode means the solver jumped across a singularity or onto a mirrored assembly.
   bool require_same_branch = true;
+  /// Threads an enumeration of all assembly modes (forward_all, assembly_modes) may use: 1 the caller's
+  /// thread alone (for callers that already run many solves in parallel), 0 one per processor core.
+  int threads = 1;
 };
 
 /// One forward-kinematics solution.

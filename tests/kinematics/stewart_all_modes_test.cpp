@@ -96,6 +96,22 @@ void symmetric_layout(double base_radius_mm, double base_gap_deg, double platfor
   for (int j = 0; j < 6; ++j) platform[j] = ring_platform[(j + 5) % 6];
 }
 
+// The same real modes (poses to 1e-6 mm and 1e-9) and the same counts of finite and complex solutions.
+void expect_same_modes(const StewartAllModes& a, const StewartAllModes& b, int trial) {
+  ASSERT_EQ(a.real.size(), b.real.size()) << "trial " << trial;
+  EXPECT_EQ(a.finite, b.finite) << "trial " << trial;
+  EXPECT_EQ(a.complex, b.complex) << "trial " << trial;
+  EXPECT_EQ(a.at_infinity, b.at_infinity) << "trial " << trial;
+  EXPECT_EQ(a.failed, b.failed) << "trial " << trial;
+  for (const StewartModeCandidate& mode : b.real) {
+    const bool found = std::any_of(a.real.begin(), a.real.end(), [&](const StewartModeCandidate& m) {
+      return (m.pose.position_mm - mode.pose.position_mm).norm() < 1e-6 &&
+             (m.pose.rotation - mode.pose.rotation).norm() < 1e-9;
+    });
+    EXPECT_TRUE(found) << "trial " << trial;
+  }
+}
+
 Hexapod hexapod_of(const Joints& base, const Joints& platform, const Pose& home) {
   HexapodGeometry geometry;
   geometry.base_joints_mm = base;
@@ -379,21 +395,62 @@ TEST(StewartAllModes, StoppingOnceEverySolutionIsKnownLosesNothing) {
     const StewartAllModes full = stewart_all_modes(base, platform, lengths, every_path);
     EXPECT_EQ(full.skipped, 0);
     skipped += stopped.skipped;
-    ASSERT_EQ(stopped.real.size(), full.real.size()) << "trial " << trial;
-    EXPECT_EQ(stopped.finite, full.finite) << "trial " << trial;
-    EXPECT_EQ(stopped.complex, full.complex) << "trial " << trial;
-    for (const StewartModeCandidate& mode : full.real) {
-      const bool found =
-          std::any_of(stopped.real.begin(), stopped.real.end(), [&](const StewartModeCandidate& m) {
-            return (m.pose.position_mm - mode.pose.position_mm).norm() < 1e-6 &&
-                   (m.pose.rotation - mode.pose.rotation).norm() < 1e-9;
-          });
-      EXPECT_TRUE(found) << "trial " << trial;
-    }
+    expect_same_modes(stopped, full, trial);
   }
   // The saving is real: on general geometries some paths are left out.
   EXPECT_GT(skipped, 60);
   std::printf("%d of %d paths not followed\n", skipped, 60 * 40);
+}
+
+TEST(StewartAllModes, TheWideKernelsFindWhatTheBaselineFinds) {
+  // The tracker's AVX2/FMA build (chosen at run time where the processor has it) against its baseline build:
+  // the same modes on general and 3-fold symmetric layouts. Fused multiply–adds round differently, so the
+  // steps may differ in the last digits; the solutions may not.
+  std::mt19937_64 rng(515);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  long steps_wide = 0, steps_baseline = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    Joints base, platform;
+    if (trial % 2 == 0) {
+      random_general_layout(rng, base, platform);
+    } else {
+      symmetric_layout(500.0 + 100.0 * u(rng), 10.0 + 5.0 * u(rng), 250.0 + 50.0 * u(rng),
+                       12.0 + 5.0 * u(rng), base, platform);
+    }
+    const ActuatorVector q = lengths_at(base, platform, random_pose(rng, 0.5, 500.0));
+    std::array<double, 6> lengths;
+    for (int j = 0; j < 6; ++j) lengths[j] = q[j];
+    StewartAllModesOptions baseline;
+    baseline.tracking.wide_kernels = false;
+    const StewartAllModes wide = stewart_all_modes(base, platform, lengths);
+    const StewartAllModes plain = stewart_all_modes(base, platform, lengths, baseline);
+    expect_same_modes(wide, plain, trial);
+    steps_wide += wide.steps;
+    steps_baseline += plain.steps;
+  }
+  std::printf("AVX2/FMA kernels %s; steps %ld (baseline %ld)\n",
+              stewart_wide_kernels_available() ? "in use" : "not available on this processor", steps_wide,
+              steps_baseline);
+}
+
+TEST(StewartAllModes, SeveralThreadsFindWhatOneThreadFinds) {
+  // The paths handed out to several threads: the same modes and counts as one thread, whichever path ends
+  // first, and never fewer paths followed than one thread follows (those in flight when the last solution
+  // turns up are finished).
+  std::mt19937_64 rng(616);
+  for (int trial = 0; trial < 30; ++trial) {
+    Joints base, platform;
+    random_general_layout(rng, base, platform);
+    const ActuatorVector q = lengths_at(base, platform, random_pose(rng, 0.5, 500.0));
+    std::array<double, 6> lengths;
+    for (int j = 0; j < 6; ++j) lengths[j] = q[j];
+    StewartAllModesOptions threaded;
+    threaded.threads = 3 + trial % 3;
+    const StewartAllModes one = stewart_all_modes(base, platform, lengths);
+    const StewartAllModes several = stewart_all_modes(base, platform, lengths, threaded);
+    expect_same_modes(one, several, trial);
+    EXPECT_LE(several.skipped, one.skipped) << "trial " << trial;
+  }
 }
 
 TEST(StewartAllModes, RealModeCountsEqualADenseMultiStartSearchOnASubset) {
