@@ -96,6 +96,48 @@ BodyMotion motion_of(const MechanismState& state, const DynamicsParameters& para
 
 }  // namespace
 
+int set_strut_directions(MechanismState& state) {
+  const int n = state.struts;
+  StrutRows3& arm = state.strut_arm_rows_mm;
+  StrutRows3 d;  // B − A: gathered into rows, so that the roots and divisions take two struts at once
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector3d& platform = state.ends.platform_mm[j];
+    const Eigen::Vector3d& base = state.ends.base_mm[j];
+    arm.x[j] = platform.x() - state.pose.position_mm.x();
+    arm.y[j] = platform.y() - state.pose.position_mm.y();
+    arm.z[j] = platform.z() - state.pose.position_mm.z();
+    d.x[j] = platform.x() - base.x();
+    d.y[j] = platform.y() - base.y();
+    d.z[j] = platform.z() - base.z();
+  }
+  for (int j = n; j < kMaxActuators; ++j) arm.x[j] = arm.y[j] = arm.z[j] = 0.0;
+  StrutRow length = (d.x * d.x + d.y * d.y + d.z * d.z).sqrt();
+  for (int j = 0; j < n; ++j) {
+    if (!(length[j] > 0.0)) return j;
+  }
+  for (int j = n; j < kMaxActuators; ++j) length[j] = 1.0;  // no strut: zero direction, 1/L set to zero below
+  StrutRows3& u = state.strut_u_rows;
+  u.x = d.x / length;
+  u.y = d.y / length;
+  u.z = d.z / length;
+  state.strut_inverse_length_per_mm = length.inverse();
+  for (int j = n; j < kMaxActuators; ++j) state.strut_inverse_length_per_mm[j] = 0.0;
+  for (int j = 0; j < n; ++j) {
+    state.strut_length_mm[j] = length[j];
+    state.strut_u[j] = Eigen::Vector3d(u.x[j], u.y[j], u.z[j]);
+  }
+  return -1;
+}
+
+void set_fixed_base_constants(const FixedBaseStrutConstants& constants, MechanismState& state) {
+  FixedBaseStrutConstants& c = state.fixed_base_constants;
+  c = constants;
+  for (int j = 0; j < state.struts; ++j) {
+    if (!state.base_moves[j]) continue;
+    c.upper_kg[j] = c.upper_moment_kg_mm[j] = c.lower_moment_kg_mm[j] = c.turning_kg_mm2[j] = 0.0;
+  }
+}
+
 Status mechanism_state(const Mechanism& mechanism, const DynamicsParameters& parameters, const Pose& pose,
                        MechanismState& state) {
   auto completed = mechanism.complete_pose(pose);
@@ -111,13 +153,10 @@ Status mechanism_state(const Mechanism& mechanism, const DynamicsParameters& par
   if (state.struts < 0 || !mechanism.actuator_values(state.pose, state.actuators.data())) {
     return make_error(ErrorCode::unreachable, "dynamics: the pose is out of reach");
   }
+  if (const int zero = set_strut_directions(state); zero >= 0) {
+    return make_error(ErrorCode::singular, fmt::format("dynamics: strut {} has zero length", zero + 1));
+  }
   for (int j = 0; j < state.struts; ++j) {
-    const Eigen::Vector3d d = state.ends.platform_mm[j] - state.ends.base_mm[j];
-    state.strut_length_mm[j] = d.norm();
-    if (!(state.strut_length_mm[j] > 0.0)) {
-      return make_error(ErrorCode::singular, fmt::format("dynamics: strut {} has zero length", j + 1));
-    }
-    state.strut_u[j] = d / state.strut_length_mm[j];
     mechanism.base_joint_motion(j, state.actuators[j], state.base_first[j], state.base_second[j]);
     state.base_moves[j] = state.base_first[j].squaredNorm() > 0.0;
     if (state.base_moves[j] &&
@@ -132,6 +171,7 @@ Status mechanism_state(const Mechanism& mechanism, const DynamicsParameters& par
         ErrorCode::unsupported,
         "dynamics: the mechanism gives no twist Jacobian at this pose (out of reach or singular)");
   }
+  set_fixed_base_constants(fixed_base_strut_constants(parameters, state.struts), state);
   Eigen::Vector3d com_tool;
   Eigen::Matrix3d inertia_tool;
   combine_platform(parameters, state.platform_kg, com_tool, inertia_tool);

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "core/result.hpp"
+#include "dynamics/strut_rows.hpp"
 #include "machine/dynamics_parameters.hpp"
 #include "machine/mechanism.hpp"
 
@@ -21,6 +22,12 @@ struct MechanismState {
   std::array<bool, kMaxActuators> base_moves{};
   std::array<Eigen::Vector3d, kMaxActuators> strut_u;  ///< unit strut directions A_j → B_j
   std::array<double, kMaxActuators> strut_length_mm{};
+  /// The same by rows over the struts (strut_rows.hpp), for the rigid terms' lanes: the platform joints from
+  /// the tool point, the unit directions and 1/L, zero past `struts`.
+  StrutRows3 strut_arm_rows_mm, strut_u_rows;
+  StrutRow strut_inverse_length_per_mm = StrutRow::Zero();
+  /// The struts' constants of the fixed-base terms, zero in the lanes of struts on moving base joints.
+  FixedBaseStrutConstants fixed_base_constants;
   JacobianMatrix twist_jacobian;
   TwistBasis basis;
   double platform_kg = 0.0;
@@ -32,6 +39,16 @@ struct MechanismState {
 /// twist form, or the dynamics parameters describe a different number of struts.
 Status mechanism_state(const Mechanism& mechanism, const DynamicsParameters& parameters, const Pose& pose,
                        MechanismState& state);
+
+/// From the state's pose and strut ends: each strut's length and unit direction (strut_length_mm, strut_u)
+/// and the rows of the joints' arms, the directions and 1/L, computed over all struts at once (the same
+/// operations per strut as d.norm() and d / L). Returns the first strut (from 0) of zero length, −1 when
+/// every strut has a length. Never allocates.
+int set_strut_directions(MechanismState& state);
+
+/// state.fixed_base_constants: `constants` (fixed_base_strut_constants) with the lanes of the struts on
+/// moving base joints (state.base_moves) zeroed.
+void set_fixed_base_constants(const FixedBaseStrutConstants& constants, MechanismState& state);
 
 /// A strut's motion: direction, its rate and angular velocity and acceleration (perpendicular to the axis).
 struct StrutMotion {

@@ -133,16 +133,17 @@ Status elastic_accelerations(const ElasticModel& model, const Pose& pose, const 
   if (model.struts == 6 && model.coordinates == 6) {
     // Six struts in the platform's own twist (the basis is the identity): the same in fixed sizes, which
     // Eigen writes out (a third of this function's time with run-time sizes).
+    // No projection and only M's lower triangle, which the solve reads (and overwrites with its factors).
     const Twist twist = rates;
-    rigid_terms(state, *model.parameters, model.basis, twist, drives.load, workspace.rigid);
+    TwistRigidTerms& rigid = workspace.twist_rigid;
+    twist_rigid_terms(state, *model.parameters, twist, drives.load, rigid);
     const Eigen::Map<const Eigen::Matrix<double, 6, 6>> jacobian(state.twist_jacobian.data());
     const Twist actuator_rates = jacobian * twist;
     Twist force_kg_mm_s2;
     element_forces(model, state, actuator_rates, drives, force_kg_mm_s2, forces);
-    const Twist generalised =
-        workspace.rigid.applied - workspace.rigid.bias - jacobian.transpose() * force_kg_mm_s2;
+    const Twist generalised = rigid.applied - rigid.bias - jacobian.transpose() * force_kg_mm_s2;
     Twist solution;
-    positive = cholesky_solve<6>(workspace.rigid.mass, generalised, solution);
+    positive = cholesky_solve_in_place<6>(rigid.mass.lower, generalised, solution);
     accelerations = solution;
   } else {
     const Twist twist = model.basis * rates;

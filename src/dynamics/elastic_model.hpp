@@ -63,6 +63,8 @@ Result<ElasticModel> make_elastic_model(const Mechanism& mechanism, const Dynami
 struct ElasticWorkspace {
   MechanismState state;
   RigidTerms rigid;
+  /// The six coordinates' terms (the platform's own twist); the Cholesky solve factors its mass in place.
+  TwistRigidTerms twist_rigid;
 };
 
 /// The elastic elements' state at a pose moving with rates ċ under a drive setpoint.

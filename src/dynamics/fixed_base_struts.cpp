@@ -3,14 +3,8 @@
 namespace pkm::dynamics {
 namespace {
 
-/// One value per strut. Lanes of struts not taken (absent, or on a moving base joint) hold zero masses, so
-/// every term they make is zero.
-using Row = Eigen::Array<double, 1, kMaxActuators>;
-
-/// A 3-vector per strut, by components.
-struct Rows3 {
-  Row x, y, z;
-};
+using Row = StrutRow;
+using Rows3 = StrutRows3;
 
 Rows3 cross(const Eigen::Vector3d& a, const Rows3& b) {
   return {a.y() * b.z - a.z() * b.y, a.z() * b.x - a.x() * b.z, a.x() * b.y - a.y() * b.x};
@@ -32,29 +26,17 @@ Eigen::Vector3d sums(const Rows3& a) {
 
 void add_fixed_base_struts(const MechanismState& state, const DynamicsParameters& parameters,
                            const Twist& twist, MassLowerTriangle& mass, Twist& bias, Twist& applied) {
-  // Gather: the joints' arms from the tool point, the unit directions, 1/L, and each strut's constants:
-  // m_u, m_u c_u, m_l c_l and J = m_l c_l² + m_u c_u² + I_t (the turning inertia about the base joint).
-  Rows3 arm{Row::Zero(), Row::Zero(), Row::Zero()}, u{Row::Zero(), Row::Zero(), Row::Zero()};
-  Row inverse_length = Row::Zero(), upper_mass = Row::Zero(), upper_moment = Row::Zero(),
-      lower_moment = Row::Zero(), turning = Row::Zero();
-  for (int j = 0; j < state.struts; ++j) {
-    if (state.base_moves[j]) continue;
-    const StrutDynamics& p = parameters.struts[j];
-    const Eigen::Vector3d a = state.ends.platform_mm[j] - state.pose.position_mm;
-    arm.x[j] = a.x();
-    arm.y[j] = a.y();
-    arm.z[j] = a.z();
-    u.x[j] = state.strut_u[j].x();
-    u.y[j] = state.strut_u[j].y();
-    u.z[j] = state.strut_u[j].z();
-    inverse_length[j] = 1.0 / state.strut_length_mm[j];
-    upper_mass[j] = p.upper.mass_kg;
-    upper_moment[j] = p.upper.mass_kg * p.upper.com_mm;
-    lower_moment[j] = p.lower.mass_kg * p.lower.com_mm;
-    turning[j] = lower_moment[j] * p.lower.com_mm + upper_moment[j] * p.upper.com_mm +
-                 p.lower.transverse_inertia_kg_mm2 + p.upper.transverse_inertia_kg_mm2;
-  }
-
+  // The state's rows: the joints' arms from the tool point, the unit directions, 1/L, and each strut's
+  // constants m_u, m_u c_u, m_l c_l and J = m_l c_l² + m_u c_u² + I_t (the turning inertia about the base
+  // joint), zero in the lanes of struts on moving base joints.
+  const Rows3& arm = state.strut_arm_rows_mm;
+  const Rows3& u = state.strut_u_rows;
+  const Row& inverse_length = state.strut_inverse_length_per_mm;
+  const FixedBaseStrutConstants& constants = state.fixed_base_constants;
+  const Row& upper_mass = constants.upper_kg;
+  const Row& upper_moment = constants.upper_moment_kg_mm;
+  const Row& lower_moment = constants.lower_moment_kg_mm;
+  const Row& turning = constants.turning_kg_mm2;
   // A fixed base joint (W = 0): U = P/L, and with [u]× P = [u]× and (I − aP)ᵀ(I − aP) = uuᵀ + (1 − a)² P,
   // S = m_u uuᵀ + σ P, σ = m_l (c_l/L)² + m_u (1 − c_u/L)² + I_t/L² = J/L² + m_u − 2 m_u c_u/L, κ = m_u − σ.
   const Row sigma = turning * inverse_length.square() + upper_mass - 2.0 * upper_moment * inverse_length;

@@ -10,8 +10,8 @@ namespace pkm::dynamics {
 
 /// Adds the struts with state.base_moves[j] false: their mass-matrix terms to `mass`, their rates of momentum
 /// at zero twist rate (platform moving with `twist`) to `bias`, their weights to `applied` (kg·mm/s² and
-/// kg·mm²/s² about the tool point). Needs the state's strut ends, unit directions and lengths. Never
-/// allocates.
+/// kg·mm²/s² about the tool point). Reads the state's rows (set_strut_directions: the joints' arms, unit
+/// directions and 1/L; fixed_base_constants, zero for struts on moving base joints). Never allocates.
 void add_fixed_base_struts(const MechanismState& state, const DynamicsParameters& parameters,
                            const Twist& twist, MassLowerTriangle& mass, Twist& bias, Twist& applied);
 

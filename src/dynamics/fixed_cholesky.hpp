@@ -12,11 +12,11 @@ namespace pkm::dynamics {
 /// a pivot is not positive: a is not positive definite. Right-looking: each pivot's updates of the remaining
 /// lower triangle, and each solve's updates of the remaining right-hand side, are independent of one another,
 /// so they overlap in the processor instead of queueing on one running sum.
-/// `a` may have run-time sizes (N × N at run time): it is read once, into the fixed-size factors.
-template <int N, class MatrixA>
-bool cholesky_solve(const Eigen::MatrixBase<MatrixA>& a, const Eigen::Matrix<double, N, 1>& b,
-                    Eigen::Matrix<double, N, 1>& x) {
-  Eigen::Matrix<double, N, N> f = a;  // becomes L (unit lower, strictly below the diagonal) and D
+/// This one factors `f` in place (it becomes L, unit lower strictly below the diagonal, and D on it): for a
+/// workspace's matrix that is not needed afterwards, without a copy.
+template <int N>
+bool cholesky_solve_in_place(Eigen::Matrix<double, N, N>& f, const Eigen::Matrix<double, N, 1>& b,
+                             Eigen::Matrix<double, N, 1>& x) {
   Eigen::Matrix<double, N, 1> inverse_d;
 #pragma GCC unroll 8
   for (int k = 0; k < N; ++k) {
@@ -45,6 +45,15 @@ bool cholesky_solve(const Eigen::MatrixBase<MatrixA>& a, const Eigen::Matrix<dou
     for (int i = 0; i < k; ++i) x[i] -= f(k, i) * x[k];
   }
   return true;
+}
+
+/// The same for an `a` that is kept; it may have run-time sizes (N × N at run time): it is read once, into
+/// the fixed-size factors.
+template <int N, class MatrixA>
+bool cholesky_solve(const Eigen::MatrixBase<MatrixA>& a, const Eigen::Matrix<double, N, 1>& b,
+                    Eigen::Matrix<double, N, 1>& x) {
+  Eigen::Matrix<double, N, N> f = a;
+  return cholesky_solve_in_place<N>(f, b, x);
 }
 
 }  // namespace pkm::dynamics

@@ -7,6 +7,14 @@
 #include "dynamics/fixed_cholesky.hpp"
 
 namespace pkm::dynamics {
+namespace {
+
+Error across_or_zero(int strut) {
+  return make_error(ErrorCode::singular,
+                    fmt::format("strut {} has zero length or is across its carriage's path", strut + 1));
+}
+
+}  // namespace
 
 Status make_free_platform_model(const Mechanism& mechanism, const DynamicsParameters& parameters,
                                 const std::string& where, const std::string& purpose,
@@ -38,6 +46,7 @@ Status make_free_platform_model(const Mechanism& mechanism, const DynamicsParame
   const Eigen::Matrix3d& r = home.pose.rotation;
   model.platform_com_mm = r.transpose() * home.platform_arm_mm;
   model.platform_inertia_kg_mm2 = r.transpose() * home.platform_inertia_kg_mm2 * r;
+  model.strut_constants = fixed_base_strut_constants(parameters, model.struts);
   return ok_status();
 }
 
@@ -50,24 +59,24 @@ Status free_platform_state(const FreePlatformModel& model, const Pose& pose, Mec
   if (state.struts != model.struts) {
     return make_error(ErrorCode::unreachable, "the platform left the mechanism's reach");
   }
-  for (int j = 0; j < state.struts; ++j) {
-    const Eigen::Vector3d d = state.ends.platform_mm[j] - state.ends.base_mm[j];
-    if (model.base_joints_fixed) {
+  // Normalised once here for rigid_terms, all struts at once (strut by strut, a square root and divisions
+  // each were a tenth of the elastic right-hand side).
+  if (const int zero = set_strut_directions(state); zero >= 0) return across_or_zero(zero);
+  if (model.base_joints_fixed) {
+    for (int j = 0; j < state.struts; ++j) {
       state.base_first[j].setZero();
       state.base_second[j].setZero();
-    } else {
+      state.base_moves[j] = false;
+    }
+    state.fixed_base_constants = model.strut_constants;
+  } else {
+    for (int j = 0; j < state.struts; ++j) {
       mechanism.base_joint_motion(j, state.actuators[j], state.base_first[j], state.base_second[j]);
+      state.base_moves[j] = state.base_first[j].squaredNorm() > 0.0;
+      const Eigen::Vector3d d = state.ends.platform_mm[j] - state.ends.base_mm[j];
+      if (state.base_moves[j] && !(std::abs(d.dot(state.base_first[j])) > 0.0)) return across_or_zero(j);
     }
-    state.base_moves[j] = state.base_first[j].squaredNorm() > 0.0;
-    const double length = d.norm();
-    if (!(length > 0.0) || (state.base_moves[j] && !(std::abs(d.dot(state.base_first[j])) > 0.0))) {
-      return make_error(ErrorCode::singular,
-                        fmt::format("strut {} has zero length or is across its carriage's path", j + 1));
-    }
-    // Normalised once here for rigid_terms (a square root and a division per strut are a tenth of the
-    // elastic right-hand side).
-    state.strut_length_mm[j] = length;
-    state.strut_u[j] = d / length;
+    set_fixed_base_constants(model.strut_constants, state);
   }
   const Eigen::Matrix3d& r = state.pose.rotation;
   state.platform_kg = model.platform_kg;

@@ -34,6 +34,8 @@ struct FreePlatformModel {
   double platform_kg = 0.0;
   Eigen::Vector3d platform_com_mm = Eigen::Vector3d::Zero();
   Eigen::Matrix3d platform_inertia_kg_mm2 = Eigen::Matrix3d::Zero();
+  /// The struts' constants of the rigid terms on fixed base joints (strut_rows.hpp), likewise made once.
+  FixedBaseStrutConstants strut_constants;
 };
 
 /// Fills `model` for `mechanism`, or says why it cannot have one: angular actuators, or no free twist basis

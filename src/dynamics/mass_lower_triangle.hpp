@@ -16,7 +16,12 @@ struct MassLowerTriangle {
   Eigen::Vector3d sigma_arm = Eigen::Vector3d::Zero();
   Matrix6 lower;  // only the lower triangle is set, added to and read
 
-  MassLowerTriangle() {
+  MassLowerTriangle() { clear(); }
+
+  /// Back to no bodies (a workspace's triangle, reused).
+  void clear() {
+    sigma = sigma_square = 0.0;
+    sigma_arm.setZero();
     for (int c = 0; c < 6; ++c) {
       for (int r = c; r < 6; ++r) lower(r, c) = 0.0;
     }
@@ -33,24 +38,29 @@ struct MassLowerTriangle {
     }
   }
 
-  /// The whole symmetric matrix into `m` (a 6 × 6, fixed or of run-time size), entry by entry.
+  /// Adds the point bodies' sums into `lower`, which is then the lower triangle of the whole matrix (what
+  /// the fixed-size Cholesky reads). Once, after the last body.
+  void fold_sums() {
+    for (int k = 0; k < 3; ++k) {
+      lower(k, k) += sigma;
+      lower(3 + k, 3 + k) += sigma_square;
+    }
+    // The lower left block is X = [Σ σ arm]× (the upper right −X = Xᵀ); its diagonal is zero.
+    lower(4, 0) += sigma_arm[2];
+    lower(5, 0) += -sigma_arm[1];
+    lower(3, 1) += -sigma_arm[2];
+    lower(5, 1) += sigma_arm[0];
+    lower(3, 2) += sigma_arm[1];
+    lower(4, 2) += -sigma_arm[0];
+  }
+
+  /// The whole symmetric matrix into `m` (a 6 × 6, fixed or of run-time size), entry by entry, after
+  /// fold_sums().
   template <class Matrix>
   void write_full(Matrix& m) const {
     m.resize(6, 6);
     for (int c = 0; c < 6; ++c) {
       for (int r = c; r < 6; ++r) m(r, c) = m(c, r) = lower(r, c);
-    }
-    m.template topLeftCorner<3, 3>().diagonal().array() += sigma;
-    m.template bottomRightCorner<3, 3>().diagonal().array() += sigma_square;
-    // The lower left block is X = [Σ σ arm]×, the upper right −X = Xᵀ.
-    const double x[3][3] = {{0.0, -sigma_arm[2], sigma_arm[1]},
-                            {sigma_arm[2], 0.0, -sigma_arm[0]},
-                            {-sigma_arm[1], sigma_arm[0], 0.0}};
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) {
-        m(3 + r, c) += x[r][c];
-        m(c, 3 + r) += x[r][c];
-      }
     }
   }
 };

@@ -24,17 +24,20 @@ inline void add_joint_force(const Eigen::Vector3d& f, const Eigen::Vector3d& arm
 
 }  // namespace
 
-void rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const TwistBasis& basis,
-                 const Twist& twist, const statics::Wrench& load, RigidTerms& out) {
+void twist_rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const Twist& twist,
+                       const statics::Wrench& load, TwistRigidTerms& out) {
   const Eigen::Vector3d v = twist.head<3>(), w = twist.tail<3>();
   const Eigen::Vector3d& gravity = parameters.gravity_mm_s2;
-  Twist bias = Twist::Zero(), applied;
+  Twist& bias = out.bias;
+  Twist& applied = out.applied;
+  bias.setZero();
   applied << load.force_N * 1e3, load.moment_Nmm * 1e3;  // N → kg·mm/s²
 
   // The platform: v_c = v + ω × r, so G = [I, −[r]×]; a_c = ω × (ω × r) at zero twist rate; Euler's ω × Iω.
   const Eigen::Vector3d& r = state.platform_arm_mm;
   const Eigen::Matrix3d& inertia = state.platform_inertia_kg_mm2;
-  MassLowerTriangle mass;
+  MassLowerTriangle& mass = out.mass;
+  mass.clear();
   mass.add_point(state.platform_kg, r);
   mass.lower.bottomRightCorner<3, 3>().triangularView<Eigen::Lower>() += inertia;
   add_joint_force(state.platform_kg * w.cross(w.cross(r)), r, bias);
@@ -90,17 +93,24 @@ void rigid_terms(const MechanismState& state, const DynamicsParameters& paramete
         (p.lower.mass_kg * lower + p.upper.mass_kg * upper + p.carriage_kg * carriage).transpose() * gravity;
     add_joint_force(weight, arm, applied);
   }
+  mass.fold_sums();
+}
+
+void rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const TwistBasis& basis,
+                 const Twist& twist, const statics::Wrench& load, RigidTerms& out) {
+  TwistRigidTerms terms;
+  twist_rigid_terms(state, parameters, twist, load, terms);
   if (basis.cols() == 6 && basis.isIdentity(0.0)) {  // the free platform's own twist: no projection
-    mass.write_full(out.mass);
-    out.bias = bias;
-    out.applied = applied;
+    terms.mass.write_full(out.mass);
+    out.bias = terms.bias;
+    out.applied = terms.applied;
     return;
   }
   Matrix6 full_mass;
-  mass.write_full(full_mass);
+  terms.mass.write_full(full_mass);
   out.mass = basis.transpose() * full_mass * basis;
-  out.bias = basis.transpose() * bias;
-  out.applied = basis.transpose() * applied;
+  out.bias = basis.transpose() * terms.bias;
+  out.applied = basis.transpose() * terms.applied;
 }
 
 }  // namespace pkm::dynamics

@@ -13,6 +13,7 @@
 // agree to rounding (tests/dynamics/elastic_model_test.cpp); this form needs no body evaluation per
 // coordinate.
 #include "dynamics/equations_of_motion.hpp"
+#include "dynamics/mass_lower_triangle.hpp"
 
 namespace pkm::dynamics {
 
@@ -21,6 +22,19 @@ struct RigidTerms {
   ActuatorVector bias;     ///< velocity-product terms, kg·mm/s²
   ActuatorVector applied;  ///< gravity and the load, kg·mm/s²
 };
+
+/// The same terms in the platform's own twist (tool-point velocity, angular velocity; no basis), with M as
+/// its lower triangle (mass.lower after fold_sums()): what a right-hand side whose basis is the identity
+/// needs, without the projection and the mirrored full matrix.
+struct TwistRigidTerms {
+  MassLowerTriangle mass;  ///< kg, kg·mm (the coupling), kg·mm²
+  Twist bias;              ///< kg·mm/s², kg·mm²/s²
+  Twist applied;
+};
+
+/// twist_rigid_terms: as rigid_terms() below, in the platform's own twist. Never allocates.
+void twist_rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const Twist& twist,
+                       const statics::Wrench& load, TwistRigidTerms& out);
 
 /// M, bias (for the platform moving with `twist`) and applied (gravity, and `load` in N and N·mm about the
 /// tool point) in the coordinates of `basis`, at a state with its pose, struts' ends, their unit directions

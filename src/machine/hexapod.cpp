@@ -178,12 +178,14 @@ int Hexapod::strut_state(const Pose& pose, StrutJointPoints& ends, double* actua
   if (!(length > 0.0).all()) return -1;  // as actuator_values()
   const Lanes ux = dx / length, uy = dy / length, uz = dz / length;
   twist_rows.resize(6, 6);
-  twist_rows.col(0) = ux.transpose();
-  twist_rows.col(1) = uy.transpose();
-  twist_rows.col(2) = uz.transpose();
-  twist_rows.col(3) = (arm_y * uz - arm_z * uy).transpose();  // arm × u
-  twist_rows.col(4) = (arm_z * ux - arm_x * uz).transpose();
-  twist_rows.col(5) = (arm_x * uy - arm_y * ux).transpose();
+  // Written through a fixed-size view of the storage just sized: columns without run-time size logic.
+  Eigen::Map<Eigen::Matrix<double, 6, 6>> rows(twist_rows.data());
+  rows.col(0) = ux.transpose();
+  rows.col(1) = uy.transpose();
+  rows.col(2) = uz.transpose();
+  rows.col(3) = (arm_y * uz - arm_z * uy).transpose();  // arm × u
+  rows.col(4) = (arm_z * ux - arm_x * uz).transpose();
+  rows.col(5) = (arm_x * uy - arm_y * ux).transpose();
   for (int j = 0; j < 6; ++j) {
     ends.base_mm[j] = geometry_.base_joints_mm[j];
     ends.platform_mm[j] = Eigen::Vector3d(joint_x[j], joint_y[j], joint_z[j]);
