@@ -2,7 +2,9 @@
 // labelled), on random general 6-6 geometries (goal ≤ 1.25 ms, 10× fkSGP's 12.5 ms), on random 3-fold
 // symmetric machine layouts, on Dietmaier's 40-real instance, and on the shipped machines (6-3 and 3-6: the
 // 1-D scan). Each benchmark cycles through a fixed set of instances made once; the worst single solve is
-// reported beside the mean (docs/PERFORMANCE.md).
+// reported beside the mean (docs/PERFORMANCE.md). The *_every_core variants let one solve follow its paths on
+// every core (FkOptions::threads = 0; wall-clock time); BM_StewartAllModesKernels compares the tracker's
+// baseline and AVX2/FMA kernels.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
@@ -12,6 +14,7 @@
 #include <random>
 
 #include "io/machine_file.hpp"
+#include "kinematics/stewart_all_modes.hpp"
 #include "machine/hexapod.hpp"
 
 namespace pkm {
@@ -42,18 +45,31 @@ Instance hexapod_instance(const Joints& base, const Joints& platform, const Pose
   return instance;
 }
 
-std::vector<Instance> general_instances() {
+// Random general 6-6 geometries at random poses.
+struct JointSet {
+  Joints base, platform;
+  Pose pose;
+};
+std::vector<JointSet> general_joint_sets() {
   std::mt19937_64 rng(2026);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<Instance> out;
+  std::vector<JointSet> out;
   for (int i = 0; i < 50; ++i) {
-    Joints base, platform;
+    JointSet set;
     for (int j = 0; j < 6; ++j) {
-      base[j] = Eigen::Vector3d(500 * u(rng), 500 * u(rng), 100 * u(rng));
-      platform[j] = Eigen::Vector3d(250 * u(rng), 250 * u(rng), 60 * u(rng));
+      set.base[j] = Eigen::Vector3d(500 * u(rng), 500 * u(rng), 100 * u(rng));
+      set.platform[j] = Eigen::Vector3d(250 * u(rng), 250 * u(rng), 60 * u(rng));
     }
-    out.push_back(hexapod_instance(base, platform, bench_random_pose(rng, 1.0, 500.0)));
+    set.pose = bench_random_pose(rng, 1.0, 500.0);
+    out.push_back(set);
   }
+  return out;
+}
+
+std::vector<Instance> general_instances() {
+  std::vector<Instance> out;
+  for (const JointSet& set : general_joint_sets())
+    out.push_back(hexapod_instance(set.base, set.platform, set.pose));
   return out;
 }
 
@@ -122,14 +138,17 @@ std::vector<Instance> shipped_instances(const char* file) {
   return out;
 }
 
-void BM_AssemblyModes(benchmark::State& state, std::vector<Instance> (*make)()) {
+// `threads`: FkOptions::threads (1: the caller's thread; 0: every core, timed in wall-clock time).
+void BM_AssemblyModes(benchmark::State& state, std::vector<Instance> (*make)(), int threads) {
   const std::vector<Instance> instances = make();
+  FkOptions options;
+  options.threads = threads;
   std::size_t next = 0;
   double worst_s = 0.0, modes = 0.0, solves = 0.0;
   for (auto _ : state) {
     const Instance& instance = instances[next++ % instances.size()];
     const auto start = std::chrono::steady_clock::now();
-    auto result = instance.mechanism->assembly_modes(instance.q);
+    auto result = instance.mechanism->assembly_modes(instance.q, options);
     worst_s =
         std::max(worst_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (!result) state.SkipWithError(result.error().message.c_str());
@@ -139,6 +158,31 @@ void BM_AssemblyModes(benchmark::State& state, std::vector<Instance> (*make)()) 
   }
   state.counters["worst_ms"] = worst_s * 1e3;
   state.counters["real_modes"] = solves > 0 ? modes / solves : 0.0;
+}
+
+// The homotopy alone (stewart_all_modes: no polishing, no labels) on the general geometries, with the
+// tracker's kernels built for the baseline processor or for AVX2/FMA: what the run-time choice gains.
+void BM_StewartAllModesKernels(benchmark::State& state, bool wide) {
+  std::vector<std::array<double, 6>> lengths;
+  const std::vector<JointSet> sets = general_joint_sets();
+  for (const JointSet& set : sets) {
+    std::array<double, 6> l;
+    for (int j = 0; j < 6; ++j) l[j] = (set.pose.to_base(set.platform[j]) - set.base[j]).norm();
+    lengths.push_back(l);
+  }
+  StewartAllModesOptions options;
+  options.tracking.wide_kernels = wide;
+  std::size_t next = 0;
+  double steps = 0.0, solves = 0.0;
+  for (auto _ : state) {
+    const std::size_t k = next++ % sets.size();
+    const StewartAllModes all = stewart_all_modes(sets[k].base, sets[k].platform, lengths[k], options);
+    benchmark::DoNotOptimize(all);
+    steps += all.steps;
+    solves += 1.0;
+  }
+  state.counters["steps"] = solves > 0 ? steps / solves : 0.0;
+  state.counters["wide_kernels"] = wide && stewart_wide_kernels_available() ? 1.0 : 0.0;
 }
 
 std::vector<Instance> ch5_instances() {
@@ -151,14 +195,22 @@ std::vector<Instance> delta30_instances() {
   return shipped_instances("hexapod_ch3_delta30.yaml");
 }
 
-BENCHMARK_CAPTURE(BM_AssemblyModes, general_6_6, general_instances)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_AssemblyModes, symmetric_6_6, symmetric_instances)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_AssemblyModes, dietmaier_40_real, dietmaier_instance)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_ch3_delta30_6_6, delta30_instances)
+BENCHMARK_CAPTURE(BM_AssemblyModes, general_6_6, general_instances, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AssemblyModes, general_6_6_every_core, general_instances, 0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_AssemblyModes, symmetric_6_6, symmetric_instances, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AssemblyModes, symmetric_6_6_every_core, symmetric_instances, 0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_AssemblyModes, dietmaier_40_real, dietmaier_instance, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_ch3_delta30_6_6, delta30_instances, 1)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_ch5_6_3_scan, ch5_instances)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_genhexkins_3_6_scan, genhexkins_instances)
+BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_ch5_6_3_scan, ch5_instances, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_genhexkins_3_6_scan, genhexkins_instances, 1)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StewartAllModesKernels, general_baseline, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StewartAllModesKernels, general_avx2_fma, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace pkm

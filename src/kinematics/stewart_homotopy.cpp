@@ -113,8 +113,52 @@ double refine_stewart_point(const StewartSystem& system, const StewartParameters
 
 namespace {
 
-// The tracker itself; track_stewart_path runs it as compiled for the baseline processor or, where the
-// processor has them, as the copy below with its kernels built for AVX2 and FMA.
+// The tracker's kernels as the baseline processor runs them.
+struct BaselineKernels {
+  static void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f, Mat8& jx) {
+    stewart_lanes::linearise(p, chart, x, f, jx);
+  }
+  static void factorise(LaneLu& lu, const Mat8& jx) { lu.compute(jx); }
+  static Vec8 solve(const LaneLu& lu, const Vec8& b) { return lu.solve(b); }
+  static void taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* coefficients) {
+    stewart_lanes::path_taylor<kTaylorOrder>(p, rate, lu, coefficients);
+  }
+  static Vec8 predict(const Taylor& taylor, double h) { return pade_prediction(taylor, h); }
+  static double error_coefficient(const Taylor& taylor) { return pade_error_coefficient(taylor); }
+};
+
+#if PKM_STEWART_WIDE_KERNELS
+// The same kernels compiled for AVX2 with fused multiply–add, each with everything it calls inlined
+// (flatten): the pairs of doubles stay pairs, but a complex multiply–add takes two fused instructions instead
+// of four, and the three-operand forms drop most of the register copies of SSE2's two-operand ones. Only
+// what is inlined into these functions is compiled for AVX2: no function shared with the rest of the program
+// (the library's inline functions, Eigen's) is emitted with these instructions, so the library still runs on
+// any x86-64 processor, and these run only where the processor has them (wide_kernels_available).
+#define PKM_WIDE_KERNEL [[gnu::target("avx2,fma"), gnu::flatten]] static
+struct WideKernels {
+  PKM_WIDE_KERNEL void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f,
+                                 Mat8& jx) {
+    stewart_lanes::linearise(p, chart, x, f, jx);
+  }
+  PKM_WIDE_KERNEL void factorise(LaneLu& lu, const Mat8& jx) { lu.compute(jx); }
+  PKM_WIDE_KERNEL Vec8 solve(const LaneLu& lu, const Vec8& b) { return lu.solve(b); }
+  PKM_WIDE_KERNEL void taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* coefficients) {
+    stewart_lanes::path_taylor<kTaylorOrder>(p, rate, lu, coefficients);
+  }
+  PKM_WIDE_KERNEL Vec8 predict(const Taylor& taylor, double h) { return pade_prediction(taylor, h); }
+  PKM_WIDE_KERNEL double error_coefficient(const Taylor& taylor) { return pade_error_coefficient(taylor); }
+};
+#undef PKM_WIDE_KERNEL
+
+bool wide_kernels_available() {
+  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return available;
+}
+#endif
+
+// The tracker itself, on Kernels (BaselineKernels or WideKernels): track_stewart_path runs it with the
+// kernels built for the baseline processor or, where the processor has them, for AVX2 and FMA.
+template <class Kernels>
 TrackedPath follow_path(const StewartSystem& system, const StewartParameters& from,
                         const StewartParameters& to, const StudyPoint& start,
                         const PathTrackOptions& options) {
@@ -128,10 +172,10 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
   Vec8 f;
   Taylor taylor;
   Legs p = origin;
-  stewart_lanes::linearise(p, chart, x, nullptr, jx);
-  lu.compute(jx);
+  Kernels::linearise(p, chart, x, nullptr, jx);
+  Kernels::factorise(lu, jx);
   taylor[0] = x;
-  stewart_lanes::path_taylor<kTaylorOrder>(p, rate, lu, taylor.data());
+  Kernels::taylor(p, rate, lu, taylor.data());
   // Newton's contraction per unit of first correction, θ ≈ ω·|Δx₀| (Kantorovich: ω bounds the Jacobian's
   // relative change), measured on each step's first two corrections. The step's error target is the smaller
   // of step_error_target and the first correction that would contract by contraction_target: near another
@@ -142,7 +186,7 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
     return omega > 0 ? std::min(options.step_error_target, options.contraction_target / omega)
                      : options.step_error_target;
   };
-  double coefficient = pade_error_coefficient(taylor);
+  double coefficient = Kernels::error_coefficient(taylor);
   double h = std::pow(target() / coefficient, 0.2);
   if (!std::isfinite(h)) h = options.max_step;
   h = std::max(std::min(h, options.max_step), std::min(options.initial_step, options.max_step));
@@ -150,15 +194,15 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
   while (t < 1.0 && path.steps < options.max_steps) {
     ++path.steps;
     h = std::min({h, options.max_step, 1.0 - t});
-    Vec8 candidate = pade_prediction(taylor, h);
+    Vec8 candidate = Kernels::predict(taylor, h);
     const double t_next = (1.0 - t - h) < 1e-15 ? 1.0 : t + h;
     p = origin.lerp_rate(rate, t_next);
     bool converged = false;
     double first = 0.0, previous = 0.0, theta = 0.0;
     for (int i = 0; i < 3; ++i) {
-      stewart_lanes::linearise(p, chart, candidate, &f, jx);
-      lu.compute(jx);
-      const Vec8 step = lu.solve(f);
+      Kernels::linearise(p, chart, candidate, &f, jx);
+      Kernels::factorise(lu, jx);
+      const Vec8 step = Kernels::solve(lu, f);
       candidate -= step;
       const double size = relative_step(step, candidate);
       if (!std::isfinite(size)) break;
@@ -210,8 +254,8 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
         // predictor error the step aims at. One factorisation per Newton iteration is thus shared with the
         // predictor. The next step is sized from them (a priori), at most 4 times this one.
         taylor[0] = x;
-        stewart_lanes::path_taylor<kTaylorOrder>(p, rate, lu, taylor.data());
-        coefficient = pade_error_coefficient(taylor);
+        Kernels::taylor(p, rate, lu, taylor.data());
+        coefficient = Kernels::error_coefficient(taylor);
         const double next = std::pow(target() / coefficient, 0.2);
         h = std::isfinite(next) ? std::min(next, 4.0 * h) : 2.0 * h;
       }
@@ -253,28 +297,6 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
   return path;
 }
 
-#if PKM_STEWART_WIDE_KERNELS
-// The same tracker with every kernel it calls inlined (flatten) and compiled for AVX2 with fused
-// multiply–add: the pairs of doubles stay pairs, but each complex multiply–add takes two fused instructions
-// instead of four, the three-operand forms drop the register copies of SSE2's two-operand ones, and the
-// triangular solves, which are latency-bound chains (one unknown after another), get shorter links. Only
-// what is inlined here is compiled for AVX2: no function shared with the rest of the program (the library's
-// inline functions, Eigen's) is emitted with these instructions, so the baseline build stays runnable on
-// any x86-64 processor.
-[[gnu::target("avx2,fma"), gnu::flatten]] TrackedPath follow_path_wide(const StewartSystem& system,
-                                                                       const StewartParameters& from,
-                                                                       const StewartParameters& to,
-                                                                       const StudyPoint& start,
-                                                                       const PathTrackOptions& options) {
-  return follow_path(system, from, to, start, options);
-}
-
-bool wide_kernels_available() {
-  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return available;
-}
-#endif
-
 }  // namespace
 
 bool stewart_wide_kernels_available() {
@@ -290,9 +312,9 @@ TrackedPath track_stewart_path(const StewartSystem& system, const StewartParamet
                                const PathTrackOptions& options) {
 #if PKM_STEWART_WIDE_KERNELS
   if (options.wide_kernels && wide_kernels_available())
-    return follow_path_wide(system, from, to, start, options);
+    return follow_path<WideKernels>(system, from, to, start, options);
 #endif
-  return follow_path(system, from, to, start, options);
+  return follow_path<BaselineKernels>(system, from, to, start, options);
 }
 
 }  // namespace pkm

@@ -17,7 +17,9 @@
 // at infinity of the target, e.g. the lost assembly modes of a special geometry); paths whose step falls
 // below `min_step` stop where they are and are reported as failed, unless t is already within `endgame_start`
 // of 1, where the endpoint is then refined by Newton and classified. The arithmetic is on pairs of doubles
-// (kinematics/stewart_lanes.hpp); fixed sizes throughout: tracking allocates nothing.
+// (kinematics/stewart_lanes.hpp), compiled twice: for the baseline processor and for AVX2 with fused
+// multiply–add, chosen at run time (PathTrackOptions::wide_kernels); fixed sizes throughout: tracking
+// allocates nothing.
 #include "kinematics/stewart_system.hpp"
 
 namespace pkm {
