@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <random>
 
+#include "core/wide_kernels.hpp"
 #include "io/machine_file.hpp"
 #include "kinematics/stewart_all_modes.hpp"
 #include "machine/hexapod.hpp"
@@ -182,7 +183,7 @@ void BM_StewartAllModesKernels(benchmark::State& state, bool wide) {
     solves += 1.0;
   }
   state.counters["steps"] = solves > 0 ? steps / solves : 0.0;
-  state.counters["wide_kernels"] = wide && stewart_wide_kernels_available() ? 1.0 : 0.0;
+  state.counters["wide_kernels"] = wide && wide_kernels_available() ? 1.0 : 0.0;
 }
 
 std::vector<Instance> ch5_instances() {

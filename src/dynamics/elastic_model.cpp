@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
+#include "core/wide_kernels.hpp"
 #include "dynamics/fixed_cholesky.hpp"
 
 namespace pkm::dynamics {
@@ -120,6 +121,17 @@ void element_forces(const ElasticModel& model, const MechanismState& state, cons
   }
 }
 
+// The six-coordinate mass solve (its factors overwrite `mass`), and a copy of it compiled for AVX2 with fused
+// multiply–add (core/wide_kernels.hpp).
+inline bool solve_six(Eigen::Matrix<double, 6, 6>& mass, const Twist& rhs, Twist& solution) {
+  return cholesky_solve_in_place<6>(mass, rhs, solution);
+}
+#if PKM_HAS_WIDE_KERNELS
+PKM_WIDE_KERNEL bool solve_six_wide(Eigen::Matrix<double, 6, 6>& mass, const Twist& rhs, Twist& solution) {
+  return solve_six(mass, rhs, solution);
+}
+#endif
+
 }  // namespace
 
 Status elastic_accelerations(const ElasticModel& model, const Pose& pose, const CoordinateVector& rates,
@@ -143,7 +155,12 @@ Status elastic_accelerations(const ElasticModel& model, const Pose& pose, const 
     element_forces(model, state, actuator_rates, drives, force_kg_mm_s2, forces);
     const Twist generalised = rigid.applied - rigid.bias - jacobian.transpose() * force_kg_mm_s2;
     Twist solution;
-    positive = cholesky_solve_in_place<6>(rigid.mass.lower, generalised, solution);
+#if PKM_HAS_WIDE_KERNELS
+    positive = wide_kernels_enabled() ? solve_six_wide(rigid.mass.lower, generalised, solution)
+                                      : solve_six(rigid.mass.lower, generalised, solution);
+#else
+    positive = solve_six(rigid.mass.lower, generalised, solution);
+#endif
     accelerations = solution;
   } else {
     const Twist twist = model.basis * rates;

@@ -1,6 +1,7 @@
 #include "dynamics/rigid_terms.hpp"
 
 #include "core/rotation.hpp"
+#include "core/wide_kernels.hpp"
 #include "dynamics/fixed_base_struts.hpp"
 #include "dynamics/mass_lower_triangle.hpp"
 
@@ -22,10 +23,8 @@ inline void add_joint_force(const Eigen::Vector3d& f, const Eigen::Vector3d& arm
   g.tail<3>() += arm.cross(f);
 }
 
-}  // namespace
-
-void twist_rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const Twist& twist,
-                       const statics::Wrench& load, TwistRigidTerms& out) {
+inline void terms_in_twist(const MechanismState& state, const DynamicsParameters& parameters,
+                           const Twist& twist, const statics::Wrench& load, TwistRigidTerms& out) {
   const Eigen::Vector3d v = twist.head<3>(), w = twist.tail<3>();
   const Eigen::Vector3d& gravity = parameters.gravity_mm_s2;
   Twist& bias = out.bias;
@@ -94,6 +93,25 @@ void twist_rigid_terms(const MechanismState& state, const DynamicsParameters& pa
     add_joint_force(weight, arm, applied);
   }
   mass.fold_sums();
+}
+
+#if PKM_HAS_WIDE_KERNELS
+// The same compiled for AVX2 with fused multiply–add (core/wide_kernels.hpp).
+PKM_WIDE_KERNEL void terms_in_twist_wide(const MechanismState& state, const DynamicsParameters& parameters,
+                                         const Twist& twist, const statics::Wrench& load,
+                                         TwistRigidTerms& out) {
+  terms_in_twist(state, parameters, twist, load, out);
+}
+#endif
+
+}  // namespace
+
+void twist_rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const Twist& twist,
+                       const statics::Wrench& load, TwistRigidTerms& out) {
+#if PKM_HAS_WIDE_KERNELS
+  if (wide_kernels_enabled()) return terms_in_twist_wide(state, parameters, twist, load, out);
+#endif
+  terms_in_twist(state, parameters, twist, load, out);
 }
 
 void rigid_terms(const MechanismState& state, const DynamicsParameters& parameters, const TwistBasis& basis,

@@ -4,15 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "core/wide_kernels.hpp"
 #include "kinematics/stewart_lanes.hpp"
-
-// The kernels' AVX2/FMA copy needs GCC or Clang on x86-64 (function target attributes and
-// __builtin_cpu_supports); elsewhere only the baseline tracker is built.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define PKM_STEWART_WIDE_KERNELS 1
-#else
-#define PKM_STEWART_WIDE_KERNELS 0
-#endif
 
 namespace pkm {
 namespace {
@@ -127,33 +120,29 @@ struct BaselineKernels {
   static double error_coefficient(const Taylor& taylor) { return pade_error_coefficient(taylor); }
 };
 
-#if PKM_STEWART_WIDE_KERNELS
+#if PKM_HAS_WIDE_KERNELS
 // The same kernels compiled for AVX2 with fused multiply–add, each with everything it calls inlined
 // (flatten): the pairs of doubles stay pairs, but a complex multiply–add takes two fused instructions instead
 // of four, and the three-operand forms drop most of the register copies of SSE2's two-operand ones. Only
 // what is inlined into these functions is compiled for AVX2: no function shared with the rest of the program
 // (the library's inline functions, Eigen's) is emitted with these instructions, so the library still runs on
 // any x86-64 processor, and these run only where the processor has them (wide_kernels_available).
-#define PKM_WIDE_KERNEL [[gnu::target("avx2,fma"), gnu::flatten]] static
 struct WideKernels {
-  PKM_WIDE_KERNEL void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f,
-                                 Mat8& jx) {
+  PKM_WIDE_KERNEL static void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f,
+                                        Mat8& jx) {
     stewart_lanes::linearise(p, chart, x, f, jx);
   }
-  PKM_WIDE_KERNEL void factorise(LaneLu& lu, const Mat8& jx) { lu.compute(jx); }
-  PKM_WIDE_KERNEL Vec8 solve(const LaneLu& lu, const Vec8& b) { return lu.solve(b); }
-  PKM_WIDE_KERNEL void taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* coefficients) {
+  PKM_WIDE_KERNEL static void factorise(LaneLu& lu, const Mat8& jx) { lu.compute(jx); }
+  PKM_WIDE_KERNEL static Vec8 solve(const LaneLu& lu, const Vec8& b) { return lu.solve(b); }
+  PKM_WIDE_KERNEL static void taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* coefficients) {
     stewart_lanes::path_taylor<kTaylorOrder>(p, rate, lu, coefficients);
   }
-  PKM_WIDE_KERNEL Vec8 predict(const Taylor& taylor, double h) { return pade_prediction(taylor, h); }
-  PKM_WIDE_KERNEL double error_coefficient(const Taylor& taylor) { return pade_error_coefficient(taylor); }
+  PKM_WIDE_KERNEL static Vec8 predict(const Taylor& taylor, double h) { return pade_prediction(taylor, h); }
+  PKM_WIDE_KERNEL static double error_coefficient(const Taylor& taylor) {
+    return pade_error_coefficient(taylor);
+  }
 };
-#undef PKM_WIDE_KERNEL
 
-bool wide_kernels_available() {
-  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return available;
-}
 #endif
 
 // The tracker itself, on Kernels (BaselineKernels or WideKernels): track_stewart_path runs it with the
@@ -299,18 +288,10 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
 
 }  // namespace
 
-bool stewart_wide_kernels_available() {
-#if PKM_STEWART_WIDE_KERNELS
-  return wide_kernels_available();
-#else
-  return false;
-#endif
-}
-
 TrackedPath track_stewart_path(const StewartSystem& system, const StewartParameters& from,
                                const StewartParameters& to, const StudyPoint& start,
                                const PathTrackOptions& options) {
-#if PKM_STEWART_WIDE_KERNELS
+#if PKM_HAS_WIDE_KERNELS
   if (options.wide_kernels && wide_kernels_available())
     return follow_path<WideKernels>(system, from, to, start, options);
 #endif

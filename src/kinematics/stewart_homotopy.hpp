@@ -51,8 +51,8 @@ struct PathTrackOptions {
   double divergence_norm = 50.0;
   /// Near t = 1 a path that stalls is refined at t = 1 instead of being reported as failed.
   double endgame_start = 1e-6;
-  /// Run the tracker's AVX2/FMA build where the processor has those instructions (x86-64; detected at run
-  /// time). false keeps the baseline build everywhere (the tests compare the two).
+  /// Run the tracker's AVX2/FMA kernels where the processor has them (core/wide_kernels.hpp: x86-64,
+  /// detected at run time). false keeps the baseline kernels everywhere (the tests compare the two).
   bool wide_kernels = true;
 };
 
@@ -76,9 +76,6 @@ struct TrackedPath {
 TrackedPath track_stewart_path(const StewartSystem& system, const StewartParameters& from,
                                const StewartParameters& to, const StudyPoint& start,
                                const PathTrackOptions& options = {});
-
-/// Whether track_stewart_path can run its AVX2/FMA build on this processor.
-bool stewart_wide_kernels_available();
 
 /// Newton on the system at fixed parameters from `x` (in place): up to `iterations` steps, until the step is
 /// below tolerance·(1 + |x|). Returns the last step's size relative to (1 + |x|), and the LU pivot ratio.

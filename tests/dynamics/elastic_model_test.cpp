@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
+#include "core/wide_kernels.hpp"
 #include "dynamics/dynamics_test_support.hpp"
 #include "io/machine_file.hpp"
 
@@ -108,6 +110,57 @@ TEST(ElasticModel, AStretchedStrutPullsItsPlatformJointTowardsTheBase) {
     EXPECT_NEAR(dynamics::damping_force_N(strut, 3.0, options), expected, 1e-12 * expected);
     EXPECT_NEAR(dynamics::damping_force_N(strut, -3.0, options), -expected, 1e-12 * expected);
   }
+}
+
+TEST(ElasticModel, TheWideKernelsGiveTheBaselineAccelerations) {
+  // The right-hand side's AVX2/FMA kernels (core/wide_kernels.hpp, chosen at run time where the processor has
+  // them) against the baseline ones, on random hexapods with random inertial and stiffness parameters, at
+  // random poses, rates and drive errors: the same accelerations and forces up to rounding (fused
+  // multiply–adds round once where the baseline rounds twice).
+  std::mt19937_64 rng(202);
+  int compared = 0;
+  for (int machine_index = 0; machine_index < 5; ++machine_index) {
+    const Machine machine = test::random_hexapod_machine(rng, machine_index);
+    const Mechanism& mech = *machine.mechanism;
+    for (int trial = 0; trial < 4; ++trial) {
+      const DynamicsParameters p = test::random_elastic_parameters(
+          rng, 6, trial % 2 == 0 ? StrutDamping::quadratic : StrutDamping::viscous);
+      auto model = dynamics::make_elastic_model(mech, p);
+      ASSERT_TRUE(model.ok()) << model.error().message;
+      PoseVector c = vector_from_pose(mech.convention(), mech.home());
+      for (int axis = 0; axis < 6; ++axis)
+        c[axis] += axis < 3 ? test::uniform(rng, -10, 10) : test::uniform(rng, -0.05, 0.05);
+      const Pose pose = pose_from_vector(mech.convention(), c);
+      CoordinateVector rates(6);
+      for (int k = 0; k < 6; ++k)
+        rates[k] = k < 3 ? test::uniform(rng, -80, 80) : test::uniform(rng, -0.5, 0.5);
+      dynamics::DriveSetpoint drives{*mech.inverse(pose), ActuatorVector::Zero(6), {}};
+      for (int j = 0; j < 6; ++j) {
+        drives.position_mm[j] += test::uniform(rng, -0.02, 0.02);
+        drives.rate_mm_s[j] = test::uniform(rng, -5, 5);
+      }
+      dynamics::ElasticWorkspace workspace;
+      CoordinateVector wide, baseline;
+      dynamics::StrutForces wide_forces, baseline_forces;
+      ASSERT_TRUE(
+          dynamics::elastic_accelerations(*model, pose, rates, drives, workspace, wide, &wide_forces).ok());
+      {
+        const BaselineKernelsOnly baseline_only;
+        EXPECT_FALSE(wide_kernels_enabled());
+        ASSERT_TRUE(dynamics::elastic_accelerations(*model, pose, rates, drives, workspace, baseline,
+                                                    &baseline_forces)
+                        .ok());
+      }
+      EXPECT_LE((wide - baseline).cwiseAbs().maxCoeff(), 1e-9 * baseline.cwiseAbs().maxCoeff());
+      EXPECT_LE((wide_forces.force_N - baseline_forces.force_N).cwiseAbs().maxCoeff(),
+                1e-12 * baseline_forces.force_N.cwiseAbs().maxCoeff());
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 20);
+  EXPECT_EQ(wide_kernels_enabled(), wide_kernels_available());
+  std::printf("AVX2/FMA kernels %s\n",
+              wide_kernels_available() ? "in use" : "not available on this processor");
 }
 
 TEST(ElasticModel, MachinesWithoutAnElasticModelSayWhyAndWhere) {

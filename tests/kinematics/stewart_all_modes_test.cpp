@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <random>
 
+#include "core/wide_kernels.hpp"
 #include "kinematics/stewart_lanes.hpp"
 #include "machine/hexapod.hpp"
 #include "machine/solution_set.hpp"
@@ -429,7 +430,7 @@ TEST(StewartAllModes, TheWideKernelsFindWhatTheBaselineFinds) {
     steps_baseline += plain.steps;
   }
   std::printf("AVX2/FMA kernels %s; steps %ld (baseline %ld)\n",
-              stewart_wide_kernels_available() ? "in use" : "not available on this processor", steps_wide,
+              wide_kernels_available() ? "in use" : "not available on this processor", steps_wide,
               steps_baseline);
 }
 
