@@ -14,7 +14,7 @@ namespace {
 /// the same-branch rule cannot be applied to it (dimensionless; rounding of det J is ~1e-16).
 constexpr double kSingularGuessDeterminant = 1e-9;
 /// Step halvings of the backtracking line search before the iteration gives up (step ≥ 2⁻³⁰ of Newton's).
-constexpr int kMaxHalvings = 30;
+constexpr int kPlanar3MaxHalvings = 30;
 
 Eigen::Matrix2d rotation_2d(double phi_rad) {
   const double c = std::cos(phi_rad), s = std::sin(phi_rad);
@@ -195,7 +195,7 @@ Result<FkSolution> Planar3::solve_from(const ActuatorVector& q, const Eigen::Vec
     double fraction = 1.0;
     bool accepted = false;
     Eigen::Vector3d trial_f;
-    for (int halving = 0; halving < kMaxHalvings && !accepted; ++halving, fraction *= 0.5) {
+    for (int halving = 0; halving < kPlanar3MaxHalvings && !accepted; ++halving, fraction *= 0.5) {
       const Eigen::Vector3d trial = x + fraction * step;
       if (!evaluate(trial, trial_f)) continue;
       const double trial_norm = trial_f.norm();
