@@ -79,8 +79,11 @@ target_link_libraries(pkm_lib INTERFACE pkm_pipeline pkm_report pkm_motion pkm_i
 # The files with AVX2/FMA copies of their kernels (core/wide_kernels.hpp, chosen at run time) need their
 # multiply–adds contracted into fused ones, which ISO C++ mode leaves off. The baseline x86-64 target has no
 # fused instruction, so this changes nothing else in them. Out of the unity batches and the precompiled
-# header, so that the option stays on these files alone.
-set_source_files_properties(
-  ${PROJECT_SOURCE_DIR}/src/kinematics/stewart_homotopy.cpp ${PROJECT_SOURCE_DIR}/src/dynamics/elastic_model.cpp
-  ${PROJECT_SOURCE_DIR}/src/dynamics/rigid_terms.cpp ${PROJECT_SOURCE_DIR}/src/dynamics/fixed_base_struts.cpp
-  PROPERTIES COMPILE_OPTIONS "-ffp-contract=fast" SKIP_UNITY_BUILD_INCLUSION ON SKIP_PRECOMPILE_HEADERS ON)
+# header, so that the option stays on these files alone. Not in the sanitizer build, which checks correctness
+# (the copies there run without fused multiply–adds) and has CI's time to keep: there they stay in the batches.
+if(NOT PKM_SANITIZE)
+  set_source_files_properties(
+    ${PROJECT_SOURCE_DIR}/src/kinematics/stewart_homotopy.cpp ${PROJECT_SOURCE_DIR}/src/dynamics/elastic_model.cpp
+    ${PROJECT_SOURCE_DIR}/src/dynamics/rigid_terms.cpp ${PROJECT_SOURCE_DIR}/src/dynamics/fixed_base_struts.cpp
+    PROPERTIES COMPILE_OPTIONS "-ffp-contract=fast" SKIP_UNITY_BUILD_INCLUSION ON SKIP_PRECOMPILE_HEADERS ON)
+endif()
