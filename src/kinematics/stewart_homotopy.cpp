@@ -223,12 +223,15 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
       // pole before t = 1 (a finite path passing close to infinity, whose growth rate relative to 1 − t is
       // 5–130) from being taken for a divergence: the 2000 random geometries had 9 such paths reported at
       // infinity before it, 1 after. Deciding it here saves the many small steps of a divergence.
-      const double size_before = pose_remoteness(x), size_after = pose_remoteness(candidate);
-      const double growth = std::log(size_after / size_before),
-                   approach = std::log((1.0 - t) / (1.0 - t_next));
-      const bool diverging =
-          t_next < 1.0 && 1.0 - t_next < options.divergence_zone && size_after > options.divergence_norm &&
-          candidate.norm() > options.divergence_norm && growth > 0.2 * approach && growth < 3.0 * approach;
+      bool diverging = false;
+      if (t_next < 1.0 && 1.0 - t_next < options.divergence_zone &&
+          candidate.norm() > options.divergence_norm) {
+        const double size_before = pose_remoteness(x), size_after = pose_remoteness(candidate);
+        const double growth = std::log(size_after / size_before),
+                     approach = std::log((1.0 - t) / (1.0 - t_next));
+        diverging =
+            size_after > options.divergence_norm && growth > 0.2 * approach && growth < 3.0 * approach;
+      }
       x = candidate;
       t = t_next;
       if (diverging || x.norm() > options.infinity_norm) {

@@ -1,7 +1,8 @@
 #pragma once
 // The path tracker's arithmetic (kinematics/stewart_homotopy.cpp) on pairs of doubles: the same equations,
-// Jacobian, LU and Taylor coefficients as StewartSystem and ComplexLu<8> (which stay the reference the tests
-// compare with), laid out so that every operation works on two complex numbers at once.
+// Jacobian and Taylor coefficients as StewartSystem, and an LU like ComplexLu<8>'s but pivoting by columns
+// (those stay the reference the tests compare with), laid out so that every operation works on two complex
+// numbers at once.
 //
 // Why: the tracker spends all its time in complex multiply–adds on 8×8 and 6-leg data. Written one complex
 // number at a time they run at the scalar floating-point rate (one double per instruction); with the real and
@@ -10,7 +11,9 @@
 // - legs in pairs: leg quantities are vectors over legs (2q, 2q + 1), q = 0, 1, 2;
 // - an 8-vector (equations: legs 0–5, Study quadric, chart; unknowns: e0..e3, g0..g3) is 4 pairs;
 // - the Jacobian is stored by columns, each column 4 pairs of rows, so that the LU's row operations and the
-//   leg equations both fill and update whole pairs.
+//   leg equations both fill and update whole pairs;
+// - the loops over rows, columns and Taylor orders are unrolled at compile time (static_for), so that no lane
+//   is addressed by a run-time index except where a pivot choice decides it.
 // GCC/Clang vector extensions (not intrinsics) keep it portable. Fixed sizes throughout: nothing allocates.
 #include <algorithm>
 #include <array>
@@ -47,6 +50,14 @@ inline CLane operator*(CLane a, Complex b) {
 }
 inline CLane broadcast(Complex b) {
   return {Lane{b.real(), b.real()}, Lane{b.imag(), b.imag()}};
+}
+/// acc + a·b and acc − a·b, added term by term so that each part is two fused multiply–adds where the
+/// processor has them (a·b formed first and then added would take a multiply, a fused one and an add).
+inline CLane mul_add(CLane acc, CLane a, CLane b) {
+  return {acc.re + a.re * b.re - a.im * b.im, acc.im + a.re * b.im + a.im * b.re};
+}
+inline CLane mul_sub(CLane acc, CLane a, CLane b) {
+  return {acc.re - a.re * b.re + a.im * b.im, acc.im - a.re * b.im - a.im * b.re};
 }
 
 /// 8 complex numbers in 4 pairs.
@@ -120,12 +131,12 @@ struct Legs {
   }
 };
 
-/// The leg quaternions y = M e of one pair of legs (leg_quaternion), e given as 4 complex numbers.
-inline void leg_products(const Legs& p, int q, const Complex* e, CLane* y) {
-  y[0] = p.d[0][q] * e[1] + p.d[1][q] * e[2] + p.d[2][q] * e[3];
-  y[1] = p.s[2][q] * e[2] - p.s[1][q] * e[3] - p.d[0][q] * e[0];
-  y[2] = p.s[0][q] * e[3] - p.s[2][q] * e[1] - p.d[1][q] * e[0];
-  y[3] = p.s[1][q] * e[1] - p.s[0][q] * e[2] - p.d[2][q] * e[0];
+/// The leg quaternions y = M e of one pair of legs (leg_quaternion), e given in both lanes.
+inline void leg_products(const Legs& p, int q, const CLane* e, CLane* y) {
+  y[0] = mul_add(mul_add(p.d[0][q] * e[1], p.d[1][q], e[2]), p.d[2][q], e[3]);
+  y[1] = mul_sub(mul_sub(p.s[2][q] * e[2], p.s[1][q], e[3]), p.d[0][q], e[0]);
+  y[2] = mul_sub(mul_sub(p.s[0][q] * e[3], p.s[2][q], e[1]), p.d[1][q], e[0]);
+  y[3] = mul_sub(mul_sub(p.s[1][q] * e[1], p.s[0][q], e[2]), p.d[2][q], e[0]);
 }
 
 inline Complex dot4(const Complex* a, const Complex* b) {
@@ -136,32 +147,38 @@ inline Complex dot4(const Complex* a, const Complex* b) {
 /// The equations' values (when f is not null) and Jacobian at x, as StewartSystem::linearise.
 inline void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f, Mat8& jx) {
   Complex e[4], g[4];
+  CLane e_lanes[4], g_lanes[4];
   for (int c = 0; c < 4; ++c) {
     e[c] = x.get(c);
     g[c] = x.get(4 + c);
+    e_lanes[c] = broadcast(e[c]);
+    g_lanes[c] = broadcast(g[c]);
   }
-  const Complex gg = dot4(g, g), ee = dot4(e, e);
+  const CLane four_gg = broadcast(4.0 * dot4(g, g)), ee = broadcast(dot4(e, e));
   for (int q = 0; q < 3; ++q) {
     CLane y[4];
-    leg_products(p, q, e, y);
-    const CLane g0 = broadcast(g[0]), g1 = broadcast(g[1]), g2 = broadcast(g[2]), g3 = broadcast(g[3]);
+    leg_products(p, q, e_lanes, y);
     if (f) {
-      const CLane gy = y[0] * g[0] + y[1] * g[1] + y[2] * g[2] + y[3] * g[3];
-      const CLane yy = y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3];
-      f->pair[q] = 4.0 * (broadcast(gg) + gy) + yy - p.length_squared[q] * ee;
+      // 4 gᵀg + 4 gᵀy + yᵀy − L² eᵀe, as 4 gᵀg − L² eᵀe + yᵀ(4g + y).
+      CLane sum = mul_sub(four_gg, p.length_squared[q], ee);
+      for (int c = 0; c < 4; ++c) sum = mul_add(sum, y[c], 4.0 * g_lanes[c] + y[c]);
+      f->pair[q] = sum;
     }
     // ∂f/∂g = 8g + 4y;  ∂f/∂e = Mᵀw − 2L² e with w = 4g + 2y, Mᵀw = (−d·w_v, w0 d + s × w_v).
-    jx.column[4][q] = 8.0 * g0 + 4.0 * y[0];
-    jx.column[5][q] = 8.0 * g1 + 4.0 * y[1];
-    jx.column[6][q] = 8.0 * g2 + 4.0 * y[2];
-    jx.column[7][q] = 8.0 * g3 + 4.0 * y[3];
-    const CLane w0 = 4.0 * g0 + 2.0 * y[0], w1 = 4.0 * g1 + 2.0 * y[1], w2 = 4.0 * g2 + 2.0 * y[2],
-                w3 = 4.0 * g3 + 2.0 * y[3];
+    CLane w[4];
+    for (int c = 0; c < 4; ++c) {
+      w[c] = 4.0 * g_lanes[c] + 2.0 * y[c];
+      jx.column[4 + c][q] = 2.0 * w[c];
+    }
     const CLane l2 = 2.0 * p.length_squared[q];
-    jx.column[0][q] = CLane{} - (p.d[0][q] * w1 + p.d[1][q] * w2 + p.d[2][q] * w3) - l2 * e[0];
-    jx.column[1][q] = w0 * p.d[0][q] + p.s[1][q] * w3 - p.s[2][q] * w2 - l2 * e[1];
-    jx.column[2][q] = w0 * p.d[1][q] + p.s[2][q] * w1 - p.s[0][q] * w3 - l2 * e[2];
-    jx.column[3][q] = w0 * p.d[2][q] + p.s[0][q] * w2 - p.s[1][q] * w1 - l2 * e[3];
+    jx.column[0][q] = CLane{} - mul_add(mul_add(mul_add(l2 * e_lanes[0], p.d[0][q], w[1]), p.d[1][q], w[2]),
+                                        p.d[2][q], w[3]);
+    jx.column[1][q] =
+        mul_sub(mul_sub(mul_add(w[0] * p.d[0][q], p.s[1][q], w[3]), p.s[2][q], w[2]), l2, e_lanes[1]);
+    jx.column[2][q] =
+        mul_sub(mul_sub(mul_add(w[0] * p.d[1][q], p.s[2][q], w[1]), p.s[0][q], w[3]), l2, e_lanes[2]);
+    jx.column[3][q] =
+        mul_sub(mul_sub(mul_add(w[0] * p.d[2][q], p.s[0][q], w[2]), p.s[1][q], w[1]), l2, e_lanes[3]);
   }
   // Pair 3: the Study quadric eᵀg = 0 and the chart cᵀe = 1.
   if (f) {
@@ -184,59 +201,52 @@ template <int Begin, int End, class F>
   }
 }
 
-/// LU with partial pivoting of a Mat8, as ComplexLu<8>: L (unit, strictly lower) and U (strictly upper, the
-/// diagonal kept as inverse pivots) in separate column arrays with zeros elsewhere, so that the solves update
-/// whole pairs without masks.
+/// LU with partial pivoting of a Mat8 by columns, as ComplexLu<8> does it by rows: A·P = L·U, P the column
+/// interchanges. The Mat8 is stored by columns, so that choosing the pivot among the columns of row K reads
+/// one fixed lane of each, and an interchange swaps two whole columns; row interchanges would move single
+/// lanes of every column to places known only at run time (they took half of the factorisation's
+/// instructions). The factors overwrite the matrix: after step K, column K holds U above the diagonal and the
+/// multipliers of L below it, with a zero on the diagonal when it shares a pair with them (K even), so that
+/// the updates and the forward solve leave row K alone; the pivots are kept apart, inverted.
 class LaneLu {
  public:
   bool compute(const Mat8& m) {
-    for (int c = 0; c < 8; ++c) {
-      for (int q = 0; q < 4; ++q) {
-        upper_[c][q] = m.column[c][q];
-        lower_[c][q] = CLane{};
-      }
-    }
+    a_ = m;
     largest_ = 0.0;
     smallest_ = INFINITY;
     bool regular = true;
-    static_for<0, 8>([&](auto k) {
+    static_for<0, 8>([&](auto k) __attribute__((always_inline)) {
       if (regular) regular = eliminate<k>();
     });
     if (!regular) {
       pivot_ratio_ = 0.0;
       return false;
     }
-    // U's columns keep only the rows above the diagonal (below it elimination left zeros up to rounding, and
-    // the diagonal is in inverse_pivot_), cleared so that the back substitution can update whole pairs.
-    static_for<0, 8>([&](auto c) {
-      if constexpr (c % 2 == 1) {
-        upper_[c][c / 2].re[1] = 0.0;
-        upper_[c][c / 2].im[1] = 0.0;
-      } else {
-        upper_[c][c / 2] = CLane{};
-      }
-      for (int q = c / 2 + 1; q < 4; ++q) upper_[c][q] = CLane{};
-    });
-    // The row interchanges as one gather: row i of the permuted system is row row_of_[i] of the original.
-    for (int i = 0; i < 8; ++i) row_of_[i] = i;
-    for (int k = 0; k < 8; ++k) std::swap(row_of_[k], row_of_[permutation_[k]]);
+    // x = T_0·T_1·…·T_6·z for the column interchanges T_K, as one gather: x_i = z_source_[i].
+    for (int i = 0; i < 8; ++i) source_[i] = i;
+    for (int k = 6; k >= 0; --k) std::swap(source_[k], source_[interchange_[k]]);
     pivot_ratio_ = std::sqrt(smallest_ / largest_);
     return true;
   }
 
   Vec8 solve(const Vec8& b) const {
-    Vec8 x;
-    static_for<0, 8>([&](auto i) __attribute__((always_inline)) { x.set(i, b.get(row_of_[i])); });
+    Vec8 y = b;
+    // L y = b: column k's rows below k (the pair of row k, k even, has the zero in row k's lane).
     static_for<0, 7>([&](auto k) __attribute__((always_inline)) {
-      const Complex xk = x.get(k);
-      for (int q = (k + 1) / 2; q < 4; ++q) x.pair[q] = x.pair[q] - lower_[k][q] * xk;
+      const CLane yk = broadcast(y.get(k));
+      for (int q = (k + 1) / 2; q < 4; ++q) y.pair[q] = mul_sub(y.pair[q], a_.column[k][q], yk);
     });
+    // U z = y from the last row up, with column k's rows above k; for k odd their last pair also holds row k
+    // (the pivot), whose lane is overwritten with z_k after the update.
     static_for<0, 8>([&](auto kk) __attribute__((always_inline)) {
       constexpr int k = 7 - kk;
-      const Complex xk = complex_arithmetic::mul(x.get(k), inverse_pivot_[k]);
-      x.set(k, xk);
-      for (int q = 0; q < (k + 1) / 2; ++q) x.pair[q] = x.pair[q] - upper_[k][q] * xk;
+      const Complex zk = complex_arithmetic::mul(y.get(k), inverse_pivot_[k]);
+      const CLane z_lanes = broadcast(zk);
+      for (int q = 0; q < (k + 1) / 2; ++q) y.pair[q] = mul_sub(y.pair[q], a_.column[k][q], z_lanes);
+      y.set(k, zk);
     });
+    Vec8 x;
+    static_for<0, 8>([&](auto i) __attribute__((always_inline)) { x.set(i, y.get(source_[i])); });
     return x;
   }
 
@@ -244,113 +254,107 @@ class LaneLu {
 
  private:
   template <int K>
-  bool eliminate() {
+  [[gnu::always_inline]] bool eliminate() {
+    constexpr int q = K / 2, lane = K % 2;
     int pivot = K;
-    double best = abs2(upper_[K], K);
-    for (int i = K + 1; i < 8; ++i) {
-      const double v = abs2(upper_[K], i);
+    double best = abs2(a_.column[K][q], lane);
+    static_for<K + 1, 8>([&](auto j) __attribute__((always_inline)) {
+      const double v = abs2(a_.column[j][q], lane);
       if (v > best) {
         best = v;
-        pivot = i;
+        pivot = j;
       }
-    }
-    permutation_[K] = pivot;
+    });
+    interchange_[K] = pivot;
     if (pivot != K) {
-      for (int c = 0; c < 8; ++c) swap_rows(upper_[c], K, pivot);
-      for (int c = 0; c < K; ++c) swap_rows(lower_[c], K, pivot);
+      for (int r = 0; r < 4; ++r) std::swap(a_.column[K][r], a_.column[pivot][r]);
     }
     largest_ = std::max(largest_, best);
     smallest_ = std::min(smallest_, best);
     if (best == 0.0) return false;
-    const Complex pk = get(upper_[K], K);
-    const Complex inverse = {pk.real() / best, -pk.imag() / best};
+    const Complex pivot_value = {a_.column[K][q].re[lane], a_.column[K][q].im[lane]};
+    const Complex inverse = {pivot_value.real() / best, -pivot_value.imag() / best};
     inverse_pivot_[K] = inverse;
-    // Multipliers of the rows below K; row K itself (lane 0 of its pair when K is even) gets none, so that
-    // the update leaves it alone.
+    // The multipliers of the rows below K, from the pair holding row K + 1 on.
     constexpr int q0 = (K + 1) / 2;
-    for (int q = q0; q < 4; ++q) lower_[K][q] = upper_[K][q] * inverse;
+    const CLane inverse_lanes = broadcast(inverse);
+    for (int r = q0; r < 4; ++r) a_.column[K][r] = a_.column[K][r] * inverse_lanes;
     if constexpr (K % 2 == 0) {
-      lower_[K][q0].re[0] = 0.0;
-      lower_[K][q0].im[0] = 0.0;
+      a_.column[K][q0].re[0] = 0.0;
+      a_.column[K][q0].im[0] = 0.0;
     }
-    static_for<K + 1, 8>([&](auto j) {
-      const Complex b = get(upper_[j], K);
-      for (int q = q0; q < 4; ++q) upper_[j][q] = upper_[j][q] - lower_[K][q] * b;
+    static_for<K + 1, 8>([&](auto j) __attribute__((always_inline)) {
+      const CLane b = broadcast({a_.column[j][q].re[lane], a_.column[j][q].im[lane]});
+      for (int r = q0; r < 4; ++r) a_.column[j][r] = mul_sub(a_.column[j][r], a_.column[K][r], b);
     });
     return true;
   }
 
-  static double abs2(const CLane* column, int i) {
-    const double re = column[i >> 1].re[i & 1], im = column[i >> 1].im[i & 1];
+  [[gnu::always_inline]] static double abs2(const CLane& pair, int lane) {
+    const double re = pair.re[lane], im = pair.im[lane];
     return re * re + im * im;
   }
-  static Complex get(const CLane* column, int i) {
-    return {column[i >> 1].re[i & 1], column[i >> 1].im[i & 1]};
-  }
-  static void set(CLane* column, int i, Complex v) {
-    column[i >> 1].re[i & 1] = v.real();
-    column[i >> 1].im[i & 1] = v.imag();
-  }
-  static void swap_rows(CLane* column, int a, int b) {
-    const Complex va = get(column, a);
-    set(column, a, get(column, b));
-    set(column, b, va);
-  }
 
-  CLane lower_[8][4];
-  CLane upper_[8][4];
+  Mat8 a_;
   std::array<Complex, 8> inverse_pivot_{};
-  std::array<int, 8> permutation_{};
-  std::array<int, 8> row_of_{};
+  std::array<int, 8> interchange_{};
+  std::array<int, 8> source_{};
   double largest_ = 0.0, smallest_ = 0.0;
   double pivot_ratio_ = 0.0;
 };
 
 /// StewartSystem::path_taylor on lanes: taylor[0] given, taylor[1..Order] filled in, `lu` a factorisation of
-/// the Jacobian at (or near) taylor[0].
+/// the Jacobian at (or near) taylor[0]. The orders are unrolled, so that every index is a constant.
 template <int Order>
 void path_taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* taylor) {
   // u = 2g + M e per leg pair and component, by order; at order k only M' e_{k−1} of u_k is known.
   CLane u[Order + 1][4][3];
-  Complex e[Order][4], g[Order][4];
-  for (int k = 1; k <= Order; ++k) {
+  static_for<1, Order + 1>([&](auto order) __attribute__((always_inline)) {
+    constexpr int k = order;
+    const Vec8& last = taylor[k - 1];
+    CLane e[4], twice_g[4];
     for (int c = 0; c < 4; ++c) {
-      e[k - 1][c] = taylor[k - 1].get(c);
-      g[k - 1][c] = taylor[k - 1].get(4 + c);
+      e[c] = broadcast(last.get(c));
+      twice_g[c] = broadcast(2.0 * last.get(4 + c));
     }
-    const Complex* last = e[k - 1];
     for (int q = 0; q < 3; ++q) {
       CLane fixed[4], moved[4];
-      leg_products(p, q, last, fixed);
-      leg_products(rate, q, last, moved);
+      leg_products(p, q, e, fixed);
+      leg_products(rate, q, e, moved);
       for (int c = 0; c < 4; ++c) {
-        const CLane twice_g = broadcast(2.0 * g[k - 1][c]);
-        u[k - 1][c][q] = (k == 1 ? fixed[c] : u[k - 1][c][q] + fixed[c]) + twice_g;
+        u[k - 1][c][q] = (k == 1 ? fixed[c] : u[k - 1][c][q] + fixed[c]) + twice_g[c];
         u[k][c][q] = moved[c];
       }
     }
-    Complex ee = 0.0, eg = 0.0, ee_below = 0.0;
+    // eᵀe and eᵀg at order k (x_k = 0), eᵀe at order k − 1: e is pairs 0 and 1 of a Vec8, g pairs 2 and 3.
+    CLane ee{}, eg{}, ee_below{};
     for (int i = 1; i < k; ++i) {
-      ee += dot4(e[i], e[k - i]);
-      eg += dot4(e[i], g[k - i]);
+      const Vec8 &a = taylor[i], &b = taylor[k - i];
+      ee = mul_add(mul_add(ee, a.pair[0], b.pair[0]), a.pair[1], b.pair[1]);
+      eg = mul_add(mul_add(eg, a.pair[0], b.pair[2]), a.pair[1], b.pair[3]);
     }
-    for (int i = 0; i < k; ++i) ee_below += dot4(e[i], e[k - 1 - i]);
-    Vec8 r;
+    for (int i = 0; i < k; ++i) {
+      const Vec8 &a = taylor[i], &b = taylor[k - 1 - i];
+      ee_below = mul_add(mul_add(ee_below, a.pair[0], b.pair[0]), a.pair[1], b.pair[1]);
+    }
+    const CLane ee_sum = broadcast({ee.re[0] + ee.re[1], ee.im[0] + ee.im[1]});
+    const CLane ee_below_sum = broadcast({ee_below.re[0] + ee_below.re[1], ee_below.im[0] + ee_below.im[1]});
+    // The residual with its sign turned, so that the solve gives x_k = −J⁻¹ r_k at once.
+    Vec8 minus_r;
     for (int q = 0; q < 3; ++q) {
       CLane uu{};
       for (int i = 0; 2 * i < k; ++i) {
-        for (int c = 0; c < 4; ++c) uu = uu + u[i][c][q] * u[k - i][c][q];
+        for (int c = 0; c < 4; ++c) uu = mul_add(uu, u[i][c][q], u[k - i][c][q]);
       }
       uu = 2.0 * uu;
-      if (k % 2 == 0) {
-        for (int c = 0; c < 4; ++c) uu = uu + u[k / 2][c][q] * u[k / 2][c][q];
+      if constexpr (k % 2 == 0) {
+        for (int c = 0; c < 4; ++c) uu = mul_add(uu, u[k / 2][c][q], u[k / 2][c][q]);
       }
-      r.pair[q] = uu - p.length_squared[q] * ee - rate.length_squared[q] * ee_below;
+      minus_r.pair[q] = p.length_squared[q] * ee_sum + rate.length_squared[q] * ee_below_sum - uu;
     }
-    r.pair[3] = CLane{Lane{eg.real(), 0.0}, Lane{eg.imag(), 0.0}};
-    taylor[k] = lu.solve(r);
-    for (int q = 0; q < 4; ++q) taylor[k].pair[q] = CLane{} - taylor[k].pair[q];
-  }
+    minus_r.pair[3] = CLane{Lane{-(eg.re[0] + eg.re[1]), 0.0}, Lane{-(eg.im[0] + eg.im[1]), 0.0}};
+    taylor[k] = lu.solve(minus_r);
+  });
 }
 
 }  // namespace pkm::stewart_lanes
