@@ -87,12 +87,11 @@ double refine_stewart_point(const StewartSystem& system, const StewartParameters
                             int iterations, double tolerance, double& pivot_ratio) {
   const Legs legs = Legs::of(p);
   Vec8 point = Vec8::of(x), f;
-  Mat8 jx;
   LaneLu lu;
   double last = 1.0;
   for (int i = 0; i < iterations; ++i) {
-    stewart_lanes::linearise(legs, system.chart(), point, &f, jx);
-    lu.compute(jx);
+    stewart_lanes::linearise(legs, system.chart(), point, &f, lu.matrix());
+    lu.factorise();
     pivot_ratio = lu.pivot_ratio();
     const Vec8 step = lu.solve(f);
     point -= step;
@@ -111,7 +110,7 @@ struct BaselineKernels {
   static void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f, Mat8& jx) {
     stewart_lanes::linearise(p, chart, x, f, jx);
   }
-  static void factorise(LaneLu& lu, const Mat8& jx) { lu.compute(jx); }
+  static void factorise(LaneLu& lu) { lu.factorise(); }
   static Vec8 solve(const LaneLu& lu, const Vec8& b) { return lu.solve(b); }
   static void taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* coefficients) {
     stewart_lanes::path_taylor<kTaylorOrder>(p, rate, lu, coefficients);
@@ -132,7 +131,7 @@ struct WideKernels {
                                         Mat8& jx) {
     stewart_lanes::linearise(p, chart, x, f, jx);
   }
-  PKM_WIDE_KERNEL static void factorise(LaneLu& lu, const Mat8& jx) { lu.compute(jx); }
+  PKM_WIDE_KERNEL static void factorise(LaneLu& lu) { lu.factorise(); }
   PKM_WIDE_KERNEL static Vec8 solve(const LaneLu& lu, const Vec8& b) { return lu.solve(b); }
   PKM_WIDE_KERNEL static void taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* coefficients) {
     stewart_lanes::path_taylor<kTaylorOrder>(p, rate, lu, coefficients);
@@ -156,13 +155,12 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
   TrackedPath path;
   Vec8 x = Vec8::of(start);
   double t = 0.0;
-  Mat8 jx;
   LaneLu lu;
   Vec8 f;
   Taylor taylor;
   Legs p = origin;
-  Kernels::linearise(p, chart, x, nullptr, jx);
-  Kernels::factorise(lu, jx);
+  Kernels::linearise(p, chart, x, nullptr, lu.matrix());
+  Kernels::factorise(lu);
   taylor[0] = x;
   Kernels::taylor(p, rate, lu, taylor.data());
   // Newton's contraction per unit of first correction, θ ≈ ω·|Δx₀| (Kantorovich: ω bounds the Jacobian's
@@ -189,8 +187,8 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
     bool converged = false;
     double first = 0.0, previous = 0.0, theta = 0.0;
     for (int i = 0; i < 3; ++i) {
-      Kernels::linearise(p, chart, candidate, &f, jx);
-      Kernels::factorise(lu, jx);
+      Kernels::linearise(p, chart, candidate, &f, lu.matrix());
+      Kernels::factorise(lu);
       const Vec8 step = Kernels::solve(lu, f);
       candidate -= step;
       const double size = relative_step(step, candidate);

@@ -212,6 +212,14 @@ class LaneLu {
  public:
   bool compute(const Mat8& m) {
     a_ = m;
+    return factorise();
+  }
+
+  /// The matrix to factorise, to be filled in place (the tracker's linearise writes the Jacobian here).
+  Mat8& matrix() { return a_; }
+
+  /// Factorises matrix() in place.
+  [[gnu::always_inline]] bool factorise() {
     largest_ = 0.0;
     smallest_ = INFINITY;
     bool regular = true;
@@ -342,15 +350,18 @@ void path_taylor(const Legs& p, const Legs& rate, const LaneLu& lu, Vec8* taylor
     // The residual with its sign turned, so that the solve gives x_k = −J⁻¹ r_k at once.
     Vec8 minus_r;
     for (int q = 0; q < 3; ++q) {
-      CLane uu{};
+      // One sum per component, added at the end: four short chains of dependent multiply–adds instead of
+      // one long one.
+      CLane uu[4] = {};
       for (int i = 0; 2 * i < k; ++i) {
-        for (int c = 0; c < 4; ++c) uu = mul_add(uu, u[i][c][q], u[k - i][c][q]);
+        for (int c = 0; c < 4; ++c) uu[c] = mul_add(uu[c], u[i][c][q], u[k - i][c][q]);
       }
-      uu = 2.0 * uu;
+      for (int c = 0; c < 4; ++c) uu[c] = 2.0 * uu[c];
       if constexpr (k % 2 == 0) {
-        for (int c = 0; c < 4; ++c) uu = mul_add(uu, u[k / 2][c][q], u[k / 2][c][q]);
+        for (int c = 0; c < 4; ++c) uu[c] = mul_add(uu[c], u[k / 2][c][q], u[k / 2][c][q]);
       }
-      minus_r.pair[q] = p.length_squared[q] * ee_sum + rate.length_squared[q] * ee_below_sum - uu;
+      minus_r.pair[q] = p.length_squared[q] * ee_sum + rate.length_squared[q] * ee_below_sum -
+                        ((uu[0] + uu[1]) + (uu[2] + uu[3]));
     }
     minus_r.pair[3] = CLane{Lane{-(eg.re[0] + eg.re[1]), 0.0}, Lane{-(eg.im[0] + eg.im[1]), 0.0}};
     taylor[k] = lu.solve(minus_r);
