@@ -288,8 +288,10 @@ class LaneLu {
     const CLane inverse_lanes = broadcast(inverse);
     for (int r = q0; r < 4; ++r) a_.column[K][r] = a_.column[K][r] * inverse_lanes;
     if constexpr (K % 2 == 0) {
-      a_.column[K][q0].re[0] = 0.0;
-      a_.column[K][q0].im[0] = 0.0;
+      // Lane 0 (row K) zero, as a shuffle: a store of one lane followed by loads of the whole pair would
+      // stall the store forwarding.
+      CLane& pair = a_.column[K][q0];
+      pair = {__builtin_shufflevector(pair.re, Lane{}, 2, 1), __builtin_shufflevector(pair.im, Lane{}, 2, 1)};
     }
     static_for<K + 1, 8>([&](auto j) __attribute__((always_inline)) {
       const CLane b = broadcast({a_.column[j][q].re[lane], a_.column[j][q].im[lane]});
