@@ -41,22 +41,21 @@ double pose_remoteness(const Vec8& x) {
 // a path towards a nearby pole (a solution running off to infinity, or a fast turn near another path) further
 // than the polynomial does; the plain Taylor polynomial where the last two coefficients give no usable pole
 // (a negligible second-to-last coefficient, or a pole so close beyond the step, |1 − h/pole| < 0.2, that the
-// approximant would blow up).
+// approximant would blow up). Two coordinates at a time, the choice made lane by lane.
 Vec8 pade_prediction(const Taylor& taylor, double h) {
+  using namespace stewart_lanes;
   constexpr int top = kTaylorOrder;
-  using complex_arithmetic::abs2;
-  using complex_arithmetic::mul;
-  using complex_arithmetic::reciprocal;
+  const Lane one = {1.0, 1.0};
   Vec8 x;
-  for (int c = 0; c < 8; ++c) {
-    const Complex a = taylor[top - 1].get(c), b = taylor.back().get(c);  // .back(): taylor[top]
-    Complex v = a + h * b;
-    if (abs2(a) > 1e-28 * (1.0 + abs2(taylor[0].get(c)))) {
-      const Complex q = 1.0 - h * mul(b, reciprocal(a));
-      if (abs2(q) >= 0.04) v = mul(a, reciprocal(q));
-    }
-    for (int k = top - 2; k >= 0; --k) v = taylor[k].get(c) + h * v;
-    x.set(c, v);
+  for (int q = 0; q < 4; ++q) {
+    const CLane a = taylor[top - 1].pair[q], b = taylor.back().pair[q];  // .back(): taylor[top]
+    const CLane polynomial = a + h * b;
+    // 1 − h·b/a, and the approximant a/(1 − h·b/a); lanes where either is unusable keep the polynomial.
+    const CLane q_pole = CLane{one, Lane{}} - h * quotient(b, a);
+    const LaneMask usable = (abs2(a) > 1e-28 * (one + abs2(taylor[0].pair[q]))) & (abs2(q_pole) >= 0.04);
+    CLane v = select(usable, quotient(a, q_pole), polynomial);
+    for (int k = top - 2; k >= 0; --k) v = taylor[k].pair[q] + h * v;
+    x.pair[q] = v;
   }
   return x;
 }
@@ -68,17 +67,17 @@ Vec8 pade_prediction(const Taylor& taylor, double h) {
 // was below 0.01, against a factor of 40 for the last step's error scaled by (h_new/h_old)⁵, which the step
 // size used before: the paths' curvature changes by orders of magnitude within a few steps near t = 1.
 double pade_error_coefficient(const Taylor& taylor) {
-  using complex_arithmetic::abs2;
-  using complex_arithmetic::mul;
-  using complex_arithmetic::reciprocal;
-  double sum = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const Complex a = taylor[3].get(c), b = taylor[4].get(c);
-    Complex d = taylor.back().get(c);  // x_5
-    if (abs2(a) > 1e-28 * (1.0 + abs2(taylor[0].get(c)))) d -= mul(mul(b, b), reciprocal(a));
+  using namespace stewart_lanes;
+  const Lane one = {1.0, 1.0};
+  Lane sum{};
+  for (int q = 0; q < 4; ++q) {
+    const CLane a = taylor[3].pair[q], b = taylor[4].pair[q];
+    const CLane x5 = taylor.back().pair[q];
+    const LaneMask usable = abs2(a) > 1e-28 * (one + abs2(taylor[0].pair[q]));
+    const CLane d = select(usable, x5 - quotient(b * b, a), x5);
     sum += abs2(d);
   }
-  return std::sqrt(sum) / (1.0 + taylor[0].norm());
+  return std::sqrt(sum[0] + sum[1]) / (1.0 + taylor[0].norm());
 }
 
 }  // namespace

@@ -60,6 +60,22 @@ inline CLane mul_sub(CLane acc, CLane a, CLane b) {
   return {acc.re - a.re * b.re + a.im * b.im, acc.im - a.re * b.im - a.im * b.re};
 }
 
+/// |a|² per lane.
+inline Lane abs2(CLane a) {
+  return a.re * a.re + a.im * a.im;
+}
+/// a / b per lane (inf or NaN where b = 0).
+inline CLane quotient(CLane a, CLane b) {
+  const Lane n = abs2(b);
+  return {(a.re * b.re + a.im * b.im) / n, (a.im * b.re - a.re * b.im) / n};
+}
+/// The mask of a comparison of two Lanes: all bits set where true.
+using LaneMask = long long __attribute__((vector_size(16)));
+/// a where `mask`, b elsewhere.
+inline CLane select(LaneMask mask, CLane a, CLane b) {
+  return {mask ? a.re : b.re, mask ? a.im : b.im};
+}
+
 /// 8 complex numbers in 4 pairs.
 struct Vec8 {
   CLane pair[4];
