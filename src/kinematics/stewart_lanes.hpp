@@ -160,8 +160,16 @@ inline Complex dot4(const Complex* a, const Complex* b) {
   return mul(a[0], b[0]) + mul(a[1], b[1]) + mul(a[2], b[2]) + mul(a[3], b[3]);
 }
 
-/// The equations' values (when f is not null) and Jacobian at x, as StewartSystem::linearise.
-inline void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f, Mat8& jx) {
+/// Where the columns of a Jacobian go: column c at column[c] (a Mat8's own order, or the order a LaneLu
+/// factorised the last one in: LaneLu::columns_in_last_order).
+struct Columns {
+  CLane* column[8];
+};
+
+/// The equations' values (when f is not null) and Jacobian at x, as StewartSystem::linearise, the Jacobian's
+/// columns written where `jx` says.
+inline void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f,
+                      const Columns& jx) {
   Complex e[4], g[4];
   CLane e_lanes[4], g_lanes[4];
   for (int c = 0; c < 4; ++c) {
@@ -207,6 +215,13 @@ inline void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& 
   }
 }
 
+/// The same with the Jacobian into a Mat8, in its own column order.
+inline void linearise(const Legs& p, const Eigen::Vector4cd& chart, const Vec8& x, Vec8* f, Mat8& jx) {
+  Columns columns;
+  for (int c = 0; c < 8; ++c) columns.column[c] = jx.column[c];
+  linearise(p, chart, x, f, columns);
+}
+
 /// f(0), f(1), …, f(End − 1) with compile-time indices: the loops over the 8 rows and columns unrolled, so
 /// that every lane index is a constant and the data stays in registers.
 template <int Begin, int End, class F>
@@ -221,11 +236,24 @@ template <int Begin, int End, class F>
 /// interchanges. The Mat8 is stored by columns, so that choosing the pivot among the columns of row K reads
 /// one fixed lane of each, and an interchange swaps two whole columns; row interchanges would move single
 /// lanes of every column to places known only at run time (they took half of the factorisation's
-/// instructions). The factors overwrite the matrix: after step K, column K holds U above the diagonal and the
-/// multipliers of L below it, with a zero on the diagonal when it shares a pair with them (K even), so that
-/// the updates and the forward solve leave row K alone; the pivots are kept apart, inverted.
+/// instructions). The factors overwrite the matrix: after step K, column K holds the multipliers of L below
+/// the diagonal, with a zero on the diagonal when it shares a pair with them (K even), so that the updates
+/// and the forward solve leave row K alone. U is kept as D·U′, D its diagonal (the pivots, kept apart,
+/// inverted) and U′ unit upper triangular, stored above the diagonal with a zero on it where it shares a pair
+/// with the rows above (K odd): the back substitution then multiplies by no pivot in its chain of dependent
+/// steps.
+///
+/// factorise_in_last_order: a path tracker factorises a Jacobian that changed little since the last one, in
+/// whose column order partial pivoting would almost always choose the diagonal again. Written in that order
+/// (columns_in_last_order), it is factorised without the pivot search and interchanges (a tenth of the
+/// tracker's time), and the order is kept where it still bounds every |U′_Kj| by kReuseBound, the threshold
+/// pivoting of sparse solvers (MA48, UMFPACK: a pivot at least 0.1 of the largest in its row); otherwise the
+/// caller factorises with the search.
 class LaneLu {
  public:
+  /// |U′_Kj| = |U_Kj / U_KK| allowed in the last order (partial pivoting keeps it at most 1).
+  static constexpr double kReuseBound = 10.0;
+
   bool compute(const Mat8& m) {
     a_ = m;
     return factorise();
@@ -234,24 +262,25 @@ class LaneLu {
   /// The matrix to factorise, to be filled in place (the tracker's linearise writes the Jacobian here).
   Mat8& matrix() { return a_; }
 
-  /// Factorises matrix() in place.
+  /// Where to write the matrix, column c at the position the last factorisation moved column c to, for
+  /// factorise_in_last_order. Before any factorisation: the matrix's own order.
+  Columns columns_in_last_order() {
+    Columns columns;
+    for (int c = 0; c < 8; ++c) columns.column[c] = a_.column[position_[c]];
+    return columns;
+  }
+
+  /// Factorises matrix(), filled in its own column order, in place, choosing the pivots.
   [[gnu::always_inline]] bool factorise() {
-    largest_ = 0.0;
-    smallest_ = INFINITY;
-    bool regular = true;
-    static_for<0, 8>([&](auto k) __attribute__((always_inline)) {
-      if (regular) regular = eliminate<k>();
-    });
-    if (!regular) {
-      pivot_ratio_ = 0.0;
-      return false;
-    }
-    // x = T_0·T_1·…·T_6·z for the column interchanges T_K, as one gather: x_i = z_source_[i].
-    for (int i = 0; i < 8; ++i) source_[i] = i;
-    for (int k = 6; k >= 0; --k) std::swap(source_[k], source_[interchange_[k]]);
-    pivot_ratio_ = std::sqrt(smallest_ / largest_);
+    for (int k = 0; k < 8; ++k) order_[k] = k;
+    if (!run<true>()) return false;
+    for (int k = 0; k < 8; ++k) position_[order_[k]] = k;
     return true;
   }
+
+  /// Factorises the matrix written through columns_in_last_order in place, with the pivots on its diagonal;
+  /// false, the matrix spent, where a pivot is zero or some |U′_Kj| exceeds kReuseBound.
+  [[gnu::always_inline]] bool factorise_in_last_order() { return run<false>(); }
 
   Vec8 solve(const Vec8& b) const {
     Vec8 y = b;
@@ -260,38 +289,83 @@ class LaneLu {
       const CLane yk = broadcast(y.get(k));
       for (int q = (k + 1) / 2; q < 4; ++q) y.pair[q] = mul_sub(y.pair[q], a_.column[k][q], yk);
     });
-    // U z = y from the last row up, with column k's rows above k; for k odd their last pair also holds row k
-    // (the pivot), whose lane is overwritten with z_k after the update.
+    // U′ z = D⁻¹ y from the last row up, with column k's rows above k (for k odd their last pair also holds
+    // row k, whose zero leaves z_k alone).
+    for (int q = 0; q < 4; ++q) y.pair[q] = y.pair[q] * inverse_pivots_[q];
     static_for<0, 8>([&](auto kk) __attribute__((always_inline)) {
       constexpr int k = 7 - kk;
-      const Complex zk = complex_arithmetic::mul(y.get(k), inverse_pivot_[k]);
-      const CLane z_lanes = broadcast(zk);
-      for (int q = 0; q < (k + 1) / 2; ++q) y.pair[q] = mul_sub(y.pair[q], a_.column[k][q], z_lanes);
-      y.set(k, zk);
+      const CLane zk = broadcast(y.get(k));
+      for (int q = 0; q < (k + 1) / 2; ++q) y.pair[q] = mul_sub(y.pair[q], a_.column[k][q], zk);
     });
+    // x = P·z: unknown order_[k] was at position k.
     Vec8 x;
-    static_for<0, 8>([&](auto i) __attribute__((always_inline)) { x.set(i, y.get(source_[i])); });
+    static_for<0, 8>([&](auto i) __attribute__((always_inline)) { x.set(i, y.get(position_[i])); });
     return x;
   }
 
   double pivot_ratio() const { return pivot_ratio_; }
 
  private:
-  template <int K>
-  [[gnu::always_inline]] bool eliminate() {
-    constexpr int q = K / 2, lane = K % 2;
-    int pivot = K;
-    double best = abs2(a_.column[K][q], lane);
-    static_for<K + 1, 8>([&](auto j) __attribute__((always_inline)) {
-      const double v = abs2(a_.column[j][q], lane);
-      if (v > best) {
-        best = v;
-        pivot = j;
+  template <bool Search>
+  [[gnu::always_inline]] bool run() {
+    largest_ = 0.0;
+    smallest_ = INFINITY;
+    bool regular = true;
+    static_for<0, 8>([&](auto k) __attribute__((always_inline)) {
+      if (regular) regular = eliminate<k, Search>();
+    });
+    if (!regular) {
+      pivot_ratio_ = 0.0;
+      return false;
+    }
+    // U′ = D⁻¹·U, row by row: each pair of each column's part above the diagonal times the pair of inverse
+    // pivots of its rows (gathered once here: lanes stored one at a time and then loaded as pairs would stall
+    // the store forwarding).
+    for (int q = 0; q < 4; ++q) {
+      inverse_pivots_[q] = {Lane{inverse_pivot_[2 * q].real(), inverse_pivot_[2 * q + 1].real()},
+                            Lane{inverse_pivot_[2 * q].imag(), inverse_pivot_[2 * q + 1].imag()}};
+    }
+    Lane largest_ratio{};
+    static_for<1, 8>([&](auto j) __attribute__((always_inline)) {
+      for (int q = 0; q < (j + 1) / 2; ++q) {
+        a_.column[j][q] = a_.column[j][q] * inverse_pivots_[q];
+        if constexpr (!Search) {
+          const Lane ratio = abs2(a_.column[j][q]);
+          largest_ratio = ratio > largest_ratio ? ratio : largest_ratio;
+        }
+      }
+      if constexpr (j % 2 == 1) {
+        // The unit diagonal of row j, lane 1 of a pair with row j − 1 above it: zero, as a shuffle.
+        CLane& pair = a_.column[j][j / 2];
+        pair = {__builtin_shufflevector(pair.re, Lane{}, 0, 2),
+                __builtin_shufflevector(pair.im, Lane{}, 0, 2)};
       }
     });
-    interchange_[K] = pivot;
-    if (pivot != K) {
-      for (int r = 0; r < 4; ++r) std::swap(a_.column[K][r], a_.column[pivot][r]);
+    pivot_ratio_ = std::sqrt(smallest_ / largest_);
+    if constexpr (!Search) {
+      constexpr double bound = kReuseBound * kReuseBound;
+      return std::max(largest_ratio[0], largest_ratio[1]) <= bound;
+    }
+    return true;
+  }
+
+  template <int K, bool Search>
+  [[gnu::always_inline]] bool eliminate() {
+    constexpr int q = K / 2, lane = K % 2;
+    double best = lane_abs2(a_.column[K][q], lane);
+    if constexpr (Search) {
+      int pivot = K;
+      static_for<K + 1, 8>([&](auto j) __attribute__((always_inline)) {
+        const double v = lane_abs2(a_.column[j][q], lane);
+        if (v > best) {
+          best = v;
+          pivot = j;
+        }
+      });
+      if (pivot != K) {
+        for (int r = 0; r < 4; ++r) std::swap(a_.column[K][r], a_.column[pivot][r]);
+        std::swap(order_[K], order_[pivot]);
+      }
     }
     largest_ = std::max(largest_, best);
     smallest_ = std::min(smallest_, best);
@@ -316,15 +390,19 @@ class LaneLu {
     return true;
   }
 
-  [[gnu::always_inline]] static double abs2(const CLane& pair, int lane) {
+  [[gnu::always_inline]] static double lane_abs2(const CLane& pair, int lane) {
     const double re = pair.re[lane], im = pair.im[lane];
     return re * re + im * im;
   }
 
   Mat8 a_;
   std::array<Complex, 8> inverse_pivot_{};
-  std::array<int, 8> interchange_{};
-  std::array<int, 8> source_{};
+  /// The same by pairs of rows (D⁻¹).
+  CLane inverse_pivots_[4] = {};
+  /// order_[k]: the column of the matrix at position k of the factors (A·P's column k); position_ its
+  /// inverse. The matrix's own order until the first factorisation.
+  std::array<int, 8> order_ = {0, 1, 2, 3, 4, 5, 6, 7};
+  std::array<int, 8> position_ = {0, 1, 2, 3, 4, 5, 6, 7};
   double largest_ = 0.0, smallest_ = 0.0;
   double pivot_ratio_ = 0.0;
 };

@@ -271,6 +271,71 @@ TEST(StewartLanes, TheTrackersPairedArithmeticEqualsTheReference) {
   }
 }
 
+// Writes m through `columns` (column c of m at columns.column[c]), as the tracker's linearise does.
+void write_lanes(const StudyJacobian& m, const stewart_lanes::Columns& columns) {
+  for (int c = 0; c < 8; ++c) {
+    for (int i = 0; i < 8; ++i) {
+      columns.column[c][i / 2].re[i % 2] = m(i, c).real();
+      columns.column[c][i / 2].im[i % 2] = m(i, c).imag();
+    }
+  }
+}
+
+stewart_lanes::Mat8 lanes_of(const StudyJacobian& m) {
+  stewart_lanes::Mat8 lanes;
+  stewart_lanes::Columns columns;
+  for (int c = 0; c < 8; ++c) columns.column[c] = lanes.column[c];
+  write_lanes(m, columns);
+  return lanes;
+}
+
+TEST(StewartLanes, AFactorisationInTheLastColumnOrderSolvesOrRefuses) {
+  // The tracker factorises most Jacobians in the column order of the one before, without a pivot search
+  // (LaneLu::factorise_in_last_order). On random matrices: a small change keeps the order and solves as a
+  // pivoted LU does; a change that makes the old pivot small against its row is refused, and the pivoted
+  // factorisation then takes over.
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> column(0, 7);
+  for (int trial = 0; trial < 50; ++trial) {
+    StudyJacobian a, change;
+    StudyPoint b;
+    for (int i = 0; i < 8; ++i) {
+      b[i] = random_complex_value(rng);
+      for (int c = 0; c < 8; ++c) {
+        a(i, c) = random_complex_value(rng);
+        change(i, c) = random_complex_value(rng);
+      }
+    }
+    stewart_lanes::LaneLu lu;
+    write_lanes(a, lu.columns_in_last_order());  // before any factorisation: the matrix's own order
+    ASSERT_TRUE(lu.factorise());
+    const StudyJacobian nearby = a + 1e-3 * change;
+    write_lanes(nearby, lu.columns_in_last_order());
+    ASSERT_TRUE(lu.factorise_in_last_order()) << "trial " << trial;
+    const StudyPoint expected = nearby.fullPivLu().solve(b);
+    EXPECT_LT((lu.solve(stewart_lanes::Vec8::of(b)).point() - expected).norm(), 1e-12 * expected.norm())
+        << "trial " << trial;
+
+    // Row 0 small but in one column, which the pivoted factorisation puts first; then small in that column
+    // but in another: the old first pivot is a thousandth of its row's largest entry.
+    StudyJacobian first = a, second = a;
+    const int chosen = column(rng), other = (chosen + 1 + column(rng) % 7) % 8;
+    for (int c = 0; c < 8; ++c) {
+      first(0, c) = 1e-3 * a(0, c);
+      second(0, c) = 1e-3 * a(0, c);
+    }
+    first(0, chosen) = a(0, chosen) / std::abs(a(0, chosen));
+    second(0, other) = a(0, other) / std::abs(a(0, other));
+    ASSERT_TRUE(lu.compute(lanes_of(first)));
+    write_lanes(second, lu.columns_in_last_order());
+    EXPECT_FALSE(lu.factorise_in_last_order()) << "trial " << trial;
+    ASSERT_TRUE(lu.compute(lanes_of(second)));
+    const StudyPoint solved = second.fullPivLu().solve(b);
+    EXPECT_LT((lu.solve(stewart_lanes::Vec8::of(b)).point() - solved).norm(), 1e-12 * solved.norm())
+        << "trial " << trial;
+  }
+}
+
 TEST(StewartSystem, ARealPoseSolvesItsOwnEquationsAndComesBack) {
   std::mt19937_64 rng(42);
   for (int trial = 0; trial < 20; ++trial) {
