@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "core/wide_kernels.hpp"
 #include "kinematics/stewart_lanes.hpp"
@@ -19,6 +22,24 @@ using stewart_lanes::Vec8;
 constexpr int kTaylorOrder = 5;
 using Taylor = std::array<Vec8, kTaylorOrder + 1>;
 static_assert(kTaylorOrder == 5, "pade_error_coefficient reads x_3, x_4 and x_5 = back()");
+
+// v^(1/5), the step size for a predictor error ∝ h⁵, once per step: std::pow took 2 % of the tracker's time.
+// The estimate from the exponent bits (log₂ v ≈ bits/2⁵² − 1023), within 6.1 % of it, is refined by three
+// Newton iterations for y⁵ = v, y ← (4y + v/y⁴)/5, each about squaring the relative error: within 1.5e-8 of
+// std::pow over 1e-300 … 1e300 (10⁷ samples), far closer than a step size needs. Zero, infinite, NaN and
+// subnormal v take std::pow.
+double fifth_root(double v) {
+  if (!(v >= std::numeric_limits<double>::min() && v <= std::numeric_limits<double>::max())) {
+    return std::pow(v, 0.2);
+  }
+  constexpr std::uint64_t bias = (std::uint64_t{1023} << 52) / 5 * 4;
+  double y = std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) / 5 + bias);
+  for (int i = 0; i < 3; ++i) {
+    const double y2 = y * y;
+    y = 0.8 * y + 0.2 * v / (y2 * y2);
+  }
+  return y;
+}
 
 double relative_step(const Vec8& step, const Vec8& x) {
   return step.norm() / (1.0 + x.norm());
@@ -183,7 +204,7 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
                      : options.step_error_target;
   };
   double coefficient = Kernels::error_coefficient(taylor);
-  double h = std::pow(target() / coefficient, 0.2);
+  double h = fifth_root(target() / coefficient);
   if (!std::isfinite(h)) h = options.max_step;
   h = std::max(std::min(h, options.max_step), std::min(options.initial_step, options.max_step));
   const double tol = options.corrector_tolerance;
@@ -260,15 +281,15 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
         taylor[0] = x;
         Kernels::taylor(p, rate, lu, taylor.data());
         coefficient = Kernels::error_coefficient(taylor);
-        const double next = std::pow(target() / coefficient, 0.2);
+        const double next = fifth_root(target() / coefficient);
         h = std::isfinite(next) ? std::min(next, 4.0 * h) : 2.0 * h;
       }
     } else {
       ++path.rejected;
       // Resized from the error just measured at this h (the same Taylor data, so the measured coefficient is
       // the better one), by a factor between 0.1 and 0.7.
-      const double measured = first > 0 ? first / std::pow(h, 5) : 0.0;
-      double next = measured > 0 ? std::pow(target() / std::max(measured, coefficient), 0.2) : 0.5 * h;
+      const double measured = first > 0 ? first / (h * h * h * h * h) : 0.0;
+      double next = measured > 0 ? fifth_root(target() / std::max(measured, coefficient)) : 0.5 * h;
       if (!std::isfinite(next)) next = 0.5 * h;
       h = std::clamp(next, 0.1 * h, 0.7 * h);
       if (h < options.min_step) break;
