@@ -36,8 +36,9 @@ struct PathTrackOptions {
   /// to 1e-15 separately): 1e-5 saves the third iteration of most steps that 1e-7 needed.
   double corrector_tolerance = 1e-5;
   /// The predictor error (first Newton correction relative to 1 + |x|) that the step size aims at; a first
-  /// correction above 0.05 rejects the step.
-  double step_error_target = 1e-3;
+  /// correction above 0.05 rejects the step. Near other paths the contraction target binds first; 3e-3
+  /// rather than 1e-3 takes 6–7 % fewer steps, with the same ends on 2000 general and 400 symmetric layouts.
+  double step_error_target = 3e-3;
   /// The contraction θ = |Δx₁|/|Δx₀| of Newton's first two corrections that the step size aims at (the step
   /// is rejected above 0.1).
   double contraction_target = 0.02;
