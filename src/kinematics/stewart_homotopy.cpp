@@ -103,26 +103,6 @@ double pade_error_coefficient(const Taylor& taylor) {
 
 }  // namespace
 
-double refine_stewart_point(const StewartSystem& system, const StewartParameters& p, StudyPoint& x,
-                            int iterations, double tolerance, double& pivot_ratio) {
-  const Legs legs = Legs::of(p);
-  Vec8 point = Vec8::of(x), f;
-  LaneLu lu;
-  double last = 1.0;
-  for (int i = 0; i < iterations; ++i) {
-    stewart_lanes::linearise(legs, system.chart(), point, &f, lu.matrix());
-    lu.factorise();
-    pivot_ratio = lu.pivot_ratio();
-    const Vec8 step = lu.solve(f);
-    point -= step;
-    last = relative_step(step, point);
-    if (!std::isfinite(last)) break;
-    if (last <= tolerance) break;
-  }
-  x = point.point();
-  return last;
-}
-
 namespace {
 
 // The tracker's kernels as the baseline processor runs them.
@@ -173,6 +153,27 @@ struct WideKernels {
 };
 
 #endif
+
+// Newton at fixed parameters (refine_stewart_point), on Kernels.
+template <class Kernels>
+double refine_point(const Legs& legs, const Eigen::Vector4cd& chart, StudyPoint& x, int iterations,
+                    double tolerance, double& pivot_ratio) {
+  Vec8 point = Vec8::of(x), f;
+  LaneLu lu;
+  double last = 1.0;
+  for (int i = 0; i < iterations; ++i) {
+    Kernels::linearise(legs, chart, point, &f, lu.matrix());
+    Kernels::factorise(lu);
+    pivot_ratio = lu.pivot_ratio();
+    const Vec8 step = Kernels::solve(lu, f);
+    point -= step;
+    last = relative_step(step, point);
+    if (!std::isfinite(last)) break;
+    if (last <= tolerance) break;
+  }
+  x = point.point();
+  return last;
+}
 
 // The tracker itself, on Kernels (BaselineKernels or WideKernels): track_stewart_path runs it with the
 // kernels built for the baseline processor or, where the processor has them, for AVX2 and FMA.
@@ -298,14 +299,14 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
   path.x = x.point();
   path.t = t;
   if (t >= 1.0) {
-    const double last = refine_stewart_point(system, to, path.x, 3, 1e-15, path.pivot_ratio);
+    const double last = refine_point<Kernels>(Legs::of(to), chart, path.x, 3, 1e-15, path.pivot_ratio);
     path.end = std::isfinite(last) ? PathEnd::finite : PathEnd::failed;
     return path;
   }
   if (1.0 - t <= options.endgame_start) {
     // A stalled approach to t = 1: a singular endpoint, or one at infinity.
     StudyPoint end = path.x;
-    const double last = refine_stewart_point(system, to, end, 20, 1e-13, path.pivot_ratio);
+    const double last = refine_point<Kernels>(Legs::of(to), chart, end, 20, 1e-13, path.pivot_ratio);
     if (std::isfinite(last) && last < 1e-6 && pose_remoteness(end) < options.divergence_norm) {
       path.x = end;
       path.end = PathEnd::finite;
@@ -323,6 +324,11 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
 }
 
 }  // namespace
+
+double refine_stewart_point(const StewartSystem& system, const StewartParameters& p, StudyPoint& x,
+                            int iterations, double tolerance, double& pivot_ratio) {
+  return refine_point<BaselineKernels>(Legs::of(p), system.chart(), x, iterations, tolerance, pivot_ratio);
+}
 
 TrackedPath track_stewart_path(const StewartSystem& system, const StewartParameters& from,
                                const StewartParameters& to, const StudyPoint& start,

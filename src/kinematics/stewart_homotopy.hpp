@@ -27,7 +27,7 @@ namespace pkm {
 struct PathTrackOptions {
   /// The first step, or more where the estimated predictor error there stays within step_error_target.
   double initial_step = 0.05;
-  double max_step = 0.2;
+  double max_step = 0.3;
   double min_step = 1e-13;
   int max_steps = 4000;
   /// Newton stops when |Δx| ≤ corrector_tolerance·(1 + |x|), or when the error left after Δx, estimated
