@@ -219,7 +219,7 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
     double first = 0.0, previous = 0.0, theta = 0.0;
     for (int i = 0; i < 3; ++i) {
       // In the column order of the last factorisation, without a pivot search, where that order still
-      // pivots well (LaneLu::factorise_in_last_order; 2–3 % of the factorisations on general layouts do not).
+      // pivots well (LaneLu::factorise_in_last_order; 3–4 % of the factorisations do not).
       Kernels::linearise_in_last_order(p, chart, candidate, &f, lu);
       if (!Kernels::factorise_in_last_order(lu)) {
         Kernels::linearise(p, chart, candidate, &f, lu.matrix());
