@@ -81,7 +81,7 @@ sanitize:
 	@cmake --build build-asan -j $(JOBS) --target pkm_tests pkm $(if $(filter 0,$(SANITIZE_FUZZ_SECONDS)),,pkm_fuzzers)
 	@mkdir -p build-asan/Testing/Temporary
 	@[ -f build-asan/Testing/Temporary/CTestCostData.txt ] || cp tests/sanitizer_test_costs.txt build-asan/Testing/Temporary/CTestCostData.txt
-	cd build-asan && PKM_GENERATED_PROGRAMS=2 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '$(SANITIZE_SKIP)'
+	cd build-asan && PKM_GENERATED_PROGRAMS=2 PKM_HONEST_PROGRAMS=4 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '$(SANITIZE_SKIP)'
 	@if [ "$(SANITIZE_FUZZ_SECONDS)" != 0 ]; then bash fuzz/run.sh build-asan $(SANITIZE_FUZZ_SECONDS); fi
 
 # Formatting must match .clang-format; cppcheck must find nothing.
@@ -117,10 +117,11 @@ fuzz:
 	@bash fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
 
 # The generated CAM-like programs (tests/planning/generated_programs_test.cpp) on every shipped machine,
-# NIGHTLY_PROGRAMS per machine instead of make test's 24, and the corner-blend properties.
+# NIGHTLY_PROGRAMS per machine instead of make test's 24, the corner-blend properties, and 200 programs per
+# machine inside and outside the workspace that must be refused at a line or hold (plan_honesty_test.cpp).
 NIGHTLY_PROGRAMS ?= 300
 nightly: build
-	PKM_GENERATED_PROGRAMS=$(NIGHTLY_PROGRAMS) $(BUILD)/pkm_tests --gtest_filter='*GeneratedPrograms*:CornerBlend*'
+	PKM_GENERATED_PROGRAMS=$(NIGHTLY_PROGRAMS) PKM_HONEST_PROGRAMS=200 $(BUILD)/pkm_tests --gtest_filter='*GeneratedPrograms*:CornerBlend*:*PlanHonesty*'
 
 bench: deps
 	@cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DPKM_UNITY_LIB=ON -DPKM_BUILD_BENCH=ON > /dev/null

@@ -31,6 +31,18 @@ int report_error(const std::string& command, const Error& error) {
   return exit_code_for(error.code);
 }
 
+int report_error(const std::string& command, const Error& error, bool json) {
+  if (json) {
+    nlohmann::json out = {{"code", to_string(error.code)},   {"message", error.message},
+                          {"file", error.location.file},     {"line", error.location.line},
+                          {"column", error.location.column}, {"key", error.location.key}};
+    out["details"] = error.details_json.empty() ? nlohmann::json(nullptr)
+                                                : nlohmann::json::parse(error.details_json, nullptr, false);
+    print_json({{"error", out}});
+  }
+  return report_error(command, error);
+}
+
 Result<Machine> load_machine_or_report(const std::string& path) {
   return load_machine_file(path);
 }

@@ -15,6 +15,9 @@ int exit_code_for(ErrorCode code);
 /// Prints "pkm <command>: error: <message>" on stderr, control bytes and broken UTF-8 escaped, and returns
 /// the exit code for the error.
 int report_error(const std::string& command, const Error& error);
+/// The same, and with `json` also the error as JSON on stdout: {"error": {"code", "message", "file", "line",
+/// "column", "key", "details"}} (details: Error::details_json, or null).
+int report_error(const std::string& command, const Error& error, bool json);
 
 /// Loads a machine file or reports why not.
 Result<Machine> load_machine_or_report(const std::string& path);

@@ -163,7 +163,7 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--rho-max", args->rho_max_mm, "contour tolerance ρ_max, mm")
       ->capture_default_str()
-      ->check(number_in({0.0, 100.0, false, true, "mm"}));
+      ->check(number_in({interpolation::kMinContourToleranceMm, 100.0, true, true, "mm"}));
   cmd->add_option("--delta-rho-max", args->delta_rho_max,
                   "error amplification δρ_max (default: the largest along the path)")
       ->check(number_in({0.0, 1e6, true, true, ""}));

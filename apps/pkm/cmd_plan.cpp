@@ -13,6 +13,8 @@
 #include "core/units.hpp"
 #include "number_options.hpp"
 #include "pipeline/plan_program.hpp"
+#include "planning/machine_warnings.hpp"
+#include "planning/run_accuracy.hpp"
 #include "redundancy_options.hpp"
 #include "statics/load_model.hpp"
 
@@ -55,6 +57,14 @@ void add_plan_command(CLI::App& app, int& exit_code) {
                       "corner blending tolerance, mm (0: exact stop at corners; default: the machine file's)")
           ->check(number_in({0.0, kMaxToleranceMm, true, true, "mm"}));
   cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
+  cmd->add_option("--max-ticks", options->max_ticks,
+                  "refuse a motion of more servo ticks than this (the output grows with them)")
+      ->capture_default_str()
+      ->check(CLI::Range(1L, 1'000'000'000'000L));
+  cmd->add_option("--max-samples", options->max_samples,
+                  "refuse a path that needs more planning samples than this (the memory grows with them)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{2}, std::size_t{1'000'000'000}));
   cmd->add_flag("--no-path-error", *no_error, "skip the forward-kinematics check of the path error (faster)");
   auto* dynamics_flag = cmd->add_flag(
       "--dynamics", *with_dynamics,
@@ -112,9 +122,11 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     if (isatty(STDERR_FILENO)) job.progress = draw_progress;
     job.out_directory = *out_dir;
     job.report_path = *report_file;
+    for (const std::string& warning : planning::machine_warnings(*machine))
+      std::cerr << "pkm plan: warning: " << warning << "\n";
     auto result = pipeline::plan_program(*machine, job);
     if (!result) {
-      exit_code = report_error("plan", result.error());
+      exit_code = report_error("plan", result.error(), *json);
       return;
     }
     if (*json) {
@@ -140,8 +152,8 @@ void add_plan_command(CLI::App& app, int& exit_code) {
         100.0 * run.max_feed_ratio);
     if (job.evaluate_path_error) {
       std::cout << fmt::format(
-          "  path error        max {:.3g} mm (FK of the actuators at mid-period, line {})\n",
-          run.max_path_error_mm, run.max_path_error_line);
+          "  path error        max {:.3g} mm at line {} (FK of the actuators at mid-period; bound {:g} mm)\n",
+          run.max_path_error_mm, run.max_path_error_line, planning::path_error_bound_mm(result->plan));
     }
     if (result->law) {
       std::cout << fmt::format("  {} law           Σ max|ΔL| {:.3f} mm (held constant: {:.3f} mm), free {}\n",

@@ -34,6 +34,9 @@ struct Error {
   ErrorCode code;
   std::string message;       ///< one line, names file/line/field and units where they apply
   ErrorLocation location{};  ///< filled by the file readers (YAML files, G-code, CL data)
+  /// Machine-readable details beyond the message, as JSON text (empty: none): e.g. the whole extent of a
+  /// program's excursion out of the workspace. The command line prints them with --json.
+  std::string details_json{};
 };
 
 template <class T>

@@ -55,9 +55,11 @@ Status check_interpolate_options(const InterpolateOptions& options, bool has_sin
         ErrorCode::bad_input,
         fmt::format("the {} method needs whole drive steps (drive step > 0)", to_string(options.method)));
   }
-  if (!(options.rho_max_mm > 0.0)) {
+  if (!(options.rho_max_mm >= kMinContourToleranceMm)) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("contour tolerance ρ_max {} mm must be positive", options.rho_max_mm));
+                      fmt::format("contour tolerance ρ_max {} mm must be at least {} mm: below it the strut "
+                                  "tolerance asks for more periods than any drive resolves",
+                                  options.rho_max_mm, kMinContourToleranceMm));
   }
   if (options.delta_rho_max && !(*options.delta_rho_max > 0.0)) {
     return make_error(ErrorCode::bad_input, "error amplification limit δρ_max must be positive");

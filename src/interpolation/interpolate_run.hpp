@@ -35,11 +35,15 @@ inline constexpr std::int64_t kPeriodTimeBudgetNs = 10'000;
 std::optional<Method> method_from_string(std::string_view name);
 std::string_view to_string(Method method);
 
+/// The smallest contour tolerance ρ_max taken: a nanometre, a thousandth of the finest drive steps. Below it
+/// the work grows without bound while no drive can follow.
+inline constexpr double kMinContourToleranceMm = 1e-6;
+
 struct InterpolateOptions {
   Method method = Method::carrier_corrected;
   double period_s = 0.001;
   double step_mm = 0.001;  ///< Δ: mm (deg for angular actuators) per step; 0 = continuous drives (no steps)
-  double rho_max_mm = 1e-3;             ///< ρ_max: the contour tolerance
+  double rho_max_mm = 1e-3;             ///< ρ_max: the contour tolerance (≥ kMinContourToleranceMm)
   std::optional<double> delta_rho_max;  ///< δρ_max; default: the largest along the path (eq. 146)
   bool chord_check = true;
   OverrideSettings feed_override;

@@ -26,6 +26,12 @@ struct PlanOptions {
   /// False: no jerk limit (trapezoidal path speed, the linear acceleration law); the jerk filter shrinks to
   /// one period.
   bool jerk_limited = true;
+  /// Bounds on the work a plan may take (the CLI's --max-ticks, --max-samples): a program whose motion would
+  /// run longer, or whose path needs more planning samples, is refused up front at the line that crosses the
+  /// bound, instead of filling the disk or the memory. The defaults allow a day of motion at 1 kHz: 86.4 M
+  /// ticks, about 10 GB of CSV; and 50 M samples, a few GB of planning data.
+  long max_ticks = 86'400'000;
+  std::size_t max_samples = 50'000'000;
 };
 
 /// What the plan used and where it is limited; for the summary.
@@ -48,7 +54,8 @@ struct MotionPlan {
   TimedProfile timed;
   int filter_ticks = 1;  ///< N: moving average over N servo periods
   double period_s = 0.001;
-  double duration_s = 0.0;  ///< from the first tick to the last (the filtered motion)
+  double path_tolerance_mm = 0.01;  ///< the corner-blending tolerance the path was built with
+  double duration_s = 0.0;          ///< from the first tick to the last (the filtered motion)
   PlanStatistics statistics;
   std::string program_source;
 };

@@ -10,6 +10,7 @@
 #include "core/rotation.hpp"
 #include "core/units.hpp"
 #include "machine/joint_limits.hpp"
+#include "planning/workspace_excursion.hpp"
 
 namespace pkm::planning {
 
@@ -87,14 +88,47 @@ void blend_sample_fractions(const path::Path& path, int index, double spacing, s
   out.push_back(1.0);
 }
 
-/// Sample positions: every segment split into pieces no longer than `spacing` (arcs: at most 5° each, the
-/// platform: at most 1° of turning each; blends: blend_sample_fractions); the segment ends are samples.
-void place_samples(const path::Path& path, double spacing, ProfileSamples& samples,
-                   std::vector<int>& segment) {
+/// The number of pieces a move (not a blend) is sampled in: no longer than `spacing`, at most 5° of an arc
+/// and 1° of the platform's turning each. In double: a huge move must be refused, not overflow an int.
+double move_pieces(const path::Path& path, int k, double spacing) {
+  const path::Segment& seg = path.segments[k];
+  double pieces = std::ceil(seg.length / spacing);
+  const path::Curve& curve = path.curves[seg.curve_a];
+  if (curve.kind == path::CurveKind::helix) {
+    const double sweep = curve.sweep_rad * (seg.fa1 - seg.fa0);
+    pieces = std::max(pieces, std::ceil(sweep / rad_from_deg(5.0)));
+  }
+  // The platform's turning bends the actuator curves as much as the tool point's path does (more, where the
+  // tool point hardly moves while the platform tilts): at most 1° of turning per piece.
+  const double turned_rad = curve.rotation_angle_rad * (seg.fa1 - seg.fa0);
+  pieces = std::max(pieces, std::ceil(turned_rad / rad_from_deg(1.0)));
+  // A move that starts and ends at rest (between two exact stops, as a short step between reversals) needs
+  // a sample inside, where the profile turns from speeding up to braking: two samples both at rest would
+  // have the motion cover the move in no time. Three inside: such moves are short and their actuator
+  // derivatives come from few samples (a 0.01 mm 5-axis back-step was 6 % over its estimate with one).
+  const bool starts_at_rest = k == 0 || path.segments[k - 1].stop_after;
+  if (starts_at_rest && seg.stop_after) pieces = std::max(pieces, 4.0);
+  return std::max(pieces, 1.0);
+}
+
+Error too_many_samples(const program::CanonicalProgram& program, int line, double needed, std::size_t bound) {
+  return Error{
+      ErrorCode::limit_exceeded,
+      fmt::format("{}:{}: the path needs {:.3g} planning samples by the end of this line, over the bound "
+                  "of {} (one every sample spacing, 5 deg of an arc and 1 deg of turning); raise "
+                  "--max-samples to plan it",
+                  program.source, line, needed, bound),
+      ErrorLocation{program.source, line, 0, ""}};
+}
+
+/// Sample positions: every segment split into move_pieces (blends: blend_sample_fractions); the segment ends
+/// are samples. Refused, before the memory is taken, when they would be more than `max_samples`.
+Status place_samples(const program::CanonicalProgram& program, const path::Path& path, double spacing,
+                     std::size_t max_samples, ProfileSamples& samples, std::vector<int>& segment) {
   samples.s.clear();
   segment.clear();
-  samples.s.reserve(path.segments.size() * 3 + 1);
-  segment.reserve(path.segments.size() * 3 + 1);
+  samples.s.reserve(std::min(max_samples, path.segments.size() * 3 + 1));
+  segment.reserve(std::min(max_samples, path.segments.size() * 3 + 1));
   std::vector<double> fractions;
   auto add = [&](double s, int k) {
     if (!samples.s.empty() && s <= samples.s.back()) return;
@@ -110,24 +144,11 @@ void place_samples(const path::Path& path, double spacing, ProfileSamples& sampl
       for (double f : fractions) add(seg.s_start + seg.length * f, k);
       continue;
     }
-    int pieces = static_cast<int>(std::ceil(seg.length / spacing));
-    const path::Curve& curve = path.curves[seg.curve_a];
-    if (curve.kind == path::CurveKind::helix) {
-      const double sweep = curve.sweep_rad * (seg.fa1 - seg.fa0);
-      pieces = std::max(pieces, static_cast<int>(std::ceil(sweep / rad_from_deg(5.0))));
-    }
-    // The platform's turning bends the actuator curves as much as the tool point's path does (more, where the
-    // tool point hardly moves while the platform tilts): at most 1° of turning per piece.
-    const double turned_rad = curve.rotation_angle_rad * (seg.fa1 - seg.fa0);
-    pieces = std::max(pieces, static_cast<int>(std::ceil(turned_rad / rad_from_deg(1.0))));
-    // A move that starts and ends at rest (between two exact stops, as a short step between reversals) needs
-    // a sample inside, where the profile turns from speeding up to braking: two samples both at rest would
-    // have the motion cover the move in no time. Three inside: such moves are short and their actuator
-    // derivatives come from few samples (a 0.01 mm 5-axis back-step was 6 % over its estimate with one).
-    const bool starts_at_rest = k == 0 || path.segments[k - 1].stop_after;
-    if (starts_at_rest && seg.stop_after) pieces = std::max(pieces, 4);
-    pieces = std::max(pieces, 1);
-    for (int i = 0; i < pieces; ++i) add(seg.s_start + seg.length * i / pieces, k);
+    const double pieces = move_pieces(path, k, spacing);
+    if (static_cast<double>(samples.s.size()) + pieces > static_cast<double>(max_samples))
+      return too_many_samples(program, seg.line, static_cast<double>(samples.s.size()) + pieces, max_samples);
+    const int count = static_cast<int>(pieces);
+    for (int i = 0; i < count; ++i) add(seg.s_start + seg.length * i / count, k);
   }
   const double end = path.length();
   if (samples.s.empty() || end > samples.s.back()) {
@@ -135,6 +156,7 @@ void place_samples(const path::Path& path, double spacing, ProfileSamples& sampl
     segment.push_back(std::max(0, static_cast<int>(path.segments.size()) - 1));
   }
   samples.resize(samples.s.size());
+  return ok_status();
 }
 
 /// Derivatives of a sampled function at sample i from its neighbours (non-uniform central differences);
@@ -157,7 +179,10 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
   SamplingResult result;
   const Mechanism& mechanism = *machine.mechanism;
   const MotionSettings& motion = machine.motion;
-  place_samples(path, settings.spacing, samples, sample_segment);
+  if (Status placed =
+          place_samples(program, path, settings.spacing, settings.max_samples, samples, sample_segment);
+      !placed)
+    return placed.error();
   const std::size_t n = samples.size();
   const int actuators = mechanism.actuator_count();
 
@@ -212,7 +237,18 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
     }
     return ok_status();
   };
-  if (Status s = solve(0); !s) return s.error();
+  // Out of reach or past a position limit: the first sample's error, then the whole extent of the program's
+  // excursions (the user moving the part needs all of it).
+  const auto refuse = [&](const Error& first) -> Error {
+    if (first.code != ErrorCode::unreachable && first.code != ErrorCode::limit_exceeded) return first;
+    const WorkspaceExcursions found = find_excursions(machine, path, samples.s, sample_segment);
+    if (found.excursions.empty()) return first;  // e.g. the conditioning limit: not a place to move away from
+    Error whole = first;
+    whole.message += "; " + describe_excursions(found);
+    whole.details_json = excursions_json(found);
+    return whole;
+  };
+  if (Status s = solve(0); !s) return refuse(s.error());
 
   // Caps from the feed, the path and the actuators.
   const double margin = settings.actuator_margin;
@@ -222,7 +258,7 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
   double actuator_limited_length = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (i + 1 < n) {
-      if (Status s = solve(i + 1); !s) return s.error();
+      if (Status s = solve(i + 1); !s) return refuse(s.error());
     }
     const ActuatorVector& q0 = q_ring[(i + 2) % 3];  // sample i − 1 (unused at i = 0)
     const ActuatorVector& q1 = q_ring[i % 3];

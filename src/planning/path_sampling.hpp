@@ -29,6 +29,7 @@ struct SamplingSettings {
   double stop_hold_s = 0.0;  ///< rest at every stop so that the jerk filter settles there
   double chord_tolerance_mm =
       1e-3;  ///< allowed deviation between servo periods, on the tool and on actuators
+  std::size_t max_samples = 50'000'000;  ///< refuse a path that needs more (PlanOptions::max_samples)
 };
 
 struct SamplingResult {

@@ -8,6 +8,7 @@
 #include "core/units.hpp"
 #include "machine/joint_limits.hpp"
 #include "path/path_builder.hpp"
+#include "planning/commanded_coordinates.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/path_sampling.hpp"
 
@@ -44,11 +45,37 @@ Status check_options(const PlanOptions& options) {
   return ok_status();
 }
 
+/// The refusal of a plan longer than `max_ticks`: at the line where the motion crosses the bound, naming the
+/// block that takes longest (a feed of 1e-6 mm/min, a machine's feed cap of 1e-9) and how long it takes.
+Error too_many_ticks(const MotionPlan& plan, long max_ticks) {
+  const std::vector<double>& time_s = plan.timed.time_s;
+  const double bound_s = static_cast<double>(max_ticks) * plan.period_s;
+  const auto crossing = std::upper_bound(time_s.begin(), time_s.end(), bound_s);
+  const std::size_t at = std::min<std::size_t>(crossing - time_s.begin(), time_s.size() - 1);
+  const int line = plan.path.segments[plan.sample_segment[at]].line;
+  double longest_s = 0.0;
+  int longest_line = line;
+  for (std::size_t i = 1; i < time_s.size(); ++i) {
+    if (time_s[i] - time_s[i - 1] <= longest_s) continue;
+    longest_s = time_s[i] - time_s[i - 1];
+    longest_line = plan.path.segments[plan.sample_segment[i]].line;
+  }
+  return Error{
+      ErrorCode::limit_exceeded,
+      fmt::format("{}:{}: the motion would take {:.4g} s ({:.4g} ticks at {:g} Hz) and passes the bound "
+                  "of {} ticks here; the slowest stretch is at line {} ({:.4g} s between two planning "
+                  "samples: check its feed and the machine's feed limits); raise --max-ticks to plan it",
+                  plan.program_source, line, plan.duration_s, plan.duration_s / plan.period_s,
+                  1.0 / plan.period_s, max_ticks, longest_line, longest_s),
+      ErrorLocation{plan.program_source, line, 0, ""}};
+}
+
 }  // namespace
 
 Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalProgram& program,
                                const PlanOptions& options) {
   if (Status status = check_options(options); !status) return status.error();
+  if (Status commanded = check_commanded_coordinates(machine, program); !commanded) return commanded.error();
   const MotionSettings& motion = machine.motion;
   path::PathFrame frame;
   frame.program_origin_mm = motion.program_origin_mm;
@@ -70,6 +97,7 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   plan.program_source = program.source;
   plan.path = std::move(*built);
   plan.period_s = 1.0 / options.rate_hz;
+  plan.path_tolerance_mm = path_options.path_tolerance_mm;
   // Moving average of length T = 2·a/j keeps the path jerk within j (servo_stream.hpp).
   const double jerk = options.jerk_limited ? motion.path_jerk_mm_s3 : std::numeric_limits<double>::max();
   const double filter_time = 2.0 * motion.path_accel_mm_s2 / jerk;
@@ -84,15 +112,19 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   sampling.period_s = plan.period_s;
   sampling.stop_hold_s = window_s;
   sampling.chord_tolerance_mm = 0.1 * std::max(path_options.path_tolerance_mm, 1e-3);
+  sampling.max_samples = options.max_samples;
   auto sampled = sample_path(machine, program, plan.path, sampling, plan.samples, plan.sample_segment);
   if (!sampled) return sampled.error();
 
   erode_caps(plan.samples, window_s, 0.0);
   plan_speeds(plan.samples);
   plan.timed = time_profile(plan.samples);
+  // In double first: a motion of 1e15 s must be refused, not overflow a long.
+  const double ticks = std::ceil(plan.timed.end_time_s / plan.period_s) + plan.filter_ticks - 1;
   const long last_tick =
-      static_cast<long>(std::ceil(plan.timed.end_time_s / plan.period_s)) + plan.filter_ticks - 1;
-  plan.duration_s = static_cast<double>(last_tick) * plan.period_s;
+      ticks > static_cast<double>(options.max_ticks) ? options.max_ticks + 1 : static_cast<long>(ticks);
+  plan.duration_s = ticks * plan.period_s;
+  if (last_tick > options.max_ticks) return too_many_ticks(plan, options.max_ticks);
 
   PlanStatistics& stats = plan.statistics;
   stats = sampled->statistics;

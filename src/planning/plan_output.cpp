@@ -12,7 +12,9 @@
 #include "dynamics/run_dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/buffered_file.hpp"
+#include "planning/machine_warnings.hpp"
 #include "planning/plan_stream.hpp"
+#include "planning/run_accuracy.hpp"
 
 namespace pkm::planning {
 
@@ -79,6 +81,7 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
       {"max_actuator_accel_line", run.max_accel_line},
       {"max_path_error_mm", run.max_path_error_mm},
       {"max_path_error_line", run.max_path_error_line},
+      {"path_error_bound_mm", path_error_bound_mm(plan)},
       {"max_orientation_error_deg", run.max_orientation_error_deg},
       {"max_path_speed_mm_s", run.max_path_speed},
       {"max_feed_ratio", run.max_feed_ratio},
@@ -90,7 +93,13 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
       {"planning_samples", st.samples},
       {"limits", limits},
       {"actuators", actuators},
+      {"warnings", machine_warnings(machine)},
   };
+  if (!run.path_error_evaluated) {  // not measured (--no-path-error): no figure rather than a 0 that claims
+    for (const char* key :
+         {"max_path_error_mm", "max_path_error_line", "path_error_bound_mm", "max_orientation_error_deg"})
+      summary[key] = nullptr;
+  }
   if (run.dynamics) summary["dynamics"] = dynamics_json(*run.dynamics, angular);
   if (run.elastic) {
     nlohmann::json& d = summary["dynamics"];

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <optional>
 
+#include "planning/run_accuracy.hpp"
+
 namespace pkm::planning {
 
 namespace {
@@ -53,6 +55,8 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
   ServoTick tick;
   while (stream.next(tick)) {
     monitor.add(tick);
+    if (Status held = check_tick(plan, machine, tick, monitor, options.evaluate_path_error); !held)
+      return held.error();
     const bool cutting = !plan.path.segments[tick.segment].rapid;
     if (drive_dynamics) {
       if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose, cutting); !added) {

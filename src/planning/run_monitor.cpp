@@ -16,15 +16,21 @@ RunMonitor::RunMonitor(const MotionPlan& plan, const Machine& machine, double ov
       evaluate_error_(evaluate_path_error) {
   summary_.rate_hz = 1.0 / plan.period_s;
   summary_.override_pct = override_pct;
+  summary_.path_error_evaluated = evaluate_path_error;
   summary_.min_position.fill(std::numeric_limits<double>::infinity());
   summary_.max_position.fill(-std::numeric_limits<double>::infinity());
   fk_guess_ = machine.mechanism->home();
+  previous_velocity_ = ActuatorVector::Zero(machine.mechanism->actuator_count());
+  last_accel_ = ActuatorVector::Zero(machine.mechanism->actuator_count());
 }
 
 void RunMonitor::add(const ServoTick& tick) {
   const double h = plan_.period_s;
   const int n = static_cast<int>(tick.actuators.size());
   last_path_error_mm_ = std::numeric_limits<double>::quiet_NaN();
+  last_orientation_error_deg_ = std::numeric_limits<double>::quiet_NaN();
+  last_fk_failed_ = false;
+  last_feed_ratio_ = 0.0;
   last_feed_cap_ = segment_speed_cap(plan_.path.segments[tick.segment], machine_.motion, override_factor_);
   for (int j = 0; j < n; ++j) {
     summary_.min_position[j] = std::min(summary_.min_position[j], tick.actuators[j]);
@@ -44,6 +50,7 @@ void RunMonitor::add(const ServoTick& tick) {
       }
       if (count_ > 1) {
         const double accel = std::abs(velocity[j] - previous_velocity_[j]) / h;
+        last_accel_[j] = accel;
         if (accel > summary_.max_accel[j]) summary_.max_accel[j] = accel;
         if (accel > summary_.max_actuator_accel)
           summary_.max_actuator_accel = accel, summary_.max_accel_line = tick.line;
@@ -57,7 +64,11 @@ void RunMonitor::add(const ServoTick& tick) {
       cap = std::max(
           cap, segment_speed_cap(plan_.path.segments[previous_.segment], machine_.motion, override_factor_));
     }
-    if (cap > 0.0) summary_.max_feed_ratio = std::max(summary_.max_feed_ratio, tick.path_speed / cap);
+    if (cap > 0.0) {
+      const double ratio = tick.path_speed / cap;
+      last_feed_ratio_ = ratio > 1.0 && ratio <= 1.0 + kFeedRatioRounding ? 1.0 : ratio;
+      summary_.max_feed_ratio = std::max(summary_.max_feed_ratio, last_feed_ratio_);
+    }
     const double path_accel = (tick.path_speed - previous_path_speed_) / h;
     summary_.max_path_accel = std::max(summary_.max_path_accel, std::abs(path_accel));
     if (count_ > 1)
@@ -93,10 +104,12 @@ void RunMonitor::add(const ServoTick& tick) {
         }
         if (axes.controlled[5] && axes.controlled[3] == axes.controlled[4]) {  // all angles, or planar φ
           const double angle = Eigen::Quaterniond(fk->pose.rotation).angularDistance(on_path.rotation);
+          last_orientation_error_deg_ = deg_from_rad(angle);
           summary_.max_orientation_error_deg =
-              std::max(summary_.max_orientation_error_deg, deg_from_rad(angle));
+              std::max(summary_.max_orientation_error_deg, last_orientation_error_deg_);
         }
       } else {
+        last_fk_failed_ = true;
         ++summary_.fk_failures;
       }
     }

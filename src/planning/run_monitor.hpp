@@ -17,6 +17,10 @@
 
 namespace pkm::planning {
 
+/// Relative excess of the path speed over the feed cap that is the rounding of the servo-rate samples, not
+/// motion faster than programmed.
+inline constexpr double kFeedRatioRounding = 1e-8;
+
 struct RunSummary {
   /// Drive forces, power and energy (OutputOptions::dynamics), when asked for.
   std::optional<dynamics::RunDynamicsSummary> dynamics;
@@ -35,12 +39,15 @@ struct RunSummary {
   double max_actuator_speed = 0.0;
   double max_actuator_accel = 0.0;
   int max_speed_line = 0, max_accel_line = 0;
-  double max_path_error_mm = 0.0;  ///< perpendicular distance of the tool from the path
+  bool path_error_evaluated = false;  ///< false: --no-path-error, the errors below were not measured
+  double max_path_error_mm = 0.0;     ///< perpendicular distance of the tool from the path
   int max_path_error_line = 0;
   double max_orientation_error_deg =
       0.0;                      ///< when the mechanism controls the orientation (all angles, or planar φ)
   double max_path_speed = 0.0;  ///< path units per second
-  double max_feed_ratio = 0.0;  ///< path speed / (programmed feed × override, capped by the machine), ≤ 1
+  /// Path speed / (programmed feed × override, capped by the machine), ≤ 1: a ratio within
+  /// kFeedRatioRounding of 1 counts as 1 (the jerk filter's sums round by about 1e-10).
+  double max_feed_ratio = 0.0;
   double max_path_accel = 0.0;  ///< path units per second², from the ticks
   double max_path_jerk = 0.0;
   Pose end_pose;
@@ -56,6 +63,15 @@ class RunMonitor {
   /// at its mid-period (mm; NaN for the first tick, when the error is not evaluated, or FK failed).
   double last_feed_cap() const { return last_feed_cap_; }
   double last_path_error_mm() const { return last_path_error_mm_; }
+  /// Of the tick added last: the orientation error at its mid-period (deg; NaN where not evaluated, or where
+  /// the mechanism does not control the whole orientation), and whether its forward kinematics failed.
+  double last_orientation_error_deg() const { return last_orientation_error_deg_; }
+  /// Of the tick added last: its actuator velocities and accelerations by finite differences (unit/s,
+  /// unit/s²; zero where the ticks before it are too few), and its path speed over the feed cap.
+  const ActuatorVector& last_velocity() const { return previous_velocity_; }
+  const ActuatorVector& last_accel() const { return last_accel_; }
+  double last_feed_ratio() const { return last_feed_ratio_; }
+  bool last_fk_failed() const { return last_fk_failed_; }
 
  private:
   const MotionPlan& plan_;
@@ -71,6 +87,10 @@ class RunMonitor {
   Pose fk_guess_;
   double last_feed_cap_ = 0.0;
   double last_path_error_mm_ = std::numeric_limits<double>::quiet_NaN();
+  double last_orientation_error_deg_ = std::numeric_limits<double>::quiet_NaN();
+  ActuatorVector last_accel_;
+  double last_feed_ratio_ = 0.0;
+  bool last_fk_failed_ = false;
 };
 
 }  // namespace pkm::planning

@@ -279,9 +279,8 @@ TEST(StrutLawOtherMechanisms, PlanarAndTripodArePolynomialAndReportTheirErrors) 
   planar.limits.speed = 100.0;
   planar.limits.accel = 1000.0;
   Machine tripod = test::machine_from_example("examples/machines/tripod.yaml");
-  const std::string tripod_text =
-      "G21 G90 G17\nG0 X0 Y0 Z0\nG1 X10 Y5 Z-3 F1200\nG2 X10 Y-5 I0 J-5\nG1 X-10 A2 B-2\n"
-      "G3 X-10 Y5 I0 J5 F2000\nG1 X0 Y0 Z0 A0 B0\nM2\n";
+  const std::string tripod_text =  // a tripod controls Z, A and B
+      "G21 G90 G17\nG0 Z0 A0 B0\nG1 Z-3 A2 F1200\nG1 B-2\nG1 Z5 A-2 B2 F2000\nG1 Z0 A0 B0\nM2\n";
   struct Case {
     const Machine* machine;
     program::CanonicalProgram program;
