@@ -2,7 +2,7 @@
 // the servo-thread calls then use only the Mechanism interface's real-time forms (actuator_values, and
 // forward_warm_quiet with a workspace made at load, which reports a failure without building a message).
 //
-// LinuxCNC's A, B, C are G-code's (docs/planning.md, "Program coordinates"): R = Rz(C)·Ry(B)·Rx(A), as
+// LinuxCNC's A, B, C are G-code's (docs/part-programs.md, "What A, B and C mean"): R = Rz(C)·Ry(B)·Rx(A), as
 // `pkm plan` reads a program and as LinuxCNC's genhexkins takes them. The bridge converts them to and from
 // the machine's own pose through the rotation matrix, so a machine file in any convention runs a program the
 // same in pkm and on the controller.

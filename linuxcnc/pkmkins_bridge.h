@@ -3,12 +3,12 @@
  * LinuxCNC builds its real-time modules as C with its own flags, and its headers are C, so the module is a thin C
  * file over these functions; they are C++ inside and reach the mechanism only through pkm's Mechanism interface.
  *
- * World coordinates are LinuxCNC's: world[0..2] = X, Y, Z in mm (the tool point in the machine's base frame) and
- * world[3..5] = A, B, C in degrees, G-code's and LinuxCNC's angles R = Rz(C)·Ry(B)·Rx(A) whatever the machine
- * file's own convention (`angles:`), as `pkm plan` reads a program (docs/planning.md, "Program coordinates");
- * planar machines: C is the turn φ. A machine that controls only some of the angles (a 3-RPS tripod) must be
- * written in `angles: abc`, else pkmkins_load refuses it. Joints are the actuators in the machine file's order: strut lengths or
- * carriage positions in mm, or degrees for carriages on a circle.
+ * World coordinates are LinuxCNC's: world[0..2] = X, Y, Z in mm (the tool point in the machine's base frame)
+ * and world[3..5] = A, B, C in degrees, G-code's and LinuxCNC's angles R = Rz(C)·Ry(B)·Rx(A) whatever the
+ * machine file's own convention (`angles:`), as `pkm plan` reads a program (docs/part-programs.md, "What A, B
+ * and C mean"); planar machines: C is the turn φ. A machine that controls only some of the angles (a 3-RPS
+ * tripod) must be written in `angles: abc`, else pkmkins_load refuses it. Joints are the actuators in the
+ * machine file's order: strut lengths or carriage positions in mm, or degrees for carriages on a circle.
  *
  * pkmkins_load allocates (once, when the module loads); pkmkins_inverse and pkmkins_forward never allocate, never
  * block and never throw: they run in the servo thread. */
