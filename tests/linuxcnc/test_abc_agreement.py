@@ -1,7 +1,8 @@
 """A program moves the same in `pkm plan` as on LinuxCNC: at the end of every move, the actuator positions pkm
 plans are the joint positions LinuxCNC commanded through pkmkins, to 1e-6 mm (docs/part-programs.md, "What A,
 B and C mean"). Both read the program's A B C as G-code's, R = Rz(C)·Ry(B)·Rx(A), whatever convention the
-machine file uses: the ch5 hexapod's is krylov, LinuxCNC's genhexkins geometry abc.
+machine file uses: the ch5 and the refined hexapod's is krylov, the others' abc. (Joints of carriages on a
+circle, the rotopod's, are degrees: 1e-6 degrees there.)
 
 Between the move ends the two interpolate the orientation differently (LinuxCNC each angle linearly, pkm on
 SO(3)), so the comparison is at the ends, where both stop (G61, exact stop): pkm's ticks at the end point,
@@ -83,12 +84,15 @@ def assert_same_joints(pairs):
     for ours, theirs in pairs:
         # Every tick at rest at the end against every LinuxCNC period there.
         worst = max(worst, np.abs(ours[:, None, :] - theirs[None, :, :]).max())
-    print(f"largest joint difference at the move ends: {worst:.3g} mm")
+    print(f"largest joint difference at the move ends: {worst:.3g} (mm, or deg for carriages on a circle)")
     assert worst <= JOINT_TOLERANCE_MM, worst
 
 
 @pytest.mark.parametrize("machine_file, program", [("hexapod_ch5.yaml", "hexapod_tilt.ngc"),
+                                                   ("hexapod_refined.yaml", "hexapod_tilt.ngc"),
                                                    ("hexapod_genhexkins.yaml", "hexapod_tilt.ngc"),
+                                                   ("hexaglide.yaml", "hexapod_tilt.ngc"),
+                                                   ("rotopod.yaml", "hexapod_tilt.ngc"),
                                                    ("tripod.yaml", "tripod_tilt.ngc")])
 def test_shipped_five_axis_programs_end_every_move_on_the_same_joints(machine_file, program, tmp_path):
     assert_same_joints(joints_at_move_ends(machine_path(machine_file), program_path(program), tmp_path))
