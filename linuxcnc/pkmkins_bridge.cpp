@@ -1,6 +1,11 @@
 // pkm's kinematics behind the C functions of pkmkins_bridge.h: the machine file is read once, at module load;
 // the servo-thread calls then use only the Mechanism interface's real-time forms (actuator_values, and
 // forward_warm_quiet with a workspace made at load, which reports a failure without building a message).
+//
+// LinuxCNC's A, B, C are G-code's (docs/part-programs.md, "What A, B and C mean"): R = Rz(C)·Ry(B)·Rx(A), as
+// `pkm plan` reads a program and as LinuxCNC's genhexkins takes them. The bridge converts them to and from
+// the machine's own pose through the rotation matrix, so a machine file in any convention runs a program the
+// same in pkm and on the controller.
 #include "pkmkins_bridge.h"
 
 #include <cmath>
@@ -18,11 +23,11 @@
 struct pkmkins_machine {
   pkm::Machine machine;
   std::unique_ptr<pkm::FkWorkspace> workspace;
-  pkm::AngleConvention convention{};
   int joints = 0;
   bool angular_joints = false;
   char coordinates[7] = {};
-  // The last good forward solution: the next solve's guess, and the turn its angles are unwrapped to.
+  // The last good forward solution: the next solve's guess, and the turn its angles are unwrapped to (in
+  // LinuxCNC's abc angles, the coordinates that must stay continuous).
   pkm::Pose last_pose;
   pkm::PoseVector last_world_mm_rad = pkm::PoseVector::Zero();
   pkm::FkOptions options;
@@ -36,6 +41,19 @@ struct pkmkins_machine {
 };
 
 namespace {
+
+// LinuxCNC's world angles, whatever the machine file's own convention.
+constexpr pkm::AngleConvention kWorldConvention = pkm::AngleConvention::abc;
+
+// A machine that controls one or two of the angles (a 3-RPS tripod: Z and two tilts) controls them as angles
+// of its own convention; only in abc are they LinuxCNC's A and B. Machines that control all three angles, or
+// none, convert exactly whatever their convention.
+bool angles_are_gcode_angles(const pkm::Mechanism& mechanism) {
+  const pkm::AxisMask axes = mechanism.controlled_axes();
+  int angles = 0;
+  for (std::size_t i = 3; i < 6; ++i) angles += axes.controlled[i] ? 1 : 0;
+  return angles == 0 || angles == 3 || mechanism.convention() == pkm::AngleConvention::abc;
+}
 
 double joint_from_actuator(const pkmkins_machine& m, double value) {
   return m.angular_joints ? pkm::deg_from_rad(value) : value;
@@ -88,8 +106,15 @@ pkmkins_machine* pkmkins_load(const char* machine_file, char* error, size_t erro
     auto m = std::make_unique<pkmkins_machine>();
     m->machine = std::move(loaded.value());
     const pkm::Mechanism& mechanism = *m->machine.mechanism;
+    if (!angles_are_gcode_angles(mechanism)) {
+      copy_message(m->machine.source + ": angles: " + std::string(pkm::to_string(mechanism.convention())) +
+                       ": the machine controls only some of its angles, and they are LinuxCNC's (and "
+                       "G-code's) A B C, R = Rz(C) Ry(B) Rx(A), only in the abc convention: write the "
+                       "machine file with angles: abc",
+                   error, error_size);
+      return nullptr;
+    }
     m->workspace = mechanism.make_fk_workspace();
-    m->convention = mechanism.convention();
     m->joints = mechanism.actuator_count();
     m->angular_joints = mechanism.actuators_are_angles();
     const pkm::AxisMask axes = mechanism.controlled_axes();
@@ -100,7 +125,7 @@ pkmkins_machine* pkmkins_load(const char* machine_file, char* error, size_t erro
     }
     m->coordinates[n] = '\0';
     m->last_pose = mechanism.home();
-    m->last_world_mm_rad = pkm::vector_from_pose(m->convention, mechanism.home());
+    m->last_world_mm_rad = pkm::vector_from_pose(kWorldConvention, mechanism.home());
     pkm::ActuatorVector home_actuators(m->joints);
     if (!mechanism.actuator_values(mechanism.home(), home_actuators.data())) {
       copy_message(m->machine.source + ": the home pose is out of the machine's reach", error, error_size);
@@ -133,7 +158,7 @@ const char* pkmkins_coordinates(const pkmkins_machine* machine) {
 int pkmkins_home(pkmkins_machine* m, double world[6], double* joints) {
   const pkm::Mechanism& mechanism = *m->machine.mechanism;
   m->last_pose = mechanism.home();
-  m->last_world_mm_rad = pkm::vector_from_pose(m->convention, mechanism.home());
+  m->last_world_mm_rad = pkm::vector_from_pose(kWorldConvention, mechanism.home());
   m->workspace->reset();
   world_from_pose_vector(m->last_world_mm_rad, world);
   double actuators[pkm::kMaxActuators];
@@ -151,7 +176,7 @@ int pkmkins_inverse(pkmkins_machine* m, const double world[6], double* joints) {
     if (m->controlled.controlled[static_cast<std::size_t>(i)]) return -1;
     v[i] = 0.0;
   }
-  const pkm::Pose pose = pkm::pose_from_vector(m->convention, v);
+  const pkm::Pose pose = pkm::pose_from_vector(kWorldConvention, v);
   double actuators[pkm::kMaxActuators];
   if (!m->machine.mechanism->actuator_values(pose, actuators)) return -1;
   for (int j = 0; j < m->joints; ++j) {
@@ -179,7 +204,7 @@ int pkmkins_forward(pkmkins_machine* m, const double* joints, double world[6]) {
     return -1;
   }
   m->last_iterations = solution.iterations;
-  pkm::PoseVector v = pkm::vector_from_pose(m->convention, solution.pose);
+  pkm::PoseVector v = pkm::vector_from_pose(kWorldConvention, solution.pose);
   for (int i = 3; i < 6; ++i)
     v[i] = unwrapped_near(v[i], m->last_world_mm_rad[i], 2.0 * 3.14159265358979323846);
   m->last_pose = solution.pose;

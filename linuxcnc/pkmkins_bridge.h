@@ -3,10 +3,12 @@
  * LinuxCNC builds its real-time modules as C with its own flags, and its headers are C, so the module is a thin C
  * file over these functions; they are C++ inside and reach the mechanism only through pkm's Mechanism interface.
  *
- * World coordinates are LinuxCNC's: world[0..2] = X, Y, Z in mm (the tool point in the machine's base frame) and
- * world[3..5] = A, B, C in degrees, which are the machine file's three angles in its own convention (`angles:`;
- * planar machines: C is the turn φ). Joints are the actuators in the machine file's order: strut lengths or
- * carriage positions in mm, or degrees for carriages on a circle.
+ * World coordinates are LinuxCNC's: world[0..2] = X, Y, Z in mm (the tool point in the machine's base frame)
+ * and world[3..5] = A, B, C in degrees, G-code's and LinuxCNC's angles R = Rz(C)·Ry(B)·Rx(A) whatever the
+ * machine file's own convention (`angles:`), as `pkm plan` reads a program (docs/part-programs.md, "What A, B
+ * and C mean"); planar machines: C is the turn φ. A machine that controls only some of the angles (a 3-RPS
+ * tripod) must be written in `angles: abc`, else pkmkins_load refuses it. Joints are the actuators in the
+ * machine file's order: strut lengths or carriage positions in mm, or degrees for carriages on a circle.
  *
  * pkmkins_load allocates (once, when the module loads); pkmkins_inverse and pkmkins_forward never allocate, never
  * block and never throw: they run in the servo thread. */
@@ -39,7 +41,7 @@ int pkmkins_home(pkmkins_machine* machine, double world[6], double* joints);
 int pkmkins_inverse(pkmkins_machine* machine, const double world[6], double* joints);
 
 /* Forward kinematics, warm-started from the previous solution (the machine's home at first), in its assembly mode.
- * The angles come back unwrapped to the turn of the previous solution, so that a C axis past 360 degrees stays
+ * The A, B, C angles come back unwrapped to the turn of the previous solution, so that a C axis past 360 degrees stays
  * there. 0; -1 when Newton does not converge to the tolerance, or converges in another assembly mode (world is
  * then left unchanged and the next call starts again from the last good solution). */
 int pkmkins_forward(pkmkins_machine* machine, const double* joints, double world[6]);

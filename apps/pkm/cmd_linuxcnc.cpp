@@ -2,12 +2,15 @@
 // [--json]: a simulated LinuxCNC configuration of the machine (pipeline/linuxcnc_config.hpp,
 // docs/linuxcnc.md).
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <cstdlib>
 #include <iostream>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "pipeline/linuxcnc_config.hpp"
+#include "pipeline/linuxcnc_launch.hpp"
 
 namespace pkm::cli {
 
@@ -27,7 +30,9 @@ void add_linuxcnc_command(CLI::App& app, int& exit_code) {
                   "(joints = coordinates, no kinematics: a timing baseline)")
       ->check(CLI::IsMember({"pkmkins", "genhexkins", "trivkins"}))
       ->capture_default_str();
-  cmd->add_option("--display", options->display, "LinuxCNC user interface ([DISPLAY] DISPLAY)")
+  cmd->add_option("--display", options->display,
+                  "LinuxCNC user interface ([DISPLAY] DISPLAY); without an X display linuxcncrsh (LinuxCNC's "
+                  "text interface, port 5007) or pkm's linuxcnc/headless_run.py (runs one program)")
       ->capture_default_str();
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
@@ -56,10 +61,16 @@ void add_linuxcnc_command(CLI::App& app, int& exit_code) {
     std::cout << fmt::format("wrote {}/machine.ini ({}, {} joints, coordinates {}, servo period {} ns)\n",
                              options->out_directory, to_string(options->kinematics),
                              written->home_joints.size(), written->coordinates, written->servo_period_ns);
-    if (options->kinematics == LinuxcncKinematics::pkmkins) {
-      std::cout << "run it with: linuxcnc " << options->out_directory
-                << "/machine.ini (pkmkins.so installed in LinuxCNC's modules: make linuxcnc)\n";
-    }
+    // As it would run here: as root rtapi_app needs a user and a socket path; a GUI needs an X display.
+    const bool as_root = ::geteuid() == 0;
+    const char* x_display = std::getenv("DISPLAY");
+    std::cout << "run it with: " << linuxcnc_start_command(options->out_directory, as_root);
+    if (options->kinematics == LinuxcncKinematics::pkmkins)
+      std::cout << " (pkmkins.so installed in LinuxCNC's modules: make linuxcnc)";
+    std::cout << "\n";
+    for (const std::string& problem : linuxcnc_start_problems(
+             options->out_directory, options->display, as_root, x_display != nullptr && x_display[0] != '\0'))
+      std::cerr << "pkm linuxcnc config: warning: " << problem << "\n";
   });
 }
 

@@ -94,6 +94,12 @@ class Machine:
                max_iterations: int = 60) -> list[FkSolutionDict]:
         """Every assembly mode of one row (n,) of actuator values, nearest to home first."""
 
+    def pose_from_abc(self, poses: ArrayLike) -> _Array:
+        """Poses (N, 6) with G-code's A B C (rad, R = Rz(C)·Ry(B)·Rx(A)) in the machine's own convention."""
+
+    def abc_from_pose(self, poses: ArrayLike) -> _Array:
+        """The machine's own poses (N, 6) with G-code's A B C (rad, R = Rz(C)·Ry(B)·Rx(A))."""
+
     def jacobian(self, poses: ArrayLike, *, errors: _Errors = "raise", check_limits: bool = True) -> _Array:
         """d(actuators)/d(controlled coordinates): (N, n, m), or (n, m) for one pose."""
 
@@ -133,7 +139,8 @@ def plan(machine: Machine, program_path: str | os.PathLike[str], *, servo_period
          dynamics: bool = False, elastic: bool = False, path_error: bool = True,
          tool_table: Optional[str | os.PathLike[str]] = None,
          out_dir: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
-    """The planned servo-rate motion: summary (as summary.json), time_s, line, actuators_mm (T, n), pose (T, 6),
+    """The planned servo-rate motion: summary (as summary.json), time_s, line, actuators_mm (T, n), pose_machine (T, 6)
+    (base frame, Machine.angle_convention), xyz_program_mm (T, 3) and abc_deg (T, 3) (program coordinates, G-code A B C),
     and with dynamics=True a dynamics dict (force_N, static_force_N, dynamic_force_N, power_W ...); with
     elastic=True also elastic (response.csv's columns: time_s, line, deviation_mm (T, 3), rotation_deg,
     tool_error_mm) and the elastic keys in summary['dynamics']."""

@@ -66,7 +66,7 @@ compensate_path: also write the pre-compensated program there; out_dir: keep the
 summary.json there (default: a temporary directory, removed).
 
 Returns a dict: summary (the summary.json of `pkm stiffness`) and points: the columns of points.csv by name
-(index, line, time_s, x_mm ... a_deg ..., fx_N ..., dx_mm, dy_mm, dz_mm, rx_rad ..., normal_mm, F1_N ...),
+(index, line, time_s, x_mm ... (base frame), a_abc_deg ... (G-code's A B C), fx_N ..., dx_mm, dy_mm, dz_mm, rx_rad ..., normal_mm, F1_N ...),
 each a float64 array with one value per path point.)doc");
 
   m.def(

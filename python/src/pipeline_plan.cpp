@@ -8,6 +8,8 @@
 #include <optional>
 
 #include "bindings.hpp"
+#include "core/rotation.hpp"
+#include "core/units.hpp"
 #include "dynamics/run_dynamics.hpp"
 #include "dynamics/run_elastic.hpp"
 #include "json_to_python.hpp"
@@ -52,7 +54,10 @@ struct PlanRun {
   double planning_s = 0.0;
   nlohmann::json summary, law_summary;
   int actuators = 0;
-  std::vector<double> time_s, s, path_speed, feed_cap, path_error, actuator_values, pose;
+  // pose_machine: base frame, the machine's convention (rad); xyz_program/abc: program coordinates, as
+  // path.csv.
+  std::vector<double> time_s, s, path_speed, feed_cap, path_error, actuator_values, pose_machine, xyz_program,
+      abc;
   std::vector<std::int32_t> line, segment;
   std::optional<DynamicsArrays> dynamics;
   std::optional<ElasticArrays> elastic;
@@ -103,9 +108,11 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
       static_cast<std::size_t>(std::max(0L, std::lround(r.plan.duration_s / r.plan.period_s) + 1));
   for (auto* v : {&r.time_s, &r.s, &r.path_speed, &r.feed_cap, &r.path_error}) v->reserve(ticks);
   r.actuator_values.reserve(ticks * static_cast<std::size_t>(n));
-  r.pose.reserve(ticks * 6);
-  observers.tick = [&r, &mechanism, n](const planning::ServoTick& tick,
-                                       const planning::RunMonitor& monitor) -> Status {
+  r.pose_machine.reserve(ticks * 6);
+  r.xyz_program.reserve(ticks * 3);
+  r.abc.reserve(ticks * 3);
+  observers.tick = [&r, &machine, &mechanism, n](const planning::ServoTick& tick,
+                                                 const planning::RunMonitor& monitor) -> Status {
     r.time_s.push_back(tick.time_s);
     r.line.push_back(tick.line);
     r.segment.push_back(tick.segment);
@@ -115,7 +122,12 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
     r.path_error.push_back(monitor.last_path_error_mm());
     append(r.actuator_values, tick.actuators, n);
     const PoseVector v = vector_from_pose(mechanism.convention(), tick.pose);
-    r.pose.insert(r.pose.end(), v.data(), v.data() + 6);
+    r.pose_machine.insert(r.pose_machine.end(), v.data(), v.data() + 6);
+    const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
+    r.xyz_program.insert(r.xyz_program.end(), p.data(), p.data() + 3);
+    const Eigen::Vector3d abc =
+        deg_from_rad(1.0) * angles_from_rotation(AngleConvention::abc, tick.pose.rotation);
+    r.abc.insert(r.abc.end(), abc.data(), abc.data() + 3);
     return ok_status();
   };
   auto run = planning::stream_plan(r.plan, machine, options, observers);
@@ -179,7 +191,9 @@ py::dict plan_result(const Machine& machine, PlanRun&& r) {
   out["path_error_mm"] = numpy_from(std::move(r.path_error));
   out[py::str("actuators_" + actuator_unit(*machine.mechanism))] =
       numpy_from(std::move(r.actuator_values), {ticks, n});
-  out["pose"] = numpy_from(std::move(r.pose), {ticks, 6});
+  out["pose_machine"] = numpy_from(std::move(r.pose_machine), {ticks, 6});
+  out["xyz_program_mm"] = numpy_from(std::move(r.xyz_program), {ticks, 3});
+  out["abc_deg"] = numpy_from(std::move(r.abc), {ticks, 3});
   if (r.dynamics) {
     DynamicsArrays& d = *r.dynamics;
     const auto rows = static_cast<py::ssize_t>(d.time_s.size());
@@ -282,7 +296,10 @@ Returns a dict:
   time_s (T,), line (T,) int32 source line, segment (T,) int32, s (T,) path parameter,
   path_speed_mm_s (T,), feed_cap_mm_s (T,) the speed the programmed feed allows,
   path_error_mm (T,) (NaN where not evaluated), actuators_mm (T, n) (actuators_rad for angular actuators),
-  pose (T, 6) the commanded pose [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad], base frame, machine convention;
+  pose_machine (T, 6) the commanded pose [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad] in the base frame and the
+  machine's own angle convention (Machine.angle_convention), as Machine.ik takes it; the same pose in program
+  coordinates, as path.csv's columns: xyz_program_mm (T, 3) the tool point from program zero and abc_deg (T, 3)
+  G-code's A B C, R = Rz(C)·Ry(B)·Rx(A) (Machine.pose_from_abc converts);
   with dynamics, dynamics: a dict with time_s, force_N, static_force_N, dynamic_force_N, command_N (T, n)
   (_Nmm for angular drives) and power_W (T, n); with elastic also elastic: the columns of
   response.csv per tick, time_s (T,), line (T,) int32, deviation_mm (T, 3) the tool point's actual − commanded

@@ -9,6 +9,7 @@
 #include "core/units.hpp"
 #include "io/input_file.hpp"
 #include "io/output_set.hpp"
+#include "pipeline/linuxcnc_launch.hpp"
 
 namespace pkm {
 
@@ -146,8 +147,10 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
   }
   // The world home: kinematics whose forward solution iterates (genhexkins) start their homed pose from it.
   std::string home_text;
-  for (int i = 0; i < 6; ++i)
-    home_text += fmt::format("{}{}", i ? " " : "", number(i < 3 ? home[i] : deg_from_rad(home[i])));
+  for (int i = 0; i < 6; ++i) {
+    const double value = i < 3 ? home[i] : deg_from_rad(home[i]);
+    home_text += fmt::format("{}{}", i ? " " : "", number(value + 0.0));  // + 0.0: no angle prints 0, not -0
+  }
   const std::vector<JointSection> joint_list = options.kinematics == LinuxcncKinematics::trivkins
                                                    ? coordinate_joints(machine, home, joints)
                                                    : actuator_joints(machine, joints, config.home_joints);
@@ -155,11 +158,18 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
   if (options.kinematics == LinuxcncKinematics::genhexkins) hal_files += "HALFILE = genhexkins.hal\n";
   return fmt::format(
       "# LinuxCNC configuration of {name}, written by `pkm linuxcnc config` from {source}.\n"
-      "# Machine coordinates are pkm's base frame (the tool point, mm) and the machine file's angles "
-      "({conv}, deg);\n"
+      "# Machine coordinates are pkm's base frame (the tool point, mm) and G-code's angles A B C in "
+      "degrees,\n"
+      "# R = Rz(C)*Ry(B)*Rx(A) whatever the machine file's own convention ({conv}), as pkm plan reads them;\n"
       "# G54 is the machine file's program origin (motion.program_origin_mm). Regenerate rather than edit: "
       "the\n"
-      "# joints' limits and homes come from the machine file.\n\n"
+      "# joints' limits and homes come from the machine file.\n"
+      "# Without an X display: `pkm linuxcnc config --display linuxcncrsh` (LinuxCNC's text interface, port "
+      "5007)\n"
+      "# or --display /path/to/pkm/linuxcnc/headless_run.py (runs one program). As root, rtapi_app runs as "
+      "another\n"
+      "# user, who must be able to read this folder, with its socket in /tmp:\n"
+      "#   {start}\n\n"
       "[EMC]\nVERSION = 1.1\nMACHINE = {name}\n\n"
       "[DISPLAY]\nDISPLAY = {display}\nPOSITION_OFFSET = RELATIVE\nPOSITION_FEEDBACK = COMMANDED\n"
       "MAX_FEED_OVERRIDE = 1.5\n\n"
@@ -175,8 +185,8 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
       "{joint_sections}{axis_sections}",
       fmt::arg("name", machine.name.empty() ? std::string("pkm machine") : machine.name),
       fmt::arg("source", machine.source), fmt::arg("conv", to_string(m.convention())),
-      fmt::arg("display", options.display), fmt::arg("origin", origin),
-      fmt::arg("period", config.servo_period_ns), fmt::arg("hal", hal_files),
+      fmt::arg("start", linuxcnc_start_command(config.directory, true)), fmt::arg("display", options.display),
+      fmt::arg("origin", origin), fmt::arg("period", config.servo_period_ns), fmt::arg("hal", hal_files),
       fmt::arg("coordinates", coordinates), fmt::arg("home", home_text),
       fmt::arg("feed", number(machine.motion.max_feed_mm_min / 60.0)),
       fmt::arg("rapid", number(machine.motion.rapid_mm_min / 60.0)),
@@ -207,17 +217,18 @@ std::string hal_text(const Machine& machine, int joints) {
 
 // genhexkins' joint coordinates: base joints in the base frame and platform joints in the frame of LinuxCNC's
 // Cartesian position, which is pkm's tool point with the platform's axes. Read off the mechanism at home
-// through the interface; genhexkins can describe only six distance actuators with the whole pose free, in abc
-// angles.
+// through the interface; genhexkins can describe only six distance actuators with the whole pose free. Its
+// A B C are roll, pitch and yaw, R = Rz(C)·Ry(B)·Rx(A), as pkmkins takes them, whatever the machine file's
+// convention: the platform joints are in the platform's own frame, so the convention does not enter.
 Result<std::string> genhexkins_text(const Machine& machine) {
   const Mechanism& m = *machine.mechanism;
   StrutJointPoints joints;
   if (!m.has_distance_actuators() || m.actuator_count() != 6 || m.controlled_axes().count() != 6 ||
-      m.convention() != AngleConvention::abc || m.strut_joints(m.home(), joints) != 6) {
+      m.strut_joints(m.home(), joints) != 6) {
     Error e =
         make_error(ErrorCode::bad_input,
-                   fmt::format("{}: genhexkins describes only hexapods with six strut-length actuators and "
-                               "LinuxCNC's angles (angles: abc); use pkmkins for this machine",
+                   fmt::format("{}: genhexkins describes only hexapods with six strut-length actuators; use "
+                               "pkmkins for this machine",
                                machine.source));
     e.location.file = machine.source;
     e.location.key = "type";
@@ -237,10 +248,45 @@ Result<std::string> genhexkins_text(const Machine& machine) {
   return out;
 }
 
+// LinuxCNC's A B C are G-code's (abc angles). A machine that controls only some of its angles (a 3-RPS
+// tripod) controls them in its own convention, which are LinuxCNC's A and B only in abc; pkmkins refuses
+// any other, so the configuration does too, before writing anything.
+Status check_angles_are_gcode_angles(const Machine& machine) {
+  const Mechanism& m = *machine.mechanism;
+  const AxisMask axes = m.controlled_axes();
+  int angles = 0;
+  for (std::size_t i = 3; i < 6; ++i) angles += axes.controlled[i] ? 1 : 0;
+  if (angles == 0 || angles == 3 || m.convention() == AngleConvention::abc) return ok_status();
+  Error e =
+      make_error(ErrorCode::bad_input,
+                 fmt::format("{}: angles: {}: the machine controls only some of its angles, and they are "
+                             "LinuxCNC's (and G-code's) A B C, R = Rz(C)·Ry(B)·Rx(A), only in the abc "
+                             "convention: write the machine file with angles: abc",
+                             machine.source, to_string(m.convention())));
+  e.location.file = machine.source;
+  e.location.key = "angles";
+  return e;
+}
+
+// LinuxCNC run as root reads the configuration as another user (rtapi_app's RTAPI_UID, linuxcnc_launch.hpp):
+// the folder and its files are made readable by every user, whatever the umask. A failure only matters then,
+// and linuxcnc_start_problems names it, so it is not an error here.
+void open_to_read(const std::string& directory, const std::vector<std::string>& files) {
+  namespace fs = std::filesystem;
+  using fs::perms;
+  std::error_code ignored;
+  fs::permissions(directory, perms::group_read | perms::group_exec | perms::others_read | perms::others_exec,
+                  fs::perm_options::add, ignored);
+  for (const std::string& name : files)
+    fs::permissions(fs::path(directory) / name, perms::group_read | perms::others_read, fs::perm_options::add,
+                    ignored);
+}
+
 }  // namespace
 
 Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const LinuxcncConfigOptions& options) {
   const Mechanism& m = *machine.mechanism;
+  if (auto angles = check_angles_are_gcode_angles(machine); !angles) return angles.error();
   auto settings = joint_settings(machine);
   if (!settings) return settings.error();
   LinuxcncConfig config;
@@ -265,6 +311,7 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
                     "choose another --out",
                     directory));
   }
+  config.directory = directory;
   std::string kinematics = std::string(to_string(options.kinematics));
   std::string genhexkins;
   if (options.kinematics == LinuxcncKinematics::genhexkins) {
@@ -281,7 +328,8 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
 
   OutputSet outputs;
   if (auto made = outputs.use_directory(directory); !made) return made.error();
-  const PoseVector home = vector_from_pose(m.convention(), m.home());
+  // LinuxCNC's A B C are G-code's (abc), as pkmkins converts them: its home and axis limits are too.
+  const PoseVector home = vector_from_pose(AngleConvention::abc, m.home());
   std::vector<std::pair<std::string, std::string>> files = {
       {"machine.ini", ini_text(machine, options, kinematics, config, *settings, home)},
       {"machine.hal",
@@ -299,6 +347,7 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
     config.files.push_back(name);
   }
   if (auto committed = outputs.commit(); !committed) return committed.error();
+  open_to_read(directory, config.files);
   return config;
 }
 

@@ -5,9 +5,11 @@
 // runs the machine. Joint limits, speeds and accelerations come from the machine file's `limits:`, axis
 // speeds from `motion:`, the servo period from `drives:`, and the program origin becomes G54.
 //
+// LinuxCNC's A B C are G-code's, R = Rz(C)·Ry(B)·Rx(A), whatever the machine file's convention (pkmkins
+// converts; docs/part-programs.md, "What A, B and C mean"): the INI's home and axis limits are in them too.
+//
 // With LinuxCNC's own genhexkins instead of pkmkins (for comparing the two), the HAL file sets genhexkins'
-// joint coordinates from the machine; that needs six strut-length actuators and LinuxCNC's angle convention
-// (abc).
+// joint coordinates from the machine; that needs six strut-length actuators.
 #include <string>
 #include <vector>
 
@@ -30,6 +32,7 @@ struct LinuxcncConfigOptions {
 
 struct LinuxcncConfig {
   std::vector<std::string> files;   ///< written, in DIR
+  std::string directory;            ///< DIR, absolute (as pkmkins' machine= argument names it)
   std::string coordinates;          ///< LinuxCNC axis letters of the controlled coordinates, e.g. "XYZABC"
   std::vector<double> home_joints;  ///< joint positions at home, LinuxCNC units (mm, or deg)
   int servo_period_ns = 0;

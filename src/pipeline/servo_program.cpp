@@ -42,7 +42,8 @@ Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std:
     q_columns.push_back(*column);
   }
   int columns[8];
-  const char* names[8] = {"time_s", "line", "x_mm", "y_mm", "z_mm", "a_deg", "b_deg", "c_deg"};
+  const char* names[8] = {"time_s",       "line",      "x_program_mm", "y_program_mm",
+                          "z_program_mm", "a_abc_deg", "b_abc_deg",    "c_abc_deg"};
   for (int c = 0; c < 8; ++c) {
     auto column = path.require(names[c]);
     if (!column) return column.error();

@@ -39,7 +39,8 @@ bool states_tool_axes(const program::CanonicalProgram& program) {
 
 std::string points_header(int struts, bool compensate) {
   std::string header =
-      "index,line,cutting,time_s,s_mm,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,axis_i,axis_j,axis_k,fx_N,fy_N,fz_N,"
+      "index,line,cutting,time_s,s_mm,x_mm,y_mm,z_mm,a_abc_deg,b_abc_deg,c_abc_deg,axis_i,axis_j,axis_k,fx_N,"
+      "fy_N,fz_N,"
       "mx_Nmm,my_Nmm,mz_Nmm,dx_mm,dy_"
       "mm,"
       "dz_mm,rx_rad,ry_rad,rz_rad,normal_mm,deflected_x_mm,deflected_y_mm,deflected_z_mm";

@@ -141,9 +141,13 @@ Result<SurfaceErrorMap> surface_error_map(const std::string& run_directory, cons
   if (Status opened = path_csv.open((dir / "path.csv").string()); !opened) return opened.error();
   if (Status opened = deflection_csv.open((dir / "deflection.csv").string()); !opened) return opened.error();
   int column[7];
-  const std::pair<report::CsvReader*, std::string_view> wanted[7] = {
-      {&path_csv, "line"}, {&path_csv, "x_mm"},       {&path_csv, "y_mm"},           {&path_csv, "z_mm"},
-      {&path_csv, "s"},    {&deflection_csv, "line"}, {&deflection_csv, "normal_mm"}};
+  const std::pair<report::CsvReader*, std::string_view> wanted[7] = {{&path_csv, "line"},
+                                                                     {&path_csv, "x_program_mm"},
+                                                                     {&path_csv, "y_program_mm"},
+                                                                     {&path_csv, "z_program_mm"},
+                                                                     {&path_csv, "s"},
+                                                                     {&deflection_csv, "line"},
+                                                                     {&deflection_csv, "normal_mm"}};
   for (int k = 0; k < 7; ++k) {
     auto index = wanted[k].first->require(wanted[k].second);
     if (!index) return index.error();

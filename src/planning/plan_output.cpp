@@ -152,7 +152,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(a), ",q{}_{}", j, angular ? "deg" : "mm");
   a.push_back('\n');
   fmt::format_to(std::back_inserter(path_csv.buffer),
-                 "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s,feed_mm_s,path_error_mm\n");
+                 "time_s,line,s,x_program_mm,y_program_mm,z_program_mm,a_abc_deg,b_abc_deg,c_abc_deg,"
+                 "path_speed_mm_s,feed_mm_s,path_error_mm\n");
 
   PlanTickObservers observers;
   observers.tick = [&](const ServoTick& tick, const RunMonitor& monitor) -> Status {

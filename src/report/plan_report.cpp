@@ -84,8 +84,9 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
                                   actuators.columns().size() - 1, machine.source, n));
   }
   int column[12];
-  const char* path_columns[] = {"time_s", "line",  "s",     "x_mm",  "y_mm",
-                                "z_mm",   "a_deg", "b_deg", "c_deg", "path_speed_mm_s"};
+  // The pose in program coordinates: the tool point from program zero and G-code's A B C (plan_output.cpp).
+  const char* path_columns[] = {"time_s",       "line",      "s",         "x_program_mm", "y_program_mm",
+                                "z_program_mm", "a_abc_deg", "b_abc_deg", "c_abc_deg",    "path_speed_mm_s"};
   for (int k = 0; k < 10; ++k) {
     auto index = path.require(path_columns[k]);
     if (!index) return index.error();

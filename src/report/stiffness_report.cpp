@@ -41,8 +41,8 @@ Result<nlohmann::json> stiffness_report(const Machine& machine, const RunFiles& 
   if (Status opened = points.open(points_file); !opened) return opened.error();
   std::vector<int> column;
   for (const char* name :
-       {"time_s", "s_mm", "line", "x_mm", "y_mm", "z_mm", "a_deg", "b_deg", "c_deg", "dx_mm", "dy_mm",
-        "dz_mm", "normal_mm", "deflected_x_mm", "deflected_y_mm", "deflected_z_mm"}) {
+       {"time_s", "s_mm", "line", "x_mm", "y_mm", "z_mm", "a_abc_deg", "b_abc_deg", "c_abc_deg", "dx_mm",
+        "dy_mm", "dz_mm", "normal_mm", "deflected_x_mm", "deflected_y_mm", "deflected_z_mm"}) {
     auto found = points.require(name);
     if (!found) return found.error();
     column.push_back(*found);

@@ -1,7 +1,8 @@
 // The C bridge of LinuxCNC's pkmkins module (linuxcnc/pkmkins_bridge.h) against pkm's own kinematics, on the
-// shipped machines: home and its joints, inverse kinematics equal to Mechanism::inverse, forward kinematics
-// along a path returning the pose, angles unwrapped across ±180 and past a full turn, failures that leave the
-// state as it was, and load errors that name the file.
+// shipped machines: home and its joints, inverse kinematics equal to Mechanism::inverse of the pose whose A B
+// C are G-code's (abc, whatever the machine file's convention), forward kinematics along a path returning the
+// pose, angles unwrapped across ±180 and past a full turn, failures that leave the state as it was, and load
+// errors that name the file.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -62,7 +63,10 @@ BridgeHandle bridge_load(const std::string& path, std::string* message = nullptr
   return handle;
 }
 
-// LinuxCNC's world (mm, deg) of a pose vector (mm, rad), and back.
+// LinuxCNC's world angles are G-code's A B C, R = Rz(C)·Ry(B)·Rx(A), on every machine.
+constexpr AngleConvention kWorld = AngleConvention::abc;
+
+// LinuxCNC's world (mm, deg) of a pose vector (mm, rad, abc), and back.
 void bridge_world_from_vector(const PoseVector& v, double world[6]) {
   for (int i = 0; i < 6; ++i) world[i] = i < 3 ? v[i] : deg_from_rad(v[i]);
 }
@@ -123,7 +127,7 @@ TEST(PkmkinsBridge, EveryShippedMachineLoadsWithHomeJointsAndCoordinates) {
     ASSERT_TRUE(bridge_pkm_joints(mech, mech.home(), expected));
     for (std::size_t j = 0; j < expected.size(); ++j)
       EXPECT_NEAR(joints[j], expected[j], 1e-12) << "joint " << j;
-    const PoseVector home = vector_from_pose(mech.convention(), mech.home());
+    const PoseVector home = vector_from_pose(kWorld, mech.home());
     double home_world[6];
     bridge_world_from_vector(home, home_world);
     for (int i = 0; i < 6; ++i) EXPECT_NEAR(world[i], home_world[i], 1e-12) << "coordinate " << i;
@@ -149,7 +153,7 @@ TEST(PkmkinsBridge, InverseAndForwardAlongARandomWalkMatchPkm) {
     ASSERT_NE(m, nullptr);
     const int n = mech.actuator_count();
     const AxisMask axes = mech.controlled_axes();
-    const PoseVector home = vector_from_pose(mech.convention(), mech.home());
+    const PoseVector home = vector_from_pose(kWorld, mech.home());
     // Forward kinematics converges to 1e-10 of the actuators' own unit (FkOptions): mm, or rad for carriages
     // on a circle, which is 5.7e-9 deg, and (on the rotopod's 300 mm circle) 3e-8 mm of carriage.
     const bool angular = mech.actuators_are_angles();
@@ -172,7 +176,7 @@ TEST(PkmkinsBridge, InverseAndForwardAlongARandomWalkMatchPkm) {
       double target[6];
       bridge_world_from_vector(next, target);
       std::vector<double> expected;
-      if (!bridge_pkm_joints(mech, pose_from_vector(mech.convention(), next), expected)) {
+      if (!bridge_pkm_joints(mech, pose_from_vector(kWorld, next), expected)) {
         ++rejected;
         EXPECT_EQ(pkmkins_inverse(m.get(), target, joints.data()), -1);
         continue;
@@ -191,8 +195,7 @@ TEST(PkmkinsBridge, InverseAndForwardAlongARandomWalkMatchPkm) {
         }
       }
       std::vector<double> back;
-      ASSERT_TRUE(bridge_pkm_joints(
-          mech, pose_from_vector(mech.convention(), bridge_vector_from_world(found)), back));
+      ASSERT_TRUE(bridge_pkm_joints(mech, pose_from_vector(kWorld, bridge_vector_from_world(found)), back));
       for (int j = 0; j < n; ++j) {
         EXPECT_NEAR(back[static_cast<std::size_t>(j)], joints[static_cast<std::size_t>(j)], joint_tolerance)
             << "pose " << solved << " joint " << j;
@@ -279,7 +282,7 @@ TEST(PkmkinsBridge, InverseRejectsUnreachableAndNonFinitePoses) {
     double far[6];
     std::copy(home, home + 6, far);
     far[2] += 5000.0;
-    ASSERT_FALSE(mech.inverse(pose_from_vector(mech.convention(), bridge_vector_from_world(far))).ok());
+    ASSERT_FALSE(mech.inverse(pose_from_vector(kWorld, bridge_vector_from_world(far))).ok());
     std::vector<double> joints(static_cast<std::size_t>(mech.actuator_count()), 0.0);
     EXPECT_EQ(pkmkins_inverse(m.get(), far, joints.data()), -1);
 
@@ -355,8 +358,7 @@ TEST(PkmkinsBridge, ForwardFailuresLeaveTheLastGoodPose) {
   EXPECT_EQ(failures, 2);
   EXPECT_GT(iterations, 0);
   std::vector<double> back;
-  ASSERT_TRUE(
-      bridge_pkm_joints(mech, pose_from_vector(mech.convention(), bridge_vector_from_world(found)), back));
+  ASSERT_TRUE(bridge_pkm_joints(mech, pose_from_vector(kWorld, bridge_vector_from_world(found)), back));
   for (int j = 0; j < 6; ++j) EXPECT_NEAR(back[static_cast<std::size_t>(j)], joints[j], 1e-9);
 }
 

@@ -2,7 +2,9 @@
 
 Every sample is one servo period of LinuxCNC's motion controller: the Cartesian position it commanded and the
 joint positions its kinematics module returned for it in that period. pkm's own inverse kinematics (the Python
-module, an independent path into the library) must give the same joints.
+module, an independent path into the library) must give the same joints. LinuxCNC's A B C are G-code's,
+R = Rz(C)·Ry(B)·Rx(A), whatever the machine file's convention (docs/part-programs.md, "What A, B and C mean"):
+Machine.pose_from_abc turns them into the machine's own poses for Machine.ik.
 """
 import json
 import os
@@ -17,10 +19,18 @@ from linuxcnc_run import machine_path, program_path, rtapi_processes, run_linuxc
 RESULTS = os.environ.get("PKM_LINUXCNC_RESULTS")  # where the thread-time comparison is written (make bench)
 
 
-def pose_rad(axes):
+def machine_poses(machine, axes):
+    """LinuxCNC's positions (mm; A B C in degrees, G-code's) as the machine's own poses (mm, rad)."""
     poses = axes.copy()
     poses[:, 3:] = np.radians(poses[:, 3:])
-    return poses
+    return machine.pose_from_abc(poses)
+
+
+def abc_degrees(machine, pose):
+    """A machine pose (mm, rad, the machine's convention) as LinuxCNC's position (mm; A B C degrees)."""
+    position = machine.abc_from_pose(pose)
+    position[3:] = np.degrees(position[3:])
+    return position
 
 
 def coordinated(run):
@@ -32,7 +42,7 @@ def coordinated(run):
 def joint_error_against_pkm(run, machine):
     rows = coordinated(run)
     joints = run.joints()[rows]
-    expected = machine.ik(pose_rad(run.axes()[rows]), check_limits=False)
+    expected = machine.ik(machine_poses(machine, run.axes()[rows]), check_limits=False)
     if machine.actuator_unit == "rad":
         expected = np.degrees(expected)
     return np.abs(joints - expected).max()
@@ -54,8 +64,7 @@ def assert_fk_matches(run, machine):
         if machine.actuator_unit == "rad":
             joints = np.radians(joints)
         position = np.array(run.summary[position_key])
-        solved = machine.fk(joints[None, :], machine.home)[0]
-        solved[3:] = np.degrees(solved[3:])
+        solved = abc_degrees(machine, machine.fk(joints[None, :], machine.home)[0])
         controlled = np.array(machine.controlled_axes)
         assert np.abs(solved - position)[controlled].max() < 1e-8, (joints_key, solved, position)
 
@@ -84,8 +93,7 @@ def test_ch5_hexapod_runs_a_five_axis_program_through_pkmkins():
     assert axes[:, 2].max() == pytest.approx(705.0, abs=1e-6) and axes[:, 2].min() == pytest.approx(695.0, abs=1e-6)
     assert axes[:, 5].max() == pytest.approx(8.0, abs=1e-6) and axes[:, 5].min() == pytest.approx(-6.0, abs=1e-6)
     # The homed pose is the machine file's home, through the module's forward kinematics.
-    home = machine.home.copy()
-    home[3:] = np.degrees(home[3:])
+    home = abc_degrees(machine, machine.home)
     assert np.abs(np.array(run.summary["homed_position"]) - home).max() < 1e-8
 
 

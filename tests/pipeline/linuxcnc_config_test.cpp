@@ -252,10 +252,12 @@ TEST(LinuxcncConfig, TripodControlsZAB) {
 }
 
 // genhexkins' base and platform joints, put through the strut-length formula of genhexkins at a pose, give
-// pkm's strut lengths: at home and at a tilted, turned pose (which checks the platform joints' frame).
-TEST(LinuxcncConfig, GenhexkinsJointsGivePkmStrutLengths) {
-  const LinuxcncTempDir tmp("genhexkins");
-  const Machine machine = test::machine_from_example("examples/machines/hexapod_genhexkins.yaml");
+// pkm's strut lengths: at home and at a tilted, turned pose (which checks the platform joints' frame). Its
+// A B C are G-code's, as pkmkins' are, so a machine file in krylov angles (ch5) is described as well.
+void check_genhexkins_config(const std::string& file) {
+  SCOPED_TRACE(file);
+  const LinuxcncTempDir tmp("genhexkins_" + file);
+  const Machine machine = test::machine_from_example("examples/machines/" + file);
   const Mechanism& mech = *machine.mechanism;
   const fs::path dir = tmp.root() / "config";
   LinuxcncConfigOptions options;
@@ -319,7 +321,7 @@ TEST(LinuxcncConfig, GenhexkinsJointsGivePkmStrutLengths) {
     }
   };
   const PoseVector home = vector_from_pose(AngleConvention::abc, mech.home());
-  EXPECT_EQ(home[2], 508.0);
+  EXPECT_EQ(home[2], file == "hexapod_ch5.yaml" ? 700.0 : 508.0);
   {
     SCOPED_TRACE("home");
     check_pose(home);
@@ -342,17 +344,60 @@ TEST(LinuxcncConfig, GenhexkinsJointsGivePkmStrutLengths) {
   }
 }
 
-TEST(LinuxcncConfig, GenhexkinsRefusesKrylovAngles) {
-  const LinuxcncTempDir tmp("genhexkins_ch5");
-  const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+TEST(LinuxcncConfig, GenhexkinsJointsGivePkmStrutLengths) {
+  check_genhexkins_config("hexapod_genhexkins.yaml");
+  check_genhexkins_config("hexapod_ch5.yaml");
+}
+
+// LinuxCNC's A B C are G-code's: the world home of a machine whose home is tilted, in krylov angles, is
+// written as the same rotation's A B C.
+TEST(LinuxcncConfig, TrajHomeIsInGcodeAngles) {
+  const LinuxcncTempDir tmp("tilted_home");
+  fs::create_directories(tmp.root());
+  std::string text = linuxcnc_read_text(test::source_path("examples/machines/hexapod_ch5.yaml"));
+  const std::string home_line = "home: [0, 0, 700, 0, 0, 0]";
+  const std::size_t at = text.find(home_line);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, home_line.size(), "home: [3, -2, 700, 5, 3, -4]");
+  const fs::path file = tmp.root() / "tilted.yaml";
+  std::ofstream(file, std::ios::binary) << text;
+  auto machine = load_machine_file(file.string());
+  ASSERT_TRUE(machine.ok()) << machine.error().message;
   LinuxcncConfigOptions options;
   options.out_directory = (tmp.root() / "config").string();
-  options.kinematics = LinuxcncKinematics::genhexkins;
-  const auto config = write_linuxcnc_config(machine, options);
+  const auto config = write_linuxcnc_config(*machine, options);
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  const LinuxcncIni ini = linuxcnc_parse_ini(linuxcnc_read_text(tmp.root() / "config" / "machine.ini"));
+  std::istringstream words(linuxcnc_ini_value(ini, "TRAJ", "HOME"));
+  PoseVector written;
+  for (int i = 0; i < 6; ++i) ASSERT_TRUE(words >> written[i]) << i;
+  const PoseVector abc = vector_from_pose(AngleConvention::abc, machine->mechanism->home());
+  for (int i = 0; i < 6; ++i)
+    EXPECT_NEAR(written[i], i < 3 ? abc[i] : deg_from_rad(abc[i]), 1e-9) << "coordinate " << i;
+  EXPECT_GT(std::abs(written[3] - 5.0), 0.1);  // not the krylov ψ
+  // The A axis is centred there.
+  EXPECT_NEAR(linuxcnc_number(linuxcnc_ini_value(ini, "AXIS_A", "MIN_LIMIT")), written[3] - 180.0, 1e-9);
+}
+
+// A tripod controls Z and two tilts in its own convention; only in abc are they LinuxCNC's A and B.
+TEST(LinuxcncConfig, TripodOutsideAbcIsRefused) {
+  const LinuxcncTempDir tmp("tripod_krylov");
+  fs::create_directories(tmp.root());
+  std::string text = linuxcnc_read_text(test::source_path("examples/machines/tripod.yaml"));
+  const std::size_t at = text.find("angles: abc");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 11, "angles: krylov");
+  const fs::path file = tmp.root() / "tripod_krylov.yaml";
+  std::ofstream(file, std::ios::binary) << text;
+  auto machine = load_machine_file(file.string());
+  ASSERT_TRUE(machine.ok()) << machine.error().message;
+  LinuxcncConfigOptions options;
+  options.out_directory = (tmp.root() / "config").string();
+  const auto config = write_linuxcnc_config(*machine, options);
   ASSERT_FALSE(config.ok());
-  EXPECT_NE(config.error().message.find("genhexkins"), std::string::npos) << config.error().message;
-  EXPECT_NE(config.error().message.find("abc"), std::string::npos) << config.error().message;
-  EXPECT_FALSE(fs::exists(tmp.root())) << "a refused configuration created its directory";
+  EXPECT_NE(config.error().message.find("angles: abc"), std::string::npos) << config.error().message;
+  EXPECT_EQ(config.error().location.key, "angles");
+  EXPECT_FALSE(fs::exists(tmp.root() / "config"));
 }
 
 TEST(LinuxcncConfig, MachineWithoutActuatorLimitsIsRefused) {

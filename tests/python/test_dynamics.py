@@ -46,7 +46,7 @@ def motions(count, seed=7):
 
 def test_static_part_is_the_planners(ch5, planned):
     d = planned["dynamics"]
-    poses = planned["pose"]
+    poses = planned["pose_machine"]
     zero = np.zeros_like(poses)
     result = pkm.inverse_dynamics(ch5, poses, zero, zero)
     assert result["force_N"].shape == d["static_force_N"].shape

@@ -127,7 +127,7 @@ def test_plan_summary_and_arrays_match_cli(tmp_path, machine_name, program):
     key = "actuators_mm" if unit == "mm" else "actuators_rad"
     q = result[key]
     n = len(summary["actuators"])
-    assert q.shape == (ticks, n) and result["pose"].shape == (ticks, 6) and result["time_s"].shape == (ticks,)
+    assert q.shape == (ticks, n) and result["pose_machine"].shape == (ticks, 6) and result["time_s"].shape == (ticks,)
     np.testing.assert_allclose(np.diff(result["time_s"]), 1.0 / summary["rate_hz"], rtol=0, atol=1e-12)
     # The summary's extremes are those of the arrays.
     scale = 1.0 if unit == "mm" else 180.0 / math.pi
@@ -142,6 +142,13 @@ def test_plan_summary_and_arrays_match_cli(tmp_path, machine_name, program):
     np.testing.assert_allclose(csv[:, 1:], q * scale, atol=6e-7)
     lines = np.loadtxt(tmp_path / "path.csv", delimiter=",", skiprows=1, usecols=1, dtype=np.int64)
     np.testing.assert_array_equal(lines, result["line"])
+    # path.csv's pose columns are the program coordinates, named by their frame as the dict's keys are.
+    with open(tmp_path / "path.csv") as f:
+        header = f.readline().strip().split(",")
+    assert header[3:9] == ["x_program_mm", "y_program_mm", "z_program_mm", "a_abc_deg", "b_abc_deg", "c_abc_deg"]
+    path = np.loadtxt(tmp_path / "path.csv", delimiter=",", skiprows=1, usecols=range(3, 9), ndmin=2)
+    np.testing.assert_allclose(path[:, :3], result["xyz_program_mm"], atol=6e-7)
+    np.testing.assert_allclose(path[:, 3:], result["abc_deg"], atol=6e-7)
 
 
 def test_plan_options_match_cli(tmp_path, ch5):
@@ -163,8 +170,8 @@ def test_plan_with_a_law_matches_cli(tmp_path):
     assert_same(result["summary"], json.loads((tmp_path / "summary.json").read_text()))
     assert_same(result["law"], printed["redundancy"], skip={"seconds"})
     # The law turns the platform (φ, the third angle); the program as written holds it constant.
-    assert np.ptp(result["pose"][:, 5]) > 1e-3
-    assert np.ptp(pkm.plan(machine, program_path("planar_circle.ngc"))["pose"][:, 5]) < 1e-12
+    assert np.ptp(result["pose_machine"][:, 5]) > 1e-3
+    assert np.ptp(pkm.plan(machine, program_path("planar_circle.ngc"))["pose_machine"][:, 5]) < 1e-12
 
 
 def test_plan_writes_the_cli_files_when_asked(tmp_path, ch5):

@@ -61,7 +61,9 @@ DynReportRun dyn_report_write_run(const std::string& name, const DynReportRunSpe
   fs::remove_all(run.dir);
   fs::create_directories(run.dir);
   std::ofstream path(run.dir + "/path.csv"), actuators(run.dir + "/actuators.csv");
-  path << "time_s,line,s,x_mm,y_mm,z_mm,a_deg,b_deg,c_deg,path_speed_mm_s,feed_mm_s,path_error_mm\n";
+  path
+      << "time_s,line,s,x_program_mm,y_program_mm,z_program_mm,a_abc_deg,b_abc_deg,c_abc_deg,path_speed_mm_s,"
+         "feed_mm_s,path_error_mm\n";
   actuators << "time_s,q1,q2,q3,q4,q5,q6\n";
   std::ofstream forces, response;
   if (spec.write_forces) {
