@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "io/input_file.hpp"
+#include "io/printable_text.hpp"
 #include "io/yaml_stream_check.hpp"
 
 namespace pkm {
@@ -283,16 +284,17 @@ Result<std::optional<std::string>> YamlReader::optional_label(const YAML::Node& 
   auto text = optional_string(parent, key);
   if (!text || !*text) return text;
   const std::string& label = **text;
-  for (std::size_t i = 0; i < label.size(); ++i) {
-    const auto byte = static_cast<unsigned char>(label[i]);
-    if (byte < 0x20 || byte == 0x7F) {
-      return error_at_value(parent, key,
-                            fmt::format("a control character (\\x{:02X}) at byte {}: a {} is one line of "
-                                        "printable text",
-                                        byte, i + 1, key));
-    }
-  }
-  return text;
+  const std::size_t bad = first_unprintable_byte(label);
+  if (bad == std::string::npos) return text;
+  const auto byte = static_cast<unsigned char>(label[bad]);
+  // A control byte would act on the terminal that prints the name; other bytes that are not UTF-8 could not
+  // go into the run's summary.json, which is UTF-8 like every JSON text.
+  const bool control = byte < 0x20 || byte == 0x7F;
+  return error_at_value(
+      parent, key,
+      fmt::format("{} (\\x{:02X}) at byte {}: a {} is one line of {}",
+                  control ? "a control character" : "a byte that is not UTF-8", byte, bad + 1, key,
+                  control ? "printable text" : "UTF-8 text (save the file as UTF-8)"));
 }
 
 Result<int> YamlReader::required_integer(const YAML::Node& parent, std::string_view key) const {

@@ -49,9 +49,9 @@ class YamlReader {
   Result<std::string> required_string(const YAML::Node& parent, std::string_view key) const;
   /// A single word or text if the key is there (a list or a mapping is an error).
   Result<std::optional<std::string>> optional_string(const YAML::Node& parent, std::string_view key) const;
-  /// optional_string for a label (`name`, `description`): one line of text, no control characters (a TAB, an
-  /// escape sequence that would act on the terminal that prints it). Bytes that are not UTF-8 are kept;
-  /// whoever prints them escapes them (io/printable_text.hpp).
+  /// optional_string for a label (`name`, `description`): one line of UTF-8 text, no control characters (a
+  /// TAB, an escape sequence that would act on the terminal that prints it), nothing a JSON summary cannot
+  /// hold.
   Result<std::optional<std::string>> optional_label(const YAML::Node& parent, std::string_view key) const;
   Result<int> required_integer(const YAML::Node& parent, std::string_view key) const;
 
