@@ -228,13 +228,8 @@ Result<double> YamlReader::number(const YAML::Node& node, std::string_view key) 
     char* end = nullptr;
     errno = 0;
     std::strtod(text.c_str(), &end);
-    if (!text.empty() && end == text.c_str() + text.size() && errno == ERANGE) {
-      // Overflow gives ±HUGE_VAL, underflow a number that is all but 0.
-      const bool tiny = std::abs(std::strtod(text.c_str(), nullptr)) < 1.0;
-      return error_at(node, key,
-                      tiny ? fmt::format("'{}' is too small to tell from 0 (write 0)", text)
-                           : fmt::format("expected a finite number, got '{}' (out of range)", text));
-    }
+    if (!text.empty() && end == text.c_str() + text.size() && errno == ERANGE)
+      return error_at(node, key, fmt::format("expected a finite number, got '{}' (out of range)", text));
     return error_at(node, key, fmt::format("expected a number, got '{}'", text));
   }
   if (!std::isfinite(value))
