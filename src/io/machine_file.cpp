@@ -55,6 +55,53 @@ Result<std::optional<PoseVector>> read_home_pose(const YAML::Node& root, const Y
   return std::optional<PoseVector>{h};
 }
 
+// Unknown keys are errors: a misspelt key must not silently fall back to a default.
+Status check_top_level_keys(const YAML::Node& root, const YamlReader& reader, const MechanismFileEntry& entry,
+                            const std::string& type_name) {
+  std::vector<std::string_view> allowed = {"name",   "description", "type",   "angles",     "tool",
+                                           "limits", "motion",      "masses", "dynamics",   "drives",
+                                           "home",   "stiffness",   "servo",  "calibration"};
+  // Planar pin joints have no neutral axis to give.
+  if (!is_planar(entry.type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
+  allowed.insert(allowed.end(), entry.keys.begin(), entry.keys.end());
+  for (const auto& item : root) {
+    const std::string key = item.first.Scalar();  // a scalar: parse_yaml_document checked every key
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      return reader.error_at(item.first, key,
+                             fmt::format("unknown key for type {} (allowed: {})", type_name, list));
+    }
+  }
+  return ok_status();
+}
+
+// The home pose must itself be a valid configuration of the machine; fills the neutral joint axes, which
+// default to the strut directions at home.
+Status check_home_pose(const YAML::Node& root, const YamlReader& reader, Machine& machine) {
+  auto home_actuators = machine.mechanism->inverse(machine.mechanism->home());
+  const YAML::Node where = root["home"] ? root["home"] : root["type"];
+  if (!home_actuators) {
+    return reader.error_at(where, "home",
+                           "the home pose is not reachable: " + home_actuators.error().message);
+  }
+  if (auto in_range = check_actuator_range(machine, *home_actuators); !in_range) {
+    return reader.error_at(where, "home",
+                           "the home pose is outside the actuator range: " + in_range.error().message);
+  }
+  auto axes = read_passive_joint_axes(root, reader, *machine.mechanism);
+  if (!axes) return axes.error();
+  machine.joint_axes = *axes;
+  if (auto joints = check_joint_limits(machine, machine.mechanism->home()); !joints) {
+    return reader.error_at(where, "home", "the home pose is beyond a joint limit: " + joints.error().message);
+  }
+  if (auto conditioning = check_conditioning_limit(machine, machine.mechanism->home()); !conditioning) {
+    return reader.error_at(where, "home",
+                           "the home pose is too badly conditioned: " + conditioning.error().message);
+  }
+  return ok_status();
+}
+
 }  // namespace
 
 Result<Machine> parse_machine_text(const std::string& yaml_text, const std::string& source_name) {
@@ -82,22 +129,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
                            fmt::format("unknown mechanism '{}' (known: {})", *type_name, known));
   }
 
-  // Unknown keys are errors: a misspelt key must not silently fall back to a default.
-  std::vector<std::string_view> allowed = {"name",   "description", "type",   "angles",     "tool",
-                                           "limits", "motion",      "masses", "dynamics",   "drives",
-                                           "home",   "stiffness",   "servo",  "calibration"};
-  // Planar pin joints have no neutral axis to give.
-  if (!is_planar(entry->type)) allowed.insert(allowed.end(), {"base_joint_axes", "platform_joint_axes"});
-  allowed.insert(allowed.end(), entry->keys.begin(), entry->keys.end());
-  for (const auto& item : root) {
-    const std::string key = item.first.Scalar();  // a scalar: parse_yaml_document checked every key
-    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-      std::string list;
-      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      return reader.error_at(item.first, key,
-                             fmt::format("unknown key for type {} (allowed: {})", *type_name, list));
-    }
-  }
+  if (Status keys = check_top_level_keys(root, reader, *entry, *type_name); !keys) return keys.error();
 
   AngleConvention convention = AngleConvention::abc;
   if (is_planar(entry->type)) {
@@ -170,29 +202,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   machine.servo = *servo;
   machine.home_given = home->has_value();
 
-  // The home pose must itself be a valid configuration of the machine.
-  auto home_actuators = machine.mechanism->inverse(machine.mechanism->home());
-  const YAML::Node where = root["home"] ? root["home"] : root["type"];
-  if (!home_actuators) {
-    return reader.error_at(where, "home",
-                           "the home pose is not reachable: " + home_actuators.error().message);
-  }
-  if (auto in_range = check_actuator_range(machine, *home_actuators); !in_range) {
-    return reader.error_at(where, "home",
-                           "the home pose is outside the actuator range: " + in_range.error().message);
-  }
-
-  // Neutral axes default to the strut directions at home, so they follow the (now valid) home pose.
-  auto axes = read_passive_joint_axes(root, reader, *machine.mechanism);
-  if (!axes) return axes.error();
-  machine.joint_axes = *axes;
-  if (auto joints = check_joint_limits(machine, machine.mechanism->home()); !joints) {
-    return reader.error_at(where, "home", "the home pose is beyond a joint limit: " + joints.error().message);
-  }
-  if (auto conditioning = check_conditioning_limit(machine, machine.mechanism->home()); !conditioning) {
-    return reader.error_at(where, "home",
-                           "the home pose is too badly conditioned: " + conditioning.error().message);
-  }
+  if (Status valid = check_home_pose(root, reader, machine); !valid) return valid.error();
   return machine;
 }
 
