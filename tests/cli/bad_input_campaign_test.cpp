@@ -321,6 +321,13 @@ std::vector<CampaignCase> campaign_command_cases() {
        {"{t}/load_far_block.yaml:3:13: blocks[0].lines: a load for lines 500 to 600, but ",
         "planar_circle.ngc has"},
        "new"},
+      {"strategies_load_block_for_lines_a_program_lacks",
+       "strategies --machine {m} --out {t}/new --program {line} --load @{t}/load_far_block.yaml",
+       2,
+       {"--load: {t}/load_far_block.yaml:3:13: blocks[0].lines: a load for lines 500 to 600, but {line} has "
+        "7 "
+        "lines"},
+       "new"},
       {"report_program_missing",
        "report {t}/run --program {t}/missing.ngc",
        2,
