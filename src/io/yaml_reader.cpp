@@ -139,9 +139,10 @@ Result<YAML::Node> parse_yaml_document(std::string_view text, const std::string&
                               fmt::format("{}:{}: not valid YAML: nested more than {} levels deep",
                                           source_name, yaml_mark_text(mark), e.depth() - 1));
   } catch (const YAML::Exception& e) {
-    // An unclosed quote seen before yaml-cpp gave up is the cause; yaml-cpp blames where it stopped.
+    // An unclosed quote or bracket, a NUL byte or a TAB is the cause; yaml-cpp blames where it stopped.
     if (stream.found()) return *stream.found();
     if (auto nul = yaml_nul_byte(text, source_name)) return *nul;  // the usual cause: "unknown escape"
+    if (auto cause = stream.explain(e)) return *cause;
     const std::string where =
         e.mark.is_null() ? source_name : fmt::format("{}:{}", source_name, yaml_mark_text(e.mark));
     return located_yaml_error(source_name, e.mark, "", fmt::format("{}: not valid YAML: {}", where, e.msg));

@@ -82,13 +82,13 @@ class YamlStreamEvents : public YAML::EventHandler {
     add_to_parent(named.size);
   }
   void OnSequenceStart(const YAML::Mark& mark, const std::string& /*tag*/, YAML::anchor_t anchor,
-                       YAML::EmitterStyle::value /*style*/) override {
-    open(mark, anchor);
+                       YAML::EmitterStyle::value style) override {
+    open(mark, anchor, style == YAML::EmitterStyle::Flow ? '[' : 0);
   }
   void OnSequenceEnd() override { close(); }
   void OnMapStart(const YAML::Mark& mark, const std::string& /*tag*/, YAML::anchor_t anchor,
-                  YAML::EmitterStyle::value /*style*/) override {
-    open(mark, anchor);
+                  YAML::EmitterStyle::value style) override {
+    open(mark, anchor, style == YAML::EmitterStyle::Flow ? '{' : 0);
   }
   void OnMapEnd() override { close(); }
 
@@ -103,6 +103,7 @@ class YamlStreamEvents : public YAML::EventHandler {
   struct OpenNode {
     YAML::anchor_t anchor;
     std::uint64_t size;
+    bool flow;
   };
 
   Anchor& anchor_at(const YAML::Mark& mark, YAML::anchor_t anchor) {
@@ -118,14 +119,17 @@ class YamlStreamEvents : public YAML::EventHandler {
     if (anchor != 0) anchor_at(mark, anchor).size = 1;
     add_to_parent(1);
   }
-  void open(const YAML::Mark& mark, YAML::anchor_t anchor) {
+  // `bracket`: '[' or '{' for a flow collection (0 for a block one), kept open for explain().
+  void open(const YAML::Mark& mark, YAML::anchor_t anchor, char bracket) {
     if (anchor != 0) anchor_at(mark, anchor).open = true;
-    stack_.push_back({anchor, 1});
+    stack_.push_back({anchor, 1, bracket != 0});
+    if (bracket != 0) check_.open_flows_.push_back({mark.line + 1, mark.column + 1, bracket});
   }
   void close() {
     if (stack_.empty()) return;
     const OpenNode done = stack_.back();
     stack_.pop_back();
+    if (done.flow && !check_.open_flows_.empty()) check_.open_flows_.pop_back();
     if (done.anchor != 0 && done.anchor < anchors_.size()) {
       anchors_[done.anchor].open = false;
       anchors_[done.anchor].size = done.size;
@@ -160,13 +164,7 @@ class YamlStreamEvents : public YAML::EventHandler {
   // "FILE:LINE:COLUMN: WHAT: reason"; WHAT names the thing ("alias *r"), it is no key of the file.
   void fail(const YAML::Mark& mark, const std::string& what, const std::string& reason) {
     if (check_.found_) return;
-    Error error = make_error(ErrorCode::bad_input, "");
-    error.location.file = check_.source_;
-    error.location.line = mark.line + 1;
-    error.location.column = mark.column + 1;
-    error.message =
-        fmt::format("{}:{}:{}: {}: {}", check_.source_, mark.line + 1, mark.column + 1, what, reason);
-    check_.found_ = std::move(error);
+    check_.found_ = check_.located(mark.line + 1, mark.column + 1, what, reason);
   }
 
   YamlStreamCheck& check_;
@@ -180,6 +178,47 @@ class YamlStreamEvents : public YAML::EventHandler {
 
 YamlStreamCheck::YamlStreamCheck(std::string_view text, std::string source_name)
     : text_(text), source_(std::move(source_name)) {}
+
+Error YamlStreamCheck::located(int line, int column, const std::string& what,
+                               const std::string& reason) const {
+  Error error =
+      make_error(ErrorCode::bad_input, fmt::format("{}:{}:{}: {}: {}", source_, line, column, what, reason));
+  error.location.file = source_;
+  error.location.line = line;
+  error.location.column = column;
+  return error;
+}
+
+std::optional<Error> YamlStreamCheck::tab_indentation(int error_line) const {
+  std::size_t start = 0;
+  for (int line = 1; start <= text_.size() && line <= error_line; ++line) {
+    const std::size_t end = std::min(text_.find('\n', start), text_.size());
+    if (line >= error_line - 1) {
+      const std::size_t indent_end = text_.find_first_not_of(" \t", start);
+      const std::size_t tab = text_.find('\t', start);
+      if (tab < std::min(indent_end, end)) {
+        return located(line, static_cast<int>(tab - start) + 1, "TAB in the indentation",
+                       "YAML indents with spaces only");
+      }
+    }
+    start = end + 1;
+  }
+  return std::nullopt;
+}
+
+std::optional<Error> YamlStreamCheck::explain(const YAML::Exception& e) const {
+  if (found_) return found_;
+  const std::string_view message = e.msg;
+  if (!open_flows_.empty() &&
+      (message == YAML::ErrorMsg::END_OF_SEQ_FLOW || message == YAML::ErrorMsg::END_OF_MAP_FLOW)) {
+    const OpenFlow& open = open_flows_.back();
+    return located(open.line, open.column, "unclosed bracket",
+                   fmt::format("the {} opened here is not closed with a {}", open.bracket,
+                               open.bracket == '[' ? ']' : '}'));
+  }
+  if (!e.mark.is_null() && e.mark.line >= 0) return tab_indentation(e.mark.line + 1);
+  return std::nullopt;
+}
 
 void YamlStreamCheck::run() {
   std::istringstream in{std::string(text_)};

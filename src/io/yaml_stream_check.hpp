@@ -13,8 +13,13 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/result.hpp"
+
+namespace YAML {
+class Exception;
+}
 
 namespace pkm {
 
@@ -31,12 +36,26 @@ class YamlStreamCheck {
   void run();
   /// The first problem seen, if any (also when run() threw afterwards).
   const std::optional<Error>& found() const { return found_; }
+  /// After run() threw `e`: the cause where yaml-cpp's own place is not where the mistake is, if it is one
+  /// of these: found(); a [ or { never closed (yaml-cpp says so at the end of the file, not at the bracket);
+  /// a TAB in the indentation of the line yaml-cpp stopped on or the one before (yaml-cpp's "illegal map
+  /// value" or "end of map not found" further on).
+  std::optional<Error> explain(const YAML::Exception& e) const;
 
  private:
   friend class YamlStreamEvents;
+  struct OpenFlow {
+    int line;  // 1-based
+    int column;
+    char bracket;
+  };
+  Error located(int line, int column, const std::string& what, const std::string& reason) const;
+  std::optional<Error> tab_indentation(int error_line) const;
+
   std::string_view text_;
   std::string source_;
   std::optional<Error> found_;
+  std::vector<OpenFlow> open_flows_;  // the [ and { open at the current event
 };
 
 }  // namespace pkm

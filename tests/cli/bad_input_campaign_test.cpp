@@ -82,6 +82,9 @@ void campaign_write_inputs(const fs::path& t) {
   campaign_write(t / "m_\x1b[31mred.yaml", machine);
   campaign_write(t / "m_quote.yaml", campaign_ch5_with(6, [](const std::string&) { return "name: \"ch5"; }));
   campaign_write(t / "m_quote_never_closed.yaml", machine + "description: 'open\n");
+  campaign_write(t / "m_unclosed_bracket.yaml",
+                 "type: planar2\nbase_joints:\n  - [0.0, 0.0]\n  - [300.0, 40.0\nhome: [120.0, 250.0]\n");
+  campaign_write(t / "m_tab_indent.yaml", machine + "limits:\n\tactuator_max: 500\n");
   campaign_write(t / "m_home_angle.yaml",
                  campaign_ch5_with(64, [](const std::string&) { return "home: [0, 0, 700, 0, 1e300, 0]"; }));
   campaign_write(t / "m_base_joint_huge.yaml",
@@ -229,6 +232,14 @@ std::vector<CampaignCase> campaign_yaml_cases() {
        "check {t}/m_quote_never_closed.yaml",
        2,
        {"{t}/m_quote_never_closed.yaml:6:14: unclosed quote: the ' opened here is never closed"}},
+      {"machine_unclosed_bracket",
+       "check {t}/m_unclosed_bracket.yaml",
+       2,
+       {"{t}/m_unclosed_bracket.yaml:4:5: unclosed bracket: the [ opened here is not closed with a ]"}},
+      {"machine_tab_in_indentation",
+       "check {t}/m_tab_indent.yaml",
+       2,
+       {"{t}/m_tab_indent.yaml:7:1: TAB in the indentation: YAML indents with spaces only"}},
       {"machine_nul_in_name",
        "check {t}/m_nul_in_name.yaml",
        2,

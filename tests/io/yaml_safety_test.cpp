@@ -76,6 +76,24 @@ TEST(YamlSafety, AnUnclosedQuoteIsBlamedWhereItOpens) {
   EXPECT_EQ(yaml_safety_error("a: \"say \\\"hi\\\"\"\nb: 'it''s'\nc: it's\n"), "(accepted)");
 }
 
+TEST(YamlSafety, AnUnclosedBracketIsBlamedWhereItOpens) {
+  // yaml-cpp's own place is the end of the file.
+  EXPECT_EQ(yaml_safety_error("type: x\nhome: [1, [2, 3]\n"),
+            "f.yaml:2:7: unclosed bracket: the [ opened here is not closed with a ]");
+  EXPECT_EQ(yaml_safety_error("type: x\nlimits: {a: [1, 2], b: 3\n"),
+            "f.yaml:2:9: unclosed bracket: the { opened here is not closed with a }");
+}
+
+TEST(YamlSafety, ATabInTheIndentationIsNamed) {
+  // yaml-cpp says "illegal map value" at the end of the line, or "end of map not found" on the next one.
+  EXPECT_EQ(yaml_safety_error("type: x\nlimits:\n\tactuator_max: 5\n"),
+            "f.yaml:3:1: TAB in the indentation: YAML indents with spaces only");
+  EXPECT_EQ(yaml_safety_error("type: x\nlimits:\n  a: 1\n \tb: 5\n"),
+            "f.yaml:4:2: TAB in the indentation: YAML indents with spaces only");
+  // A TAB after the key is no indentation.
+  EXPECT_EQ(yaml_safety_error("type: x\nhome:\t[1, 2]\n"), "(accepted)");
+}
+
 TEST(YamlSafety, ANulByteIsRefusedAtItsPlace) {
   const std::string text = std::string("type: x\nname: a\0tb\n", 18);
   EXPECT_EQ(yaml_safety_error(text).rfind("f.yaml:2:8: not valid YAML: a NUL byte", 0), 0u)
