@@ -197,8 +197,8 @@ std::optional<Error> YamlStreamCheck::tab_indentation(int error_line) const {
       const std::size_t indent_end = text_.find_first_not_of(" \t", start);
       const std::size_t tab = text_.find('\t', start);
       if (tab < std::min(indent_end, end)) {
-        return located(line, static_cast<int>(tab - start) + 1, "TAB in the indentation",
-                       "YAML indents with spaces only");
+        return located(line, static_cast<int>(tab - start) + 1, "not valid YAML",
+                       "a TAB in the indentation (YAML indents with spaces only)");
       }
     }
     start = end + 1;
@@ -212,8 +212,8 @@ std::optional<Error> YamlStreamCheck::explain(const YAML::Exception& e) const {
   if (!open_flows_.empty() &&
       (message == YAML::ErrorMsg::END_OF_SEQ_FLOW || message == YAML::ErrorMsg::END_OF_MAP_FLOW)) {
     const OpenFlow& open = open_flows_.back();
-    return located(open.line, open.column, "unclosed bracket",
-                   fmt::format("the {} opened here is not closed with a {}", open.bracket,
+    return located(open.line, open.column, "not valid YAML",
+                   fmt::format("the {} opened here is never closed with a {}", open.bracket,
                                open.bracket == '[' ? ']' : '}'));
   }
   if (!e.mark.is_null() && e.mark.line >= 0) return tab_indentation(e.mark.line + 1);

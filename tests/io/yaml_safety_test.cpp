@@ -79,17 +79,17 @@ TEST(YamlSafety, AnUnclosedQuoteIsBlamedWhereItOpens) {
 TEST(YamlSafety, AnUnclosedBracketIsBlamedWhereItOpens) {
   // yaml-cpp's own place is the end of the file.
   EXPECT_EQ(yaml_safety_error("type: x\nhome: [1, [2, 3]\n"),
-            "f.yaml:2:7: unclosed bracket: the [ opened here is not closed with a ]");
+            "f.yaml:2:7: not valid YAML: the [ opened here is never closed with a ]");
   EXPECT_EQ(yaml_safety_error("type: x\nlimits: {a: [1, 2], b: 3\n"),
-            "f.yaml:2:9: unclosed bracket: the { opened here is not closed with a }");
+            "f.yaml:2:9: not valid YAML: the { opened here is never closed with a }");
 }
 
 TEST(YamlSafety, ATabInTheIndentationIsNamed) {
   // yaml-cpp says "illegal map value" at the end of the line, or "end of map not found" on the next one.
   EXPECT_EQ(yaml_safety_error("type: x\nlimits:\n\tactuator_max: 5\n"),
-            "f.yaml:3:1: TAB in the indentation: YAML indents with spaces only");
+            "f.yaml:3:1: not valid YAML: a TAB in the indentation (YAML indents with spaces only)");
   EXPECT_EQ(yaml_safety_error("type: x\nlimits:\n  a: 1\n \tb: 5\n"),
-            "f.yaml:4:2: TAB in the indentation: YAML indents with spaces only");
+            "f.yaml:4:2: not valid YAML: a TAB in the indentation (YAML indents with spaces only)");
   // A TAB after the key is no indentation.
   EXPECT_EQ(yaml_safety_error("type: x\nhome:\t[1, 2]\n"), "(accepted)");
 }
