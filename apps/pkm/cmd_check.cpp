@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "core/units.hpp"
 #include "io/pose_input.hpp"
+#include "io/printable_text.hpp"
 #include "kinematics/conditioning.hpp"
 #include "kinematics/mobility.hpp"
 #include "number_options.hpp"
@@ -52,7 +53,7 @@ void add_check_command(CLI::App& app, int& exit_code) {
     const auto controlled = controlled_coordinate_names(mech);
     if (*json) {
       print_json({{"valid", true},
-                  {"machine", machine->name},
+                  {"machine", printable_text(machine->name)},
                   {"type", std::string(to_string(mech.type()))},
                   {"structure", structure.notation},
                   {"mobility", h - structure.idle_freedoms},
@@ -76,7 +77,9 @@ void add_check_command(CLI::App& app, int& exit_code) {
                     {"condition_max", s.condition_max},
                     {"determinant_changes_sign", s.determinant_changes_sign}}}});
     } else {
-      std::cout << fmt::format("{}: valid ({})\n", *machine_path, machine->name);
+      // The name and the path as the user gave them, but never raw bytes a terminal would act on.
+      std::cout << fmt::format("{}: valid ({})\n", printable_text(*machine_path),
+                               printable_text(machine->name));
       std::cout << fmt::format("  mechanism  {} ({}), {} actuators, controls {}\n", to_string(mech.type()),
                                structure.notation, mech.actuator_count(), fmt::join(controlled, ","));
       std::cout << fmt::format(

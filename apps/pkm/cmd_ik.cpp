@@ -6,6 +6,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "io/pose_input.hpp"
+#include "pose_reach.hpp"
 
 namespace pkm::cli {
 
@@ -37,17 +38,11 @@ void add_ik_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("ik", pose.error());
       return;
     }
+    if (Status reachable = pose_within_actuator_range(*machine, *pose); !reachable) {
+      exit_code = report_error("ik", reachable.error());
+      return;
+    }
     auto q = mech.inverse(*pose);
-    if (!q) {
-      exit_code = report_error("ik", q.error());
-      return;
-    }
-    if (auto range = check_actuator_range(*machine, *q); !range) {
-      exit_code = report_error(
-          "ik", make_error(ErrorCode::unreachable,
-                           "pose unreachable within the actuator range: " + range.error().message));
-      return;
-    }
     const auto actuators = user_from_actuators(mech, *q);
     const auto full_pose = user_from_pose(mech, *pose);
     if (*json) {

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "io/pose_input.hpp"
 #include "kinematics/conditioning.hpp"
+#include "pose_reach.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -59,6 +60,12 @@ void add_jacobian_command(CLI::App& app, int& exit_code) {
     auto measures = jacobian_measures(mech, *pose);
     if (!measures) {
       exit_code = report_error("jacobian", measures.error());
+      return;
+    }
+    // A pose pkm ik refuses is refused here alike: its Jacobian would describe a machine that cannot be
+    // there.
+    if (Status reachable = pose_within_actuator_range(*machine, *pose); !reachable) {
+      exit_code = report_error("jacobian", reachable.error());
       return;
     }
     const JacobianMatrix inverse = Eigen::FullPivLU<JacobianMatrix>(*j).inverse();

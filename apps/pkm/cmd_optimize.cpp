@@ -81,6 +81,11 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("optimize", options.error());
       return;
     }
+    if (Status lines = statics::check_load_lines(options->loads, *program_path); !lines) {
+      exit_code =
+          report_error("optimize", make_error(lines.error().code, "--load: " + lines.error().message));
+      return;
+    }
     auto machine = load_machine_or_report(*machine_path);
     if (!machine) {
       exit_code = report_error("optimize", machine.error());

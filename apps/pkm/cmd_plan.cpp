@@ -113,8 +113,9 @@ void add_plan_command(CLI::App& app, int& exit_code) {
     // struts.
     if ((job.dynamics || job.stiffness) && !redundancy_arguments->load.empty()) {
       auto loads = statics::parse_load_spec(redundancy_arguments->load);
-      if (!loads) {
-        exit_code = report_error("plan", make_error(loads.error().code, "--load: " + loads.error().message));
+      Status lines = loads ? statics::check_load_lines(*loads, *program_path) : Status(loads.error());
+      if (!lines) {
+        exit_code = report_error("plan", make_error(lines.error().code, "--load: " + lines.error().message));
         return;
       }
       job.dynamics_load = std::move(*loads);

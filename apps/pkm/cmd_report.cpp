@@ -8,6 +8,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "io/input_file.hpp"
 #include "report/report_data.hpp"
 
 namespace pkm::cli {
@@ -23,6 +24,13 @@ void add_report_command(CLI::App& app, int& exit_code) {
                   "machine file (default: the one the run's summary names)");
   cmd->add_option("--program", options->program_file, "part program (default: the one the summary names)");
   cmd->callback([=, &exit_code] {
+    // A --program that cannot be read is an error, not a report without the program's lines.
+    if (!options->program_file.empty()) {
+      if (auto program = read_text_input(options->program_file, "part program"); !program) {
+        exit_code = report_error("report", program.error());
+        return;
+      }
+    }
     const std::string file =
         out->empty() ? (std::filesystem::path(*directory) / "report.html").string() : *out;
     if (Status written = report::write_directory_report(*directory, file, *options); !written) {

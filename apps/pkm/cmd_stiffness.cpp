@@ -61,8 +61,10 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
       }
     }
     auto load = statics::parse_load_spec(*load_text);
-    if (!load) {
-      exit_code = report_error("stiffness", make_error(load.error().code, "--load: " + load.error().message));
+    Status lines = load ? statics::check_load_lines(*load, job->program_path) : Status(load.error());
+    if (!lines) {
+      exit_code =
+          report_error("stiffness", make_error(lines.error().code, "--load: " + lines.error().message));
       return;
     }
     job->load = std::move(*load);

@@ -70,6 +70,10 @@ Result<pipeline::StrategyComparisonJob> strategies_job(const StrategiesArguments
   }
   auto load = statics::parse_load_spec(a.load);
   if (!load) return make_error(load.error().code, "--load: " + load.error().message);
+  for (const std::string& program : a.programs) {
+    if (Status lines = statics::check_load_lines(*load, program); !lines)
+      return make_error(lines.error().code, "--load: " + lines.error().message);
+  }
   job.load = std::move(*load);
   job.programs = a.programs;
   job.out_directory = a.out_dir;

@@ -17,12 +17,22 @@ std::string number_option_value(double value, const std::string& unit) {
   return unit.empty() ? fmt::format("{:g}", value) : fmt::format("{:g} {}", value, unit);
 }
 
+enum class OptionNumber { ok, not_a_number, too_large, too_small };
+
 // The whole text must be one number; from_chars also reads "nan" and "inf", which the range check refuses.
-bool parse_option_number(std::string_view text, double& value) {
+// A number beyond a double's range leaves `value` untouched (0): it must be refused as what it is, not
+// checked as 0.
+OptionNumber parse_option_number(std::string_view text, double& value) {
   if (text.size() > 1 && text.front() == '+') text.remove_prefix(1);
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return !text.empty() && end == text.data() + text.size() &&
-         (error == std::errc() || error == std::errc::result_out_of_range);
+  if (text.empty() || end != text.data() + text.size()) return OptionNumber::not_a_number;
+  if (error == std::errc::result_out_of_range) {
+    // The exponent's sign says which way: 1e999 overflows, 1e-999 underflows.
+    const std::size_t e = text.find_first_of("eE");
+    return e != std::string_view::npos && e + 1 < text.size() && text[e + 1] == '-' ? OptionNumber::too_small
+                                                                                    : OptionNumber::too_large;
+  }
+  return error == std::errc() ? OptionNumber::ok : OptionNumber::not_a_number;
 }
 
 }  // namespace
@@ -40,8 +50,18 @@ CLI::Validator number_in(NumberRange range) {
   return CLI::Validator(
       [range, description](std::string& text) -> std::string {
         double value = 0.0;
-        if (!parse_option_number(text, value))
-          return fmt::format("expected a number {}, got '{}'", description, printable_text(text));
+        switch (parse_option_number(text, value)) {
+          case OptionNumber::not_a_number:
+            return fmt::format("expected a number {}, got '{}'", description, printable_text(text));
+          case OptionNumber::too_large:
+            return fmt::format("must be {}, got {} (too large for any number)", description,
+                               printable_text(text));
+          case OptionNumber::too_small:
+            return fmt::format("must be {}, got {} (too small to tell from 0: write 0)", description,
+                               printable_text(text));
+          case OptionNumber::ok:
+            break;
+        }
         if (!std::isfinite(value))
           return fmt::format("must be a finite number {}, got {}", description, printable_text(text));
         const bool above_low = range.low_inclusive ? value >= range.low : value > range.low;

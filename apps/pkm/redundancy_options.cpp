@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
 
 #include "number_options.hpp"
 
@@ -49,11 +50,43 @@ void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, b
 
 namespace {
 
+// As for --pose (io/pose_input.cpp): no free coordinate turns a million degrees.
+constexpr double kMaxBoundDeg = 1e6;
+
 bool parse_double(std::string_view text, double& value) {
   while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
   while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   return error == std::errc() && end == text.data() + text.size();
+}
+
+// --bounds LO,HI (degrees): two finite numbers, LO below HI. from_chars reads "nan" and "inf" as numbers,
+// and NaN fails every comparison: without the check "nan,nan" was refused as "the lower bound must be below".
+Result<std::array<double, 2>> parse_bounds(const std::string& text) {
+  const auto comma = text.find(',');
+  const std::string_view parts[2] = {
+      std::string_view(text).substr(0, comma),
+      comma == std::string::npos ? std::string_view() : std::string_view(text).substr(comma + 1)};
+  std::array<double, 2> bounds{};
+  for (int i = 0; i < 2; ++i) {
+    if (comma == std::string::npos || !parse_double(parts[i], bounds[i])) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("--bounds {}: expected LO,HI in degrees, e.g. --bounds 5,30", text));
+    }
+    if (!std::isfinite(bounds[i]) || std::abs(bounds[i]) > kMaxBoundDeg) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("--bounds {}: {} '{}' is {}", text, i == 0 ? "LO" : "HI", parts[i],
+                                    std::isfinite(bounds[i])
+                                        ? fmt::format("out of range (at most {:g} deg in size)", kMaxBoundDeg)
+                                        : std::string("not a number")));
+    }
+  }
+  if (!(bounds[0] < bounds[1])) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--bounds {}: LO must be below HI (degrees), got {:g} and {:g}", text,
+                                  bounds[0], bounds[1]));
+  }
+  return bounds;
 }
 
 }  // namespace
@@ -90,16 +123,9 @@ Result<redundancy::OptimizeOptions> redundancy_options(const RedundancyArguments
   }
   options.law.forces = *force_model;
   if (!arguments.bounds.empty()) {
-    const auto comma = arguments.bounds.find(',');
-    std::array<double, 2> bounds{};
-    if (comma == std::string::npos ||
-        !parse_double(std::string_view(arguments.bounds).substr(0, comma), bounds[0]) ||
-        !parse_double(std::string_view(arguments.bounds).substr(comma + 1), bounds[1])) {
-      return make_error(
-          ErrorCode::bad_input,
-          fmt::format("--bounds {}: expected LO,HI in degrees, e.g. --bounds 5,30", arguments.bounds));
-    }
-    options.bounds_deg = bounds;
+    auto bounds = parse_bounds(arguments.bounds);
+    if (!bounds) return bounds.error();
+    options.bounds_deg = *bounds;
   }
   if (!(arguments.step_mm > 0.0)) {
     return make_error(ErrorCode::bad_input,

@@ -27,6 +27,12 @@ Result<std::vector<double>> parse_number_list(std::string_view text, std::string
     token = first == std::string::npos ? "" : token.substr(first, last - first + 1);
     double value = 0.0;
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    // 1e999 is a number, only not one a double holds: say so rather than "not a number".
+    if (!token.empty() && ec == std::errc::result_out_of_range && end == token.data() + token.size()) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: '{}' is out of range (at most {:g} in size; item {} of '{}')", field,
+                                    token, kMaxUserNumber, out.size() + 1, text));
+    }
     if (token.empty() || ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) {
       return make_error(ErrorCode::bad_input, fmt::format("{}: '{}' is not a number (item {} of '{}')", field,
                                                           token, out.size() + 1, text));

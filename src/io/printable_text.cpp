@@ -38,6 +38,20 @@ std::size_t printable_utf8_length(std::string_view text, std::size_t at) {
 
 }  // namespace
 
+std::size_t first_unprintable_byte(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7F) {
+      ++i;
+    } else if (const std::size_t length = c >= 0x80 ? printable_utf8_length(text, i) : 0; length > 0) {
+      i += length;
+    } else {
+      return i;
+    }
+  }
+  return std::string_view::npos;
+}
+
 std::string printable_text(std::string_view text, std::size_t max_bytes) {
   std::string out;
   out.reserve(std::min(text.size(), max_bytes) + 32);

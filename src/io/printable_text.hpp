@@ -15,4 +15,8 @@ inline constexpr std::size_t kMaxPrintableBytes = 1000;
 /// about `max_bytes` bytes of it, cut between characters.
 std::string printable_text(std::string_view text, std::size_t max_bytes = kMaxPrintableBytes);
 
+/// The offset of the first byte printable_text would escape (a control byte, a byte that is not part of
+/// valid UTF-8), or std::string_view::npos if there is none: text that prints as it is.
+std::size_t first_unprintable_byte(std::string_view text);
+
 }  // namespace pkm

@@ -10,6 +10,8 @@
 #include <unordered_map>
 
 #include "io/input_file.hpp"
+#include "io/printable_text.hpp"
+#include "io/yaml_stream_check.hpp"
 
 namespace pkm {
 
@@ -106,11 +108,30 @@ YAML::Mark yaml_deep_nesting_mark(std::string_view text, const YAML::DeepRecursi
   return clamped;
 }
 
+// yaml-cpp reads a NUL byte as the start of an escape: "a\0tb" becomes "a", a TAB and "b" without a word.
+std::optional<Error> yaml_nul_byte(std::string_view text, const std::string& source) {
+  const std::size_t at = text.find('\0');
+  if (at == std::string_view::npos) return std::nullopt;
+  const std::size_t line_start =
+      text.rfind('\n', at) == std::string_view::npos ? 0 : text.rfind('\n', at) + 1;
+  YAML::Mark mark;
+  mark.line =
+      static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+  mark.column = static_cast<int>(at - line_start);
+  return located_yaml_error(source, mark, "",
+                            fmt::format("{}:{}: not valid YAML: a NUL byte (\\x00); a YAML file is text",
+                                        source, yaml_mark_text(mark)));
+}
+
 }  // namespace
 
 Result<YAML::Node> parse_yaml_document(std::string_view text, const std::string& source_name) {
   YAML::Node root;
+  // The events first: a tree with an alias cycle or a bomb must never be built, let alone walked.
+  YamlStreamCheck stream(text, source_name);
   try {
+    stream.run();
+    if (stream.found()) return *stream.found();
     root = YAML::Load(std::string(text));
   } catch (const YAML::DeepRecursion& e) {
     const YAML::Mark mark = yaml_deep_nesting_mark(text, e);
@@ -118,11 +139,19 @@ Result<YAML::Node> parse_yaml_document(std::string_view text, const std::string&
                               fmt::format("{}:{}: not valid YAML: nested more than {} levels deep",
                                           source_name, yaml_mark_text(mark), e.depth() - 1));
   } catch (const YAML::Exception& e) {
+    // An unclosed quote or bracket, a NUL byte or a TAB is the cause; yaml-cpp blames where it stopped.
+    if (stream.found()) return *stream.found();
+    if (auto nul = yaml_nul_byte(text, source_name)) return *nul;  // the usual cause: "unknown escape"
+    if (auto cause = stream.explain(e)) return *cause;
     const std::string where =
         e.mark.is_null() ? source_name : fmt::format("{}:{}", source_name, yaml_mark_text(e.mark));
     return located_yaml_error(source_name, e.mark, "", fmt::format("{}: not valid YAML: {}", where, e.msg));
   }
   if (auto checked = check_yaml_node(root, "", source_name); !checked) return checked.error();
+  // After the mapping is known, so that a binary file is still refused as "expected a mapping".
+  if (root.IsMap()) {
+    if (auto nul = yaml_nul_byte(text, source_name)) return *nul;
+  }
   return root;
 }
 
@@ -204,7 +233,8 @@ Result<double> YamlReader::number(const YAML::Node& node, std::string_view key) 
       return error_at(node, key, fmt::format("expected a finite number, got '{}' (out of range)", text));
     return error_at(node, key, fmt::format("expected a number, got '{}'", text));
   }
-  if (!std::isfinite(value)) return error_at(node, key, "expected a finite number");
+  if (!std::isfinite(value))
+    return error_at(node, key, fmt::format("expected a finite number, got '{}'", node.Scalar()));
   return value;
 }
 
@@ -245,11 +275,31 @@ Result<std::optional<std::string>> YamlReader::optional_string(const YAML::Node&
   return std::optional<std::string>{node.Scalar()};
 }
 
+Result<std::optional<std::string>> YamlReader::optional_label(const YAML::Node& parent,
+                                                              std::string_view key) const {
+  auto text = optional_string(parent, key);
+  if (!text || !*text) return text;
+  const std::string& label = **text;
+  const std::size_t bad = first_unprintable_byte(label);
+  if (bad == std::string::npos) return text;
+  const auto byte = static_cast<unsigned char>(label[bad]);
+  // A control byte would act on the terminal that prints the name; other bytes that are not UTF-8 could not
+  // go into the run's summary.json, which is UTF-8 like every JSON text.
+  const bool control = byte < 0x20 || byte == 0x7F;
+  return error_at_value(
+      parent, key,
+      fmt::format("{} (\\x{:02X}) at byte {}: a {} is one line of {}",
+                  control ? "a control character" : "a byte that is not UTF-8", byte, bad + 1, key,
+                  control ? "printable text" : "UTF-8 text (save the file as UTF-8)"));
+}
+
 Result<int> YamlReader::required_integer(const YAML::Node& parent, std::string_view key) const {
   auto value = required_number(parent, key);
   if (!value) return value.error();
-  if (std::floor(*value) != *value) {
-    return error_at(parent[std::string(key)], key, fmt::format("expected a whole number, got {}", *value));
+  // Beyond int's range the cast would be undefined.
+  if (std::floor(*value) != *value || std::abs(*value) > 1e9) {
+    return error_at(parent[std::string(key)], key,
+                    fmt::format("expected a whole number of at most 1e9 in size, got {:g}", *value));
   }
   return static_cast<int>(*value);
 }
@@ -261,8 +311,14 @@ Result<Eigen::Vector3d> YamlReader::point(const YAML::Node& node, std::string_vi
   }
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int i = 0; i < dims; ++i) {
-    auto v = number(node[i], fmt::format("{}[{}]", key, i));
+    const std::string item = fmt::format("{}[{}]", key, i);
+    auto v = number(node[i], item);
     if (!v) return v.error();
+    if (std::abs(*v) > kMaxPointCoordinate) {
+      return error_at(
+          node[i], item,
+          fmt::format("{:g} is too large for a coordinate (at most {:g} in size)", *v, kMaxPointCoordinate));
+    }
     p[i] = *v;
   }
   return p;

@@ -23,6 +23,9 @@ Result<YAML::Node> parse_yaml_document(std::string_view text, const std::string&
 /// The file through the guarded reader (io/input_file.hpp; `what` names it: "machine file"), parsed.
 Result<YAML::Node> load_yaml_file(const std::string& path, std::string_view what);
 
+/// The largest coordinate of a point in a YAML file: 1e9 (mm: a thousand kilometres), far beyond any machine.
+inline constexpr double kMaxPointCoordinate = 1e9;
+
 class YamlReader {
  public:
   explicit YamlReader(std::string source_name) : source_(std::move(source_name)) {}
@@ -46,9 +49,15 @@ class YamlReader {
   Result<std::string> required_string(const YAML::Node& parent, std::string_view key) const;
   /// A single word or text if the key is there (a list or a mapping is an error).
   Result<std::optional<std::string>> optional_string(const YAML::Node& parent, std::string_view key) const;
+  /// optional_string for a label (`name`, `description`): one line of UTF-8 text, no control characters (a
+  /// TAB, an escape sequence that would act on the terminal that prints it), nothing a JSON summary cannot
+  /// hold.
+  Result<std::optional<std::string>> optional_label(const YAML::Node& parent, std::string_view key) const;
   Result<int> required_integer(const YAML::Node& parent, std::string_view key) const;
 
-  /// A list of exactly `dims` numbers (dims = 2 or 3); 2-number points get z = 0.
+  /// A list of exactly `dims` numbers (dims = 2 or 3); 2-number points get z = 0. Each at most
+  /// kMaxPointCoordinate in size: the geometry squares and multiplies them, and 1e308 would overflow there
+  /// and be blamed on whatever is computed from it (the home pose).
   Result<Eigen::Vector3d> point(const YAML::Node& node, std::string_view key, int dims) const;
   Result<Eigen::Vector3d> required_point(const YAML::Node& parent, std::string_view key, int dims) const;
   /// A list of `count` points (count < 0: any number ≥ 1) of `dims` numbers each.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io/measurement_csv.hpp"
+#include "statics/load_keys.hpp"
 #include "statics/load_model.hpp"
 
 namespace pkm::statics {
@@ -34,6 +35,13 @@ double* load_csv_field(CuttingLoad& load, std::string_view column) {
   if (column == "normal_N") return &load.normal_N;
   if (column == "axial_N") return &load.axial_N;
   return nullptr;
+}
+
+// The load key whose checks a column's numbers get (load_keys.hpp).
+std::string_view load_csv_key(std::string_view column) {
+  if (column.front() == 'f') return "force";
+  if (column.front() == 'm') return "moment";
+  return column.substr(0, column.find('_'));  // tangential_N -> tangential
 }
 
 Error load_csv_error(const std::string& source, int line, int column, std::string_view key,
@@ -104,8 +112,11 @@ Result<LoadModel> parse_load_csv(std::string_view text, const std::string& sourc
           return load_csv_error(source_name, file_line, field.column, "line",
                                 fmt::format("expected a program line number ≥ 1, got '{}'", field.text));
         block.first_line = block.last_line = static_cast<int>(value);
+        block.location = ErrorLocation{source_name, file_line, field.column, "line"};
         continue;
       }
+      if (auto problem = load_number_problem(load_csv_key(columns[c]), value))
+        return load_csv_error(source_name, file_line, field.column, columns[c], *problem);
       *load_csv_field(block.load, columns[c]) = value;
     }
     if (!model.blocks.empty() && block.first_line <= model.blocks.back().last_line) {

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace pkm::statics {
 
 std::string load_key_list() {
@@ -28,6 +30,16 @@ std::optional<std::string> load_number_problem(std::string_view key, double valu
   // Forces may have either sign (a negative tangential force pushes along the feed); a radius may not.
   if (key == "cutter_radius" && value < 0.0) {
     return fmt::format("a cutter radius cannot be negative, got {} mm", value);
+  }
+  // Beyond these a load is a typo, and 1e300 N would come out of the compliance as an infinite deflection.
+  const bool moment = key == "moment";
+  const double limit = key == "cutter_radius" ? kMaxCutterRadius_mm
+                       : moment               ? kMaxLoadMoment_Nmm
+                                              : kMaxLoadForce_N;
+  if (std::abs(value) > limit) {
+    const char* unit = key == "cutter_radius" ? "mm" : moment ? "N·mm" : "N";
+    return fmt::format("{:g} {} is beyond any machine's load (at most {:g} {} in size)", value, unit, limit,
+                       unit);
   }
   return std::nullopt;
 }

@@ -20,7 +20,14 @@ std::string load_key_list();
 double* load_number_field(CuttingLoad& load, std::string_view key);
 /// The vector field a key sets (force, moment), or null.
 Eigen::Vector3d* load_vector_field(CuttingLoad& load, std::string_view key);
-/// Why a number is not acceptable for `key` (a negative cutter radius), or nothing.
+/// The largest loads a load case may give: 100 MN (the largest presses make 80 MN), its moment at 1 m, and
+/// a 10 m cutter radius.
+inline constexpr double kMaxLoadForce_N = 1e8;
+inline constexpr double kMaxLoadMoment_Nmm = 1e11;
+inline constexpr double kMaxCutterRadius_mm = 1e4;
+
+/// Why a number is not acceptable for `key` (a negative cutter radius, a force beyond kMaxLoadForce_N), or
+/// nothing. `key` is a number key or "force" / "moment" for one component of those vectors.
 std::optional<std::string> load_number_problem(std::string_view key, double value);
 /// +1 for "left", −1 for "right", nothing otherwise.
 std::optional<int> contact_side_from_word(std::string_view word);

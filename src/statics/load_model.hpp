@@ -53,6 +53,7 @@ struct BlockLoad {
   int first_line = 0;
   int last_line = 0;
   CuttingLoad load;
+  ErrorLocation location{};  ///< where the load file gives the lines (file, line, column, key), for messages
 };
 
 class LoadModel {
@@ -84,6 +85,15 @@ Result<LoadModel> parse_load_spec(std::string_view spec);
 /// mx_Nmm my_Nmm mz_Nmm tangential_N normal_N axial_N, one row per program line in ascending order. Errors
 /// name source:line:column and the column.
 Result<LoadModel> parse_load_csv(std::string_view text, const std::string& source_name);
+
+/// Refuses a block for lines the program does not have (it starts after the program's last line,
+/// `program_lines`): its load would never act, and a load file for another program would pass unnoticed.
+/// The error names the block's place in the load file and the program.
+Status check_load_lines(const LoadModel& loads, int program_lines, std::string_view program_name);
+
+/// check_load_lines against the part program at `program_path`, read again here for its line count (a
+/// program that cannot be read passes: its reader reports it).
+Status check_load_lines(const LoadModel& loads, const std::string& program_path);
 
 /// A YAML load file:  default: {KEY: VALUE, ...}  and  blocks: [{lines: [FIRST, LAST], KEY: VALUE, ...}, ...]
 /// with the keys of parse_load_spec (force and moment as [x, y, z], contact as left or right). A block starts

@@ -45,6 +45,21 @@ std::optional<double> load_spec_number(std::string_view text) {
   return value;
 }
 
+// Why load_spec_number refused `text`: "1e999" and "nan" are numbers, only not usable ones.
+std::string load_spec_number_problem(std::string_view key, std::string_view text) {
+  text = load_spec_trim(text);
+  double value = 0.0;
+  std::string_view digits = text.size() > 1 && text.front() == '+' ? text.substr(1) : text;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (!digits.empty() && end == digits.data() + digits.size()) {
+    if (ec == std::errc::result_out_of_range)
+      return fmt::format("{}: '{}' is out of range for a number", key, text);
+    if (ec == std::errc() && !std::isfinite(value))
+      return fmt::format("{}: expected a finite number, got '{}'", key, text);
+  }
+  return fmt::format("{}: expected a number, got '{}'", key, text);
+}
+
 Status load_spec_item(std::string_view item, CuttingLoad& load) {
   const std::size_t eq = item.find('=');
   if (eq == std::string_view::npos) {
@@ -54,7 +69,7 @@ Status load_spec_item(std::string_view item, CuttingLoad& load) {
   const std::string_view value = load_spec_trim(item.substr(eq + 1));
   if (double* field = load_number_field(load, key)) {
     const auto v = load_spec_number(value);
-    if (!v) return load_spec_error(item, fmt::format("{}: expected a number, got '{}'", key, value));
+    if (!v) return load_spec_error(item, load_spec_number_problem(key, value));
     if (auto problem = load_number_problem(key, *v)) return load_spec_error(item, *problem);
     *field = *v;
     return ok_status();
@@ -66,7 +81,8 @@ Status load_spec_item(std::string_view item, CuttingLoad& load) {
     }
     for (int i = 0; i < 3; ++i) {
       const auto v = load_spec_number(parts[i]);
-      if (!v) return load_spec_error(item, fmt::format("{}: expected a number, got '{}'", key, parts[i]));
+      if (!v) return load_spec_error(item, load_spec_number_problem(key, parts[i]));
+      if (auto problem = load_number_problem(key, *v)) return load_spec_error(item, *problem);
       (*field)[i] = *v;
     }
     return ok_status();

@@ -57,6 +57,10 @@ class LoadYamlReader {
       } else if (Eigen::Vector3d* vec = load_vector_field(load, key)) {
         auto v = vector(value, full);
         if (!v) return v.error();
+        for (int i = 0; i < 3; ++i) {
+          if (auto problem = load_number_problem(key, (*v)[i]))
+            return error_at(value[i], fmt::format("{}[{}]", full, i), *problem);
+        }
         *vec = *v;
       } else if (key == "contact") {
         const auto side = value.IsScalar() ? contact_side_from_word(value.Scalar()) : std::nullopt;
@@ -98,6 +102,7 @@ class LoadYamlReader {
     }
     b.first_line = bounds[0];
     b.last_line = bounds[1];
+    b.location = ErrorLocation{yaml_.source(), yaml_line(lines), lines.Mark().column + 1, key};
     return b;
   }
 

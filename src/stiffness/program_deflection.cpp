@@ -42,6 +42,14 @@ Result<DeflectionStatistics> deflect_program(const redundancy::ProgramPoints& po
     out.tool_axis = load_point.tool_axis;
     out.load = load.wrench_at(load_point);
     out.deflection = deflect(*compliance, out.load, out.tool_axis);
+    // An overflow must not reach the summary as "inf µm": say where the answer stopped being a number.
+    if (!out.deflection.displacement_mm.allFinite() || !out.deflection.rotation_rad.allFinite()) {
+      return Error{ErrorCode::bad_input,
+                   fmt::format("{}:{}: the tool's deflection under the load is not a finite number (a load "
+                               "too large for the machine's compliance)",
+                               source, point.line),
+                   ErrorLocation{source, point.line, 0, ""}};
+    }
     statistics.add(out.index, out.line, out.cutting, out.deflection);
     if (on_point) {
       if (Status written = on_point(out); !written) return written.error();
