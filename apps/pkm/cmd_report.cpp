@@ -8,7 +8,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "report/report_data.hpp"
+#include "pipeline/folder_report.hpp"
 
 namespace pkm::cli {
 
@@ -25,7 +25,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
   cmd->callback([=, &exit_code] {
     const std::string file =
         out->empty() ? (std::filesystem::path(*directory) / "report.html").string() : *out;
-    if (Status written = report::write_directory_report(*directory, file, *options); !written) {
+    if (Status written = pipeline::write_folder_report(*directory, file, *options); !written) {
       Error error = written.error();
       // The run's machine could not be had: say which option names another.
       if (error.location.key == "machine") error.message += "; give it with --machine";

@@ -279,7 +279,7 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
   auto machine_text = read_input_file(machine.source, "machine file");
   if (!machine_text) return machine_text.error();
 
-  OutputSet outputs;
+  OutputSet outputs{"linuxcnc config"};
   if (auto made = outputs.use_directory(directory); !made) return made.error();
   const PoseVector home = vector_from_pose(m.convention(), m.home());
   std::vector<std::pair<std::string, std::string>> files = {
