@@ -55,7 +55,7 @@ void group_commands(CLI::App& app) {
   std::string footer = "Examples:";
   for (const CommandGroup& group : kCommandGroups)
     footer += "\n  " + std::string(group.name) + ":\n    " + group.example;
-  footer += "\n\npkm COMMAND --help describes a command; docs/cli.md all of them.";
+  footer += "\n\npkm COMMAND --help describes a command; docs/cli.md all of them.\n";
   app.footer(footer);
 }
 

@@ -58,9 +58,9 @@ Status StagedFile::open(const std::string& path) {
   if (!target) return target.error();
   if (*target == OutputTargetKind::write_through) {
     // A device the user named (/dev/stdout, /dev/null): written in place, never replaced.
-    const int descriptor = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
-    if (descriptor < 0) return failure(errno);
-    descriptor_ = descriptor;
+    auto descriptor = open_write_through(path);
+    if (!descriptor) return descriptor.error();
+    descriptor_ = *descriptor;
     return ok_status();
   }
   for (int attempt = 0; attempt < kAtomicFileNameAttempts; ++attempt) {

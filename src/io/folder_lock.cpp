@@ -28,6 +28,7 @@ FolderLock::~FolderLock() {
 Status FolderLock::acquire(const std::string& directory) {
   const std::string path = directory + "/" + kFolderLockName;
   for (int attempt = 0; attempt < kFolderLockAttempts; ++attempt) {
+    const SignalBlock hold_signals;  // the lock file is made and registered for cleanup as one step
     const int descriptor = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
     if (descriptor < 0)
       return make_error(ErrorCode::io,

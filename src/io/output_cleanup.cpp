@@ -81,13 +81,13 @@ void cleanup_remove(const CleanupSlot& slot) {
   }
 }
 
-// While a commit moves files the handler only records the signal (it may run in another thread, which does
-// not block it); the commit raises it again when done.
-std::atomic<bool> g_committing{false};
+// While a SignalBlock lives (a commit, a temporary being made and registered) the handler only records the
+// signal (it may run in another thread, which does not block it); the commit raises it again when done.
+std::atomic<int> g_held{0};  // SignalBlocks alive (they nest)
 std::atomic<int> g_deferred_signal{0};
 
 extern "C" void output_cleanup_on_signal(int signal_number) {
-  if (g_committing.load()) {
+  if (g_held.load() > 0) {
     g_deferred_signal.store(signal_number);
     return;
   }
@@ -136,12 +136,13 @@ SignalBlock::SignalBlock() {
   sigaddset(&block, SIGINT);
   sigaddset(&block, SIGTERM);
   ::pthread_sigmask(SIG_BLOCK, &block, reinterpret_cast<sigset_t*>(saved_));
-  g_committing.store(true);
+  g_held.fetch_add(1);
 }
 
 SignalBlock::~SignalBlock() {
-  g_committing.store(false);
+  const bool outermost = g_held.fetch_sub(1) == 1;
   ::pthread_sigmask(SIG_SETMASK, reinterpret_cast<const sigset_t*>(saved_), nullptr);
+  if (!outermost) return;
   if (const int deferred = g_deferred_signal.exchange(0); deferred != 0) ::raise(deferred);
 }
 

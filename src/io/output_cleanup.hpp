@@ -21,8 +21,9 @@ int register_cleanup(const std::string& path, CleanupKind kind);
 /// Forgets a slot (the path was removed or became part of the committed set).
 void unregister_cleanup(int slot);
 
-/// Holds SIGINT and SIGTERM back while alive (a commit's renames): blocked in this thread, recorded by the
-/// handler in any other; a signal that came meanwhile is raised again at the end.
+/// Holds SIGINT and SIGTERM back while alive (a commit's renames; a temporary made and registered): blocked
+/// in this thread, recorded by the handler in any other; a signal that came meanwhile is raised again when
+/// the outermost block ends. Blocks nest.
 class SignalBlock {
  public:
   SignalBlock();

@@ -49,6 +49,7 @@ Status output_set_make_directories(const fs::path& directory, std::vector<std::s
     if (p == p.parent_path()) break;
   }
   for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    const SignalBlock hold_signals;  // made and registered for cleanup as one step
     if (::mkdir(it->c_str(), 0777) == 0) {
       created.push_back(it->string());
       slots.push_back(register_cleanup(it->string(), CleanupKind::empty_directory));
@@ -107,6 +108,7 @@ Status OutputSet::open_directory(const std::string& directory) {
   if (nested_) joining_ = false;
   if (Status locked = nested_ ? ok_status() : lock_.acquire(directory); !locked) return locked;
   std::string pattern = (fs::path(directory) / ".pkm-staging-XXXXXX").string();
+  const SignalBlock hold_signals;  // a signal between making the folder and registering it would leave it
   if (::mkdtemp(pattern.data()) == nullptr) {
     const int error_number = errno;
     return make_error(ErrorCode::io, fmt::format("cannot write into directory {}: {}", directory,
@@ -141,6 +143,11 @@ std::string OutputSet::staged_path(std::string_view name) {
   member.target = (fs::path(directory_) / name).string();
   member.listed = fs::path(name).generic_string();
   members_.push_back(member);
+  if (fs::path(name)
+          .has_parent_path()) {  // a subfolder of the set (a strategy's run): made in the staging folder
+    std::error_code ignored;     // a failure shows when the file is written
+    fs::create_directories(fs::path(member.temporary).parent_path(), ignored);
+  }
   return member.temporary;
 }
 
@@ -173,6 +180,7 @@ Result<std::string> OutputSet::stage_file(const std::string& path) {
   auto listed = listed_name(path);
   if (!listed) return listed.error();
   if (*target == OutputTargetKind::write_through) {
+    const SignalBlock hold_signals;  // made and registered for cleanup as one step
     auto temporary = output_set_device_temporary(staging_, path);
     if (!temporary) return temporary;
     Member member{*temporary, path, {}, {}, false, true, -1};
@@ -188,6 +196,7 @@ Result<std::string> OutputSet::stage_file(const std::string& path) {
   }
   for (int attempt = 0; attempt < kOutputSetNameAttempts; ++attempt) {
     std::string candidate = path + ".tmp-" + random_file_suffix();
+    const SignalBlock hold_signals;  // made and registered for cleanup as one step
     const int descriptor = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (descriptor >= 0) {
       ::close(descriptor);
@@ -327,10 +336,10 @@ Status OutputSet::sync_new_files() const {
 Status OutputSet::write_through_devices() {
   for (const Member& m : members_) {
     if (!m.write_through) continue;
-    const int descriptor = ::open(m.target.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
-    if (descriptor < 0) return output_set_error(m.target, errno);
-    Status copied = copy_file_into(m.temporary, descriptor, m.target);
-    if (::close(descriptor) != 0 && copied) copied = output_set_error(m.target, errno);
+    auto descriptor = open_write_through(m.target);
+    if (!descriptor) return descriptor.error();
+    Status copied = copy_file_into(m.temporary, *descriptor, m.target);
+    if (::close(*descriptor) != 0 && copied) copied = output_set_error(m.target, errno);
     if (!copied) return copied;
   }
   return ok_status();
@@ -339,6 +348,14 @@ Status OutputSet::write_through_devices() {
 Status OutputSet::place_members() {
   for (Member& m : members_) {
     if (m.write_through) continue;
+    if (!m.listed.empty() && fs::path(m.listed).has_parent_path()) {  // its subfolder of DIR, if missing
+      Status made =
+          output_set_make_directories(fs::path(m.target).parent_path(), created_directories_, created_slots_);
+      if (!made) {
+        roll_back();
+        return made;
+      }
+    }
     bool is_directory = false;
     if (output_set_exists(m.target, is_directory)) {
       std::string backup = m.target + ".old-" + random_file_suffix();

@@ -30,11 +30,26 @@ Error output_target_refused(const std::string& path, const char* kind) {
 Result<OutputTargetKind> classify_output_target(const std::string& path) {
   struct stat status {};
   if (::stat(path.c_str(), &status) != 0) return OutputTargetKind::replace;  // absent or a dangling link
-  if (S_ISCHR(status.st_mode)) return OutputTargetKind::write_through;
-  if (S_ISFIFO(status.st_mode)) return output_target_refused(path, "a FIFO");
+  if (S_ISCHR(status.st_mode) || S_ISFIFO(status.st_mode)) return OutputTargetKind::write_through;
   if (S_ISSOCK(status.st_mode)) return output_target_refused(path, "a socket");
   if (S_ISBLK(status.st_mode)) return output_target_refused(path, "a block device");
   return OutputTargetKind::replace;
+}
+
+Result<int> open_write_through(const std::string& path) {
+  // O_NONBLOCK: a FIFO nobody reads fails with ENXIO at once instead of blocking the run.
+  const int descriptor = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (descriptor < 0 && errno == ENXIO)
+    return make_error(ErrorCode::io,
+                      fmt::format("cannot write {}: it is a FIFO with no reader; pkm writes regular "
+                                  "files (replacing them whole), and character devices and FIFOs "
+                                  "being read (writing through)",
+                                  path));
+  if (descriptor < 0)
+    return make_error(ErrorCode::io, fmt::format("cannot write {}: {}", path, output_target_reason(errno)));
+  const int flags = ::fcntl(descriptor, F_GETFL);
+  if (flags >= 0) ::fcntl(descriptor, F_SETFL, flags & ~O_NONBLOCK);  // then write as to any file
+  return descriptor;
 }
 
 Status copy_file_into(const std::string& source, int target_descriptor, const std::string& target_name) {
