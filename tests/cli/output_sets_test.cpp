@@ -131,6 +131,8 @@ TEST(OutputSets, APlanFolderHasItsManifest) {
   EXPECT_EQ(manifest["complete"], true);
   EXPECT_EQ(manifest["files"], nlohmann::json({"actuators.csv", "path.csv", "summary.json"}));
   EXPECT_EQ(manifest["inputs"]["machine"]["fnv1a64"], *file_content_hash(outsets_machine()));
+  const auto summary = nlohmann::json::parse(outsets_read(t / "run" / "summary.json"));
+  EXPECT_EQ(summary["pkm_version"], std::string(pkm_version()));  // the same one version everywhere
   EXPECT_EQ(manifest["inputs"]["program"]["fnv1a64"],
             *file_content_hash(test::source_path("examples/programs/ch5_line.ngc")));
   EXPECT_TRUE(outsets_leftovers(t).empty());
