@@ -292,6 +292,11 @@ Result<OutputManifest> OutputSet::next_manifest(std::vector<std::string>& stale)
     joined.files.insert(joined.files.end(), added.files.begin(), added.files.end());
     std::sort(joined.files.begin(), joined.files.end());
     joined.files.erase(std::unique(joined.files.begin(), joined.files.end()), joined.files.end());
+    // One entry per joining command: a second pkm report replaces the first's (its files stay listed).
+    nlohmann::json kept = nlohmann::json::array();
+    for (const auto& entry : joined.joined)
+      if (entry.value("command", "") != added.command) kept.push_back(entry);
+    joined.joined = std::move(kept);
     joined.joined.push_back({{"command", added.command},
                              {"pkm_version", added.pkm_version},
                              {"inputs", added.inputs},

@@ -199,8 +199,18 @@ TEST_F(OutputSetManifest, AJoinedSetKeepsItsCommandAndListsTheAddedFiles) {
   EXPECT_EQ((*manifest)->joined.at(0)["command"], "servo");
   EXPECT_TRUE(pkm::check_output_set(run().string(), {"plan"}));
 
-  pkm::OutputSet wrong;
-  EXPECT_FALSE(wrong.join_directory(run().string(), {"interpolate"}));
+  {
+    pkm::OutputSet wrong;  // holds the lock until it goes
+    EXPECT_FALSE(wrong.join_directory(run().string(), {"interpolate"}));
+  }
+
+  pkm::OutputSet again;  // the same command joining again: one entry for it, not two
+  ASSERT_TRUE(again.join_directory(run().string(), {"plan"}));
+  ASSERT_TRUE(pkm::write_file_atomically(again.staged_path("servo.csv"), "servo again"));
+  ASSERT_TRUE(again.commit());
+  const auto rejoined = pkm::read_output_manifest(run().string());
+  ASSERT_TRUE(rejoined && *rejoined);
+  EXPECT_EQ((*rejoined)->joined.size(), 1u);
 }
 
 TEST_F(OutputSetManifest, AFileOfTheSetItselfIsRefusedAsAnotherTarget) {
