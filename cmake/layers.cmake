@@ -54,6 +54,10 @@ target_precompile_headers(pkm_kinematics PRIVATE ${PKM_LIB_PCH})
 pkm_layer(pkm_io io io)
 target_link_libraries(pkm_io PUBLIC pkm_kinematics yaml-cpp fmt::fmt nlohmann_json::nlohmann_json)
 target_precompile_headers(pkm_io PRIVATE ${PKM_LIB_PCH})
+# The version of project() is the one place it is set: io/version.cpp gets it as its own definition (outside
+# the unity batches, so that a new version recompiles one file).
+set_source_files_properties(${PROJECT_SOURCE_DIR}/src/io/version.cpp PROPERTIES
+  COMPILE_DEFINITIONS "PKM_VERSION=\"${PROJECT_VERSION}\"" SKIP_UNITY_BUILD_INCLUSION ON)
 
 # From part program to drive output.
 pkm_layer(pkm_motion motion program path planning redundancy interpolation interpolation/methods

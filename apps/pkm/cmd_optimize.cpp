@@ -120,7 +120,7 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
       return;
     }
     // The program and the report replace the previous ones together or not at all.
-    OutputSet outputs;
+    OutputSet outputs{"optimize"};
     auto staged_program = outputs.stage_file(*out_path);
     Status written = staged_program ? write_file_atomically(*staged_program, *text) : staged_program.error();
     summary["out"] = *out_path;

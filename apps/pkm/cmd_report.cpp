@@ -9,7 +9,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "io/input_file.hpp"
-#include "report/report_data.hpp"
+#include "pipeline/folder_report.hpp"
 
 namespace pkm::cli {
 
@@ -33,7 +33,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
     }
     const std::string file =
         out->empty() ? (std::filesystem::path(*directory) / "report.html").string() : *out;
-    if (Status written = report::write_directory_report(*directory, file, *options); !written) {
+    if (Status written = pipeline::write_folder_report(*directory, file, *options); !written) {
       Error error = written.error();
       // The run's machine could not be had: say which option names another.
       if (error.location.key == "machine") error.message += "; give it with --machine";

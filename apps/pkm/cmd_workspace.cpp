@@ -99,7 +99,7 @@ int run_workspace(const WorkspaceArguments& a) {
   if (!map) return report_error("workspace", map.error());
   const workspace::WorkspaceMapSummary summary = workspace::summarise_workspace_map(*map);
   // Everything is computed before DIR is touched: a failure above leaves no directory behind.
-  OutputSet outputs;
+  OutputSet outputs{"workspace"};
   if (Status s = outputs.use_directory(a.out_dir); !s) return report_error("workspace", s.error());
   if (Status s = workspace::stage_workspace_files(outputs, *machine, *map, summary); !s)
     return report_error("workspace", s.error());

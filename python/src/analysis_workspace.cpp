@@ -26,7 +26,7 @@ Result<WorkspaceRun> run_workspace(const Machine& machine, const workspace::Work
   if (!map) return map.error();
   const workspace::WorkspaceMapSummary summary = workspace::summarise_workspace_map(*map);
   if (!out_dir.empty()) {
-    OutputSet outputs;
+    OutputSet outputs{"workspace"};
     if (Status s = outputs.use_directory(out_dir); !s) return s.error();
     if (Status s = workspace::stage_workspace_files(outputs, machine, *map, summary); !s) return s.error();
     if (Status s = outputs.commit(); !s) return s.error();

@@ -9,6 +9,8 @@
 #include <random>
 #include <system_error>
 
+#include "io/output_target.hpp"
+
 namespace pkm {
 
 namespace {
@@ -52,6 +54,15 @@ Error StagedFile::failure(int error_number) {
 
 Status StagedFile::open(const std::string& path) {
   path_ = path;
+  auto target = classify_output_target(path);
+  if (!target) return target.error();
+  if (*target == OutputTargetKind::write_through) {
+    // A device the user named (/dev/stdout, /dev/null): written in place, never replaced.
+    auto descriptor = open_write_through(path);
+    if (!descriptor) return descriptor.error();
+    descriptor_ = *descriptor;
+    return ok_status();
+  }
   for (int attempt = 0; attempt < kAtomicFileNameAttempts; ++attempt) {
     std::string candidate = path + ".tmp-" + random_file_suffix();
     // 0666 lets the umask decide, as for any file a program creates.
@@ -80,6 +91,13 @@ Status StagedFile::write(std::string_view text) {
   return ok_status();
 }
 
+Status StagedFile::sync() {
+  if (descriptor_ < 0)
+    return make_error(ErrorCode::io, fmt::format("cannot write {}: the file is not open", path_));
+  if (::fsync(descriptor_) != 0 && errno != EINVAL) return failure(errno);  // EINVAL: a device cannot sync
+  return ok_status();
+}
+
 Status StagedFile::commit() {
   if (descriptor_ < 0)
     return make_error(ErrorCode::io, fmt::format("cannot write {}: the file is not open", path_));
@@ -87,6 +105,10 @@ Status StagedFile::commit() {
   const int closed = ::close(descriptor_);
   descriptor_ = -1;
   if (closed != 0) return failure(errno);
+  if (temporary_.empty()) {  // written through
+    committed_ = true;
+    return ok_status();
+  }
   if (std::rename(temporary_.c_str(), path_.c_str()) != 0) return failure(errno);
   temporary_.clear();
   committed_ = true;

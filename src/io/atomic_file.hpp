@@ -15,7 +15,9 @@ namespace pkm {
 /// A file written under a temporary name next to its path (`path.tmp-XXXXXX`) and renamed into place by
 /// commit(). Destroyed without a successful commit() it removes the temporary, so a run that fails half way
 /// leaves neither a partial file nor a stray temporary. The file gets the permissions of a newly created one
-/// (0666 less the umask), also when it replaces an existing file.
+/// (0666 less the umask), also when it replaces an existing file. A path that is a character device is
+/// written through instead (never replaced); a FIFO, socket or block device is refused
+/// (io/output_target.hpp).
 class StagedFile {
  public:
   StagedFile() = default;
@@ -27,6 +29,8 @@ class StagedFile {
   Status open(const std::string& path);
   /// Appends `text` to the temporary. After a failure the temporary is gone and later calls fail.
   Status write(std::string_view text);
+  /// Flushes what was written to the disk (fsync), for files that must survive a power cut.
+  Status sync();
   /// Closes the temporary and renames it to the path.
   Status commit();
 

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "calibration/statistics.hpp"
+#include "io/version.hpp"
 #include "pipeline/calibration_setup.hpp"
 
 namespace pkm::pipeline {
@@ -171,6 +172,7 @@ nlohmann::json calibration_identify_summary(const Machine& machine, const Calibr
   }
   nlohmann::json summary = {
       {"command", "calibrate identify"},
+      {"pkm_version", std::string(pkm_version())},
       {"machine", machine.source},
       {"measurements", job.measurements_path},
       {"kind", all.kind == calibration::MeasurementKind::ballbar ? "ballbar" : "tracker"},

@@ -135,7 +135,7 @@ Result<CalibrationIdentifyResult> calibration_identify(const Machine& machine,
       !checked)
     return checked.error();
 
-  OutputSet outputs;
+  OutputSet outputs{"calibrate identify"};
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   auto staged = outputs.stage_file(job.calibrated_path);
   if (!staged) return staged.error();

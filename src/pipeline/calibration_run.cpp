@@ -9,6 +9,7 @@
 #include "calibration/plan_prediction.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_set.hpp"
+#include "io/version.hpp"
 #include "pipeline/calibration_setup.hpp"
 
 namespace pkm::pipeline {
@@ -24,7 +25,7 @@ Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const Cal
                     to_string(job.plan.method), prepared->plan.poses.size(), id.rank, id.parameters));
   }
 
-  OutputSet outputs;
+  OutputSet outputs{"calibrate plan"};
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   const Mechanism& mechanism = *prepared->model;
   const int n = mechanism.actuator_count();
@@ -61,6 +62,7 @@ Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const Cal
   }
   nlohmann::json summary = {
       {"command", "calibrate plan"},
+      {"pkm_version", std::string(pkm_version())},
       {"machine", machine.source},
       {"method", std::string(to_string(job.plan.method))},
       {"poses", count},

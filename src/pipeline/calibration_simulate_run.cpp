@@ -10,6 +10,7 @@
 #include "io/fixture_file.hpp"
 #include "io/measurement_file.hpp"
 #include "io/output_set.hpp"
+#include "io/version.hpp"
 #include "pipeline/calibration_run.hpp"
 #include "pipeline/calibration_setup.hpp"
 
@@ -118,7 +119,7 @@ Result<CalibrationSimulateResult> calibration_simulate(const Machine& machine,
   result.plan_poses = static_cast<int>(prepared->plan.poses.size());
   const calibration::MonteCarloSummary& mc = result.monte_carlo;
 
-  OutputSet outputs;
+  OutputSet outputs{"calibrate simulate"};
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   if (Status written =
           write_file_atomically(outputs.staged_path("trials.csv"), calsim_trials_csv(mc, job.plan.seed));
@@ -147,6 +148,7 @@ Result<CalibrationSimulateResult> calibration_simulate(const Machine& machine,
     warnings.push_back(fmt::format("{} of {} identifications did not converge", mc.not_converged, mc.trials));
   nlohmann::json summary = {
       {"command", "calibrate simulate"},
+      {"pkm_version", std::string(pkm_version())},
       {"machine", machine.source},
       {"method", std::string(to_string(job.plan.method))},
       {"poses", result.plan_poses},

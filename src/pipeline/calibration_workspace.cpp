@@ -14,6 +14,7 @@
 #include "calibration/plan_jacobian.hpp"
 #include "io/input_file.hpp"
 #include "io/measurement_csv.hpp"
+#include "io/output_manifest.hpp"
 #include "io/pose_input.hpp"
 #include "pipeline/calibration_setup.hpp"
 
@@ -375,6 +376,7 @@ Result<CalibrationWorkspaceLayer> calibration_workspace_layer(const Machine& mac
                                                               const std::string& directory) {
   auto plan = read_calibration_plan(machine, directory);
   if (!plan) return plan.error();
+  if (Status checked = check_output_set(directory, {"calibrate plan"}); !checked) return checked.error();
   auto prediction = CalibratedErrorPrediction::make(machine, plan->poses, plan->setup);
   if (!prediction) {
     return make_error(prediction.error().code,

@@ -8,6 +8,7 @@
 #include "interpolation/drive_output/steps_csv.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_set.hpp"
+#include "io/version.hpp"
 #include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
 #include "planning/motion_plan.hpp"
@@ -71,7 +72,7 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
     return make_error(ErrorCode::bad_input, "an interpolation report needs an output directory");
   }
   // The step files, the contour trace, the summary and the report replace the previous run's together.
-  OutputSet outputs;
+  OutputSet outputs{"interpolate"};
   interpolation::StepsCsvWriter csv;
   interpolation::StepStreamWriter binary;
   interpolation::ContourTraceWriter trace;
@@ -108,6 +109,7 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
   result.blocks = plan->statistics.blocks;
   result.json = interpolation::interpolation_summary_json(*summary, machine);
   result.json["program"] = program->source;
+  result.json["pkm_version"] = std::string(pkm_version());
   result.json["blocks"] = plan->statistics.blocks;
   result.json["override_pct"] = job.override_pct;
   result.json["accel"] = job.accel == interpolation::RampShape::linear ? "linear" : "s-curve";

@@ -326,7 +326,7 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
   auto machine_text = read_input_file(machine.source, "machine file");
   if (!machine_text) return machine_text.error();
 
-  OutputSet outputs;
+  OutputSet outputs{"linuxcnc config"};
   if (auto made = outputs.use_directory(directory); !made) return made.error();
   // LinuxCNC's A B C are G-code's (abc), as pkmkins converts them: its home and axis limits are too.
   const PoseVector home = vector_from_pose(AngleConvention::abc, m.home());

@@ -35,7 +35,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   output.dynamics_load = &job.dynamics_load;
   if (job.progress && plan->duration_s * job.plan.rate_hz > 200000) output.progress = job.progress;
   // The CSVs, the summary and the report replace the previous run's together or not at all.
-  OutputSet outputs;
+  OutputSet outputs{"plan"};
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   auto run = planning::write_plan_outputs(*plan, machine, outputs, output);
   if (!run) return run.error();

@@ -9,7 +9,9 @@
 #include "core/rotation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/buffered_file.hpp"
+#include "io/output_manifest.hpp"
 #include "io/output_set.hpp"
+#include "io/version.hpp"
 #include "report/csv_table.hpp"
 #include "report/report_data.hpp"
 #include "report/report_html.hpp"
@@ -25,6 +27,11 @@ Error servo_csv_error(const report::CsvReader& csv, const std::string& what) {
 }
 
 }  // namespace
+
+bool same_folder(const std::string& a, const std::string& b) {
+  std::error_code error;
+  return fs::weakly_canonical(fs::absolute(a), error) == fs::weakly_canonical(fs::absolute(b), error);
+}
 
 Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std::string& plan_directory) {
   const Mechanism& mechanism = *machine.mechanism;
@@ -156,6 +163,7 @@ nlohmann::json servo_summary_json(const Machine& machine, const ServoJob& job, c
   for (const auto& [line, error] : s.worst_lines)
     worst.push_back({{"line", line}, {"contour_error_mm", error}});
   return {{"kind", "servo"},
+          {"pkm_version", std::string(pkm_version())},
           {"machine", machine.source},
           {"plan", job.plan_directory},
           {"tuning", to_string(machine.servo.tuning)},
@@ -225,6 +233,8 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
   }
   auto input = read_planned_run(machine, job.plan_directory);
   if (!input) return input.error();
+  // Its files first (a damaged file is named as such), then that they are one plan's and nothing else.
+  if (Status checked = check_output_set(job.plan_directory, {"plan"}); !checked) return checked.error();
   auto steps = servo::loop_steps_per_period(machine, input->period_s);
   if (!steps) return steps.error();
   auto plant = servo::plant_along_run(machine, *input, job.inertia_stride);
@@ -244,9 +254,14 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
   for (int j = 0; j < m; ++j)
     result.analysis.push_back(servo::analyse_channel(design->channels[j], loop_period_s));
 
-  const std::string out_directory = job.out_directory.empty() ? job.plan_directory : job.out_directory;
-  OutputSet outputs;
-  if (Status used = outputs.use_directory(out_directory); !used) return used.error();
+  // Without --out (or with the plan's own folder) the servo files join the plan's set beside its files, where
+  // pkm report finds them; elsewhere they are a set of their own.
+  OutputSet outputs{"servo"};
+  if (job.out_directory.empty() || same_folder(job.out_directory, job.plan_directory)) {
+    if (Status joined = outputs.join_directory(job.plan_directory, {"plan"}); !joined) return joined.error();
+  } else if (Status used = outputs.use_directory(job.out_directory); !used) {
+    return used.error();
+  }
   BufferedStagedFile ticks_csv;
   if (Status opened = ticks_csv.open(outputs.staged_path("servo.csv")); !opened) return opened.error();
   const bool angular = machine.mechanism->actuators_are_angles();

@@ -10,6 +10,7 @@
 #include "core/units.hpp"
 #include "io/buffered_file.hpp"
 #include "io/output_set.hpp"
+#include "io/version.hpp"
 #include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
 #include "program/cl_writer.hpp"
@@ -76,7 +77,7 @@ Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const S
   const bool compensate = !job.compensated_path.empty();
   const bool closed_form = model->model() == StiffnessModel::struts && mechanism.has_distance_actuators();
 
-  OutputSet outputs;
+  OutputSet outputs{"stiffness"};
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   BufferedStagedFile points_csv, compliance_csv;
   if (Status opened = points_csv.open(outputs.staged_path("points.csv")); !opened) return opened.error();
@@ -213,6 +214,7 @@ Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const S
   }
   const stiffness::DeflectionStatistics& s = result.statistics;
   nlohmann::json summary = {{"program", job.program_path},
+                            {"pkm_version", std::string(pkm_version())},
                             {"machine", machine.source},
                             {"model", std::string(stiffness::to_string(result.model))},
                             {"step_mm", job.step_mm},

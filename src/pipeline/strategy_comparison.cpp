@@ -225,7 +225,7 @@ Result<StrategyComparison> compare_strategies(const Machine& machine, const Stra
   auto cases = comparison_cases(job);
   if (!cases) return cases.error();
 
-  OutputSet outputs;
+  OutputSet outputs{"strategies"};
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   std::vector<StrategyScore> scores;
   std::vector<std::vector<ErrorMapPoint>> maps;

@@ -12,6 +12,7 @@
 #include "dynamics/run_dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/buffered_file.hpp"
+#include "io/version.hpp"
 #include "planning/machine_warnings.hpp"
 #include "planning/plan_stream.hpp"
 #include "planning/run_accuracy.hpp"
@@ -66,6 +67,7 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
   nlohmann::json summary = {
       {"program", plan.program_source},
       {"machine", machine.source},
+      {"pkm_version", std::string(pkm_version())},
       {"duration_s", run.duration_s},
       {"ticks", run.ticks},
       {"rate_hz", run.rate_hz},
@@ -128,7 +130,7 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
 
 Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
                                       const std::string& directory, const OutputOptions& options) {
-  OutputSet outputs;
+  OutputSet outputs{"plan"};
   if (auto used = outputs.use_directory(directory); !used) return used.error();
   auto run = write_plan_outputs(plan, machine, outputs, options);
   if (!run) return run;

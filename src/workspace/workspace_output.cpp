@@ -8,6 +8,7 @@
 #include "dynamics/pose_grid_columns.hpp"
 #include "io/atomic_file.hpp"
 #include "io/pose_input.hpp"
+#include "io/version.hpp"
 
 namespace pkm::workspace {
 namespace {
@@ -122,6 +123,7 @@ nlohmann::json workspace_summary_json(const Machine& machine, const WorkspaceMap
   }
   const long ok = summary.status_cells[static_cast<std::size_t>(CellStatus::ok)];
   return {{"kind", "workspace"},
+          {"pkm_version", std::string(pkm_version())},
           {"machine", machine.source},
           {"machine_name", machine.name},
           {"grid",

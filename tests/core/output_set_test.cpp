@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/atomic_file.hpp"
+#include "io/output_manifest.hpp"
 
 namespace {
 
@@ -40,10 +41,14 @@ class OutputSetTest : public ::testing::Test {
     std::sort(out.begin(), out.end());
     return out;
   }
-  void previous_run() const {
+  // A complete earlier set of this process's command, listing `more` files too.
+  void previous_run(std::vector<std::string> more = {}) const {
     fs::create_directories(dir_ / "run");
     std::ofstream(dir_ / "run" / "a.csv") << "old a";
     std::ofstream(dir_ / "run" / "b.csv") << "old b";
+    more.insert(more.end(), {"a.csv", "b.csv"});
+    ASSERT_TRUE(
+        pkm::write_output_manifest((dir_ / "run").string(), pkm::new_output_manifest("library", more)));
   }
 
   fs::path dir_;
@@ -63,8 +68,8 @@ TEST_F(OutputSetTest, CommitReplacesEveryFile) {
   EXPECT_EQ(read(dir_ / "run" / "a.csv"), "new a");
   EXPECT_EQ(read(dir_ / "run" / "b.csv"), "new b");
   EXPECT_EQ(read(dir_ / "pages" / "report.html"), "page");
-  EXPECT_EQ(names(),
-            (std::vector<std::string>{"pages", "pages/report.html", "run", "run/a.csv", "run/b.csv"}));
+  EXPECT_EQ(names(), (std::vector<std::string>{"pages", "pages/report.html", "run", "run/a.csv", "run/b.csv",
+                                               "run/manifest.json"}));
 }
 
 TEST_F(OutputSetTest, ADirectoryInTheWayLeavesThePreviousRun) {
@@ -83,11 +88,12 @@ TEST_F(OutputSetTest, ADirectoryInTheWayLeavesThePreviousRun) {
 }
 
 TEST_F(OutputSetTest, AFailedRenameRestoresTheFilesAlreadyPlaced) {
-  previous_run();
   // A previous file whose name leaves no room for the ".old-XXXXXX" suffix: moving it aside fails after
   // a.csv is already in place, so the set must put the old a.csv back.
   const std::string long_name(250, 'L');
+  previous_run({long_name});
   std::ofstream(dir_ / "run" / long_name) << "old long";
+  const std::string manifest_before = read(dir_ / "run" / "manifest.json");
   {
     pkm::OutputSet set;
     ASSERT_TRUE(set.use_directory((dir_ / "run").string()));
@@ -99,8 +105,10 @@ TEST_F(OutputSetTest, AFailedRenameRestoresTheFilesAlreadyPlaced) {
     EXPECT_NE(committed.error().message.find(long_name), std::string::npos);
     EXPECT_EQ(read(dir_ / "run" / "a.csv"), "old a");
     EXPECT_EQ(read(dir_ / "run" / long_name), "old long");
+    EXPECT_EQ(read(dir_ / "run" / "manifest.json"), manifest_before);  // complete again, the old list
   }  // the failed set removes its staging folder
-  EXPECT_EQ(names(), (std::vector<std::string>{"run", "run/" + long_name, "run/a.csv", "run/b.csv"}));
+  EXPECT_EQ(names(), (std::vector<std::string>{"run", "run/" + long_name, "run/a.csv", "run/b.csv",
+                                               "run/manifest.json"}));
 }
 
 TEST_F(OutputSetTest, AnAbandonedSetRemovesWhatItMade) {

@@ -8,6 +8,7 @@
 // and W_const cannot fall below the work of the load (87).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <vector>
@@ -39,7 +40,9 @@ double energy_no_recovery_J(const Machine& machine, const std::string& program, 
     law.loads = *load;
     job.law = law;
   }
-  job.out_directory = (std::filesystem::temp_directory_path() / "pkm_energy_sweep").string();
+  // This process's own folder: another test run on the machine may be writing the same name.
+  job.out_directory =
+      (std::filesystem::temp_directory_path() / ("pkm_energy_sweep_" + std::to_string(::getpid()))).string();
   auto result = pipeline::plan_program(machine, job);
   EXPECT_TRUE(result.ok()) << (result.ok() ? "" : result.error().message);
   return result.ok() ? result->run.dynamics->energy.no_recovery_J : 0.0;

@@ -134,7 +134,9 @@ std::string linuxcnc_without_lines(const std::string& source, const std::vector<
 
 std::vector<std::string> linuxcnc_entries(const fs::path& dir) {
   std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  // The configuration's files; manifest.json only names them (the output set's own record).
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename() != "manifest.json") names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
 }
