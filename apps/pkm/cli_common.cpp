@@ -4,6 +4,7 @@
 
 #include <iostream>
 
+#include "io/json_text.hpp"
 #include "io/printable_text.hpp"
 
 namespace pkm::cli {
@@ -52,7 +53,7 @@ std::string fixed(double value, int decimals) {
 }
 
 void print_json(const nlohmann::json& json) {
-  std::cout << json.dump(2) << "\n";
+  std::cout << json_text(json) << "\n";
 }
 
 void draw_progress(double fraction) {

@@ -6,6 +6,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "io/json_text.hpp"
 #include "program/move_kind_name.hpp"
 #include "program/part_program.hpp"
 
@@ -43,7 +44,7 @@ void print_moves_json(const program::CanonicalProgram& program) {
   }
   std::cout << "[\n";
   for (std::size_t i = 0; i < program.moves.size(); ++i) {
-    std::string element = move_json(program.moves[i]).dump(2);
+    std::string element = json_text(move_json(program.moves[i]));
     std::string indented = "  ";
     indented.reserve(element.size() + element.size() / 8);
     for (const char c : element) {

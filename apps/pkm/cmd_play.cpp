@@ -19,6 +19,7 @@
 #include "interpolation/drive_output/step_stream.hpp"
 #include "interpolation/drive_output/steps_csv.hpp"
 #include "io/atomic_file.hpp"
+#include "io/json_text.hpp"
 #include "number_options.hpp"
 
 namespace pkm::cli {
@@ -153,7 +154,7 @@ void add_play_command(CLI::App& app, int& exit_code) {
     std::ostream& out = *to == "-" ? std::cerr : std::cout;
     const interpolation::StepStreamHeader& header = reader.header();
     if (*json) {
-      out << play_json(*played, header, path).dump(2) << "\n";
+      out << json_text(play_json(*played, header, path)) << "\n";
       return;
     }
     const interpolation::PlayerStatistics& s = *played;

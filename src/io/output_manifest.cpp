@@ -13,6 +13,7 @@
 #include "io/atomic_file.hpp"
 #include "io/content_hash.hpp"
 #include "io/folder_lock.hpp"
+#include "io/json_text.hpp"
 #include "io/output_context.hpp"
 #include "io/output_target.hpp"
 #include "io/version.hpp"
@@ -110,7 +111,7 @@ Status write_output_manifest(const std::string& directory, const OutputManifest&
   const std::string path = join_path(directory, kManifestName);
   StagedFile file;
   if (Status opened = file.open(path); !opened) return opened;
-  if (Status written = file.write(manifest_json(manifest).dump(2) + "\n"); !written) return written;
+  if (Status written = file.write(json_text(manifest_json(manifest)) + "\n"); !written) return written;
   if (Status synced = file.sync(); !synced) return synced;
   if (Status committed = file.commit(); !committed) return committed;
   return sync_path(directory);

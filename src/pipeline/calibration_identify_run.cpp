@@ -11,6 +11,7 @@
 #include "io/atomic_file.hpp"
 #include "io/calibration_file.hpp"
 #include "io/input_file.hpp"
+#include "io/json_text.hpp"
 #include "io/machine_file.hpp"
 #include "io/measurement_file.hpp"
 #include "io/output_set.hpp"
@@ -151,7 +152,7 @@ Result<CalibrationIdentifyResult> calibration_identify(const Machine& machine,
   result.summary = calibration_identify_summary(machine, job, *all, *identified, result.held_out,
                                                 static_cast<int>(identification.poses.size()));
   if (Status written =
-          write_file_atomically(outputs.staged_path("summary.json"), result.summary.dump(2) + "\n");
+          write_file_atomically(outputs.staged_path("summary.json"), json_text(result.summary) + "\n");
       !written)
     return written.error();
   if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();

@@ -8,6 +8,7 @@
 
 #include "calibration/plan_prediction.hpp"
 #include "io/atomic_file.hpp"
+#include "io/json_text.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
 #include "pipeline/calibration_setup.hpp"
@@ -79,7 +80,7 @@ Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const Cal
         {"note", "from measurement noise alone; what the plan cannot identify adds its own error"}}},
       {"parameters", sd},
       {"warnings", warnings}};
-  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), summary.dump(2) + "\n");
+  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), json_text(summary) + "\n");
       !written)
     return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();

@@ -8,6 +8,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/fixture_file.hpp"
+#include "io/json_text.hpp"
 #include "io/measurement_file.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
@@ -172,7 +173,7 @@ Result<CalibrationSimulateResult> calibration_simulate(const Machine& machine,
     summary["measurements"] = {
         {"file", job.measurements_path}, {"true_parameters", "true_parameters.csv"}, {"noise", job.noise}};
   }
-  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), summary.dump(2) + "\n");
+  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), json_text(summary) + "\n");
       !written)
     return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();

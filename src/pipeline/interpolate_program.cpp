@@ -7,6 +7,7 @@
 #include "interpolation/drive_output/step_stream.hpp"
 #include "interpolation/drive_output/steps_csv.hpp"
 #include "io/atomic_file.hpp"
+#include "io/json_text.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
 #include "pipeline/load_program.hpp"
@@ -116,7 +117,7 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
   if (options->max_step_rate_hz) result.json["max_step_rate_hz"] = *options->max_step_rate_hz;
   if (files) {
     if (Status written =
-            write_file_atomically(outputs.staged_path("summary.json"), result.json.dump(2) + "\n");
+            write_file_atomically(outputs.staged_path("summary.json"), json_text(result.json) + "\n");
         !written) {
       return written.error();
     }

@@ -9,6 +9,7 @@
 #include "core/rotation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/buffered_file.hpp"
+#include "io/json_text.hpp"
 #include "io/output_manifest.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
@@ -300,7 +301,7 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
     return written.error();
   result.json = servo_summary_json(machine, job, result);
   if (Status written =
-          write_file_atomically(outputs.staged_path("servo_summary.json"), result.json.dump(2) + "\n");
+          write_file_atomically(outputs.staged_path("servo_summary.json"), json_text(result.json) + "\n");
       !written)
     return written.error();
   // --report: the plan's report with the servo plots, one more member of the output set (written with the

@@ -9,6 +9,7 @@
 #include "core/rotation.hpp"
 #include "core/units.hpp"
 #include "io/buffered_file.hpp"
+#include "io/json_text.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
 #include "pipeline/load_program.hpp"
@@ -243,7 +244,7 @@ Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const S
                                {"max_correction_line", k.max_correction_line}};
   }
   if (job.frequency_response) summary["frequency_response"] = std::move(frequency_response);
-  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), summary.dump(2) + "\n");
+  if (Status written = write_file_atomically(outputs.staged_path("summary.json"), json_text(summary) + "\n");
       !written)
     return written.error();
   if (Status committed = points_csv.commit(); !committed) return committed.error();

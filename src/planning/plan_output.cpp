@@ -12,6 +12,7 @@
 #include "dynamics/run_dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/buffered_file.hpp"
+#include "io/json_text.hpp"
 #include "io/version.hpp"
 #include "planning/machine_warnings.hpp"
 #include "planning/plan_stream.hpp"
@@ -244,7 +245,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     if (!written) continue;
     if (auto committed = file->commit(); !committed) return committed.error();
   }
-  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", summary_json(plan, machine, *run).dump(2));
+  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n",
+                 json_text(summary_json(plan, machine, *run)));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
     if (auto committed = f->commit(); !committed) return committed.error();
   }

@@ -10,6 +10,7 @@
 #include <nlopt.hpp>
 
 #include "core/units.hpp"
+#include "io/json_text.hpp"
 #include "machine/joint_limits.hpp"
 
 namespace pkm::planning {
@@ -234,7 +235,7 @@ std::string excursions_json(const WorkspaceExcursions& found) {
       found.offset_mm
           ? nlohmann::json::array({found.offset_mm->x(), found.offset_mm->y(), found.offset_mm->z()})
           : nlohmann::json(nullptr);
-  return out.dump();
+  return json_text(out, -1);
 }
 
 }  // namespace pkm::planning

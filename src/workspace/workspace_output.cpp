@@ -7,6 +7,7 @@
 #include "core/units.hpp"
 #include "dynamics/pose_grid_columns.hpp"
 #include "io/atomic_file.hpp"
+#include "io/json_text.hpp"
 #include "io/pose_input.hpp"
 #include "io/version.hpp"
 
@@ -147,7 +148,7 @@ Status stage_workspace_files(OutputSet& outputs, const Machine& machine, const W
     return written;
   }
   return write_file_atomically(outputs.staged_path(kWorkspaceSummaryJson),
-                               workspace_summary_json(machine, map, summary).dump(2) + "\n");
+                               json_text(workspace_summary_json(machine, map, summary)) + "\n");
 }
 
 }  // namespace pkm::workspace

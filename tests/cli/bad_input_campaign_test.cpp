@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/catalogue_support.hpp"
 #include "io/printable_text.hpp"
 #include "source_paths.hpp"
 
@@ -42,13 +43,6 @@ void campaign_write(const fs::path& file, const std::string& bytes) {
   std::ofstream(file, std::ios::binary) << bytes;
 }
 
-std::string campaign_read(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // `levels` anchors of nine aliases each on top of a list of nine numbers: 9^levels nodes when expanded.
 std::string campaign_bomb(const std::string& head, const std::string& tail_key) {
   std::string text = head + "x0: &x0 [1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
@@ -62,7 +56,7 @@ std::string campaign_bomb(const std::string& head, const std::string& tail_key) 
 
 // The ch5 hexapod's own file with line `line` (1-based) changed by `edit`.
 std::string campaign_ch5_with(int line, const std::function<std::string(const std::string&)>& edit) {
-  std::istringstream in(campaign_read(test::source_path("examples/machines/hexapod_ch5.yaml")));
+  std::istringstream in(test::catalogue_read(test::source_path("examples/machines/hexapod_ch5.yaml")));
   std::string out;
   int at = 0;
   for (std::string text; std::getline(in, text);) out += (++at == line ? edit(text) : text) + "\n";
@@ -103,28 +97,6 @@ void campaign_write_inputs(const fs::path& t) {
 // ---------------------------------------------------------------------------------------------------------
 // Running pkm
 
-struct CampaignRun {
-  int exit_code;
-  std::string out;
-  std::string err;
-  double seconds;
-};
-
-CampaignRun campaign_run_pkm(const std::string& args, const fs::path& stderr_file) {
-  const std::string command = test::pkm_binary_path() + " " + args + " 2>" + stderr_file.string();
-  const auto start = std::chrono::steady_clock::now();
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer{};
-  std::size_t got = 0;
-  while (pipe && (got = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), got);
-  const int status = pipe ? pclose(pipe) : -1;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // A signal is reported as 128 + n, as the shell does: either way a crash.
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return {code, out, campaign_read(stderr_file), seconds};
-}
-
 // Text a terminal shows as it is: every line unchanged by the one escape pkm applies to what it prints.
 bool campaign_is_printable(const std::string& text) {
   std::istringstream lines(text);
@@ -132,34 +104,6 @@ bool campaign_is_printable(const std::string& text) {
     if (printable_text(line, line.size() + 1) != line) return false;
   }
   return true;
-}
-
-using CampaignSnapshot = std::map<std::string, std::string>;  // relative path -> content ("<dir>")
-
-CampaignSnapshot campaign_snapshot(const fs::path& root) {
-  CampaignSnapshot snapshot;
-  if (!fs::exists(root)) return snapshot;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    snapshot[fs::relative(entry.path(), root).string()] =
-        entry.is_directory() ? std::string("<dir>") : campaign_read(entry.path());
-  }
-  return snapshot;
-}
-
-std::string campaign_ch5() {
-  return test::source_path("examples/machines/hexapod_ch5.yaml");
-}
-std::string campaign_line() {
-  return test::source_path("examples/programs/ch5_line.ngc");
-}
-
-// A complete plan run in t/run: what a failed command that reads or writes there must leave alone.
-void campaign_plan_sentinel(const fs::path& t) {
-  const auto run = campaign_run_pkm("plan " + campaign_line() + " --machine " + campaign_ch5() +
-                                        " --no-path-error --out " + (t / "run").string(),
-                                    t / "sentinel.err");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  ASSERT_TRUE(fs::exists(t / "run" / "summary.json"));
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -176,16 +120,6 @@ struct CampaignCase {
   std::string unchanged = {};
   std::function<void(const fs::path&)> prepare = {};
 };
-
-std::string campaign_expand(std::string text, const fs::path& t) {
-  const std::pair<std::string, std::string> names[] = {
-      {"{t}", t.string()}, {"{m}", campaign_ch5()}, {"{line}", campaign_line()}};
-  for (const auto& [key, value] : names) {
-    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size()))
-      text.replace(at, key.size(), value);
-  }
-  return text;
-}
 
 std::vector<CampaignCase> campaign_yaml_cases() {
   const std::string stiffness = "stiffness {line} --machine {m} --out {t}/new ";
@@ -280,7 +214,7 @@ std::vector<CampaignCase> campaign_command_cases() {
   const std::string optimize = "optimize " + test::source_path("examples/programs/planar_circle.ngc") +
                                " --machine " + test::source_path("examples/machines/planar3.yaml") +
                                " --law increment --step-mm 0.6981 --out {t}/new/o.ngc ";
-  const auto plan_sentinel = [](const fs::path& t) { campaign_plan_sentinel(t); };
+  const auto plan_sentinel = [](const fs::path& t) { test::catalogue_plan_sentinel(t); };
   return {
       {"jacobian_refuses_what_ik_refuses",
        "jacobian --machine {m} --pose 0,0,1200,0,0,0",
@@ -395,16 +329,17 @@ TEST_P(BadInputCampaign, FailsCleanly) {
   if (c.prepare) c.prepare(t);
   ASSERT_FALSE(testing::Test::HasFatalFailure());
   const fs::path watched = c.unchanged.empty() ? fs::path() : t / c.unchanged;
-  const CampaignSnapshot before = c.unchanged.empty() ? CampaignSnapshot{} : campaign_snapshot(watched);
+  const test::CatalogueSnapshot before =
+      c.unchanged.empty() ? test::CatalogueSnapshot{} : test::catalogue_snapshot(watched);
 
-  const std::string args = campaign_expand(c.command, t);
-  const CampaignRun run = campaign_run_pkm(args, t / "stderr.txt");
+  const std::string args = test::catalogue_expand(c.command, t);
+  const test::CatalogueRun run = test::catalogue_run_pkm(args, t / "stderr.txt");
 
   EXPECT_LT(run.exit_code, 128) << "pkm " << args << " crashed: " << run.err;
   EXPECT_EQ(run.exit_code, c.exit_code) << "pkm " << args << "\nstderr: " << run.err;
   const std::string& where = c.exit_code == 0 ? run.out : run.err;
   for (const std::string& fragment : c.fragments) {
-    const std::string expected = campaign_expand(fragment, t);
+    const std::string expected = test::catalogue_expand(fragment, t);
     EXPECT_NE(where.find(expected), std::string::npos) << "expected '" << expected << "' in:\n" << where;
   }
   if (c.exit_code != 0) {
@@ -418,7 +353,7 @@ TEST_P(BadInputCampaign, FailsCleanly) {
   EXPECT_TRUE(campaign_is_printable(run.out)) << run.out;
   EXPECT_LT(run.seconds, 8.0) << "pkm " << args;
   if (!c.unchanged.empty()) {
-    EXPECT_EQ(campaign_snapshot(watched), before) << c.unchanged << " changed";
+    EXPECT_EQ(test::catalogue_snapshot(watched), before) << c.unchanged << " changed";
   }
   if (!HasFailure()) fs::remove_all(t);
 }

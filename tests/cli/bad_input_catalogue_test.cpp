@@ -18,12 +18,21 @@
 #include <string>
 #include <vector>
 
+#include "cli/catalogue_support.hpp"
 #include "source_paths.hpp"
 
 namespace pkm {
 namespace {
 
 namespace fs = std::filesystem;
+using test::catalogue_ch5;
+using test::catalogue_expand;
+using test::catalogue_line;
+using test::catalogue_plan_sentinel;
+using test::catalogue_run_pkm;
+using test::catalogue_snapshot;
+using test::CatalogueRun;
+using test::CatalogueSnapshot;
 
 // ---------------------------------------------------------------------------------------------------------
 // Inputs
@@ -140,54 +149,8 @@ void catalogue_write_continued_cl(const fs::path& t) {
 // ---------------------------------------------------------------------------------------------------------
 // Running pkm
 
-struct CatalogueRun {
-  int exit_code;
-  bool signalled;
-  std::string out;
-  std::string err;
-};
-
-CatalogueRun catalogue_run_pkm(const std::string& args, const fs::path& stderr_file) {
-  const std::string command = test::pkm_binary_path() + " " + args + " 2>" + stderr_file.string();
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer{};
-  std::size_t got = 0;
-  while (pipe && (got = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), got);
-  const int status = pipe ? pclose(pipe) : -1;
-  std::ifstream in(stderr_file, std::ios::binary);
-  std::stringstream err;
-  err << in.rdbuf();
-  // The shell reports a signal as 128 + n; either way it is a crash.
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return {code, code >= 128, out, err.str()};
-}
-
 // ---------------------------------------------------------------------------------------------------------
 // Output folders: the previous complete run (a sentinel) must survive a failed run unchanged.
-
-using CatalogueSnapshot = std::map<std::string, std::string>;  // relative path -> content ("<dir>")
-
-CatalogueSnapshot catalogue_snapshot(const fs::path& root) {
-  CatalogueSnapshot snapshot;
-  const auto read = [](const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  };
-  if (!fs::exists(root)) return snapshot;
-  if (!fs::is_directory(root)) return {{"", read(root)}};
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    const std::string name = fs::relative(entry.path(), root).string();
-    if (entry.is_directory()) {
-      snapshot[name] = "<dir>";
-    } else {
-      snapshot[name] = read(entry.path());
-    }
-  }
-  return snapshot;
-}
 
 std::vector<std::string> catalogue_stray_temporaries(const fs::path& root) {
   std::vector<std::string> stray;
@@ -200,21 +163,6 @@ std::vector<std::string> catalogue_stray_temporaries(const fs::path& root) {
   return stray;
 }
 
-std::string catalogue_ch5() {
-  return test::source_path("examples/machines/hexapod_ch5.yaml");
-}
-std::string catalogue_line() {
-  return test::source_path("examples/programs/ch5_line.ngc");
-}
-
-// A complete plan run in t/run (and the interpolate run in t/irun): what a failed run must leave alone.
-void catalogue_plan_sentinel(const fs::path& t) {
-  const auto run = catalogue_run_pkm("plan " + catalogue_line() + " --machine " + catalogue_ch5() +
-                                         " --no-path-error --out " + (t / "run").string(),
-                                     t / "sentinel.err");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  ASSERT_TRUE(fs::exists(t / "run" / "summary.json"));
-}
 void catalogue_interpolate_sentinel(const fs::path& t) {
   const auto run = catalogue_run_pkm("interpolate " + catalogue_line() + " --machine " + catalogue_ch5() +
                                          " --period-ms 4 --method carrier --out " + (t / "irun").string(),
@@ -237,16 +185,6 @@ struct CatalogueCase {
   std::function<void(const fs::path&)> prepare = {};
   std::string unchanged = {};
 };
-
-std::string catalogue_expand(std::string text, const fs::path& t) {
-  const std::pair<std::string, std::string> names[] = {
-      {"{t}", t.string()}, {"{m}", catalogue_ch5()}, {"{line}", catalogue_line()}};
-  for (const auto& [key, value] : names) {
-    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size()))
-      text.replace(at, key.size(), value);
-  }
-  return text;
-}
 
 std::vector<CatalogueCase> catalogue_cases() {
   const auto plan_sentinel = [](const fs::path& t) { catalogue_plan_sentinel(t); };

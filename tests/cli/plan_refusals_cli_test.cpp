@@ -135,5 +135,26 @@ TEST(PlanRefusals, APlanThatIsWrittenHoldsItsClaims) {
   fs::remove_all(out);
 }
 
+// A program whose file name holds bytes that are not UTF-8 (a Latin-1 disk) plans: the summary names it with
+// U+FFFD where such bytes were, rather than the run ending in an exception after all its work.
+TEST(PlanRefusals, AProgramWhoseNameIsNotUtf8IsPlannedAndSummarised) {
+  const fs::path dir = fs::temp_directory_path() / "pkm_plan_latin1";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path program = dir /
+                           "pi\xe8"
+                           "ce.ngc";
+  std::ofstream(program) << "G21 G90\nG1 X5 F600\nM2\n";
+  const auto run = test::run_pkm("plan '" + program.string() + "' --machine " +
+                                     test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " +
+                                     (dir / "out").string() + " --json",
+                                 false);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  std::ifstream in(dir / "out" / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_NE(summary["program"].get<std::string>().find("pi\xef\xbf\xbd"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace pkm
