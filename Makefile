@@ -53,9 +53,11 @@ linuxcnc: configure
 	@echo "linuxcnc: installed /usr/lib/linuxcnc/modules/pkmkins.so"
 
 # make run builds only what its job needs (the library and the CLI); make test builds the tests too.
+# build/run is this target's own folder: --force lets it replace what an older pkm left there without a
+# manifest (docs/reliability.md, output sets).
 run: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target pkm
-	$(BUILD)/pkm plan $(PROGRAM) --machine $(EXAMPLE) --out $(BUILD)/run --report $(BUILD)/run/report.html
+	$(BUILD)/pkm plan $(PROGRAM) --machine $(EXAMPLE) --out $(BUILD)/run --report $(BUILD)/run/report.html --force
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
