@@ -8,7 +8,7 @@
 #include "dynamics/frequency_map.hpp"
 #include "dynamics/pose_grid.hpp"
 #include "dynamics/pose_grid_columns.hpp"
-#include "io/atomic_file.hpp"
+#include "io/output_file.hpp"
 #include "io/pose_input.hpp"
 
 namespace pkm::cli {
@@ -52,7 +52,7 @@ int run_modes_map(const ModesMapArguments& arguments) {
   const std::vector<Pose>* poses = &map_grid->poses;
   const auto points = dynamics::frequency_map(*machine, *model, *poses);
   const auto s = dynamics::summarise_frequency_map(points);
-  if (Status written = write_file_atomically(arguments.out_path, frequency_map_csv(mech, *poses, points));
+  if (Status written = write_output_file(arguments.out_path, frequency_map_csv(mech, *poses, points));
       !written) {
     return modes_map_error("--out", written.error());
   }

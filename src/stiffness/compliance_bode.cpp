@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/units.hpp"
-#include "io/atomic_file.hpp"
+#include "io/output_file.hpp"
 
 namespace pkm::stiffness {
 namespace {
@@ -97,7 +97,7 @@ std::string bode_csv(const BodeData& data) {
 }
 
 Status write_bode_csv(const std::string& path, const BodeData& data) {
-  return write_file_atomically(path, bode_csv(data));
+  return write_output_file(path, bode_csv(data));
 }
 
 }  // namespace pkm::stiffness

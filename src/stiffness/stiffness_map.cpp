@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "dynamics/pose_grid_columns.hpp"
-#include "io/atomic_file.hpp"
+#include "io/output_file.hpp"
 
 namespace pkm::stiffness {
 namespace {
@@ -122,7 +122,7 @@ std::string stiffness_map_csv(const Mechanism& mechanism, const std::vector<Pose
 
 Status write_stiffness_map_csv(const std::string& path, const Mechanism& mechanism,
                                const std::vector<Pose>& poses, const std::vector<StiffnessMapPoint>& points) {
-  return write_file_atomically(path, stiffness_map_csv(mechanism, poses, points));
+  return write_output_file(path, stiffness_map_csv(mechanism, poses, points));
 }
 
 }  // namespace pkm::stiffness

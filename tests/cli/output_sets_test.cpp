@@ -226,6 +226,25 @@ TEST(OutputSets, ReportChecksTheFolderAndItsPageJoinsTheSet) {
   fs::remove_all(t);
 }
 
+// A single file named into a set's folder (a Bode table, a stiffness map) joins that set, so the report reads
+// the folder whole with the file's plots; outside a set it is written on its own.
+TEST(OutputSets, ASingleFileWrittenIntoASetsFolderJoinsTheSet) {
+  const fs::path t = outsets_dir("join_file");
+  ASSERT_EQ(test::run_pkm(outsets_plan(t / "run")).exit_code, 0);
+  const std::string compliance =
+      "compliance --machine " + outsets_machine() + " --pose 0,0,700,0,0,0 --points 40";
+  const auto bode = test::run_pkm(compliance + " --bode " + (t / "run" / "bode.csv").string());
+  ASSERT_EQ(bode.exit_code, 0) << bode.out;
+  EXPECT_TRUE(check_output_set((t / "run").string(), {"plan"}));
+  EXPECT_NE(outsets_manifest(t / "run")["files"].dump().find("bode.csv"), std::string::npos);
+  const auto page = test::run_pkm("report " + (t / "run").string());
+  EXPECT_EQ(page.exit_code, 0) << page.out;
+  const auto alone = test::run_pkm(compliance + " --bode " + (t / "bode.csv").string());
+  EXPECT_EQ(alone.exit_code, 0) << alone.out;
+  EXPECT_FALSE(fs::exists(t / "manifest.json"));
+  fs::remove_all(t);
+}
+
 TEST(OutputSets, AReportNamingAFileOfItsOwnSetIsRefused) {
   const fs::path t = outsets_dir("own");
   const auto run =
