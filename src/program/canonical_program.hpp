@@ -4,9 +4,10 @@
 // so that any later problem (an unreachable pose, a limit) can be reported against the program text.
 //
 // Units: millimetres, degrees, minutes for feed (mm/min), seconds for dwell. Programs in inches are converted
-// at interpretation. Coordinates are program coordinates: the tool tip in the work frame, after G43 tool
-// length offsets have been applied the way LinuxCNC's canonical interface reports them (see
-// docs/part-programs.md).
+// at interpretation. Coordinates are work coordinates: the tool tip in the machine's work frame. A G-code
+// program's own coordinates (the ones LinuxCNC's canonical interface reports, after G43 tool length offsets)
+// differ from them by the work offsets in effect (G54–G59.3 with their XY rotation, G92): each move names
+// its WorkFrame, and program_coordinates() gives the program's numbers back (see docs/part-programs.md).
 #include <Eigen/Core>
 #include <optional>
 #include <string>
@@ -27,8 +28,25 @@ enum class Plane { xy, zx, yz };
 ///    about it is left free.
 enum class OrientationSource { abc, tool_axis };
 
+/// The work offsets in effect for a move: work = g5x + Rz(xy_rotation)·(program + g92), angles added.
+struct WorkFrame {
+  Eigen::Vector3d g5x_mm = Eigen::Vector3d::Zero();  ///< G54–G59.3 offset of the active system
+  Eigen::Vector3d g5x_abc_deg = Eigen::Vector3d::Zero();
+  double xy_rotation_deg = 0.0;  ///< G10 L2 R of the active system
+  Eigen::Vector3d g92_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d g92_abc_deg = Eigen::Vector3d::Zero();
+  int system = 1;  ///< 1 = G54 … 9 = G59.3
+  bool identity() const {
+    return g5x_mm.isZero(0.0) && g5x_abc_deg.isZero(0.0) && xy_rotation_deg == 0.0 && g92_mm.isZero(0.0) &&
+           g92_abc_deg.isZero(0.0);
+  }
+};
+
 struct CanonicalMove {
-  int line = 0;  ///< 1-based line in the source file
+  int line = 0;  ///< 1-based line of the main program (for a move inside a subroutine, the calling line)
+  int source_file = 0;  ///< index into CanonicalProgram::files of the file the move was written in
+  int source_line = 0;  ///< line in that file (= line for a move written in the main program's own flow)
+  int frame = 0;        ///< index into CanonicalProgram::frames
   MoveKind kind = MoveKind::line;
   Eigen::Vector3d end_mm = Eigen::Vector3d::Zero();  ///< end point of the tool tip (dwell: where it dwells)
   Eigen::Vector3d end_abc_deg = Eigen::Vector3d::Zero();  ///< A, B, C at the end
@@ -53,17 +71,29 @@ struct CanonicalMove {
 
 /// Non-motion events, recorded with their line so reports can show them (tool change, spindle, coolant).
 struct ProgramEvent {
-  int line = 0;
+  int line = 0;  ///< main program line (the calling line inside a subroutine)
   std::string what;  ///< e.g. "M6 T3", "M3 S12000", "M5"
+  int source_file = 0;
+  int source_line = 0;
 };
 
 struct CanonicalProgram {
   std::string source;  ///< file the program came from
+  std::vector<std::string> files;  ///< [0] = source, then the subroutine files that were read
+  std::vector<WorkFrame> frames = {WorkFrame{}};  ///< [0] = no offsets
   std::vector<CanonicalMove> moves;
   std::vector<ProgramEvent> events;
   Eigen::Vector3d start_mm = Eigen::Vector3d::Zero();  ///< where the interpreter assumed the tool starts
   Eigen::Vector3d start_abc_deg = Eigen::Vector3d::Zero();
   int end_line = 0;  ///< line of M2/M30/END, or the last line
 };
+
+/// A move's end, centre and arc axis as the program wrote them (before its work frame); angles likewise.
+struct ProgramCoordinates {
+  Eigen::Vector3d end_mm;
+  Eigen::Vector3d center_mm;
+  Eigen::Vector3d end_abc_deg;
+};
+ProgramCoordinates program_coordinates(const CanonicalProgram& program, const CanonicalMove& move);
 
 }  // namespace pkm::program

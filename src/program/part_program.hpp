@@ -3,7 +3,9 @@
 // Every error names the file, line and column: "prog.ngc:12:5: unknown G-code G5.3".
 #include <Eigen/Core>
 #include <string>
+#include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "core/result.hpp"
 #include "program/canonical_program.hpp"
@@ -19,6 +21,15 @@ struct InterpretOptions {
   std::string tool_table_path;
   /// Skip blocks that start with `/` (the block-delete switch on).
   bool block_delete = true;
+  /// Folders searched for subroutine files `<name>.ngc` (LinuxCNC [RS274NGC] SUBROUTINE_PATH).
+  std::vector<std::string> subroutine_path;
+  /// LinuxCNC parameter file (.var) read at start (work offsets, G28/G30 positions …); empty = none, all zero.
+  std::string parameter_file;
+  /// Write the parameters back to parameter_file at the end of the program (atomically), as LinuxCNC does.
+  bool write_parameter_file = false;
+  /// Bounds that turn a program that never ends into an error at its line.
+  std::uint64_t max_blocks = 100'000'000;
+  int max_call_depth = 100;
 };
 
 /// G-code (RS274/NGC as CAM post-processors write it). `source_name` is used in messages.
