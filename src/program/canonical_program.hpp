@@ -58,8 +58,9 @@ struct CanonicalMove {
   int turns = 1;  ///< 1: less than or one full turn; k: k − 1 further full turns (G2/G3 P word)
   Plane plane = Plane::xy;
   // Feed (kind == line or arc). Rapids move at the machine's rapid speed.
-  double feed_mm_min = 0.0;   ///< programmed feed (G94 units per minute, in mm/min)
-  bool inverse_time = false;  ///< G93: the move takes 1/inverse_time_per_min minutes
+  double feed_mm_min = 0.0;             ///< programmed feed (G94 units per minute, in mm/min)
+  double feed_per_revolution_mm = 0.0;  ///< G95 feed (mm per spindle turn); feed_mm_min is it × S
+  bool inverse_time = false;            ///< G93: the move takes 1/inverse_time_per_min minutes
   double inverse_time_per_min = 0.0;
   double dwell_s = 0.0;         ///< kind == dwell
   double tool_length_mm = 0.0;  ///< active G43 tool length offset (0 after G49)
@@ -71,21 +72,22 @@ struct CanonicalMove {
 
 /// Non-motion events, recorded with their line so reports can show them (tool change, spindle, coolant).
 struct ProgramEvent {
-  int line = 0;  ///< main program line (the calling line inside a subroutine)
+  int line = 0;      ///< main program line (the calling line inside a subroutine)
   std::string what;  ///< e.g. "M6 T3", "M3 S12000", "M5"
   int source_file = 0;
   int source_line = 0;
 };
 
 struct CanonicalProgram {
-  std::string source;  ///< file the program came from
-  std::vector<std::string> files;  ///< [0] = source, then the subroutine files that were read
+  std::string source;                             ///< file the program came from
+  std::vector<std::string> files;                 ///< [0] = source, then the subroutine files that were read
   std::vector<WorkFrame> frames = {WorkFrame{}};  ///< [0] = no offsets
   std::vector<CanonicalMove> moves;
   std::vector<ProgramEvent> events;
   Eigen::Vector3d start_mm = Eigen::Vector3d::Zero();  ///< where the interpreter assumed the tool starts
   Eigen::Vector3d start_abc_deg = Eigen::Vector3d::Zero();
-  int end_line = 0;  ///< line of M2/M30/END, or the last line
+  int end_line = 0;                ///< line of M2/M30/END, or the last line
+  std::vector<std::string> notes;  ///< what the user should know about how the program was read
 };
 
 /// A move's end, centre and arc axis as the program wrote them (before its work frame); angles likewise.

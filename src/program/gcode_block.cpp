@@ -25,14 +25,39 @@ bool in(int n, int lo, int hi) {
 // why.
 Classified classify_g(int n) {
   switch (n) {
+    case 40:
+    case 100:
+    case 280:
+    case 281:
+    case 300:
+    case 301:
+    case 520:
+    case 530:
+    case 920:
+    case 921:
+    case 922:
+    case 923:
+      return {g_non_modal, nullptr};
     case 0:
     case 10:
     case 20:
     case 30:
+    case 382:
+    case 383:
+    case 384:
+    case 385:
+    case 730:
     case 800:
+    case 810:
+    case 820:
+    case 830:
+    case 840:
+    case 850:
+    case 860:
+    case 870:
+    case 880:
+    case 890:
       return {g_motion, nullptr};
-    case 40:
-      return {g_non_modal, nullptr};
     case 170:
     case 180:
     case 190:
@@ -41,11 +66,25 @@ Classified classify_g(int n) {
     case 210:
       return {g_units, nullptr};
     case 400:
+    case 410:
+    case 411:
+    case 420:
+    case 421:
       return {g_cutter, nullptr};
     case 430:
+    case 431:
+    case 432:
     case 490:
       return {g_tool_length, nullptr};
     case 540:
+    case 550:
+    case 560:
+    case 570:
+    case 580:
+    case 590:
+    case 591:
+    case 592:
+    case 593:
       return {g_coordinates, nullptr};
     case 610:
     case 611:
@@ -59,45 +98,46 @@ Classified classify_g(int n) {
       return {g_arc_distance, nullptr};
     case 930:
     case 940:
+    case 950:
       return {g_feed_mode, nullptr};
+    case 960:
     case 970:
       return {g_spindle_mode, nullptr};
+    case 980:
+    case 990:
+      return {g_retract, nullptr};
+    case 80:
+      return {g_lathe, nullptr};
     default:
       break;
   }
   if (in(n, 50, 53)) return {kUnsupported, "spline or NURBS motion"};
-  if (n == 70 || n == 80) return {kUnsupported, "lathe diameter/radius mode"};
-  if (n == 100) return {kUnsupported, "setting offsets or tool data"};
+  if (n == 70) return {kUnsupported, "lathe diameter mode"};
   if (n == 150 || n == 160) return {kUnsupported, "polar coordinates"};
   if (n == 171 || n == 181 || n == 191) return {kUnsupported, "UVW plane"};
-  if (n == 280 || n == 281 || n == 300 || n == 301) return {kUnsupported, "return to a stored position"};
   if (n == 330 || n == 331) return {kUnsupported, "spindle-synchronized motion"};
-  if (in(n, 382, 385)) return {kUnsupported, "probing"};
-  if (n == 410 || n == 411 || n == 420 || n == 421) return {kUnsupported, "cutter radius compensation"};
-  if (n == 431 || n == 432) return {kUnsupported, "dynamic tool length offset"};
   if (n == 500 || n == 510) return {kUnsupported, "scaling"};
-  if (n == 520 || n == 920 || in(n, 921, 923)) return {kUnsupported, "coordinate system offset"};
-  if (n == 530) return {kUnsupported, "motion in machine coordinates"};
-  if (in(n, 550, 593)) return {kUnsupported, "work offset other than G54"};
   if (n == 680 || n == 690) return {kUnsupported, "coordinate system rotation"};
   if (n == 700 || n == 710 || n == 720) return {kUnsupported, "lathe cycle"};
-  if (n == 730 || n == 740 || n == 760 || in(n, 810, 890)) return {kUnsupported, "canned cycle"};
-  if (n == 950) return {kUnsupported, "feed per revolution"};
-  if (n == 960) return {kUnsupported, "constant surface speed"};
-  if (n == 980 || n == 990) return {kUnsupported, "canned-cycle return mode"};
+  if (n == 740 || n == 760) return {kUnsupported, "lathe tapping or threading cycle"};
   return {kUnknown, nullptr};
 }
 
 Classified classify_m(int n) {
   switch (n) {
+    case 0:
+    case 10:
     case 20:
     case 300:
+    case 600:
       return {m_stop, nullptr};
     case 60:
+    case 610:
       return {m_tool_change, nullptr};
     case 30:
     case 40:
     case 50:
+    case 190:
       return {m_spindle, nullptr};
     case 70:
     case 80:
@@ -106,15 +146,11 @@ Classified classify_m(int n) {
     default:
       break;
   }
-  if (n == 0 || n == 10) return {kUnsupported, "program pause"};
-  if (n == 600) return {kUnsupported, "pallet change pause"};
-  if (n == 190) return {kUnsupported, "spindle orientation"};
-  if (in(n, 480, 530)) return {kUnsupported, "override control"};
-  if (n == 610) return {kUnsupported, "set current tool"};
-  if (in(n, 620, 680)) return {kUnsupported, "digital or analog I/O"};
-  if (in(n, 700, 730)) return {kUnsupported, "modal state save and restore"};
-  if (n == 980 || n == 990) return {kUnsupported, "subprogram call"};
-  if (in(n, 1000, 1990)) return {kUnsupported, "user-defined M-code"};
+  if (in(n, 480, 530)) return {m_override, nullptr};
+  if (in(n, 620, 680)) return {m_io, nullptr};
+  if (in(n, 700, 730)) return {m_state, nullptr};
+  if (in(n, 1000, 1990)) return {m_user, nullptr};
+  if (n == 980 || n == 990) return {kUnsupported, "Fanuc-style subprogram call"};
   return {kUnknown, nullptr};
 }
 
@@ -125,14 +161,8 @@ const char* unsupported_letter(char letter) {
     case 'V':
     case 'W':
       return "axis is not supported (axes are X Y Z A B C)";
-    case 'D':
-      return "word is not supported (cutter radius compensation)";
     case 'E':
-      return "word is not supported";
-    case 'L':
-      return "word is not supported (G10 / canned-cycle repeats)";
-    case 'Q':
-      return "word is not supported (no accepted code uses it)";
+      return "word is not supported (lathe threading)";
     default:
       return nullptr;
   }
@@ -179,6 +209,12 @@ Status build_block(const LexedLine& line, const LineRef& where, Block& out) {
                                     code_name(word.letter, number), kind.reason));
       Code& slot =
           is_g ? out.g[static_cast<std::size_t>(kind.group)] : out.m[static_cast<std::size_t>(kind.group)];
+      if (is_g && kind.group == g_motion && slot.given() && (number == 800 || slot.number == 800)) {
+        // rs274 accepts G80 beside another motion code (the Fanuc-style safety line `G0 G80`): the other
+        // code is the motion mode, the cycle being cancelled either way.
+        if (slot.number == 800) slot = Code{number, word.column};
+        continue;
+      }
       if (slot.given())
         return error_at(where, word.column,
                         fmt::format("{} and {} in one block belong to the same modal group",

@@ -16,6 +16,16 @@ const ToolEntry* ToolTable::find(int tool) const {
   return nullptr;
 }
 
+void ToolTable::set(const ToolEntry& entry) {
+  for (ToolEntry& existing : entries_) {
+    if (existing.tool == entry.tool) {
+      existing = entry;
+      return;
+    }
+  }
+  entries_.push_back(entry);
+}
+
 namespace {
 
 // A tool or pocket number: whole, >= 0 and small enough for an int.

@@ -29,6 +29,8 @@ class ToolTable {
   /// The entry for a tool number, or nullptr.
   const ToolEntry* find(int tool) const;
   const std::vector<ToolEntry>& entries() const { return entries_; }
+  /// Adds the entry, or replaces the one with its tool number (G10 L1/L10/L11).
+  void set(const ToolEntry& entry);
 
  private:
   std::vector<ToolEntry> entries_;

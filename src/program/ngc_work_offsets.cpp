@@ -1,0 +1,71 @@
+// Work offsets ↔ parameters, and the transform between program and work coordinates.
+#include "program/ngc_work_offsets.hpp"
+
+#include <Eigen/Geometry>
+#include <numbers>
+
+#include "program/ngc_parameter_store.hpp"
+
+namespace pkm::program::ngc {
+
+namespace {
+
+Eigen::Matrix3d rotation_z(double angle_deg) {
+  return Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+void read_six(const ParameterStore& parameters, int first, double mm_per_unit, Eigen::Vector3d& xyz_mm,
+              Eigen::Vector3d& abc_deg) {
+  for (int i = 0; i < 3; ++i) {
+    xyz_mm[i] = parameters.get(first + i) * mm_per_unit;
+    abc_deg[i] = parameters.get(first + 3 + i);
+  }
+}
+
+}  // namespace
+
+WorkFrame read_work_frame(const ParameterStore& parameters, double mm_per_unit) {
+  WorkFrame frame;
+  int system = static_cast<int>(parameters.get(parameter::active_system) + 0.5);
+  if (system < 1 || system > 9) system = 1;
+  frame.system = system;
+  read_six(parameters, parameter::system_base(system), mm_per_unit, frame.g5x_mm, frame.g5x_abc_deg);
+  frame.xy_rotation_deg = parameters.get(parameter::system_base(system) + 9);
+  // LinuxCNC keeps the G92 parameters when G92.2 suspends the offset: only an applied G92 counts.
+  if (parameters.get(parameter::g92_applied) != 0.0)
+    read_six(parameters, parameter::g92, mm_per_unit, frame.g92_mm, frame.g92_abc_deg);
+  return frame;
+}
+
+Eigen::Vector3d to_work_mm(const WorkFrame& frame, const Eigen::Vector3d& program_mm) {
+  if (frame.xy_rotation_deg == 0.0) return frame.g5x_mm + program_mm + frame.g92_mm;
+  return frame.g5x_mm + rotation_z(frame.xy_rotation_deg) * (program_mm + frame.g92_mm);
+}
+
+Eigen::Vector3d to_program_mm(const WorkFrame& frame, const Eigen::Vector3d& work_mm) {
+  if (frame.xy_rotation_deg == 0.0) return work_mm - frame.g5x_mm - frame.g92_mm;
+  return rotation_z(-frame.xy_rotation_deg) * (work_mm - frame.g5x_mm) - frame.g92_mm;
+}
+
+void move_to_work(const WorkFrame& frame, CanonicalMove& move) {
+  move.end_mm = to_work_mm(frame, move.end_mm);
+  move.center_mm = to_work_mm(frame, move.center_mm);
+  if (frame.xy_rotation_deg != 0.0) {
+    move.normal = rotation_z(frame.xy_rotation_deg) * move.normal;
+    move.tool_axis = rotation_z(frame.xy_rotation_deg) * move.tool_axis;
+  }
+  move.end_abc_deg += frame.g5x_abc_deg + frame.g92_abc_deg;
+}
+
+void rescale_length_parameters(ParameterStore& parameters, double factor) {
+  auto scale_xyz = [&](int first) {
+    for (int i = 0; i < 3; ++i) parameters.set(first + i, parameters.get(first + i) * factor);
+  };
+  scale_xyz(parameter::g28);
+  scale_xyz(parameter::g30);
+  scale_xyz(parameter::g92);
+  scale_xyz(parameter::probe);
+  for (int system = 1; system <= 9; ++system) scale_xyz(parameter::system_base(system));
+}
+
+}  // namespace pkm::program::ngc
