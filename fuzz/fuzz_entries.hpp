@@ -20,8 +20,12 @@
 namespace pkm::fuzz {
 
 /// `pkm interpret/plan prog.ngc`: the G-code interpreter on the file's text.
+/// Loops are bounded lower than pkm's default so that a program that loops for ever is refused within the
+/// fuzzer's time limit (the bound is what is tested, not its size).
 inline bool run_gcode(std::string_view bytes) {
-  return pkm::program::interpret_gcode(bytes, "fuzz.ngc").ok();
+  pkm::program::InterpretOptions options;
+  options.max_blocks = 200'000;
+  return pkm::program::interpret_gcode(bytes, "fuzz.ngc", options).ok();
 }
 
 /// `pkm plan prog.cl`: the APT CL-data reader on the file's text.

@@ -20,7 +20,7 @@ if [ "${#names[@]}" -eq 0 ]; then names=(gcode cl machine load steps_csv steps_b
 # above the largest seed, so that mutations can grow it but time is not spent on megabytes of one format.
 seeds_of() {
   case $1 in
-    gcode) echo "examples/programs/*.ngc tests/program/conformance/*.ngc" ;;
+    gcode) echo "examples/programs/*.ngc tests/program/conformance/*.ngc tests/program/conformance/*/*.ngc" ;;
     cl) echo "examples/programs/*.cl examples/programs/*.cls examples/programs/*.apt" ;;
     machine) echo "examples/machines/*.yaml" ;;
     *) echo "fuzz/seeds/$1/*" ;;

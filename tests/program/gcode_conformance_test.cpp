@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -141,12 +142,12 @@ Rs274Run parse_rs274(const std::string& text) {
       feed_pending = true;
     } else if (name == "PROGRAM_END" || name == "FINISH") {
       run.ended = true;
-    } else if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED" ||
-               name == "DWELL") {
+    } else if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "STRAIGHT_PROBE" ||
+               name == "ARC_FEED" || name == "DWELL") {
       Rs274Motion m;
       m.kind = name == "STRAIGHT_TRAVERSE"
                    ? MoveKind::rapid
-                   : (name == "STRAIGHT_FEED" ? MoveKind::line
+                   : (name == "STRAIGHT_FEED" || name == "STRAIGHT_PROBE" ? MoveKind::line
                                               : (name == "ARC_FEED" ? MoveKind::arc : MoveKind::dwell));
       if (feed_pending && (m.kind == MoveKind::line || m.kind == MoveKind::arc)) {
         feed_scale = scale;
@@ -176,6 +177,11 @@ void expect_near_mm(double ours, double printed, double scale, const std::string
 // The feed pkm should report for this move, as rs274's SET_FEED_RATE means it.
 void compare_feed(const CanonicalMove& ours, const Eigen::Vector3d& start, const Eigen::Vector3d& start_abc,
                   const Rs274Motion& theirs) {
+  if (ours.feed_per_revolution_mm > 0.0) {  // G95: rs274 prints the feed per revolution
+    EXPECT_NEAR(ours.feed_per_revolution_mm, theirs.feed_raw * theirs.feed_scale, tolerance_mm(theirs.feed_scale))
+        << "feed per revolution of " << theirs.text;
+    return;
+  }
   if (!ours.inverse_time) {
     EXPECT_NEAR(ours.feed_mm_min, theirs.feed_raw * theirs.feed_scale, tolerance_mm(theirs.feed_scale))
         << "feed of " << theirs.text;
@@ -241,6 +247,18 @@ void compare_move(const CanonicalMove& ours, const Eigen::Vector3d& start, const
   compare_feed(ours, start, start_abc, theirs);
 }
 
+// A move with its end, centre and arc axis in the program's own coordinates, as rs274 prints them.
+CanonicalMove gcode_conformance_in_program_frame(const CanonicalProgram& program, const CanonicalMove& move) {
+  CanonicalMove out = move;
+  const pkm::program::ProgramCoordinates numbers = pkm::program::program_coordinates(program, move);
+  out.end_mm = numbers.end_mm;
+  out.center_mm = numbers.center_mm;
+  out.end_abc_deg = numbers.end_abc_deg;
+  const double rotation_rad = program.frames[static_cast<std::size_t>(move.frame)].xy_rotation_deg * M_PI / 180.0;
+  out.normal = Eigen::AngleAxisd(-rotation_rad, Eigen::Vector3d::UnitZ()) * move.normal;
+  return out;
+}
+
 class GcodeConformance : public testing::TestWithParam<std::string> {};
 
 TEST_P(GcodeConformance, MatchesRs274) {
@@ -260,6 +278,7 @@ TEST_P(GcodeConformance, MatchesRs274) {
   const CanonicalProgram& ours = *result;
 
   ASSERT_EQ(ours.moves.size(), theirs.motions.size()) << "number of motion calls";
+  // rs274 prints program coordinates; pkm's moves are in the work frame (the same when no offset is set).
   Eigen::Vector3d start = ours.start_mm;
   Eigen::Vector3d start_abc = ours.start_abc_deg;
   double tool_length = 0.0;
@@ -268,9 +287,17 @@ TEST_P(GcodeConformance, MatchesRs274) {
     // A change of tool length offset (G43/G49) moves the program Z of the tool tip without a move.
     start.z() -= ours.moves[i].tool_length_mm - tool_length;
     tool_length = ours.moves[i].tool_length_mm;
-    compare_move(ours.moves[i], start, start_abc, theirs.motions[i]);
-    start = ours.moves[i].end_mm;
-    start_abc = ours.moves[i].end_abc_deg;
+    const CanonicalMove move = gcode_conformance_in_program_frame(ours, ours.moves[i]);
+    if (i > 0 && ours.moves[i].frame != ours.moves[i - 1].frame) {
+      // An offset changed between the two moves: the previous end, seen in this move's frame.
+      CanonicalMove previous = ours.moves[i - 1];
+      previous.frame = ours.moves[i].frame;
+      previous.end_mm = ours.moves[i - 1].end_mm;
+      start = gcode_conformance_in_program_frame(ours, previous).end_mm;
+    }
+    compare_move(move, start, start_abc, theirs.motions[i]);
+    start = move.end_mm;
+    start_abc = move.end_abc_deg;
   }
 }
 
