@@ -63,6 +63,9 @@ Status Executor::tools_and_spindle(const gcode::Block& b) {
   }
   if (tool_change.is(60)) {
     state_.current_tool = state_.selected_tool;
+    const ToolEntry* entry = tools_ ? tools_->find(state_.current_tool) : nullptr;
+    state_.spindle_tool_length_mm = entry ? entry->length_mm : 0.0;
+    state_.spindle_tool_diameter_mm = entry ? entry->diameter_mm : 0.0;
     add_event(fmt::format("M6 T{}", state_.current_tool));
   } else if (tool_change.is(610)) {
     if (!b['Q'].given())
@@ -72,7 +75,7 @@ Status Executor::tools_and_spindle(const gcode::Block& b) {
   }
   if (tool_change.given()) {
     parameters_.set(parameter::tool_number, state_.current_tool);
-    parameters_.set(parameter::tool_diameter, tool_diameter_of(state_.current_tool) / state_.mm_per_unit());
+    parameters_.set(parameter::tool_diameter, state_.spindle_tool_diameter_mm / state_.mm_per_unit());
   }
   const gcode::Code& spindle = b.m[gcode::m_spindle];
   if (spindle.is(30) || spindle.is(40)) {
@@ -213,7 +216,11 @@ Status Executor::set_tool_length(const gcode::Block& b) {
                       *file_name_, line_, tool));
       no_table_noted_ = true;
     }
-    if (auto read = table_length(tool, column, length_mm); !read) return read;
+    if (with_h) {
+      if (auto read = table_length(tool, column, length_mm); !read) return read;
+    } else {
+      length_mm = state_.spindle_tool_length_mm;
+    }
     if (code.is(432)) length_mm += state_.tool_length_mm;
   } else if (code.is(431)) {
     for (const char letter : {'X', 'Y', 'A', 'B', 'C'})

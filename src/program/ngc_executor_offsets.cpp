@@ -77,6 +77,10 @@ Status Executor::set_g10_tool(const gcode::Block& b, int l) {
     }
   }
   tools_->set(entry);
+  if (tool == state_.current_tool) {
+    state_.spindle_tool_length_mm = entry.length_mm;
+    state_.spindle_tool_diameter_mm = entry.diameter_mm;
+  }
   return ok_status();
 }
 
