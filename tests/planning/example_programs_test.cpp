@@ -31,7 +31,7 @@ TEST_P(PlanExamples, PlansWithinEveryLimit) {
 
 INSTANTIATE_TEST_SUITE_P(Shipped, PlanExamples,
                          testing::Values("pocket.ngc", "circle.ngc", "helix.ngc", "ch5_line.ngc",
-                                         "ball_end_5axis.cl"));
+                                         "bolt_circle.ngc", "ball_end_5axis.cl"));
 
 }  // namespace
 }  // namespace pkm
