@@ -266,4 +266,96 @@ TEST(NgcCannedCycle, RandomProgramsMatchRs274) {
   for (const auto& name : names) cycle_test_compare(name);
 }
 
+struct CycleTestErrorCase {
+  const char* name;
+  int line, column;  // where pkm points: the offending word, else the cycle's G-code
+};
+
+const CycleTestErrorCase cycle_test_error_cases[] = {
+    {"e01_r_missing", 3, 1},          {"e02_z_missing", 3, 1},         {"e03_r_less_than_z", 3, 11},
+    {"e04_q_missing_g83", 3, 1},      {"e05_q_missing_g73", 3, 1},     {"e06_q_zero_g73", 3, 18},
+    {"e07_q_negative_g83", 3, 18},    {"e08_p_missing_g82", 3, 1},     {"e09_p_missing_g86", 3, 1},
+    {"e10_p_missing_g88", 3, 1},      {"e11_p_missing_g89", 3, 1},     {"e12_l_zero", 3, 18},
+    {"e13_l_negative", 3, 18},        {"e14_l_fraction", 3, 18},       {"e15_i_missing_g87", 3, 1},
+    {"e16_j_missing_g87", 3, 1},      {"e17_k_missing_g87", 3, 1},     {"e18_spindle_off_g86", 4, 1},
+    {"e19_spindle_off_g84", 4, 1},    {"e20_spindle_ccw_g84", 4, 1},   {"e21_spindle_off_g87", 4, 1},
+    {"e22_spindle_off_g88", 4, 1},    {"e23_r_less_than_y_xz", 4, 11}, {"e24_r_less_than_x_yz", 4, 11},
+    {"e25_y_missing_xz", 4, 1},       {"e26_x_missing_yz", 4, 1},      {"e27_switch_needs_r", 4, 1},
+    {"e28_switch_needs_p", 4, 1},     {"e29_q_unused", 3, 18},         {"e30_p_unused", 3, 18},
+    {"e31_i_unused", 3, 18},          {"e32_j_unused", 3, 18},         {"e33_k_unused", 3, 18},
+    {"e34_r_less_than_z_g91", 3, 15}, {"e35_switch_needs_z", 4, 1},    {"e36_switch_needs_q", 4, 1},
+};
+
+TEST(NgcCannedCycle, ErrorsAreRs274sAtTheirColumn) {
+  std::vector<std::string> listed;
+  for (const auto& c : cycle_test_error_cases) {
+    SCOPED_TRACE(c.name);
+    listed.push_back(c.name);
+    const CycleTestGolden golden =
+        cycle_test_parse_rs274(cycle_test_read(cycle_test_dir() / (std::string(c.name) + ".rs274")));
+    ASSERT_FALSE(golden.error.empty()) << "rs274 ran the program to its end";
+    EXPECT_EQ(cycle_test_run(c.name).error,
+              fmt::format("{}.ngc:{}:{}: {}", c.name, c.line, c.column, golden.error));
+  }
+  EXPECT_EQ(listed, cycle_test_programs('e')) << "every eNN program has its expected column here";
+}
+
+/// A block of `words` ("G82 X1 R2 Z-2 P-1"), columns as written, the cycle G-code in the motion group.
+Block cycle_test_block(const std::string& words) {
+  Block block;
+  LexedLine lexed;
+  const std::string source = "test.ngc";
+  EXPECT_TRUE(pkm::program::gcode::lex_line(words, LineRef{source, 1}, lexed).ok());
+  for (const auto& w : lexed.words) {
+    if (w.letter == 'G')
+      block.g[pkm::program::gcode::g_motion] = {static_cast<int>(std::lround(w.value * 10)), w.column};
+    else
+      block.letters[static_cast<std::size_t>(w.letter - 'A')] = {w.value, w.column};
+  }
+  return block;
+}
+
+// LinuxCNC 2.9 dwells a negative time (its check is disabled); pkm refuses with LinuxCNC's own message.
+TEST(NgcCannedCycle, NegativeDwellIsRefused) {
+  std::vector<CycleTestStep> steps;
+  CycleTestRecorder out(steps);
+  CycleMemory memory;
+  CycleContext context;
+  context.code = 820;
+  const std::string source = "test.ngc";
+  const auto s = pkm::program::ngc::run_canned_cycle(cycle_test_block("G82 X1 R2 Z-2 P-1"),
+                                                     LineRef{source, 7}, context, memory, out);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().message, "test.ngc:7:15: Negative p word used");
+  EXPECT_EQ(s.error().location.column, 15);
+  EXPECT_TRUE(steps.empty());
+}
+
+// After G88 the operator retracts by hand: nothing moves the tool out, yet LinuxCNC continues from the clear
+// plane, and so must the executor (CycleMemory::end_mm). Also: values in inches, points in mm.
+TEST(NgcCannedCycle, G88EndsAtTheClearPlaneInLinuxCncsView) {
+  std::vector<CycleTestStep> steps;
+  CycleTestRecorder out(steps);
+  CycleMemory memory;
+  CycleContext context;
+  context.code = 880;
+  context.inch = true;
+  context.position_mm = Eigen::Vector3d(0.0, 0.0, 25.4);
+  context.spindle_speed = 700;
+  const std::string source = "test.ngc";
+  ASSERT_TRUE(pkm::program::ngc::run_canned_cycle(cycle_test_block("G88 X1 Y2 R0.5 Z-1 P2"),
+                                                  LineRef{source, 1}, context, memory, out)
+                  .ok());
+  ASSERT_EQ(steps.size(), 7u);  // rapid over the hole, rapid to R, feed, dwell, M5, M0, M3
+  EXPECT_EQ(steps[2].kind, CycleTestStep::feed);
+  EXPECT_TRUE(steps[2].point.isApprox(Eigen::Vector3d(25.4, 50.8, -25.4)));
+  EXPECT_EQ(steps[3].seconds, 2.0);
+  EXPECT_EQ(steps[4].what, "M5");
+  EXPECT_EQ(steps[5].what, "M0");
+  EXPECT_EQ(steps[6].what, "M3 S700");
+  EXPECT_TRUE(memory.end_mm.isApprox(Eigen::Vector3d(25.4, 50.8, 25.4)));  // G98: back at the initial level
+  EXPECT_TRUE(memory.started);
+  EXPECT_EQ(memory.code, 880);
+}
+
 }  // namespace
