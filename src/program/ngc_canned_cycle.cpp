@@ -303,86 +303,97 @@ Status resolve_words(const Block& block, const LineRef& where, const CycleContex
   return ok_status();
 }
 
-}  // namespace cycle_detail
+const char* plane_name(const Axes& axes) {
+  static const char* const by_normal[3] = {"yz", "xz", "xy"};
+  return by_normal[axes.c];
+}
 
-using namespace cycle_detail;
-
-Status run_canned_cycle(const gcode::Block& block, const gcode::LineRef& where, const CycleContext& context,
-                        CycleMemory& memory, CycleSink& sink) {
-  const int code = context.code;
-  if (Status s = check_words(block, where, code); !s) return s;
+/// The words a series must start with (R, the depth) and the repeat count; fills the values as written,
+/// the left-out ones from the series (program units).
+Status check_required(const Block& block, const LineRef& where, const CycleContext& context,
+                      const CycleMemory& memory, bool same_cycle, double& r_written, double& depth_written,
+                      int& repeats) {
   const double unit_mm = context.inch ? kMmPerInch : 1.0;
   const Axes axes = axes_of(context.plane);
-  const char normal = axis_letter(axes.c);
-  // R, the depth, P, Q and I J K carry over only while the same cycle repeats (LinuxCNC's motion mode).
-  const bool same_cycle = memory.started && memory.code == code;
   const gcode::Value& r_word = block['R'];
   if (!r_word.given() && !same_cycle)
     return error_at(where, cycle_column(block), "R clearance plane unspecified in cycle");
   const gcode::Value& l_word = block['L'];
-  const int repeats = l_word.given() ? int(std::lround(l_word.value)) : 1;
+  repeats = l_word.given() ? int(std::lround(l_word.value)) : 1;
   if (repeats == 0) return error_at(where, l_word.column, "Cannot do zero repeats of cycle");
-  static const char* const plane_names[3] = {"yz", "xz", "xy"};  // by normal axis
+  const char normal = axis_letter(axes.c);
   const gcode::Value& depth_word = block[normal];
   if (!depth_word.given() && !same_cycle)
-    return error_at(
-        where, cycle_column(block),
-        fmt::format("{} value unspecified in {} plane canned cycle", normal, plane_names[axes.c]));
-  const double r_written = r_word.given() ? r_word.value : memory.r_mm / unit_mm;
-  const double depth_written = depth_word.given() ? depth_word.value : memory.z_mm / unit_mm;
+    return error_at(where, cycle_column(block),
+                    fmt::format("{} value unspecified in {} plane canned cycle", normal, plane_name(axes)));
+  r_written = r_word.given() ? r_word.value : memory.r_mm / unit_mm;
+  depth_written = depth_word.given() ? depth_word.value : memory.z_mm / unit_mm;
+  return ok_status();
+}
 
+/// Where the holes of a block are, plane-local, program units.
+struct Pattern {
+  double a = 0.0, b = 0.0;            ///< G90: the hole; G91: where the tool is before the first step
+  double step_a = 0.0, step_b = 0.0;  ///< G91: from hole to hole
+  double from_a = 0.0, from_b = 0.0;  ///< where the tool is in the plane
+  double current_c = 0.0;             ///< the tool's level
+  double initial = 0.0;               ///< the series' initial level (G98)
+  int repeats = 1;
+};
+
+// G91: in-plane words are steps, R is relative to the series' initial level, the depth relative to R.
+void locate(const Block& block, const CycleContext& context, const CycleMemory& memory, double r_written,
+            double depth_written, Pattern& pattern, Hole& hole) {
+  const double unit_mm = context.inch ? kMmPerInch : 1.0;
+  const Axes axes = axes_of(context.plane);
   const Eigen::Vector3d position = context.position_mm / unit_mm;
-  double current_c = position[axes.c];
+  pattern.current_c = position[axes.c];
   // The initial level is where the series began, whatever the later blocks of the series found.
-  double initial = memory.started ? memory.old_z_mm / unit_mm : current_c;
-  Hole hole;
-  double a = position[axes.a], b = position[axes.b], step_a = 0.0, step_b = 0.0;
-  const char letter_a = axis_letter(axes.a), letter_b = axis_letter(axes.b);
+  pattern.initial = memory.started ? memory.old_z_mm / unit_mm : pattern.current_c;
+  pattern.a = pattern.from_a = position[axes.a];
+  pattern.b = pattern.from_b = position[axes.b];
+  const gcode::Value& word_a = block[axis_letter(axes.a)];
+  const gcode::Value& word_b = block[axis_letter(axes.b)];
   if (context.incremental) {
-    step_a = block[letter_a].given() ? block[letter_a].value : 0.0;
-    step_b = block[letter_b].given() ? block[letter_b].value : 0.0;
-    hole.r = r_written + initial;
+    pattern.step_a = word_a.given() ? word_a.value : 0.0;
+    pattern.step_b = word_b.given() ? word_b.value : 0.0;
+    hole.r = r_written + pattern.initial;
     hole.bottom = hole.r + depth_written;
   } else {
     hole.r = r_written;
     hole.bottom = depth_written;
-    if (block[letter_a].given()) a = block[letter_a].value;
-    if (block[letter_b].given()) b = block[letter_b].value;
+    if (word_a.given()) pattern.a = word_a.value;
+    if (word_b.given()) pattern.b = word_b.value;
   }
-  if (hole.r < hole.bottom)
-    return error_at(
-        where, word_column(block, {'R', normal}),
-        fmt::format("R less than {} in cycle in {} plane", char(normal - 'A' + 'a'), plane_names[axes.c]));
-  Eigen::Vector3d ijk = Eigen::Vector3d::Zero();
-  if (Status s = resolve_words(block, where, context, memory, same_cycle, hole, ijk); !s) return s;
+}
 
-  memory.old_z_mm = initial * unit_mm;  // the series' level stays, even when raised to R just below
-  Emitter out(sink, axes, unit_mm);
-  if (initial < hole.r) {  // below the R plane: straight up to it first
-    out.rapid(position[axes.a], position[axes.b], hole.r);
-    initial = hole.r;
-    current_c = hole.r;
+/// All the moves of the block; leaves in `pattern` the last hole.
+void drill(Emitter& out, const CycleContext& context, Pattern& pattern, Hole& hole) {
+  if (pattern.initial < hole.r) {  // below the R plane: straight up to it first
+    out.rapid(pattern.from_a, pattern.from_b, hole.r);
+    pattern.initial = hole.r;
+    pattern.current_c = hole.r;
   }
-  hole.clear = context.retract_to_r ? hole.r : initial;
-  hole.peck_clearance = context.inch ? kPeckClearanceInch : kPeckClearanceMm;
-  hole.offset_a = ijk[axes.a];
-  hole.offset_b = ijk[axes.b];
-  hole.middle = context.incremental ? hole.bottom + ijk[axes.c] : ijk[axes.c];
-  hole.spindle_on = spindle_start(context.spindle_clockwise, context.spindle_speed);
-
-  for (int n = 0; n < repeats; ++n) {
-    a += step_a;
-    b += step_b;
-    if (n == 0 && current_c > hole.r) {
-      out.rapid(a, b, current_c);
-      out.rapid(a, b, hole.r);
-    } else {
-      out.rapid(a, b, hole.clear);
-      if (hole.clear > hole.r) out.rapid(a, b, hole.r);
+  hole.clear = context.retract_to_r ? hole.r : pattern.initial;
+  for (int n = 0; n < pattern.repeats; ++n) {
+    pattern.a += pattern.step_a;
+    pattern.b += pattern.step_b;
+    if (n == 0 && pattern.current_c > hole.r) {  // from where the tool is, over the hole, down to R
+      out.rapid(pattern.a, pattern.b, pattern.current_c);
+      out.rapid(pattern.a, pattern.b, hole.r);
+    } else {  // from hole to hole at the clear level
+      out.rapid(pattern.a, pattern.b, hole.clear);
+      if (hole.clear > hole.r) out.rapid(pattern.a, pattern.b, hole.r);
     }
-    hole_body(out, code, context.plane, hole, a, b, context.spindle_speed);
+    hole_body(out, context.code, context.plane, hole, pattern.a, pattern.b, context.spindle_speed);
   }
+}
 
+/// What the next block of the series may leave out, in mm and seconds.
+void remember(const Block& block, const CycleContext& context, double r_written, double depth_written,
+              const Hole& hole, const Eigen::Vector3d& ijk, CycleMemory& memory) {
+  const double unit_mm = context.inch ? kMmPerInch : 1.0;
+  const int code = context.code;
   memory.started = true;
   memory.code = code;
   memory.r_mm = r_written * unit_mm;
@@ -402,7 +413,45 @@ Status run_canned_cycle(const gcode::Block& block, const gcode::LineRef& where, 
     memory.k_mm = ijk[2] * unit_mm;
     memory.has_ijk = true;
   }
-  memory.end_mm = out.point_mm(a, b, hole.clear);
+}
+
+}  // namespace cycle_detail
+
+using namespace cycle_detail;
+
+Status run_canned_cycle(const gcode::Block& block, const gcode::LineRef& where, const CycleContext& context,
+                        CycleMemory& memory, CycleSink& sink) {
+  if (Status s = check_words(block, where, context.code); !s) return s;
+  // R, the depth, P, Q and I J K carry over only while the same cycle repeats (LinuxCNC's motion mode).
+  const bool same_cycle = memory.started && memory.code == context.code;
+  double r_written = 0.0, depth_written = 0.0;
+  Pattern pattern;
+  if (Status s = check_required(block, where, context, memory, same_cycle, r_written, depth_written,
+                                pattern.repeats);
+      !s)
+    return s;
+  Hole hole;
+  locate(block, context, memory, r_written, depth_written, pattern, hole);
+  const Axes axes = axes_of(context.plane);
+  const char normal = axis_letter(axes.c);
+  if (hole.r < hole.bottom)
+    return error_at(
+        where, word_column(block, {'R', normal}),
+        fmt::format("R less than {} in cycle in {} plane", char(normal - 'A' + 'a'), plane_name(axes)));
+  Eigen::Vector3d ijk = Eigen::Vector3d::Zero();
+  if (Status s = resolve_words(block, where, context, memory, same_cycle, hole, ijk); !s) return s;
+  hole.peck_clearance = context.inch ? kPeckClearanceInch : kPeckClearanceMm;
+  hole.offset_a = ijk[axes.a];
+  hole.offset_b = ijk[axes.b];
+  hole.middle = context.incremental ? hole.bottom + ijk[axes.c] : ijk[axes.c];  // K: absolute, or from bottom
+  hole.spindle_on = spindle_start(context.spindle_clockwise, context.spindle_speed);
+
+  const double unit_mm = context.inch ? kMmPerInch : 1.0;
+  memory.old_z_mm = pattern.initial * unit_mm;  // the series' level stays, even when raised to R in drill()
+  Emitter out(sink, axes, unit_mm);
+  drill(out, context, pattern, hole);
+  remember(block, context, r_written, depth_written, hole, ijk, memory);
+  memory.end_mm = out.point_mm(pattern.a, pattern.b, hole.clear);
   return ok_status();
 }
 
