@@ -417,10 +417,9 @@ void remember(const Block& block, const CycleContext& context, double r_written,
 
 }  // namespace cycle_detail
 
-using namespace cycle_detail;
-
 Status run_canned_cycle(const gcode::Block& block, const gcode::LineRef& where, const CycleContext& context,
                         CycleMemory& memory, CycleSink& sink) {
+  using namespace cycle_detail;  // here only: the library is built in unity batches
   if (Status s = check_words(block, where, context.code); !s) return s;
   // R, the depth, P, Q and I J K carry over only while the same cycle repeats (LinuxCNC's motion mode).
   const bool same_cycle = memory.started && memory.code == context.code;
