@@ -39,6 +39,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <initializer_list>
+#include <string>
 
 namespace pkm::program::ngc {
 
