@@ -33,6 +33,8 @@
 //   - A negative P is refused ("Negative p word used", LinuxCNC's text; 2.9 has that check disabled and
 //     dwells a negative time). P-1 and Q-1, which rs274 reads as "no word" (its internal marker), are a
 //     negative P and a non-positive Q here.
+//   - CycleMemory keeps lengths in mm, so a G20/G21 inside a series keeps R and the depth where they were;
+//     rs274 reuses the numbers in the new unit.
 //   - Feed-rate, inverse-time and cutter-compensation checks belong to the executor.
 #include "program/ngc_canned_cycle.hpp"
 
