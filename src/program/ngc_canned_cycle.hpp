@@ -41,6 +41,7 @@ struct CycleContext {
   Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();  ///< where the tool is (program coordinates)
   double spindle_speed = 0.0;  ///< S in effect (G84/G74-style tapping restarts the spindle with it)
   bool spindle_clockwise = true;
+  bool spindle_turning = true;  ///< false after M5: G84, G86, G87 and G88 refuse to run (LinuxCNC does)
 };
 
 /// LinuxCNC's memory between the blocks of one series of cycles; run_canned_cycle reads and updates it.
@@ -50,6 +51,14 @@ struct CycleMemory {
   double r_mm = 0.0, z_mm = 0.0, q_mm = 0.0, p_s = 0.0;  ///< sticky words, mm / seconds
   bool has_r = false, has_z = false, has_q = false, has_p = false;
   double i_mm = 0.0, j_mm = 0.0, k_mm = 0.0;  ///< G87 back-boring offsets
+  bool has_ijk = false;
+  /// The cycle of the previous block of the series (LinuxCNC's motion mode): R, Z, P, Q and I J K may be
+  /// left out only when the block repeats that cycle; 0 before the first block.
+  int code = 0;
+  /// Where LinuxCNC takes the tool to be after the block: at the clear plane above the last hole. That is the
+  /// last point sent to the sink except after G88 (the operator retracts by hand) and G84 outside G17 (see
+  /// ngc_canned_cycle.cpp); the executor continues from here, as rs274 does.
+  Eigen::Vector3d end_mm = Eigen::Vector3d::Zero();
 };
 
 Status run_canned_cycle(const gcode::Block& block, const gcode::LineRef& where, const CycleContext& context,
