@@ -97,6 +97,7 @@ lint: deps
 conformance:
 	@bash scripts/install-deps.sh --with-linuxcnc
 	@bash scripts/regen-rs274-golden.sh --check
+	@bash scripts/regen-cycle-golden.sh --check
 
 # The HTML report in headless Chromium (installs Debian's chromium): tests/browser/report_browser_test.mjs.
 browser-test: build

@@ -220,6 +220,7 @@ Status Executor::cycle(const gcode::Block& b, int motion) {
   context.position_mm = state_.position_mm;
   context.spindle_speed = state_.spindle_speed;
   context.spindle_clockwise = state_.spindle_direction >= 0;
+  context.spindle_turning = state_.spindle_direction != 0;
   if (state_.feed <= 0.0 && state_.feed_mode != FeedMode::inverse_time)
     return gcode::error_at(where(), motion_column(b),
                            fmt::format("{} with no feed rate programmed (F)", gcode::code_name('G', motion)));
@@ -228,6 +229,11 @@ Status Executor::cycle(const gcode::Block& b, int motion) {
   state_.exact_stop = true;
   cycle_status_ = ok_status();
   Status ran = run_canned_cycle(b, where(), context, cycle_memory_, *this);
+  if (ran && cycle_status_ && (cycle_memory_.end_mm - state_.position_mm).norm() > 1e-9) {
+    // After G88 (the operator retracts by hand) and G84 outside G17, LinuxCNC takes the tool to be at the
+    // clear plane although no move took it there; pkm's path must be continuous, so a rapid does.
+    rapid(cycle_memory_.end_mm);
+  }
   state_.exact_stop = exact;
   if (!ran) return ran;
   return cycle_status_;
