@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Regenerates the golden files of the cutter radius compensation suite (tests/program/conformance/comp):
+#  - kNN_name.ngc are written by hand (concave and convex corners, arcs, entry and exit moves, G41.1/G42.1,
+#    G18, LinuxCNC's errors);
+#  - rNN_random.ngc are generated here from a fixed seed: closed contours (random star-shaped polygons, some
+#    edges arcs bulging either way) cut on the left or right with several tool radii; some of them rs274
+#    refuses (gouging), which the test expects pkm to refuse too;
+# and for each the output of LinuxCNC's standalone interpreter is kept as NAME.rs274: its canonical calls
+# (stdout), then its error message and the offending block if it stopped (stderr, without "executing").
+# tests/program/ngc_cutter_compensation_test.cpp drives pkm's CutterCompensation with the same programs and
+# compares. rs274 reads the tool table (tools.tbl here) in inches, so every program is in G20.
+# With --check, writes nothing: regenerates into a temporary directory and fails if anything differs.
+set -euo pipefail
+dir="$(cd "$(dirname "$0")/../tests/program/conformance/comp" && pwd)"
+check=0
+if [ "${1:-}" = "--check" ]; then check=1; fi
+out_dir="$dir"
+if [ $check -eq 1 ]; then
+  out_dir=$(mktemp -d)
+  trap 'rm -rf "$out_dir"' EXIT
+  cp "$dir"/k*.ngc "$dir"/tools.tbl "$out_dir"/
+fi
+RS274=${RS274:-rs274}
+command -v "$RS274" > /dev/null || { echo "regen-comp-golden: $RS274 not found (apt-get install linuxcnc-uspace)" >&2; exit 1; }
+
+python3 - "$out_dir" <<'PY'
+import math, random, sys
+out = sys.argv[1]
+rng = random.Random(20261206)
+
+def fmt(v):
+    s = f"{v:.4f}"
+    return "0.0000" if s == "-0.0000" else s
+
+for n in range(1, 41):
+    vertices = rng.randint(3, 7)
+    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(vertices))
+    # keep vertices apart so that edges are not degenerate
+    angles = [a + i * 0.15 for i, a in enumerate(angles)]
+    angles = [a * 2 * math.pi / (angles[-1] + 0.6) for a in angles]
+    pts = [(round(rng.uniform(0.6, 2.0) * math.cos(a), 4), round(rng.uniform(0.6, 2.0) * math.sin(a), 4))
+           for a in angles]
+    if rng.random() < 0.5:
+        pts.reverse()
+    side = rng.choice(["G41", "G42"])
+    if rng.random() < 0.3:
+        comp = f"{side}.1 D{fmt(rng.choice([0.05, 0.1, 0.2, 0.3]))}"
+    else:
+        comp = f"{side} D{rng.randint(1, 4)}"
+    lines = ["(random closed contour, seed 20261206, number %d)" % n, "G20 G17 G90 G40", "F20",
+             "G0 X3.0000 Y3.0000 Z0.1000", "G1 Z-0.1000", comp]
+    lines.append(f"G1 X{fmt(pts[0][0])} Y{fmt(pts[0][1])}")
+    for i in range(1, len(pts) + 1):
+        a = pts[i - 1]
+        b = pts[i % len(pts)]
+        if rng.random() < 0.45:
+            mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
+            dx, dy = b[0] - a[0], b[1] - a[1]
+            h = rng.choice([-1, 1]) * rng.uniform(0.15, 1.5)
+            cx, cy = mx - dy * h, my + dx * h
+            g = rng.choice(["G2", "G3"])
+            lines.append(f"{g} X{fmt(b[0])} Y{fmt(b[1])} I{fmt(cx - a[0])} J{fmt(cy - a[1])}")
+        else:
+            lines.append(f"G1 X{fmt(b[0])} Y{fmt(b[1])}")
+    lines += ["G40", "G0 X3.0000 Y-3.0000", "M2"]
+    with open(f"{out}/r{n:02d}_random.ngc", "w") as f:
+        f.write("\n".join(lines) + "\n")
+PY
+
+# rs274 keeps its tool table in a file mapped into memory, $HOME/.tool.mmap, shared by every rs274 running
+# under the same HOME: runs in parallel (another worktree's regeneration) overwrite each other's tools. Each
+# run of this script gets a HOME of its own.
+rs274_home=$(mktemp -d)
+trap 'rm -rf "$rs274_home"; if [ $check -eq 1 ]; then rm -rf "$out_dir"; fi' EXIT
+status=0
+count=0
+cd "$out_dir"
+for program in k[0-9][0-9]_*.ngc r[0-9][0-9]_*.ngc; do
+  golden="${program%.ngc}.rs274"
+  HOME="$rs274_home" "$RS274" -g -b -t tools.tbl "$program" < /dev/null > "$golden.out" 2> "$golden.err" || true
+  { cat "$golden.out"; grep -v '^executing$' "$golden.err" || true; } > "$golden"
+  rm -f "$golden.out" "$golden.err"
+  if [ $check -eq 1 ]; then
+    for f in "$program" "$golden"; do
+      if ! diff -q "$f" "$dir/$f" > /dev/null 2>&1; then
+        echo "regen-comp-golden: $f differs from the committed file:" >&2
+        diff "$dir/$f" "$f" | head -n 10 >&2 || true
+        status=1
+      fi
+    done
+  fi
+  count=$((count + 1))
+done
+echo "regen-comp-golden: $count programs"
+exit $status
