@@ -2,13 +2,14 @@
 # Regenerates the golden files of the cutter radius compensation suite (tests/program/conformance/comp):
 #  - kNN_name.ngc are written by hand (concave and convex corners, arcs, entry and exit moves, G41.1/G42.1,
 #    G18, LinuxCNC's errors);
-#  - rNN_random.ngc are generated here from a fixed seed: closed contours (random star-shaped polygons, some
-#    edges arcs bulging either way) cut on the left or right with several tool radii; some of them rs274
-#    refuses (gouging), which the test expects pkm to refuse too;
+#  - rNN_random.ngc are generated here from fixed seeds: closed contours (random star-shaped polygons, some
+#    edges arcs bulging either way) cut on the left or right with several tool radii, in G17 (r01-r40), G18
+#    (r41-r50) and millimetres with dwells, plunges and rapids (r51-r60); some of them rs274 refuses
+#    (gouging), which the test expects pkm to refuse too;
 # and for each the output of LinuxCNC's standalone interpreter is kept as NAME.rs274: its canonical calls
 # (stdout), then its error message and the offending block if it stopped (stderr, without "executing").
 # tests/program/ngc_cutter_compensation_test.cpp drives pkm's CutterCompensation with the same programs and
-# compares. rs274 reads the tool table (tools.tbl here) in inches, so every program is in G20.
+# compares. rs274 reads the tool table (tools.tbl here) in inches: programs in G21 use G41.1/G42.1 only.
 # With --check, writes nothing: regenerates into a temporary directory and fails if anything differs.
 set -euo pipefail
 dir="$(cd "$(dirname "$0")/../tests/program/conformance/comp" && pwd)"
@@ -26,45 +27,63 @@ command -v "$RS274" > /dev/null || { echo "regen-comp-golden: $RS274 not found (
 python3 - "$out_dir" <<'PY'
 import math, random, sys
 out = sys.argv[1]
-rng = random.Random(20261206)
 
 def fmt(v):
     s = f"{v:.4f}"
     return "0.0000" if s == "-0.0000" else s
 
-for n in range(1, 41):
+def contour(rng, seed, n, plane="G17", mm=False, extras=False):
+    """A closed contour around the origin; edges lines or arcs; plane G17 (X Y, I J) or G18 (Z X, K I)."""
+    k = 25.4 if mm else 1.0
+    a1, a2, c1, c2 = ("X", "Y", "I", "J") if plane == "G17" else ("Z", "X", "K", "I")
     vertices = rng.randint(3, 7)
     angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(vertices))
     # keep vertices apart so that edges are not degenerate
     angles = [a + i * 0.15 for i, a in enumerate(angles)]
     angles = [a * 2 * math.pi / (angles[-1] + 0.6) for a in angles]
-    pts = [(round(rng.uniform(0.6, 2.0) * math.cos(a), 4), round(rng.uniform(0.6, 2.0) * math.sin(a), 4))
+    pts = [(round(k * rng.uniform(0.6, 2.0) * math.cos(a), 4), round(k * rng.uniform(0.6, 2.0) * math.sin(a), 4))
            for a in angles]
     if rng.random() < 0.5:
         pts.reverse()
     side = rng.choice(["G41", "G42"])
-    if rng.random() < 0.3:
-        comp = f"{side}.1 D{fmt(rng.choice([0.05, 0.1, 0.2, 0.3]))}"
+    if rng.random() < 0.3 or mm:
+        comp = f"{side}.1 D{fmt(k * rng.choice([0.05, 0.1, 0.2, 0.3]))}"
     else:
         comp = f"{side} D{rng.randint(1, 4)}"
-    lines = ["(random closed contour, seed 20261206, number %d)" % n, "G20 G17 G90 G40", "F20",
-             "G0 X3.0000 Y3.0000 Z0.1000", "G1 Z-0.1000", comp]
-    lines.append(f"G1 X{fmt(pts[0][0])} Y{fmt(pts[0][1])}")
+    far = fmt(3 * k)
+    depth = "Z" if plane == "G17" else "Y"
+    lines = ["(random closed contour, seed %d, number %d)" % (seed, n), f"{'G21' if mm else 'G20'} {plane} G90 G40",
+             f"F{20 * k:g}", f"G0 {a1}{far} {a2}{far} {depth}{fmt(0.1 * k)}", f"G1 {depth}{fmt(-0.1 * k)}", comp]
+    lines.append(f"G1 {a1}{fmt(pts[0][0])} {a2}{fmt(pts[0][1])}")
     for i in range(1, len(pts) + 1):
         a = pts[i - 1]
         b = pts[i % len(pts)]
+        if extras and rng.random() < 0.2:
+            lines.append(rng.choice(["G4 P0.5", f"G1 {depth}{fmt(-0.2 * k)}", f"G0 {depth}{fmt(0.1 * k)}"]))
         if rng.random() < 0.45:
             mx, my = (a[0] + b[0]) / 2, (a[1] + b[1]) / 2
             dx, dy = b[0] - a[0], b[1] - a[1]
             h = rng.choice([-1, 1]) * rng.uniform(0.15, 1.5)
             cx, cy = mx - dy * h, my + dx * h
             g = rng.choice(["G2", "G3"])
-            lines.append(f"{g} X{fmt(b[0])} Y{fmt(b[1])} I{fmt(cx - a[0])} J{fmt(cy - a[1])}")
+            lines.append(f"{g} {a1}{fmt(b[0])} {a2}{fmt(b[1])} {c1}{fmt(cx - a[0])} {c2}{fmt(cy - a[1])}")
         else:
-            lines.append(f"G1 X{fmt(b[0])} Y{fmt(b[1])}")
-    lines += ["G40", "G0 X3.0000 Y-3.0000", "M2"]
+            kind = "G0" if extras and rng.random() < 0.15 else "G1"
+            lines.append(f"{kind} {a1}{fmt(b[0])} {a2}{fmt(b[1])}")
+    lines += ["G40", f"G0 {a1}{far} {a2}-{far}", "M2"]
     with open(f"{out}/r{n:02d}_random.ngc", "w") as f:
         f.write("\n".join(lines) + "\n")
+
+# r01-r40: XY, inches, in the tool table's radii or G41.1/G42.1 (seed kept: their goldens are reviewed)
+rng = random.Random(20261206)
+for n in range(1, 41):
+    contour(rng, 20261206, n)
+# r41-r50: XZ (G18); r51-r60: millimetres with dwells, plunges and rapids inside the contour
+rng = random.Random(20261207)
+for n in range(41, 51):
+    contour(rng, 20261207, n, plane="G18")
+for n in range(51, 61):
+    contour(rng, 20261207, n, mm=True, extras=True)
 PY
 
 # rs274 keeps its tool table in a file mapped into memory, $HOME/.tool.mmap, shared by every rs274 running
