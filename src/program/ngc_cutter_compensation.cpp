@@ -65,6 +65,12 @@ Status CutterCompensation::start(CompensationSide side, double radius_mm, Plane 
   return ok_status();
 }
 
+Status CutterCompensation::select_plane(Plane plane, const gcode::LineRef& where, int column) {
+  if (impl_->on && plane != impl_->plane)
+    return gcode::error_at(where, column, "Cannot change planes with cutter radius compensation on");
+  return ok_status();
+}
+
 Status CutterCompensation::stop(const gcode::LineRef& where, int column) {
   Impl& s = *impl_;
   if (s.on && s.radius_mm > 0.0 && !s.first_move) {
@@ -117,6 +123,10 @@ Status CutterCompensation::move(const CanonicalMove& programmed, const gcode::Li
     s.programmed_mm = programmed.end_mm;
     s.current_mm = programmed.end_mm;
     s.physical_mm = programmed.end_mm;
+  } else if (programmed.kind == MoveKind::arc && programmed.plane != s.plane) {
+    // The interpreter should have refused the plane change (select_plane); an arc in another plane has no
+    // offset that rs274 would compute.
+    status = site.error("Cannot change planes with cutter radius compensation on");
   } else if (programmed.kind == MoveKind::arc) {
     status = s.first_move ? s.arc_entry(programmed, site) : s.arc(programmed, site);
   } else {

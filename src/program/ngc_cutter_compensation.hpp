@@ -39,6 +39,8 @@ class CutterCompensation {
   /// G41/G42 (radius from the tool table's D) or G41.1/G42.1: the next move is the entry move. `column`
   /// points at the G-code for errors (compensation in a plane other than G17/G18, already on …).
   Status start(CompensationSide side, double radius_mm, Plane plane, const gcode::LineRef& where, int column);
+  /// G17/G18/G19 (added): rs274 refuses a change of plane while compensation is on.
+  Status select_plane(Plane plane, const gcode::LineRef& where, int column);
   /// G40: the next move is the exit move.
   Status stop(const gcode::LineRef& where, int column);
   bool active() const;

@@ -5,6 +5,8 @@
 // (NAME.rs274, scripts/regen-comp-golden.sh): kind, end and arc centre to 1e-4 in program units, turn
 // direction and count, dwells. Where rs274 refused the program, pkm must refuse it too, with the same
 // message, on the same block, after the same moves.
+#include "program/ngc_cutter_compensation.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +21,6 @@
 #include <vector>
 
 #include "program/gcode_arc.hpp"
-#include "program/ngc_cutter_compensation.hpp"
 
 namespace {
 
@@ -54,7 +55,7 @@ std::string comp_test_trim(const std::string& s) {
 
 struct CompTestCanon {
   MoveKind kind = MoveKind::line;
-  Eigen::Vector3d end = Eigen::Vector3d::Zero();  ///< program units
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();     ///< program units
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< arcs: in the plane's (first, second) frame
   int turn = 0;                                      ///< arcs: signed, > 0 counter-clockwise in that frame
   double dwell_s = 0.0;
@@ -194,6 +195,7 @@ struct CompTestState {
 struct CompTestBlock {
   std::optional<double> dwell_s;
   std::optional<Plane> plane;
+  int plane_column = 0;
   std::optional<double> scale_mm;
   int comp_code = -1;  ///< 400, 410, 420, 411, 421
   int comp_column = 0;
@@ -219,6 +221,7 @@ CompTestBlock comp_test_block(const std::vector<CompTestWord>& words, CompTestSt
         g4 = true;
       } else if (code >= 170 && code <= 190) {
         b.plane = code == 170 ? Plane::xy : code == 180 ? Plane::zx : Plane::yz;
+        b.plane_column = w.column;
       } else if (code == 200 || code == 210) {
         b.scale_mm = code == 200 ? 25.4 : 1.0;
       } else if (code == 400 || code == 410 || code == 420 || code == 411 || code == 421) {
@@ -265,8 +268,8 @@ CanonicalMove comp_test_motion(const CompTestBlock& b, const CompTestState& stat
 }
 
 /// Executes one block; false once an error stops the program.
-bool comp_test_execute(const CompTestBlock& b, CompTestState& state, CutterCompensation& comp, const LineRef& where,
-                       CompTestRun& run) {
+bool comp_test_execute(const CompTestBlock& b, CompTestState& state, CutterCompensation& comp,
+                       const LineRef& where, CompTestRun& run) {
   static const std::map<int, double> diameters_in = comp_test_tool_diameters_in();
   auto fail = [&](const pkm::Status& s) {
     if (s) return false;
@@ -281,7 +284,10 @@ bool comp_test_execute(const CompTestBlock& b, CompTestState& state, CutterCompe
     dwell.end_mm = state.position_mm;
     if (fail(comp.move(dwell, where, 1, run.moves))) return false;
   }
-  if (b.plane) state.plane = *b.plane;
+  if (b.plane) {
+    if (fail(comp.select_plane(*b.plane, where, b.plane_column))) return false;
+    state.plane = *b.plane;
+  }
   if (b.scale_mm) {
     state.scale_mm = *b.scale_mm;
     comp.set_inch(*b.scale_mm != 1.0);
@@ -289,7 +295,8 @@ bool comp_test_execute(const CompTestBlock& b, CompTestState& state, CutterCompe
   if (b.comp_code == 400 && fail(comp.stop(where, b.comp_column))) return false;
   if (b.comp_code > 400) {
     const bool diameter_word = b.comp_code % 10 == 1;
-    const double diameter = diameter_word ? b.d_word.value_or(0.0) : diameters_in.at(int(b.d_word.value_or(0)));
+    const double diameter =
+        diameter_word ? b.d_word.value_or(0.0) : diameters_in.at(int(b.d_word.value_or(0)));
     const double radius_mm = diameter / 2.0 * (diameter_word ? state.scale_mm : 25.4);
     const auto side = b.comp_code / 10 == 41 ? CompensationSide::left : CompensationSide::right;
     if (fail(comp.start(side, radius_mm, state.plane, where, b.comp_column))) return false;
@@ -337,7 +344,8 @@ void comp_test_compare(const std::string& name) {
   // rs274 prints in program units (no suite program switches units).
   const double unit_mm = run.scale_mm;
   constexpr double kTolerance = 1e-4;
-  ASSERT_EQ(run.moves.size(), golden.moves.size()) << (run.error ? run.error->message : std::string("no error"));
+  ASSERT_EQ(run.moves.size(), golden.moves.size())
+      << (run.error ? run.error->message : std::string("no error"));
   for (size_t i = 0; i < run.moves.size(); ++i) {
     SCOPED_TRACE("move " + std::to_string(i + 1) + ", line " + std::to_string(run.moves[i].line));
     const CanonicalMove& m = run.moves[i];
@@ -377,7 +385,8 @@ TEST_P(CompTestGoldenPrograms, MatchesRs274) {
   comp_test_compare(GetParam());
 }
 
-INSTANTIATE_TEST_SUITE_P(CutterCompensation, CompTestGoldenPrograms, ::testing::ValuesIn(comp_test_programs()),
+INSTANTIATE_TEST_SUITE_P(CutterCompensation, CompTestGoldenPrograms,
+                         ::testing::ValuesIn(comp_test_programs()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 TEST(CutterCompensation, SuiteHasHandWrittenAndGeneratedPrograms) {
@@ -469,6 +478,15 @@ TEST(CutterCompensation, ErrorsCarryLineAndColumn) {
     const pkm::Status s = comp.start(CompensationSide::right, 1.0, Plane::xy, LineRef{source, 4}, 9);
     ASSERT_FALSE(s);
     EXPECT_EQ(s.error().message, "prog.ngc:4:9: Cannot turn cutter radius comp on when on");
+  }
+  {
+    CutterCompensation comp;
+    ASSERT_TRUE(comp.select_plane(Plane::zx, LineRef{source, 2}, 1)) << "off: any plane";
+    ASSERT_TRUE(comp.start(CompensationSide::left, 1.0, Plane::zx, LineRef{source, 3}, 1));
+    ASSERT_TRUE(comp.select_plane(Plane::zx, LineRef{source, 4}, 3)) << "the same plane again";
+    const pkm::Status s = comp.select_plane(Plane::xy, LineRef{source, 5}, 3);
+    ASSERT_FALSE(s);
+    EXPECT_EQ(s.error().message, "prog.ngc:5:3: Cannot change planes with cutter radius compensation on");
   }
   {
     CutterCompensation comp;
