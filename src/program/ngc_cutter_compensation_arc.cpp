@@ -1,18 +1,8 @@
 // Compensated arcs (G2/G3): the entry arc, and every later arc, concentric with the programmed one at one
 // tool radius in or out, with the corner it makes with the move before it.
-#include <numbers>
-
 #include "program/ngc_cutter_compensation_impl.hpp"
 
 namespace pkm::program::ngc {
-
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kCornerTolerance = 0.05;  // rs274's TOLERANCE_CONCAVE_CORNER, rad
-constexpr double kEqualTolerance = 1e-6;   // rs274's TOLERANCE_EQUAL
-
-}  // namespace
 
 // The entry arc cannot be concentric with the programmed one (the tool starts on the programmed path): rs274
 // moves the end one radius in or out and runs an arc through the start and that end whose centre lies on the
@@ -33,7 +23,7 @@ Status CutterCompensation::Impl::arc_entry(const CanonicalMove& m, const CompErr
   const double half_chord = (c - end).norm() / 2.0;
   const double towards_centre = comp_angle(centre - end);
   const double corner = comp_angle(c - end) - towards_centre;
-  if (std::abs(std::cos(corner)) < kEqualTolerance)
+  if (std::abs(std::cos(corner)) < kCompEqualTolerance)
     return site.error("Tool radius not less than arc radius with comp");
   const Eigen::Vector2d new_centre = end + half_chord / std::cos(corner) * comp_direction(towards_centre);
   const double spiral_tolerance_mm = inch ? 0.002 * std::numbers::sqrt2 * 25.4 : 0.02 * std::numbers::sqrt2;
@@ -76,12 +66,12 @@ Status CutterCompensation::Impl::arc(const CanonicalMove& m, const CompErrorSite
   const Eigen::Vector2d end = e + radius_mm * comp_direction(gamma);
   const double sweep = comp_sweep_rad(o, centre, turn, e);
   // Tangent arcs meeting at the top of an "m" (or a line meeting an arc atop an "h") are concave for rs274.
-  const bool concave = beta < -kCornerTolerance || beta > kPi + kCornerTolerance ||
-                       (std::abs(beta - kPi) < kCornerTolerance && !inside);
+  const bool concave = beta < -kCompCornerToleranceRad || beta > kPi + kCompCornerToleranceRad ||
+                       (std::abs(beta - kPi) < kCompCornerToleranceRad && !inside);
   if (concave) {
     const Status moved = arc_concave_corner(centre, arc_radius, turn, theta, beta, site);
     if (!moved) return moved;
-  } else if (beta > kCornerTolerance) {
+  } else if (beta > kCompCornerToleranceRad) {
     // Convex: an arc about the programmed corner to the point one radius off the new arc's start.
     const Eigen::Vector2d mid = o + radius_mm * comp_direction(delta);
     release();

@@ -4,16 +4,24 @@
 // (Z, X) for G18; the third coordinate (along the plane normal) only rides along.
 #include <Eigen/Core>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "core/result.hpp"
+#include "core/units.hpp"
 #include "program/canonical_program.hpp"
 #include "program/gcode_arc.hpp"
 #include "program/gcode_lexer.hpp"
 #include "program/ngc_cutter_compensation.hpp"
 
 namespace pkm::program::ngc {
+
+/// rs274's TOLERANCE_CONCAVE_CORNER (rad): corners within it of straight on (or, for some, of a full
+/// reversal) are taken as tangent.
+inline constexpr double kCompCornerToleranceRad = 0.05;
+/// rs274's TOLERANCE_EQUAL.
+inline constexpr double kCompEqualTolerance = 1e-6;
 
 /// Where an error is reported: the block being processed (rs274 reports a corner's failure on the block that
 /// reveals it, not on the block whose end had to move).

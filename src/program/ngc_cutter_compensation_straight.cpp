@@ -1,20 +1,9 @@
 // Compensated straight moves (G0/G1): the entry move, and every later line with the corner it makes with
 // the move before it — convex (an arc about the programmed corner is inserted), concave (the queued move is
 // cut short where the offset paths meet) or tangent.
-#include <numbers>
-
 #include "program/ngc_cutter_compensation_impl.hpp"
 
 namespace pkm::program::ngc {
-
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-// rs274's TOLERANCE_CONCAVE_CORNER (rad): corners within it of straight on (or of a full reversal) are taken
-// as tangent.
-constexpr double kCornerTolerance = 0.05;
-
-}  // namespace
 
 Status CutterCompensation::Impl::straight_entry(const CanonicalMove& m, const CompErrorSite& site) {
   const Eigen::Vector2d c = uv(current_mm);
@@ -65,9 +54,10 @@ Status CutterCompensation::Impl::straight(const CanonicalMove& m, const CompErro
   const bool front_is_arc = !queue.empty() && queue.front().move.kind == MoveKind::arc;
   // Leaving the top of an arc the tool is outside of, straight back along it ("h" shape): rs274 takes the
   // corner as concave (stays on the same side) rather than looping around.
-  const bool concave = beta < -kCornerTolerance || beta > kPi + kCornerTolerance ||
-                       (beta > kPi - kCornerTolerance && front_is_arc && !tool_inside(queue.front().turn));
-  if (!concave && beta > kCornerTolerance) {
+  const bool concave =
+      beta < -kCompCornerToleranceRad || beta > kPi + kCompCornerToleranceRad ||
+      (beta > kPi - kCompCornerToleranceRad && front_is_arc && !tool_inside(queue.front().turn));
+  if (!concave && beta > kCompCornerToleranceRad) {
     // Convex: the queued move keeps its end; an arc about the programmed corner (a straight traverse for G0,
     // which has no arc) brings the tool square to the new direction. It carries all of A, B, C's motion.
     const Status moved = move_endpoint_and_release(c, site);
