@@ -1,10 +1,10 @@
 // Cutter radius compensation against LinuxCNC's rs274: every tests/program/conformance/comp/*.ngc (written by
 // hand: kNN_*, or generated from a seed: rNN_random) is read by a minimal reader here (G0 G1 G2 G3 G4, G17
-// G18 G19, G20 G21, G40 G41 G42 G41.1 G42.1 with D, X Y Z I J K F P, M0 M1 M2 M30), its moves driven through
-// pkm's CutterCompensation, and the moves that come out compared with the canonical calls rs274 printed
-// (NAME.rs274, scripts/regen-comp-golden.sh): kind, end and arc centre to 1e-4 in program units, turn
-// direction and count, dwells. Where rs274 refused the program, pkm must refuse it too, with the same
-// message, on the same block, after the same moves.
+// G18 G19, G20 G21, G40 G41 G42 G41.1 G42.1 with D, X Y Z A B C I J K F P, M0 M1 M2 M30), its moves driven
+// through pkm's CutterCompensation, and the moves that come out compared with the canonical calls rs274
+// printed (NAME.rs274, scripts/regen-comp-golden.sh): kind, end (A B C too) and arc centre to 1e-4 in program
+// units, turn direction and count, dwells. Where rs274 refused the program, pkm must refuse it too, with the
+// same message, on the same block, after the same moves.
 #include "program/ngc_cutter_compensation.hpp"
 
 #include <gtest/gtest.h>
@@ -56,6 +56,7 @@ std::string comp_test_trim(const std::string& s) {
 struct CompTestCanon {
   MoveKind kind = MoveKind::line;
   Eigen::Vector3d end = Eigen::Vector3d::Zero();     ///< program units
+  Eigen::Vector3d abc = Eigen::Vector3d::Zero();     ///< A, B, C (degrees)
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< arcs: in the plane's (first, second) frame
   int turn = 0;                                      ///< arcs: signed, > 0 counter-clockwise in that frame
   double dwell_s = 0.0;
@@ -107,6 +108,7 @@ CompTestGolden comp_test_read_golden(const fs::path& path) {
     if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED") {
       c.kind = name == "STRAIGHT_FEED" ? MoveKind::line : MoveKind::rapid;
       c.end = {v[0], v[1], v[2]};
+      c.abc = {v[3], v[4], v[5]};
     } else if (name == "ARC_FEED") {
       c.kind = MoveKind::arc;
       const auto axes = pkm::program::gcode::axes_of(plane);
@@ -115,6 +117,7 @@ CompTestGolden comp_test_read_golden(const fs::path& path) {
       c.end[axes.normal] = v[5];
       c.centre = {v[2], v[3]};
       c.turn = static_cast<int>(v[4]);
+      c.abc = {v[6], v[7], v[8]};
     } else if (name == "DWELL") {
       c.kind = MoveKind::dwell;
       c.dwell_s = v[0];
@@ -188,6 +191,7 @@ struct CompTestState {
   Plane plane = Plane::xy;
   int motion = 0;  ///< 0 1 2 3
   Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d abc_deg = Eigen::Vector3d::Zero();
 };
 
 /// One block: what it asks for, in rs274's order of execution (dwell, plane, units, compensation, motion,
@@ -234,7 +238,7 @@ CompTestBlock comp_test_block(const std::vector<CompTestWord>& words, CompTestSt
       b.d_word = w.value;
     } else if (w.letter == 'P') {
       p_word = w.value;
-    } else if (std::string("XYZIJK").find(w.letter) != std::string::npos) {
+    } else if (std::string("XYZIJKABC").find(w.letter) != std::string::npos) {
       b.axes[w.letter] = w.value;
       b.motion = true;
     }
@@ -254,6 +258,10 @@ CanonicalMove comp_test_motion(const CompTestBlock& b, const CompTestState& stat
   const std::string xyz = "XYZ";
   for (int i = 0; i < 3; ++i)
     if (b.axes.count(xyz[i])) m.end_mm[i] = b.axes.at(xyz[i]) * state.scale_mm;
+  const std::string abc = "ABC";
+  m.end_abc_deg = state.abc_deg;
+  for (int i = 0; i < 3; ++i)
+    if (b.axes.count(abc[i])) m.end_abc_deg[i] = b.axes.at(abc[i]);
   if (m.kind == MoveKind::arc) {
     const std::string ijk = "IJK";
     m.center_mm = state.position_mm;
@@ -305,6 +313,7 @@ bool comp_test_execute(const CompTestBlock& b, CompTestState& state, CutterCompe
     const CanonicalMove m = comp_test_motion(b, state, where.line);
     if (fail(comp.move(m, where, b.motion_column, run.moves))) return false;
     state.position_mm = m.end_mm;
+    state.abc_deg = m.end_abc_deg;
   }
   if (b.stop && fail(comp.flush(run.moves, where, 1))) return false;
   return true;
@@ -357,6 +366,8 @@ void comp_test_compare(const std::string& name) {
     }
     EXPECT_LT((m.end_mm / unit_mm - g.end).cwiseAbs().maxCoeff(), kTolerance)
         << "pkm " << (m.end_mm / unit_mm).transpose() << " rs274 " << g.end.transpose();
+    EXPECT_LT((m.end_abc_deg - g.abc).cwiseAbs().maxCoeff(), kTolerance)
+        << "pkm " << m.end_abc_deg.transpose() << " rs274 " << g.abc.transpose();
     if (g.kind != MoveKind::arc) continue;
     const auto axes = pkm::program::gcode::axes_of(g.plane);
     const Eigen::Vector2d centre(m.center_mm[axes.first] / unit_mm, m.center_mm[axes.second] / unit_mm);
