@@ -4,8 +4,9 @@
 #    G18, LinuxCNC's errors);
 #  - rNN_random.ngc are generated here from fixed seeds: closed contours (random star-shaped polygons, some
 #    edges arcs bulging either way) cut on the left or right with several tool radii, in G17 (r01-r40), G18
-#    (r41-r50) and millimetres with dwells, plunges and rapids (r51-r60); some of them rs274 refuses
-#    (gouging), which the test expects pkm to refuse too;
+#    (r41-r50), millimetres with dwells, plunges and rapids (r51-r60), polygons with tangent fillets (r61-r70)
+#    and open paths with sharp turns and near-reversals (r71-r80); some of them rs274 refuses (gouging, arcs
+#    too small for the tool), which the test expects pkm to refuse too;
 # and for each the output of LinuxCNC's standalone interpreter is kept as NAME.rs274: its canonical calls
 # (stdout), then its error message and the offending block if it stopped (stderr, without "executing").
 # tests/program/ngc_cutter_compensation_test.cpp drives pkm's CutterCompensation with the same programs and
@@ -74,6 +75,61 @@ def contour(rng, seed, n, plane="G17", mm=False, extras=False):
     with open(f"{out}/r{n:02d}_random.ngc", "w") as f:
         f.write("\n".join(lines) + "\n")
 
+def header(rng, n, kind, lines):
+    side = rng.choice(["G41", "G42"])
+    comp = f"{side}.1 D{fmt(rng.choice([0.05, 0.1, 0.2, 0.3, 0.5]))}" if rng.random() < 0.5 else f"{side} D{rng.randint(1, 4)}"
+    return ["(random %s, seed 20261208, number %d)" % (kind, n), "G20 G17 G90 G40", "F20", "G0 X3.0000 Y3.0000", comp] + lines + ["G40", "G0 X3.0000 Y-3.0000", "M2"]
+
+def filleted(rng, n):
+    vertices = rng.randint(3, 7)
+    angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(vertices))
+    angles = [a + i * 0.15 for i, a in enumerate(angles)]
+    angles = [a * 2 * math.pi / (angles[-1] + 0.6) for a in angles]
+    pts = [(rng.uniform(0.6, 2.0) * math.cos(a), rng.uniform(0.6, 2.0) * math.sin(a)) for a in angles]
+    if rng.random() < 0.5: pts.reverse()
+    m = len(pts)
+    mid = ((pts[0][0] + pts[1][0]) / 2, (pts[0][1] + pts[1][1]) / 2)
+    lines = [f"G1 X{fmt(mid[0])} Y{fmt(mid[1])}"]
+    for k in range(1, m + 1):
+        a, v, b = pts[k - 1], pts[k % m], pts[(k + 1) % m]
+        d1 = (v[0] - a[0], v[1] - a[1]); l1 = math.hypot(*d1); d1 = (d1[0] / l1, d1[1] / l1)
+        d2 = (b[0] - v[0], b[1] - v[1]); l2 = math.hypot(*d2); d2 = (d2[0] / l2, d2[1] / l2)
+        phi = math.atan2(d1[0] * d2[1] - d1[1] * d2[0], d1[0] * d2[0] + d1[1] * d2[1])
+        f = rng.uniform(0.02, 0.5)
+        t = f * math.tan(abs(phi) / 2)
+        tmax = 0.45 * min(l1, l2)
+        if t > tmax:
+            t = tmax; f = t / math.tan(abs(phi) / 2)
+        p1 = (v[0] - d1[0] * t, v[1] - d1[1] * t); p2 = (v[0] + d2[0] * t, v[1] + d2[1] * t)
+        nrm = (-d1[1], d1[0]) if phi > 0 else (d1[1], -d1[0])
+        c = (p1[0] + nrm[0] * f, p1[1] + nrm[1] * f)
+        lines.append(f"G1 X{fmt(p1[0])} Y{fmt(p1[1])}")
+        if rng.random() < 0.85:
+            lines.append(f"{'G3' if phi > 0 else 'G2'} X{fmt(p2[0])} Y{fmt(p2[1])} I{fmt(c[0] - p1[0])} J{fmt(c[1] - p1[1])}")
+        else:
+            lines.append(f"G1 X{fmt(v[0])} Y{fmt(v[1])}")
+            lines.append(f"G1 X{fmt(p2[0])} Y{fmt(p2[1])}")
+    lines.append(f"G1 X{fmt(mid[0])} Y{fmt(mid[1])}")
+    return header(rng, n, "filleted contour", lines)
+
+def walk(rng, n):
+    x, y, h = 0.0, 0.0, rng.uniform(0, 2 * math.pi)
+    lines = [f"G1 X{fmt(x)} Y{fmt(y)}"]
+    for _ in range(rng.randint(3, 9)):
+        h += rng.choice([rng.uniform(-3.1, 3.1), rng.uniform(-0.1, 0.1), math.pi * rng.choice([-1, 1]) * rng.uniform(0.97, 1.0)])
+        L = rng.uniform(0.1, 1.5)
+        nx, ny = x + L * math.cos(h), y + L * math.sin(h)
+        if rng.random() < 0.4:
+            mx, my = (x + nx) / 2, (y + ny) / 2
+            dx, dy = nx - x, ny - y
+            hh = rng.choice([-1, 1]) * rng.uniform(0.0, 1.5)
+            cx, cy = mx - dy * hh, my + dx * hh
+            lines.append(f"{rng.choice(['G2', 'G3'])} X{fmt(nx)} Y{fmt(ny)} I{fmt(cx - x)} J{fmt(cy - y)}")
+        else:
+            lines.append(f"G1 X{fmt(nx)} Y{fmt(ny)}")
+        x, y = float(fmt(nx)), float(fmt(ny))
+    return header(rng, n, "open path", lines)
+
 # r01-r40: XY, inches, in the tool table's radii or G41.1/G42.1 (seed kept: their goldens are reviewed)
 rng = random.Random(20261206)
 for n in range(1, 41):
@@ -84,6 +140,13 @@ for n in range(41, 51):
     contour(rng, 20261207, n, plane="G18")
 for n in range(51, 61):
     contour(rng, 20261207, n, mm=True, extras=True)
+# r61-r70: polygons with tangent fillets (some corners left sharp), the shape CAM output has; r71-r80: open
+# random paths with sharp turns, near-reversals and near-tangents, lines and arcs
+rng = random.Random(20261208)
+for n in range(61, 81):
+    lines = filleted(rng, n) if n <= 70 else walk(rng, n)
+    with open(f"{out}/r{n:02d}_random.ngc", "w") as f:
+        f.write("\n".join(lines) + "\n")
 PY
 
 # rs274 keeps its tool table in a file mapped into memory, $HOME/.tool.mmap, shared by every rs274 running

@@ -406,7 +406,7 @@ TEST(CutterCompensation, SuiteHasHandWrittenAndGeneratedPrograms) {
     return std::count_if(names.begin(), names.end(), [&](const std::string& n) { return n[0] == first; });
   };
   EXPECT_GE(count('k'), 15);
-  EXPECT_GE(count('r'), 60);
+  EXPECT_GE(count('r'), 80);
   int refused = 0;
   for (const std::string& n : names)
     if (n[0] == 'r' && !comp_test_read_golden(comp_test_dir() / (n + ".rs274")).error.empty()) ++refused;
