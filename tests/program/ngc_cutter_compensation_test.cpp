@@ -207,6 +207,7 @@ struct CompTestBlock {
   bool motion = false;
   int motion_column = 1;
   std::map<char, double> axes;
+  int turns = 1;  ///< G2/G3 P
   bool stop = false;
 };
 
@@ -243,7 +244,11 @@ CompTestBlock comp_test_block(const std::vector<CompTestWord>& words, CompTestSt
       b.motion = true;
     }
   }
-  if (g4) b.dwell_s = p_word;
+  if (g4) {
+    b.dwell_s = p_word;
+  } else if (p_word > 0.0) {
+    b.turns = static_cast<int>(std::lround(p_word));
+  }
   return b;
 }
 
@@ -271,6 +276,7 @@ CanonicalMove comp_test_motion(const CompTestBlock& b, const CompTestState& stat
     m.center_mm[axes.normal] = state.position_mm[axes.normal];
     const Eigen::Vector3d n = pkm::program::gcode::plane_normal(state.plane);
     m.normal = state.motion == 3 ? n : Eigen::Vector3d(-n);
+    m.turns = b.turns;
   }
   return m;
 }
