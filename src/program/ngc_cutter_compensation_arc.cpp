@@ -45,7 +45,7 @@ Status CutterCompensation::Impl::arc(const CanonicalMove& m, const CompErrorSite
   const double arc_radius = (centre - e).norm();
   // theta: direction of the last motion at its end; alpha: the arc's direction at its start; beta: the turn
   // between them, normalised into (-pi/2 .. 3pi/2].
-  double theta = comp_angle(c - o) + (left() ? -kPi / 2 : kPi / 2);
+  const double theta = comp_angle(c - o) + (left() ? -kPi / 2 : kPi / 2);
   double delta = comp_angle(centre - o);
   const double alpha = turn > 0 ? delta - kPi / 2 : delta + kPi / 2;
   double beta = left() ? theta - alpha : alpha - theta;
