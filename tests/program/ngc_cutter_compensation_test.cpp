@@ -469,6 +469,34 @@ TEST(CutterCompensation, KeepsNonGeometricFieldsOfTheMoveEachOutputComesFrom) {
   EXPECT_EQ(out[3].end_mm, Eigen::Vector3d(30, 30, 0));
 }
 
+TEST(CutterCompensation, QueuedDwellHappensWhereTheMoveBeforeItFinallyEnds) {
+  CutterCompensation comp;
+  const std::string source = "prog.ngc";
+  std::vector<CanonicalMove> out;
+  comp.set_position(Eigen::Vector3d(0, -20, 0));
+  ASSERT_TRUE(comp.start(CompensationSide::left, 1.0, Plane::xy, LineRef{source, 1}, 1));
+  ASSERT_TRUE(comp.move(comp_test_line(0, -10, 2), LineRef{source, 2}, out));
+  ASSERT_TRUE(comp.move(comp_test_line(0, 0, 3), LineRef{source, 3}, out));
+  CanonicalMove dwell;
+  dwell.kind = MoveKind::dwell;
+  dwell.dwell_s = 1.5;
+  dwell.line = 4;
+  ASSERT_TRUE(comp.move(dwell, LineRef{source, 4}, out));
+  // Turning left with the tool on the left: a concave corner pulls line 3's end back to (-1, -1).
+  ASSERT_TRUE(comp.move(comp_test_line(-10, 0, 5), LineRef{source, 5}, out));
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_NEAR((out[0].end_mm - Eigen::Vector3d(-1, -10, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((out[1].end_mm - Eigen::Vector3d(-1, -1, 0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(out[2].kind, MoveKind::dwell);
+  EXPECT_EQ(out[2].line, 4);
+  EXPECT_DOUBLE_EQ(out[2].dwell_s, 1.5);
+  EXPECT_EQ(out[2].end_mm, out[1].end_mm);
+  ASSERT_TRUE(comp.flush(out));
+  ASSERT_EQ(out.size(), 4u);
+  EXPECT_NEAR((out[3].end_mm - Eigen::Vector3d(-10, -1, 0)).norm(), 0.0, 1e-12);
+  EXPECT_TRUE(comp.active()) << "flush keeps compensation on";
+}
+
 TEST(CutterCompensation, ZeroRadiusPassesMovesThrough) {
   CutterCompensation comp;
   const std::string source = "prog.ngc";
