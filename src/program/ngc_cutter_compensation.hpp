@@ -33,17 +33,32 @@ class CutterCompensation {
 
   /// Where the tool is before the first move (program coordinates, mm).
   void set_position(const Eigen::Vector3d& position_mm);
+  /// Program units (G20: true). rs274 keeps a few tolerances in program units without converting them (the
+  /// overrun allowed on an arc whose end a concave corner moves: 0.001 rad in G20, 0.0254 rad in G21).
+  void set_inch(bool inch);
   /// G41/G42 (radius from the tool table's D) or G41.1/G42.1: the next move is the entry move. `column`
   /// points at the G-code for errors (compensation in a plane other than G17/G18, already on …).
   Status start(CompensationSide side, double radius_mm, Plane plane, const gcode::LineRef& where, int column);
-  /// G40: the next move is the exit move.
+  /// G17/G18/G19 (added): rs274 refuses a change of plane while compensation is on.
+  Status select_plane(Plane plane, const gcode::LineRef& where, int column);
+  /// G40: the next move is the exit move. As in rs274, the queued moves end where they are (checked as at a
+  /// corner; they come out with the next move() or flush()), and the exit move goes straight from there to
+  /// its programmed end: an arc is refused.
   Status stop(const gcode::LineRef& where, int column);
   bool active() const;
   /// A programmed move; what can be emitted is appended to `out`.
   Status move(const CanonicalMove& programmed, const gcode::LineRef& where, std::vector<CanonicalMove>& out);
-  /// Emits everything queued (end of program, or an operation that cannot wait, as in rs274).
+  /// The same, errors pointing at `column` (the motion word) instead of the block's first column.
+  Status move(const CanonicalMove& programmed, const gcode::LineRef& where, int column,
+              std::vector<CanonicalMove>& out);
+  /// Emits everything queued (end of program, or an operation that cannot wait, as in rs274: M0 M1 M2 M30
+  /// M60). Compensation stays on: after M0 the next corner can no longer move those ends (rs274 does the
+  /// same).
   Status flush(std::vector<CanonicalMove>& out);
-  /// Where the tool centre is after everything emitted and queued.
+  /// The same, errors (a queued move that can no longer reach its end) reported at `where`:`column`
+  /// (flush(out) reports them on the last move's line).
+  Status flush(std::vector<CanonicalMove>& out, const gcode::LineRef& where, int column);
+  /// Where the tool centre is after everything emitted and queued (after G40: the last compensated end).
   Eigen::Vector3d tool_position_mm() const;
 
  private:
