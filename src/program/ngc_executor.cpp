@@ -25,6 +25,13 @@ ReaderOptions reader_options(const InterpretOptions& options) {
   return reader;
 }
 
+// Where to point at for an error about the block's move: its motion code, else its first axis word.
+int block_motion_column(const gcode::Block& b) {
+  if (b.g[gcode::g_motion].given()) return b.g[gcode::g_motion].column;
+  if (const int axis = b.first_axis_column(); axis > 0) return axis;
+  return 1;
+}
+
 std::string_view message_prefix(MessageKind kind) {
   switch (kind) {
     case MessageKind::msg:
@@ -79,6 +86,7 @@ Status Executor::run(std::string_view text, CanonicalProgram& program) {
     if (evaluated.words.empty()) continue;
     lexed.words.swap(evaluated.words);
     if (auto built = gcode::build_block(lexed, where(), block); !built) return built.error();
+    motion_column_ = block_motion_column(block);
     lexed.words.swap(evaluated.words);
     if (auto executed = execute(block); !executed) return executed.error();
     write_position_parameters();
@@ -129,8 +137,7 @@ Status Executor::execute(const gcode::Block& b) {
   if (moves) {
     if (auto moved = this->motion(b, motion); !moved) return moved;
   }
-  stop(b);
-  return ok_status();
+  return stop(b);
 }
 
 CanonicalMove Executor::new_move(MoveKind kind) const {
@@ -151,7 +158,7 @@ CanonicalMove Executor::new_move(MoveKind kind) const {
 
 Status Executor::emit(const CanonicalMove& m) {
   compensated_.clear();
-  if (auto passed = compensation_.move(m, where(), compensated_); !passed) return passed;
+  if (auto passed = compensation_.move(m, where(), motion_column_, compensated_); !passed) return passed;
   for (CanonicalMove& out : compensated_) {
     if (out.frame != 0) move_to_work(program_->frames[static_cast<std::size_t>(out.frame)], out);
     program_->moves.push_back(out);
@@ -161,7 +168,7 @@ Status Executor::emit(const CanonicalMove& m) {
 
 Status Executor::flush_compensation() {
   compensated_.clear();
-  if (auto flushed = compensation_.flush(compensated_); !flushed) return flushed;
+  if (auto flushed = compensation_.flush(compensated_, where(), motion_column_); !flushed) return flushed;
   for (CanonicalMove& out : compensated_) {
     if (out.frame != 0) move_to_work(program_->frames[static_cast<std::size_t>(out.frame)], out);
     program_->moves.push_back(out);

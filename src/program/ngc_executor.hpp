@@ -58,7 +58,7 @@ class Executor final : public PredefinedParameters, private CycleSink {
   Status arc(const gcode::Block& b, int motion, CanonicalMove& m) const;
   Status cycle(const gcode::Block& b, int motion);
   Status feed_for(const gcode::Block& b, int motion, CanonicalMove& m) const;
-  void stop(const gcode::Block& b);
+  Status stop(const gcode::Block& b);
 
   Eigen::Vector3d target_of(const gcode::Block& b, Eigen::Vector3d& abc_deg) const;
   Eigen::Vector3d machine_target_of(const gcode::Block& b, Eigen::Vector3d& abc_deg) const;
@@ -85,6 +85,7 @@ class Executor final : public PredefinedParameters, private CycleSink {
   std::vector<CanonicalMove> compensated_;  ///< scratch: what compensation emits for one move
   const std::string* file_name_ = &source_;
   int line_ = 0;
+  int motion_column_ = 1;  ///< of the block being executed, for errors about its moves
   SourceRef source_ref_;
   int sequence_number_ = 0;
   bool ended_ = false;

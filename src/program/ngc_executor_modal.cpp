@@ -23,6 +23,7 @@ Status Executor::read_feed_and_speed(const gcode::Block& b) {
     const bool inch = units.is(200);
     if (inch != state_.inch) rescale_length_parameters(parameters_, inch ? 1.0 / 25.4 : 25.4);
     state_.inch = inch;
+    compensation_.set_inch(inch);
   }
   if (const gcode::Code& mode = b.g[gcode::g_feed_mode]; mode.given()) {
     state_.feed_mode = mode.is(930)   ? FeedMode::inverse_time
@@ -61,6 +62,9 @@ Status Executor::tools_and_spindle(const gcode::Block& b) {
       if (code.is(660)) parameters_.set(5399, -1.0);
     }
   }
+  if (tool_change.given() && compensation_.active())
+    return gcode::error_at(where(), tool_change.column,
+                           "Cannot change tools with cutter radius compensation on");
   if (tool_change.is(60)) {
     state_.current_tool = state_.selected_tool;
     const ToolEntry* entry = tools_ ? tools_->find(state_.current_tool) : nullptr;
@@ -153,8 +157,7 @@ double Executor::tool_diameter_of(int tool) const {
 Status Executor::set_plane_and_compensation(const gcode::Block& b) {
   if (const gcode::Code& plane = b.g[gcode::g_plane]; plane.given()) {
     const Plane next = plane.is(170) ? Plane::xy : (plane.is(180) ? Plane::zx : Plane::yz);
-    if (next != state_.plane && compensation_.active())
-      return gcode::error_at(where(), plane.column, "Cannot change plane with cutter radius comp on");
+    if (auto selected = compensation_.select_plane(next, where(), plane.column); !selected) return selected;
     state_.plane = next;
   }
   const gcode::Code& cutter = b.g[gcode::g_cutter];

@@ -267,15 +267,18 @@ void Executor::event(const std::string& what) {
 }
 
 // M0/M1/M60 pause the program: the move before comes to a stop there. M2/M30 end it.
-void Executor::stop(const gcode::Block& b) {
+Status Executor::stop(const gcode::Block& b) {
   const gcode::Code& code = b.m[gcode::m_stop];
-  if (!code.given()) return;
+  if (!code.given()) return ok_status();
   if (code.is(20) || code.is(300)) {
     ended_ = true;
-    return;
+    return ok_status();
   }
+  // rs274 empties compensation's queue at a pause (compensation stays on).
+  if (auto flushed = flush_compensation(); !flushed) return flushed;
   add_event(gcode::code_name('M', code.number));
   if (!program_->moves.empty()) program_->moves.back().exact_stop = true;
+  return ok_status();
 }
 
 }  // namespace pkm::program::ngc

@@ -32,6 +32,8 @@ Status Executor::non_modal(const gcode::Block& b) {
     return gcode::error_at(where(), code.column,
                            "Cannot change coordinate systems with cutter radius comp on");
   if (code.is(100)) return set_g10(b);
+  if ((code.is(280) || code.is(300)) && compensation_.active())
+    return gcode::error_at(where(), code.column, "Cannot use G28 or G30 with cutter radius comp");
   if (code.is(280) || code.is(300)) return return_home(b, code.number);
   if (code.is(281) || code.is(301)) {
     store_home(code.number);
