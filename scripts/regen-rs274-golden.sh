@@ -16,9 +16,18 @@ cd "$(dirname "$0")/../tests/program/conformance"
 check=0
 if [ "${1:-}" = "--check" ]; then check=1; fi
 out_dir=.
-if [ $check -eq 1 ]; then out_dir=$(mktemp -d); trap 'rm -rf "$out_dir"' EXIT; fi
+if [ $check -eq 1 ]; then out_dir=$(mktemp -d); fi
 RS274=${RS274:-rs274}
 command -v "$RS274" > /dev/null || { echo "regen-rs274-golden: $RS274 not found (apt-get install linuxcnc-uspace)" >&2; exit 1; }
+# rs274 keeps its tool table in $HOME/.tool.mmap, shared by every rs274 of one user: a private HOME keeps
+# other runs (another checkout, a parallel job) from changing this one's tools.
+rs274_home=$(mktemp -d)
+cleanup() {
+  rm -rf "$rs274_home"
+  if [ $check -eq 1 ]; then rm -rf "$out_dir"; fi
+}
+trap cleanup EXIT
+export HOME=$rs274_home
 status=0
 count=0
 for program in [0-9][0-9]_*.ngc; do
