@@ -70,6 +70,9 @@ def test_interpret_matches_cli(program):
         assert moves["kind"][i] == e["kind"]
         np.testing.assert_array_equal(np.concatenate([moves["end_mm"][i], moves["end_abc_deg"][i]]), e["end"])
         assert moves["feed_mm_min"][i] == e["feed_mm_min"]
+        assert (moves["source_file"][i], moves["source_line"][i]) == (e["file"], e["source_line"])
+        np.testing.assert_array_equal(moves["program_end_mm"][i], e["program_end"][:3])
+        assert moves["frame"][i] == e["frame"]["index"]
         if e["kind"] == "arc":
             np.testing.assert_array_equal(moves["center_mm"][i], e["center"])
             np.testing.assert_array_equal(moves["normal"][i], e["normal"])
