@@ -94,7 +94,9 @@ void print_nested(const nlohmann::json& element, const std::string& indent) {
 // 3-million-line program took more than 3 GB; this needs one move's worth (and one frame's per frame).
 void print_program_json(const program::CanonicalProgram& program) {
   std::cout << "{\n  \"source\": " << json_text(nlohmann::json(program.source)) << ",\n  \"files\": ";
-  std::string files = json_text(nlohmann::json(program.files));
+  // files[0] is the program itself; a reader that lists no files (CL data) read only that one.
+  std::string files = json_text(
+      nlohmann::json(program.files.empty() ? std::vector<std::string>{program.source} : program.files));
   for (std::size_t at = files.find('\n'); at != std::string::npos; at = files.find('\n', at + 3))
     files.replace(at, 1, "\n  ");
   std::cout << files << ",\n  \"moves\": [";

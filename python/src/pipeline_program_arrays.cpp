@@ -74,6 +74,7 @@ py::dict program_arrays(const program::CanonicalProgram& program) {
   for (const program::ProgramEvent& e : program.events) events.append(py::make_tuple(e.line, e.what));
   py::list files;
   for (const std::string& file : program.files) files.append(file);
+  if (program.files.empty()) files.append(program.source);  // [0] is the program itself, as in the CLI's JSON
   py::dict out;
   out["source"] = program.source;
   out["files"] = files;
