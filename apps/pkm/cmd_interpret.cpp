@@ -49,9 +49,8 @@ nlohmann::json frame_json(const program::CanonicalProgram& program, int index) {
 }
 
 // One move: "end"/"center" in work coordinates (what the machine does), "program_end"/"program_center" as
-// the program wrote them (what LinuxCNC's canonical calls print), and the frame between the two.
-nlohmann::json move_json(const program::CanonicalProgram& program, const program::CanonicalMove& m,
-                         const nlohmann::json& frame) {
+// the program wrote them (what LinuxCNC's canonical calls print); print_program_json adds the frame between.
+nlohmann::json move_json(const program::CanonicalProgram& program, const program::CanonicalMove& m) {
   const program::ProgramCoordinates own = program::program_coordinates(program, m);
   nlohmann::json j;
   j["line"] = m.line;
@@ -74,20 +73,22 @@ nlohmann::json move_json(const program::CanonicalProgram& program, const program
   j["tool_length_mm"] = m.tool_length_mm;
   if (m.path_tolerance_mm >= 0.0) j["path_tolerance_mm"] = m.path_tolerance_mm;
   if (m.exact_stop) j["exact_stop"] = true;
-  j["frame"] = frame;
   return j;
 }
 
-// Prints `element` indented by `indent` spaces after its first line, as json.dump(2) nests it.
-void print_nested(const nlohmann::json& element, const std::string& indent) {
-  const std::string text = json_text(element);
-  std::string out = indent;
+// `text` with `indent` after every line break: a JSON value nested one level deeper, as json.dump(2) does.
+std::string nested(const std::string& text, const std::string& indent) {
+  std::string out;
   out.reserve(text.size() + text.size() / 4);
   for (const char c : text) {
     out.push_back(c);
     if (c == '\n') out.append(indent);
   }
-  std::cout << out;
+  return out;
+}
+
+void print_nested(const std::string& text, const std::string& indent) {
+  std::cout << indent << nested(text, indent);
 }
 
 // The document as json.dump(2) would print it, one move at a time: a JSON document of every move of a
@@ -100,13 +101,17 @@ void print_program_json(const program::CanonicalProgram& program) {
   for (std::size_t at = files.find('\n'); at != std::string::npos; at = files.find('\n', at + 3))
     files.replace(at, 1, "\n  ");
   std::cout << files << ",\n  \"moves\": [";
-  std::vector<nlohmann::json> frames(program.frames.size() + 1);  // each frame's JSON made once
+  // Each frame's text is made once and closes its moves' objects: a million moves share a few frames.
+  std::vector<std::string> frames(program.frames.size() + 1);
   for (std::size_t i = 0; i < program.moves.size(); ++i) {
     const program::CanonicalMove& m = program.moves[i];
     const std::size_t f = std::min(static_cast<std::size_t>(std::max(m.frame, 0)), program.frames.size());
-    if (frames[f].is_null()) frames[f] = frame_json(program, m.frame);
+    if (frames[f].empty())
+      frames[f] = ",\n  \"frame\": " + nested(json_text(frame_json(program, m.frame)), "  ") + "\n}";
+    std::string text = json_text(move_json(program, m));
+    text.replace(text.size() - 2, 2, frames[f]);  // "\n}" closes the dump
     std::cout << (i == 0 ? "\n" : ",\n");
-    print_nested(move_json(program, m, frames[f]), "    ");
+    print_nested(text, "    ");
   }
   std::cout << (program.moves.empty() ? "],\n" : "\n  ],\n") << "  \"events\": [";
   for (std::size_t i = 0; i < program.events.size(); ++i) {
@@ -114,7 +119,7 @@ void print_program_json(const program::CanonicalProgram& program) {
     const nlohmann::json event = {
         {"line", e.line}, {"file", e.source_file}, {"source_line", e.source_line}, {"what", e.what}};
     std::cout << (i == 0 ? "\n" : ",\n");
-    print_nested(event, "    ");
+    print_nested(json_text(event), "    ");
   }
   std::cout << (program.events.empty() ? "],\n" : "\n  ],\n") << "  \"end_line\": " << program.end_line
             << "\n}\n";
