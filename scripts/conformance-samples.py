@@ -26,8 +26,11 @@ Prints "N programs: rs274 runs R, pkm agrees A". Exits 1 when a program rs274 ru
 in tests/program/conformance/known.txt ("path<whitespace>reason" a line, # comments), or when a listed
 program now agrees or no longer needs listing (a stale entry). Standard library only; Debian's /usr/bin/python3.
 
+--self-test compares rs274 with its own answer put in the form of pkm's JSON: every program must agree, which
+checks this script's bookkeeping (units, planes, offsets, tool lengths) whatever pkm's interpreter does.
+
 Usage: scripts/conformance-samples.py [--pkm build/pkm] [--only SUBSTRING] [--jobs N] [--verbose]
-                                      [--list-failures] [--rs274 rs274]
+                                      [--list-failures] [--rs274 rs274] [--self-test]
 """
 import argparse
 import concurrent.futures
@@ -387,6 +390,43 @@ def first_difference(document, motions, tools):
 
 # --- the run -------------------------------------------------------------------------------------------
 
+def work_point(program_mm, theirs):
+    """work = g5x + Rz(rotation)·(program + g92), as pkm's WorkFrame reads."""
+    q = [p + g for p, g in zip(program_mm, theirs["g92"])]
+    th = math.radians(theirs["rotation_deg"])
+    return [theirs["g5x"][0] + math.cos(th) * q[0] - math.sin(th) * q[1],
+            theirs["g5x"][1] + math.sin(th) * q[0] + math.cos(th) * q[1], theirs["g5x"][2] + q[2]]
+
+
+def rs274_as_pkm(motions, tools):
+    """rs274's answer in the form of pkm interpret --json (--self-test): what a pkm that agrees prints. Checks
+    the harness's own bookkeeping (units, planes, offsets, tool lengths), whatever pkm's interpreter does."""
+    moves, previous = [], [0.0] * 6
+    for theirs in motions:
+        a, scale = theirs["args"], theirs["scale"]
+        frame = {"index": 0, "system": theirs["g5x_index"], "g5x": theirs["g5x"], "g92": theirs["g92"],
+                 "xy_rotation_deg": theirs["rotation_deg"]}
+        move = {"line": 0, "kind": theirs["kind"], "file": 0, "source_line": 0, "frame": frame,
+                "tool_length_mm": theirs["tool_length_mm"], "dwell_s": a[0] if theirs["kind"] == "dwell" else 0.0,
+                "feed_mm_min": 0.0 if theirs["kind"] == "rapid" else theirs["feed_mm_min"]}
+        end = list(previous)
+        if theirs["kind"] in ("rapid", "line"):
+            end = [v * scale for v in a[:3]] + a[3:6]
+        elif theirs["kind"] == "arc":
+            (first, second, normal), plane = PLANES.get(theirs["plane"], PLANES["CANON_PLANE_XY"])
+            end, centre, axis = [0.0] * 3, [0.0] * 3, [0.0] * 3
+            end[first], end[second], end[normal] = a[0] * scale, a[1] * scale, a[5] * scale
+            centre[first], centre[second], centre[normal] = a[2] * scale, a[3] * scale, previous[normal]
+            axis[normal] = 1.0 if a[4] > 0 else -1.0
+            end += a[6:9]
+            move.update(program_center=centre, center=work_point(centre, theirs), normal=axis,
+                        turns=abs(int(round(a[4]))), plane=plane)
+        move["program_end"], move["end"] = end, work_point(end[:3], theirs) + end[3:6]
+        previous = end
+        moves.append(move)
+    return {"moves": moves, "events": [{"what": f"M6 T{tool}"} for tool in tools], "files": []}
+
+
 def check_program(program, settings):
     try:
         return compare_program(program, settings)
@@ -402,7 +442,11 @@ def compare_program(program, settings):
     if not ran:
         return result
     motions, tools = parse_rs274(output)
-    document, error = run_pkm(settings["pkm"], settings["pkm_options"], program, settings["tools_mm"], folders)
+    if settings["self_test"]:
+        document, error = rs274_as_pkm(motions, tools), ""
+    else:
+        document, error = run_pkm(settings["pkm"], settings["pkm_options"], program, settings["tools_mm"],
+                                  folders)
     if document is None:
         result["difference"] = (0, motions[0]["text"] if motions else "(none)", "(none)", "pkm: " + error)
         return result
@@ -449,6 +493,12 @@ def report(results, known, arguments):
         for r in results:
             if not r["ran"]:
                 print(f"  not run by rs274: {r['path']}: {r['why']}")
+        reasons = {}
+        for r in results:
+            if not r["ran"]:
+                reasons[r["why"]] = reasons.get(r["why"], 0) + 1
+        for why, count in sorted(reasons.items(), key=lambda item: -item[1])[:10]:
+            print(f"  rs274 stopped {count} times with: {why}")
     if arguments.list_failures:
         for r in disagree:
             print(f"{r['path']}\t{r['difference'][3]}")
@@ -468,6 +518,9 @@ def parse_arguments():
     parser.add_argument("--verbose", action="store_true", help="the first difference of every program")
     parser.add_argument("--list-failures", action="store_true",
                         help="list every disagreeing program with its first difference (known.txt's format)")
+    parser.add_argument("--self-test", action="store_true",
+                        help="compare rs274 with itself, put in pkm's JSON form: checks this script, not pkm "
+                             "(every program rs274 runs must agree)")
     return parser.parse_args()
 
 
@@ -478,8 +531,9 @@ def main():
         programs = [p for p in programs if arguments.only in shown(p)]
     with tempfile.TemporaryDirectory(prefix="pkm-conformance-") as scratch:
         tools_inch, tools_mm = write_tool_tables(Path(scratch))
-        settings = {"rs274": arguments.rs274, "pkm": arguments.pkm, "pkm_options": pkm_options(arguments.pkm),
-                    "tools_inch": tools_inch, "tools_mm": tools_mm, "scratch": scratch}
+        settings = {"rs274": arguments.rs274, "pkm": arguments.pkm, "tools_inch": tools_inch,
+                    "tools_mm": tools_mm, "scratch": scratch, "self_test": arguments.self_test,
+                    "pkm_options": {} if arguments.self_test else pkm_options(arguments.pkm)}
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, arguments.jobs)) as pool:
             results = list(pool.map(lambda p: check_program(p, settings), programs))
     return report(results, read_known(), arguments)
