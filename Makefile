@@ -93,11 +93,15 @@ lint: deps
 		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps linuxcnc/pkmkins_bridge.cpp
 	@echo "lint: clean"
 
-# The G-code conformance golden files must be what LinuxCNC's rs274 answers today (installs linuxcnc-uspace).
-conformance:
+# The G-code conformance golden files must be what LinuxCNC's rs274 answers today (installs linuxcnc-uspace);
+# then every sample program LinuxCNC ships, run by rs274 and by pkm interpret, must agree move by move unless
+# tests/program/conformance/known.txt says why not (scripts/conformance-samples.py).
+conformance: build
 	@bash scripts/install-deps.sh --with-linuxcnc
 	@bash scripts/regen-rs274-golden.sh --check
 	@bash scripts/regen-cycle-golden.sh --check
+	@bash scripts/regen-comp-golden.sh --check
+	@/usr/bin/python3 scripts/conformance-samples.py --pkm $(BUILD)/pkm --jobs $(JOBS)
 
 # The HTML report in headless Chromium (installs Debian's chromium): tests/browser/report_browser_test.mjs.
 browser-test: build

@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "number_options.hpp"
 #include "pipeline/interpolate_program.hpp"
+#include "program_options.hpp"
 
 namespace pkm::cli {
 
@@ -26,7 +27,7 @@ struct InterpolateArguments {
   std::string machine;
   std::string out;
   std::string method = "carrier-corrected";
-  std::string tool_table;
+  ProgramArguments program_options;
   double period_ms = 1.0;
   double step_mm = 0.001;
   double rho_max_mm = 1e-3;
@@ -109,7 +110,7 @@ Result<pipeline::InterpolateJob> interpolate_job(const InterpolateArguments& arg
     options.estimating.struts_per_tact = k;
   }
   job.program_path = args.program;
-  job.tool_table_path = args.tool_table;
+  job.program_options = args.program_options.options();
   job.out_directory = args.out;
   job.report_path = args.report;
   return job;
@@ -184,7 +185,7 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       ->check(number_in({0.0, 100.0, true, true, "mm"}));
   cmd->add_option("--candidates", args->candidates, "estimating: all-six, one-to-all or struts per tact")
       ->capture_default_str();
-  cmd->add_option("--tool-table", args->tool_table, "LinuxCNC tool table for G43");
+  add_program_options(*cmd, args->program_options);
   cmd->add_flag("--no-chord-check", args->no_chord_check, "do not slow down for the chord error (eq. 155)");
   cmd->add_flag("--orientation", args->orientation,
                 "carrier-corrected/estimating: keep the angles nearest the programmed ones (eq. 143)");

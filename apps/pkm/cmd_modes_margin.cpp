@@ -15,6 +15,7 @@
 #include "pipeline/load_program.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/path_sampling.hpp"
+#include "program_options.hpp"
 #include "workspace/modes_margin_output.hpp"
 
 namespace pkm::cli {
@@ -25,6 +26,7 @@ constexpr double kMaxMarginSamples = 1e6;
 
 struct ModesMarginArguments {
   std::string program_path, machine_path, out_path;
+  ProgramArguments program;
   int samples = 200;
   bool json = false;
 };
@@ -79,7 +81,7 @@ int run_modes_margin(const ModesMarginArguments& a) {
   const std::string command = "modes-margin";
   auto machine = load_machine_or_report(a.machine_path);
   if (!machine) return report_error(command, machine.error());
-  auto program = pipeline::load_program_for(*machine, a.program_path, "");
+  auto program = pipeline::load_program_for(*machine, a.program_path, a.program.options());
   if (!program) return report_error(command, program.error());
   auto plan = planning::plan_motion(*machine, *program, planning::PlanOptions{});
   if (!plan) return report_error(command, plan.error());
@@ -121,6 +123,7 @@ void add_modes_margin_command(CLI::App& app, int& exit_code) {
       ->check(number_in({1.0, kMaxMarginSamples, true, true, "", true}));
   cmd->add_option("--out", a->out_path, "also write every pose's margin and modes to this CSV file");
   cmd->add_flag("--json", a->json, "print the summary as JSON");
+  add_program_options(*cmd, a->program);
   cmd->callback([a, &exit_code] { exit_code = run_modes_margin(*a); });
 }
 

@@ -10,9 +10,11 @@
 #include "commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_set.hpp"
+#include "pipeline/load_program.hpp"
 #include "planning/motion_plan.hpp"
 #include "program/gcode_writer.hpp"
 #include "program/part_program.hpp"
+#include "program_options.hpp"
 #include "redundancy_options.hpp"
 #include "report/optimize_report.hpp"
 #include "report/report_html.hpp"
@@ -67,6 +69,7 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
   auto json = std::make_shared<bool>(false);
   auto report_file = std::make_shared<std::string>();
   auto arguments = std::make_shared<RedundancyArguments>();
+  auto program_arguments = std::make_shared<ProgramArguments>();
   cmd->add_option("program", *program_path, "part program: G-code (X Y Z) or APT CL data (.cl, .cls, .apt)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
@@ -75,6 +78,7 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--report", *report_file,
                   "also write the HTML report (chosen vs constant, forces, 3-D view)");
   add_redundancy_options(*cmd, *arguments, true);
+  add_program_options(*cmd, *program_arguments);
   cmd->callback([=, &exit_code] {
     auto options = redundancy_options(*arguments);
     if (!options) {
@@ -91,11 +95,7 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("optimize", machine.error());
       return;
     }
-    const planning::ProgramStart start = planning::program_start(*machine);
-    program::InterpretOptions interpret;
-    interpret.start_mm = start.start_mm;
-    interpret.start_abc_deg = start.start_abc_deg;
-    auto program = program::load_part_program(*program_path, interpret);
+    auto program = pipeline::load_program_for(*machine, *program_path, program_arguments->options());
     if (!program) {
       exit_code = report_error("optimize", program.error());
       return;

@@ -15,6 +15,7 @@
 #include "pipeline/plan_program.hpp"
 #include "planning/machine_warnings.hpp"
 #include "planning/run_accuracy.hpp"
+#include "program_options.hpp"
 #include "redundancy_options.hpp"
 #include "statics/load_model.hpp"
 
@@ -33,7 +34,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto program_path = std::make_shared<std::string>();
   auto machine_path = std::make_shared<std::string>();
   auto out_dir = std::make_shared<std::string>();
-  auto tool_table = std::make_shared<std::string>();
+  auto program_arguments = std::make_shared<ProgramArguments>();
   auto json = std::make_shared<bool>(false);
   auto no_error = std::make_shared<bool>(false);
   auto with_dynamics = std::make_shared<bool>(false);
@@ -56,7 +57,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
       cmd->add_option("--tolerance", *tolerance,
                       "corner blending tolerance, mm (0: exact stop at corners; default: the machine file's)")
           ->check(number_in({0.0, kMaxToleranceMm, true, true, "mm"}));
-  cmd->add_option("--tool-table", *tool_table, "LinuxCNC tool table for G43");
+  add_program_options(*cmd, *program_arguments);
   cmd->add_option("--max-ticks", options->max_ticks,
                   "refuse a motion of more servo ticks than this (the output grows with them)")
       ->capture_default_str()
@@ -97,7 +98,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
       return;
     }
     job.program_path = *program_path;
-    job.tool_table_path = *tool_table;
+    job.program_options = program_arguments->options();
     job.plan = *options;
     if (tolerance_option->count() > 0) job.plan.path_tolerance_mm = *tolerance;
     job.evaluate_path_error = !*no_error;

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "number_options.hpp"
 #include "pipeline/stiffness_program.hpp"
+#include "program_options.hpp"
 #include "stiffness/compliance_model.hpp"
 
 namespace pkm::cli {
@@ -24,6 +25,7 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
   auto load_text = std::make_shared<std::string>();
   auto model_name = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
+  auto program_arguments = std::make_shared<ProgramArguments>();
   cmd->add_option("program", job->program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML) with a stiffness: section")->required();
@@ -48,6 +50,7 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
                 "also bode.csv: the tool's dynamic compliance at the point of the largest error (dynamics: "
                 "section), a Bode plot in the report");
   cmd->add_option("--report", job->report_path, "also write the HTML report of the run to this file");
+  add_program_options(*cmd, *program_arguments);
   cmd->add_flag("--json", *json, "print the summary as JSON");
   cmd->callback([=, &exit_code] {
     if (!model_name->empty()) {
@@ -68,6 +71,7 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
       return;
     }
     job->load = std::move(*load);
+    job->program_options = program_arguments->options();
     auto machine = load_machine_or_report(*machine_path);
     if (!machine) {
       exit_code = report_error("stiffness", machine.error());

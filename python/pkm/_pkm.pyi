@@ -128,7 +128,9 @@ def _ik_loop_seconds(machine: Machine, poses: ArrayLike, check_limits: bool = Tr
 # actuator values are actuators_mm (actuators_rad for angular actuators), drive forces force_N (force_Nmm).
 
 def interpret(program_path: str | os.PathLike[str], machine: Optional[Machine] = None,
-              tool_table: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
+              tool_table: Optional[str | os.PathLike[str]] = None,
+              subroutine_path: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
+              parameter_file: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
     """The canonical moves of a part program as arrays (line, kind, end_mm, end_abc_deg, center_mm, ...)."""
 
 def plan(machine: Machine, program_path: str | os.PathLike[str], *, servo_period_ms: Optional[float] = None,
@@ -138,6 +140,8 @@ def plan(machine: Machine, program_path: str | os.PathLike[str], *, servo_period
          force_limit_N: Optional[float] = None, max_rate_deg_per_mm: Optional[float] = None, load: str = "",
          dynamics: bool = False, elastic: bool = False, path_error: bool = True,
          tool_table: Optional[str | os.PathLike[str]] = None,
+         subroutine_path: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
+         parameter_file: Optional[str | os.PathLike[str]] = None,
          out_dir: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
     """The planned servo-rate motion: summary (as summary.json), time_s, line, actuators_mm (T, n), pose_machine (T, 6)
     (base frame, Machine.angle_convention), xyz_program_mm (T, 3) and abc_deg (T, 3) (program coordinates, G-code A B C),
@@ -152,6 +156,8 @@ def interpolate(machine: Machine, program_path: str | os.PathLike[str], *, metho
                 accel: str = "s-curve", error_samples: int = 5, chord_check: bool = True,
                 orientation_criterion: bool = False, linearise: bool = True, deviation_mm: Optional[float] = None,
                 candidates: str = "all-six", tool_table: Optional[str | os.PathLike[str]] = None,
+                subroutine_path: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
+                parameter_file: Optional[str | os.PathLike[str]] = None,
                 out_dir: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
     """Whole drive steps per servo period: summary, time_s, line, steps (P, n) int32, position_steps (P, n) int64,
     contour_error_mm, tool_mm (P, 3), path_mm (P, 3)."""
@@ -161,6 +167,8 @@ def optimize(machine: Machine, program_path: str | os.PathLike[str], law: str, *
              energy_accounting: str = "no-recovery", force_model: str = "statics",
              force_limit_N: Optional[float] = None, max_rate_deg_per_mm: Optional[float] = None, load: str = "",
              tool_table: Optional[str | os.PathLike[str]] = None,
+             subroutine_path: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
+             parameter_file: Optional[str | os.PathLike[str]] = None,
              out_path: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
     """The free coordinates chosen by a drive control law: summary (as `pkm optimize --json`), free_rad (K, F),
     line, position_mm, actuators_mm, chosen / constant metrics, the rewritten program."""

@@ -97,7 +97,7 @@ void bind_interpolate(py::module_& m) {
          double feed_override_pct, const std::string& override_at, const std::string& accel,
          int error_samples, bool chord_check, bool orientation_criterion, bool linearise,
          std::optional<double> deviation_mm, const std::string& candidates, const py::object& tool_table,
-         const py::object& out_dir) {
+         const py::object& subroutine_path, const py::object& parameter_file, const py::object& out_dir) {
         pipeline::InterpolateJob job;
         interpolation::InterpolateOptions& options = job.options;
         const auto parsed_method = interpolation::method_from_string(method);
@@ -133,7 +133,7 @@ void bind_interpolate(py::module_& m) {
         options.estimating.candidates = candidate_set(candidates, machine.mechanism->actuator_count(),
                                                       options.estimating.struts_per_tact);
         job.program_path = optional_path(program_path);
-        job.tool_table_path = optional_path(tool_table);
+        job.program_options = program_options(tool_table, subroutine_path, parameter_file);
         job.out_directory = optional_path(out_dir);
         return interpolate_result(unwrap_released([&] { return run_interpolation(machine, job); }));
       },
@@ -144,7 +144,8 @@ void bind_interpolate(py::module_& m) {
       py::arg("override_at") = "", py::arg("accel") = "s-curve", py::arg("error_samples") = 5,
       py::arg("chord_check") = true, py::arg("orientation_criterion") = false, py::arg("linearise") = true,
       py::arg("deviation_mm") = py::none(), py::arg("candidates") = "all-six",
-      py::arg("tool_table") = py::none(), py::arg("out_dir") = py::none(),
+      py::arg("tool_table") = py::none(), py::arg("subroutine_path") = py::none(),
+      py::arg("parameter_file") = py::none(), py::arg("out_dir") = py::none(),
       R"doc(Plans a part program and turns it into whole drive steps per servo period, as `pkm interpolate`.
 
 Arguments (the CLI's options): method: exact | carrier | carrier-corrected | estimating; servo_period_ms
@@ -153,7 +154,8 @@ Arguments (the CLI's options): method: exact | carrier | carrier-corrected | est
 tolerance ρ_max); delta_rho_max (δρ_max; default the largest along the path); feed_override_pct;
 override_at (the CLI's --override-at text: changes during the run); accel: s-curve | linear;
 error_samples; chord_check; orientation_criterion; linearise; deviation_mm and candidates (estimating:
-'all-six', 'one-to-all' or a number of struts); tool_table (G43); out_dir (also write the CLI's steps.csv,
+'all-six', 'one-to-all' or a number of struts); tool_table (G43); subroutine_path and parameter_file (as
+pkm.interpret); out_dir (also write the CLI's steps.csv,
 steps.bin, contour.csv and summary.json there).
 
 Returns a dict: summary (the summary.json of `pkm interpolate`, as a dict) and per servo period (P periods,

@@ -25,11 +25,11 @@ struct OptimizeRun {
 };
 
 Result<OptimizeRun> run_optimize(const Machine& machine, const std::string& program_path,
-                                 const std::string& tool_table, const LawArguments& arguments,
-                                 const std::string& out_path) {
+                                 const pipeline::ProgramOptions& program_options,
+                                 const LawArguments& arguments, const std::string& out_path) {
   auto options = optimize_options(arguments);
   if (!options) return options.error();
-  auto program = pipeline::load_program_for(machine, program_path, tool_table);
+  auto program = pipeline::load_program_for(machine, program_path, program_options);
   if (!program) return program.error();
   auto result = redundancy::optimize_program(*program, machine, *options);
   if (!result) return result.error();
@@ -105,21 +105,23 @@ void bind_optimize(py::module_& m) {
          const std::string& free, std::optional<std::array<double, 2>> bounds_deg, double step_mm,
          const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
-         const std::string& load, const py::object& tool_table, const py::object& out_path) {
+         const std::string& load, const py::object& tool_table, const py::object& subroutine_path,
+         const py::object& parameter_file, const py::object& out_path) {
         const LawArguments arguments{
             law,         free,          bounds_deg,          step_mm, solver, energy_accounting,
             force_model, force_limit_N, max_rate_deg_per_mm, load};
         const std::string path = optional_path(program_path);
-        const std::string table = optional_path(tool_table);
+        const pipeline::ProgramOptions read = program_options(tool_table, subroutine_path, parameter_file);
         const std::string out = optional_path(out_path);
         return optimize_result(
-            machine, unwrap_released([&] { return run_optimize(machine, path, table, arguments, out); }));
+            machine, unwrap_released([&] { return run_optimize(machine, path, read, arguments, out); }));
       },
       py::arg("machine"), py::arg("program_path"), py::arg("law"), py::kw_only(), py::arg("free") = "spin",
       py::arg("bounds_deg") = py::none(), py::arg("step_mm") = 1.0, py::arg("solver") = "greedy",
       py::arg("energy_accounting") = "no-recovery", py::arg("force_model") = "statics",
       py::arg("force_limit_N") = py::none(), py::arg("max_rate_deg_per_mm") = py::none(),
-      py::arg("load") = "", py::arg("tool_table") = py::none(), py::arg("out_path") = py::none(),
+      py::arg("load") = "", py::arg("tool_table") = py::none(), py::arg("subroutine_path") = py::none(),
+      py::arg("parameter_file") = py::none(), py::arg("out_path") = py::none(),
       R"doc(Chooses the coordinates a program leaves free by a drive control law, as `pkm optimize`.
 
 law: 'increment' (Σ of the largest strut increments), 'force' or 'energy'; free: 'spin' (about the tool axis;

@@ -27,7 +27,8 @@ namespace pkm::python {
 namespace {
 
 struct PlanArguments {
-  std::string program_path, tool_table;
+  std::string program_path;
+  pipeline::ProgramOptions program_options;
   planning::PlanOptions plan;
   std::optional<LawArguments> law;
   bool dynamics = false;
@@ -145,7 +146,7 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
   }
   auto load = load_model(a.load);
   if (!load) return load.error();
-  auto program = pipeline::load_program_for(machine, a.program_path, a.tool_table);
+  auto program = pipeline::load_program_for(machine, a.program_path, a.program_options);
   if (!program) return program.error();
   PlanRun r;
   if (law) {
@@ -232,10 +233,10 @@ void bind_plan(py::module_& m) {
          const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
          const std::string& load, bool dynamics, bool elastic, bool path_error, const py::object& tool_table,
-         const py::object& out_dir) {
+         const py::object& subroutine_path, const py::object& parameter_file, const py::object& out_dir) {
         PlanArguments a;
         a.program_path = optional_path(program_path);
-        a.tool_table = optional_path(tool_table);
+        a.program_options = program_options(tool_table, subroutine_path, parameter_file);
         a.out_dir = optional_path(out_dir);
         if (servo_period_ms) {
           if (!(*servo_period_ms >= 0.01 && *servo_period_ms <= 1000.0))
@@ -273,12 +274,15 @@ void bind_plan(py::module_& m) {
       py::arg("energy_accounting") = "no-recovery", py::arg("force_model") = "statics",
       py::arg("force_limit_N") = py::none(), py::arg("max_rate_deg_per_mm") = py::none(),
       py::arg("load") = "", py::arg("dynamics") = false, py::arg("elastic") = false,
-      py::arg("path_error") = true, py::arg("tool_table") = py::none(), py::arg("out_dir") = py::none(),
+      py::arg("path_error") = true, py::arg("tool_table") = py::none(),
+      py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(),
+      py::arg("out_dir") = py::none(),
       R"doc(Plans a part program on `machine` and returns its servo-rate motion, as `pkm plan` does.
 
 Arguments (the CLI's options): servo_period_ms (default 1 ms, --rate 1000/period), feed_override_pct (0 < … ≤
 200), blend_tolerance_mm (corner blending; default the machine file's; 0: exact stop), path_error (FK of the
-actuators at every mid-period, as without --no-path-error), tool_table (G43), out_dir (also write the CLI's
+actuators at every mid-period, as without --no-path-error), tool_table (G43), subroutine_path and parameter_file
+(as pkm.interpret), out_dir (also write the CLI's
 actuators.csv, path.csv, summary.json and with dynamics forces.csv there).
 law ('increment' | 'force' | 'energy'): first choose the coordinates the program leaves free by that drive
 control law, as pkm.optimize does, with free, bounds_deg (lo, hi), law_step_mm, solver, energy_accounting,

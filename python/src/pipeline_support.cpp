@@ -60,4 +60,23 @@ std::string optional_path(const py::object& value) {
   return py::module_::import("os").attr("fspath")(value).cast<std::string>();
 }
 
+pipeline::ProgramOptions program_options(const py::object& tool_table, const py::object& subroutine_path,
+                                         const py::object& parameter_file) {
+  pipeline::ProgramOptions options;
+  options.tool_table_path = optional_path(tool_table);
+  options.parameter_file = optional_path(parameter_file);
+  std::vector<std::string> given;
+  // A str or path-like is one entry (maybe a ':' list); anything else iterable is a list of entries.
+  if (!subroutine_path.is_none()) {
+    if (py::isinstance<py::str>(subroutine_path) || py::hasattr(subroutine_path, "__fspath__")) {
+      given.push_back(optional_path(subroutine_path));
+    } else {
+      for (const py::handle entry : subroutine_path)
+        given.push_back(optional_path(py::reinterpret_borrow<py::object>(entry)));
+    }
+  }
+  options.subroutine_path = pipeline::split_search_path(given);
+  return options;
+}
+
 }  // namespace pkm::python

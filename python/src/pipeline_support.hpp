@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "machine/machine.hpp"
+#include "pipeline/load_program.hpp"
 
 namespace pkm::python {
 
@@ -58,5 +59,11 @@ std::string drive_force_unit(const Mechanism& mechanism);
 
 /// The optional string argument, empty for None.
 std::string optional_path(const py::object& value);
+
+/// How a program is read, from the keyword arguments every function that reads one takes: tool_table (path
+/// or None), subroutine_path (None, a path, a colon-separated string as LinuxCNC's SUBROUTINE_PATH, or a
+/// list of them), parameter_file (path or None; read, never written back from Python).
+pipeline::ProgramOptions program_options(const py::object& tool_table, const py::object& subroutine_path,
+                                         const py::object& parameter_file);
 
 }  // namespace pkm::python

@@ -55,7 +55,7 @@ Result<interpolation::InterpolateOptions> resolved_options(const Machine& machin
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job) {
   auto options = resolved_options(machine, job);
   if (!options) return options.error();
-  auto program = load_program_for(machine, job.program_path, job.tool_table_path);
+  auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
   planning::PlanOptions plan_options;
   plan_options.rate_hz = 1.0 / options->period_s;

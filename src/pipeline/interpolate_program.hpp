@@ -15,12 +15,13 @@
 #include "interpolation/interpolate_run.hpp"
 #include "interpolation/methods/feed_override.hpp"
 #include "machine/machine.hpp"
+#include "pipeline/load_program.hpp"
 
 namespace pkm::pipeline {
 
 struct InterpolateJob {
   std::string program_path;                ///< G-code, or APT CL data (.cl, .cls, .apt)
-  std::string tool_table_path;             ///< LinuxCNC tool table for G43; empty: none
+  ProgramOptions program_options;          ///< tool table, subroutine path, parameter file
   std::optional<double> period_ms;         ///< servo period h, 0.1…20 ms
   std::optional<double> step;              ///< drive resolution Δ, mm per step (deg for angular actuators)
   std::optional<double> max_step_rate_hz;  ///< per drive

@@ -2,14 +2,32 @@
 // A part program file read for a machine: the interpreter starts where the machine's program starts (the home
 // tool point in program coordinates and its angles), so a first move without some axes keeps them there.
 #include <string>
+#include <vector>
 
 #include "machine/machine.hpp"
 #include "program/canonical_program.hpp"
+#include "program/part_program.hpp"
 
 namespace pkm::pipeline {
 
-/// G-code or CL data by extension; `tool_table_path` (may be empty) serves G43.
+/// What a command is told about how to read its program, besides the machine (LinuxCNC's [RS274NGC] INI
+/// settings and the tool table): every command that reads a program takes the same options.
+struct ProgramOptions {
+  std::string tool_table_path;               ///< LinuxCNC tool table for G43 (lengths in mm); empty: none
+  std::vector<std::string> subroutine_path;  ///< folders searched for `o<name> call` files, in order
+  std::string parameter_file;                ///< LinuxCNC .var file read at start; empty: all parameters 0
+  bool write_parameter_file = false;         ///< write the parameters back at the program's end
+};
+
+/// The interpreter's options for `options`, starting at program zero (as `pkm interpret` and rs274 do).
+program::InterpretOptions interpret_options(const ProgramOptions& options);
+
+/// G-code or CL data by extension, read with `options`, starting where the machine's programs start.
 Result<program::CanonicalProgram> load_program_for(const Machine& machine, const std::string& program_path,
-                                                   const std::string& tool_table_path);
+                                                   const ProgramOptions& options = {});
+
+/// LinuxCNC's SUBROUTINE_PATH is a colon-separated list; the command line also repeats the option. Each
+/// given entry is split at ':' and empty pieces dropped, keeping the order.
+std::vector<std::string> split_search_path(const std::vector<std::string>& given);
 
 }  // namespace pkm::pipeline

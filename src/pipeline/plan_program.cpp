@@ -10,7 +10,7 @@
 namespace pkm::pipeline {
 
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
-  auto program = load_program_for(machine, job.program_path, job.tool_table_path);
+  auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
 
   PlanProgramResult result;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "machine/machine.hpp"
+#include "pipeline/load_program.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/run_monitor.hpp"
 #include "redundancy/optimize_program.hpp"
@@ -16,9 +17,9 @@
 namespace pkm::pipeline {
 
 struct PlanJob {
-  std::string program_path;     ///< G-code, or APT CL data (.cl, .cls, .apt)
-  std::string tool_table_path;  ///< LinuxCNC tool table for G43; empty: none
-  planning::PlanOptions plan;   ///< servo rate, override, blending tolerance (unset: the machine file's)
+  std::string program_path;        ///< G-code, or APT CL data (.cl, .cls, .apt)
+  ProgramOptions program_options;  ///< tool table, subroutine path, parameter file
+  planning::PlanOptions plan;      ///< servo rate, override, blending tolerance (unset: the machine file's)
   std::optional<redundancy::OptimizeOptions> law;  ///< choose the free coordinates first
   bool evaluate_path_error = true;                 ///< FK of the actuators at every mid-period
   bool dynamics = false;  ///< drive forces, power and energy at every tick (forces.csv; docs/dynamics.md)

@@ -68,7 +68,7 @@ std::optional<Pose> closed_form_command(const Mechanism& mechanism,
 }  // namespace
 
 Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const StiffnessJob& job) {
-  auto program = load_program_for(machine, job.program_path, "");
+  auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
   auto points = redundancy::sample_program(*program, machine, job.step_mm);
   if (!points) return points.error();

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "machine/machine.hpp"
+#include "pipeline/load_program.hpp"
 #include "statics/load_model.hpp"
 #include "stiffness/tool_deflection.hpp"
 
@@ -16,6 +17,7 @@ namespace pkm::pipeline {
 
 struct StiffnessJob {
   std::string program_path;             ///< G-code, or APT CL data (.cl, .cls, .apt)
+  ProgramOptions program_options;       ///< tool table, subroutine path, parameter file
   statics::LoadModel load;              ///< the cutting load (statics/load_model.hpp)
   std::optional<StiffnessModel> model;  ///< unset: the machine file's
   double step_mm = 1.0;                 ///< moves are cut into points no farther apart

@@ -34,12 +34,28 @@ TEST(InterpretCli, JsonListsEveryMoveWithItsFields) {
                                                        "M2\n");
   const CliRun r = interpret_cli_run("interpret " + program + " --json", false);
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const auto j = nlohmann::json::parse(r.out);
+  const auto document = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(document.is_object());
+  EXPECT_EQ(document["source"], program);
+  ASSERT_EQ(document["files"].size(), 1u);
+  EXPECT_EQ(document["files"][0], program);
+  EXPECT_TRUE(document["events"].is_array());
+  EXPECT_EQ(document["end_line"], 6);
+  const auto& j = document["moves"];
   ASSERT_TRUE(j.is_array());
   ASSERT_EQ(j.size(), 4u);
   EXPECT_EQ(j[0]["kind"], "rapid");
   EXPECT_EQ(j[0]["line"], 2);
   EXPECT_EQ(j[0]["end"].size(), 6u);
+  EXPECT_EQ(j[0]["program_end"], j[0]["end"]);  // no offsets: the program's coordinates are the work's
+  EXPECT_EQ(j[0]["file"], 0);
+  EXPECT_TRUE(j[0]["source_line"].is_number_integer());  // the interpreter's (its own tests check the value)
+  EXPECT_EQ(j[0]["plane"], "xy");
+  EXPECT_EQ(j[0]["tool_length_mm"], 0.0);
+  EXPECT_EQ(j[0]["frame"]["system"], 1);
+  EXPECT_EQ(j[0]["frame"]["g5x"].size(), 6u);
+  EXPECT_EQ(j[0]["frame"]["g92"].size(), 6u);
+  EXPECT_EQ(j[0]["frame"]["xy_rotation_deg"], 0.0);
   EXPECT_EQ(j[0]["feed_mm_min"], 0.0);
   EXPECT_FALSE(j[0].contains("center"));
   EXPECT_EQ(j[1]["kind"], "line");
@@ -52,6 +68,7 @@ TEST(InterpretCli, JsonListsEveryMoveWithItsFields) {
   EXPECT_DOUBLE_EQ(arc["end"][3].get<double>(), 15.0);
   ASSERT_EQ(arc["center"].size(), 3u);
   EXPECT_DOUBLE_EQ(arc["center"][0].get<double>(), 0.0);
+  EXPECT_EQ(arc["program_center"], arc["center"]);
   EXPECT_DOUBLE_EQ(arc["normal"][2].get<double>(), 1.0);
   EXPECT_EQ(arc["turns"], 1);
   EXPECT_EQ(j[3]["kind"], "dwell");
@@ -89,7 +106,7 @@ TEST(InterpretCli, ToolTableAndMachineOptions) {
   const CliRun r = interpret_cli_run(
       "interpret " + program + " --tool-table " + table + " --machine " + machine + " --json", false);
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const auto j = nlohmann::json::parse(r.out);
+  const auto j = nlohmann::json::parse(r.out)["moves"];
   ASSERT_EQ(j.size(), 2u);
   EXPECT_DOUBLE_EQ(j[1]["end"][2].get<double>(), 10.0 - 25.0);
   const CliRun bad_machine = interpret_cli_run("interpret " + program + " --machine /nonexistent/pkm/m.yaml");
@@ -97,6 +114,53 @@ TEST(InterpretCli, ToolTableAndMachineOptions) {
   const CliRun no_table = interpret_cli_run("interpret " + program);
   EXPECT_EQ(no_table.exit_code, 2) << no_table.out;
   EXPECT_NE(no_table.out.find(":3:5: G43 for"), std::string::npos) << no_table.out;
+}
+
+TEST(InterpretCli, JsonListsEventsWithTheirSource) {
+  const std::string program = interpret_cli_write_temp("events.ngc", "G21 F100\nM3 S1000\nG1 X1\nM5\nM2\n");
+  const CliRun r = interpret_cli_run("interpret " + program + " --json", false);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto events = nlohmann::json::parse(r.out)["events"];
+  ASSERT_GE(events.size(), 2u);
+  EXPECT_EQ(events[0]["line"], 2);
+  EXPECT_EQ(events[0]["file"], 0);
+  EXPECT_TRUE(events[0]["source_line"].is_number_integer());
+  EXPECT_NE(events[0]["what"].get<std::string>().find("M3"), std::string::npos);
+}
+
+TEST(InterpretCli, EmptyProgramIsAnEmptyDocument) {
+  const std::string program = interpret_cli_write_temp("empty.ngc", "M2\n");
+  const CliRun r = interpret_cli_run("interpret " + program + " --json", false);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto document = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(document["moves"].empty());
+  EXPECT_TRUE(document["events"].is_array());
+}
+
+TEST(InterpretCli, CountPrintsOnlyTheSummary) {
+  const std::string program = interpret_cli_write_temp("count.ngc", "G21 F100\nG1 X1\nG1 X2\nM3 S100\nM2\n");
+  const CliRun r = interpret_cli_run("interpret " + program + " --count", false);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out, "2 moves, 1 events, program ends on line 5\n");
+  const CliRun both = interpret_cli_run("interpret " + program + " --count --json");
+  EXPECT_NE(both.exit_code, 0) << both.out;
+}
+
+// The options LinuxCNC's INI gives its interpreter: accepted by every command that reads a program, the
+// subroutine path repeatable and colon-separated. (Whether a subroutine is found is the interpreter's test.)
+TEST(InterpretCli, SubroutinePathAndParameterFileOptions) {
+  const std::string program = interpret_cli_write_temp("plain.ngc", "G21 F100\nG1 X1\nM2\n");
+  const CliRun r = interpret_cli_run(
+      "interpret " + program + " --subroutine-path /tmp:/nonexistent/pkm" + " --subroutine-path /tmp --count",
+      false);
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  const CliRun orphan = interpret_cli_run("interpret " + program + " --write-parameter-file");
+  EXPECT_NE(orphan.exit_code, 0) << orphan.out;
+  for (const char* command : {"plan", "interpolate", "optimize", "stiffness", "modes-margin"}) {
+    const CliRun help = interpret_cli_run(std::string(command) + " --help", false);
+    EXPECT_NE(help.out.find("--subroutine-path"), std::string::npos) << command;
+    EXPECT_NE(help.out.find("--parameter-file"), std::string::npos) << command;
+  }
 }
 
 }  // namespace

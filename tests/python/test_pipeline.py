@@ -62,7 +62,7 @@ def ch5():
 @pytest.mark.parametrize("program", ["circle.ngc", "pocket.ngc", "ball_end_5axis.cl"])
 def test_interpret_matches_cli(program):
     moves = pkm.interpret(program_path(program))
-    expected = json.loads(cli("interpret", program_path(program), "--json"))
+    expected = json.loads(cli("interpret", program_path(program), "--json"))["moves"]
     assert len(moves["line"]) == len(expected) > 0
     assert moves["end_mm"].shape == (len(expected), 3) and moves["end_mm"].dtype == np.float64
     for i, e in enumerate(expected):
@@ -70,6 +70,9 @@ def test_interpret_matches_cli(program):
         assert moves["kind"][i] == e["kind"]
         np.testing.assert_array_equal(np.concatenate([moves["end_mm"][i], moves["end_abc_deg"][i]]), e["end"])
         assert moves["feed_mm_min"][i] == e["feed_mm_min"]
+        assert (moves["source_file"][i], moves["source_line"][i]) == (e["file"], e["source_line"])
+        np.testing.assert_array_equal(moves["program_end_mm"][i], e["program_end"][:3])
+        assert moves["frame"][i] == e["frame"]["index"]
         if e["kind"] == "arc":
             np.testing.assert_array_equal(moves["center_mm"][i], e["center"])
             np.testing.assert_array_equal(moves["normal"][i], e["normal"])
@@ -78,6 +81,17 @@ def test_interpret_matches_cli(program):
             assert np.isnan(moves["center_mm"][i]).all()
         if "dwell_s" in e:
             assert moves["dwell_s"][i] == e["dwell_s"]
+
+
+def test_interpret_takes_the_subroutine_path_and_parameter_file_keywords(tmp_path):
+    # A list, a path-like and LinuxCNC's colon-separated string are all accepted; a program that calls no
+    # subroutine reads the same with any of them.
+    plain = pkm.interpret(program_path("circle.ngc"))
+    for folders in ([tmp_path, str(PROGRAMS)], tmp_path, f"{tmp_path}:{PROGRAMS}"):
+        moves = pkm.interpret(program_path("circle.ngc"), subroutine_path=folders)
+        np.testing.assert_array_equal(moves["end_mm"], plain["end_mm"])
+    with pytest.raises(TypeError):
+        pkm.interpret(program_path("circle.ngc"), subroutine_path=42)
 
 
 def test_interpret_with_machine_starts_at_its_home(ch5):

@@ -256,7 +256,7 @@ TEST(ModesMargin, OtherModesAreEnumeratedWhereTheMechanismCan) {
 
 TEST(ModesMargin, AlongAProgramEverySampleHasItsLineAndTheSummaryIsTheirMinimum) {
   const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
-  auto program = pipeline::load_program_for(machine, test::source_path("examples/programs/ch5_line.ngc"), "");
+  auto program = pipeline::load_program_for(machine, test::source_path("examples/programs/ch5_line.ngc"));
   ASSERT_TRUE(program) << program.error().message;
   auto plan = planning::plan_motion(machine, *program, {});
   ASSERT_TRUE(plan) << plan.error().message;

@@ -1,0 +1,29 @@
+#include "program_options.hpp"
+
+namespace pkm::cli {
+
+pipeline::ProgramOptions ProgramArguments::options() const {
+  pipeline::ProgramOptions options = given;
+  options.subroutine_path = pipeline::split_search_path(subroutine_path);
+  return options;
+}
+
+void add_program_options(CLI::App& cmd, ProgramArguments& arguments, bool with_tool_table) {
+  if (with_tool_table)
+    cmd.add_option("--tool-table", arguments.given.tool_table_path,
+                   "LinuxCNC tool table for G43 (lengths in mm)");
+  // Repeating the option appends (CLI11's default for a vector); a ':' list is split later, so that
+  // "--subroutine-path a:b --subroutine-path c" searches a, b, c.
+  cmd.add_option("--subroutine-path", arguments.subroutine_path,
+                 "folder searched for subroutine files (o<name> call); repeatable, or a colon-separated list "
+                 "like LinuxCNC's [RS274NGC] SUBROUTINE_PATH")
+      ->allow_extra_args(false);
+  auto* parameter_file = cmd.add_option("--parameter-file", arguments.given.parameter_file,
+                                        "LinuxCNC parameter file (.var) read at the start: work offsets, "
+                                        "G28/G30 positions, persistent parameters");
+  cmd.add_flag("--write-parameter-file", arguments.given.write_parameter_file,
+               "write the parameters back to --parameter-file at the program's end, as LinuxCNC does")
+      ->needs(parameter_file);
+}
+
+}  // namespace pkm::cli
