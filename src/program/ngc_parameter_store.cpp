@@ -4,12 +4,11 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <set>
+
+#include "io/atomic_file.hpp"
 
 namespace pkm::program::ngc {
 
@@ -186,25 +185,12 @@ Status ParameterStore::save_var_file(const std::string& path) const {
   std::string text;
   for (int n : numbers) text += fmt::format("{}\t{:.6f}\n", n, values_[static_cast<std::size_t>(n)]);
 
-  const std::string temporary = path + ".new";
-  std::FILE* out = std::fopen(temporary.c_str(), "w");
-  if (out == nullptr)
-    return make_error(ErrorCode::io,
-                      fmt::format("{}: cannot write parameter file: {}", temporary, std::strerror(errno)));
-  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() &&
-                       std::fflush(out) == 0 && fsync(fileno(out)) == 0;
-  const bool closed = std::fclose(out) == 0;
-  if (!written || !closed) {
-    std::remove(temporary.c_str());
-    return make_error(ErrorCode::io, fmt::format("{}: cannot write parameter file", temporary));
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const int error = errno;
-    std::remove(temporary.c_str());
-    return make_error(ErrorCode::io,
-                      fmt::format("{}: cannot replace parameter file: {}", path, std::strerror(error)));
-  }
-  return ok_status();
+  // The offsets must survive a power cut as LinuxCNC's do (it fsyncs too), hence sync() before the rename.
+  StagedFile file;
+  if (auto opened = file.open(path); !opened) return opened;
+  if (auto wrote = file.write(text); !wrote) return wrote;
+  if (auto synced = file.sync(); !synced) return synced;
+  return file.commit();
 }
 
 }  // namespace pkm::program::ngc
