@@ -379,14 +379,14 @@ Status BlockReader::Impl::read_o_word_values(OKeyword keyword, bool& ignore) {
       return ok_status();
     }
     if (auto tail = parse_o_tail(normalized, where(), parsed); !tail) return tail;
-    return_value = 0.0;
-    value_returned = false;
+    double value = 0.0;  // evaluated before _value changes: `return [#<_value> * 2]` reads the old one
     if (!parsed.o_arguments.empty()) {
-      auto value = evaluate(parsed.o_arguments[0], defining_sub);
-      if (!value) return value.error();
-      return_value = *value;
-      value_returned = true;
+      auto evaluated = evaluate(parsed.o_arguments[0], defining_sub);
+      if (!evaluated) return evaluated.error();
+      value = *evaluated;
     }
+    return_value = value;
+    value_returned = !parsed.o_arguments.empty();
     return ok_status();
   }
   if (defining_sub || (keyword == OKeyword::call && skipping())) {

@@ -31,9 +31,9 @@ struct ReaderOptions {
   /// Folders searched, in order, for `O<name> call` of a subroutine not defined in the program: the file
   /// `<name>.ngc` (name in lower case) holding `O<name> sub … O<name> endsub` (LinuxCNC SUBROUTINE_PATH).
   std::vector<std::string> subroutine_path;
-  bool block_delete = true;          ///< skip blocks written with a leading '/'
+  bool block_delete = true;                ///< skip blocks written with a leading '/'
   std::uint64_t max_blocks = 100'000'000;  ///< executed blocks (loop bodies count every time)
-  int max_call_depth = 100;          ///< nested O-word calls
+  int max_call_depth = 100;                ///< nested O-word calls
 };
 
 class BlockReader {

@@ -33,7 +33,7 @@ class CycleSink {
 };
 
 struct CycleContext {
-  int code = 810;       ///< the cycle's G-code ×10: 730, 810, 820, … 890
+  int code = 810;  ///< the cycle's G-code ×10: 730, 810, 820, … 890
   Plane plane = Plane::xy;
   bool retract_to_r = false;  ///< G99 (false: G98, back to the Z the series started from)
   bool incremental = false;   ///< G91
@@ -45,7 +45,7 @@ struct CycleContext {
 
 /// LinuxCNC's memory between the blocks of one series of cycles; run_canned_cycle reads and updates it.
 struct CycleMemory {
-  bool started = false;  ///< false: this block starts a series (the executor resets it)
+  bool started = false;   ///< false: this block starts a series (the executor resets it)
   double old_z_mm = 0.0;  ///< the plane-normal coordinate before the series (G98), mm
   double r_mm = 0.0, z_mm = 0.0, q_mm = 0.0, p_s = 0.0;  ///< sticky words, mm / seconds
   bool has_r = false, has_z = false, has_q = false, has_p = false;

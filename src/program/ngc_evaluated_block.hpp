@@ -30,7 +30,7 @@ struct Message {
 
 struct EvaluatedBlock {
   SourceRef where;
-  bool block_delete = false;     ///< written with a leading '/' (the reader skips it when block delete is on)
+  bool block_delete = false;  ///< written with a leading '/' (the reader skips it when block delete is on)
   std::vector<gcode::Word> words;  ///< in the order written, without N and O words; values in program units
   std::vector<Message> messages;
   void clear() {
