@@ -52,6 +52,14 @@ struct NameHash {
   std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
 };
 
+// A scoped label ("sub#12", "#name", "name") as a program writes it: o12, o<name>.
+std::string written_label(std::string_view scoped) {
+  const std::size_t hash = scoped.rfind('#');
+  const std::string_view label = hash == std::string_view::npos ? scoped : scoped.substr(hash + 1);
+  const bool number = !label.empty() && label.find_first_not_of("-0123456789") == std::string_view::npos;
+  return number ? fmt::format("o{}", label) : fmt::format("o<{}>", label);
+}
+
 int round_to_int(double x) {
   return static_cast<int>(std::floor(x + 0.5));
 }
@@ -188,15 +196,14 @@ Status BlockReader::Impl::end_of_file_error() const {
                                 skipping_to_sub, skipping_to_sub, skipping_to_sub,
                                 file_names[static_cast<std::size_t>(cursor.file)], skipping_to_sub));
   if (skipping()) {
-    const char* closing = skipping_keyword == OKeyword::sub        ? "endsub"
-                          : (skipping_keyword == OKeyword::repeat) ? "endrepeat"
-                          : (skipping_keyword == OKeyword::while_ || skipping_keyword == OKeyword::break_ ||
-                             skipping_keyword == OKeyword::continue_)
-                              ? "endwhile"
-                              : "endif";
+    const char* closing = skipping_keyword == OKeyword::sub      ? "endsub"
+                          : skipping_keyword == OKeyword::repeat ? "endrepeat"
+                          : skipping_keyword == OKeyword::if_    ? "endif"
+                                                                 : "endwhile";
+    const std::string label = written_label(skipping_o);
     return error_at(at, 1,
-                    fmt::format("'{}' has no matching '{}': the file ends while skipping to it",
-                                to_string(skipping_keyword), closing));
+                    fmt::format("'{} {}' has no matching '{} {}': the file ends while skipping to it", label,
+                                to_string(skipping_keyword), label, closing));
   }
   const Frame& frame = frames[static_cast<std::size_t>(depth - 1)];
   return error_at(
