@@ -222,7 +222,7 @@ Result<bool> BlockReader::Impl::next(EvaluatedBlock& out) {
       return false;
     }
     auto produced = process_line(out);
-    if (!produced || *produced) return produced;
+    if (!produced || *produced || finished) return produced;
   }
 }
 
