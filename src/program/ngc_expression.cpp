@@ -443,6 +443,39 @@ double apply_binary(OpCode op, double a, double b, const char*& error) {
 
 }  // namespace
 
+Status ExpressionEvaluator::push_parameter(const ExpressionCode& code, const Instruction& in,
+                                           const EvaluationContext& context, const LineRef& where) {
+  if (in.op == OpCode::named || in.op == OpCode::exists_named) {
+    const std::string_view name = code.name(in);
+    const std::optional<double> value = context.names->named(name);
+    if (in.op == OpCode::exists_named) {
+      stack_.push_back(truth(value.has_value()));
+    } else if (value) {
+      stack_.push_back(*value);
+    } else if (context.undefined_names_read_zero) {
+      stack_.push_back(0.0);
+    } else {
+      return error_at(where, in.column, fmt::format("Named parameter #<{}> not defined", name));
+    }
+    return ok_status();
+  }
+  double raw = in.value;  // the constant number, or the value computed before this instruction
+  if (in.op == OpCode::parameter_at || in.op == OpCode::exists_at) {
+    raw = stack_.back();
+    stack_.pop_back();
+  }
+  int number = 0;
+  if (!near_integer(raw, number)) return error_at(where, in.column, "Non integer value for integer");
+  const bool in_range = number >= 1 && number < kParameterCount;
+  if (in.op == OpCode::exists_number || in.op == OpCode::exists_at) {
+    stack_.push_back(truth(in_range));
+    return ok_status();
+  }
+  if (!in_range) return error_at(where, in.column, "Parameter number out of range");
+  stack_.push_back(context.numbered->get(number));
+  return ok_status();
+}
+
 Result<double> ExpressionEvaluator::evaluate(const ExpressionCode& code, const ExpressionRef& expression,
                                              const EvaluationContext& context, const LineRef& where) {
   stack_.clear();
@@ -454,46 +487,13 @@ Result<double> ExpressionEvaluator::evaluate(const ExpressionCode& code, const E
         stack_.push_back(in.value);
         break;
       case OpCode::parameter:
-      case OpCode::parameter_at: {
-        double raw = in.value;
-        if (in.op == OpCode::parameter_at) {
-          raw = stack_.back();
-          stack_.pop_back();
-        }
-        int number = 0;
-        if (!near_integer(raw, number)) return error_at(where, in.column, "Non integer value for integer");
-        if (number < 1 || number >= kParameterCount)
-          return error_at(where, in.column, "Parameter number out of range");
-        stack_.push_back(context.numbered->get(number));
-        break;
-      }
+      case OpCode::parameter_at:
       case OpCode::exists_number:
-      case OpCode::exists_at: {
-        double raw = in.value;
-        if (in.op == OpCode::exists_at) {
-          raw = stack_.back();
-          stack_.pop_back();
-        }
-        int number = 0;
-        if (!near_integer(raw, number)) return error_at(where, in.column, "Non integer value for integer");
-        stack_.push_back(truth(number >= 1 && number < kParameterCount));
-        break;
-      }
+      case OpCode::exists_at:
       case OpCode::named:
-      case OpCode::exists_named: {
-        const std::string_view name = code.name(in);
-        const std::optional<double> value = context.names->named(name);
-        if (in.op == OpCode::exists_named) {
-          stack_.push_back(truth(value.has_value()));
-        } else if (value) {
-          stack_.push_back(*value);
-        } else if (context.undefined_names_read_zero) {
-          stack_.push_back(0.0);
-        } else {
-          return error_at(where, in.column, fmt::format("Named parameter #<{}> not defined", name));
-        }
+      case OpCode::exists_named:
+        if (auto pushed = push_parameter(code, in, context, where); !pushed) return pushed.error();
         break;
-      }
       case OpCode::negate:
         stack_.back() = -stack_.back();
         break;

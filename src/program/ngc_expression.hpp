@@ -140,6 +140,9 @@ class ExpressionEvaluator {
                           const EvaluationContext& context, const gcode::LineRef& where);
 
  private:
+  /// Pushes what a numbered or named parameter instruction reads (or whether it exists).
+  Status push_parameter(const ExpressionCode& code, const Instruction& instruction,
+                        const EvaluationContext& context, const gcode::LineRef& where);
   std::vector<double> stack_;
 };
 
