@@ -107,6 +107,7 @@ struct BlockReader::Impl final : NamedParameterSource {
   Status open_subroutine_file(bool& opened);
   Result<double> evaluate(const ExpressionRef& expression, bool lenient = false);
   Status evaluate_items(EvaluatedBlock& out);
+  Status count_executed();
   Status add_message(EvaluatedBlock& out);
   Error error(int column, std::string_view message) const { return error_at(where(), column, message); }
   LineRef where() const { return LineRef{file_names[static_cast<std::size_t>(file)], line}; }
@@ -229,6 +230,13 @@ Result<bool> BlockReader::Impl::next(EvaluatedBlock& out) {
 // One line: true when it is a block for the executor, false when it was consumed here.
 Result<bool> BlockReader::Impl::process_line(EvaluatedBlock& out) {
   if (skipping() && raw.find_first_of("oO%") == std::string_view::npos) return false;
+  if (!skipping() && lex_simple_line(raw, out.words)) {  // most CAM lines: no expression to parse
+    if (auto counted = count_executed(); !counted) return counted.error();
+    if (out.words.empty()) return false;
+    out.where = SourceRef{file, line, depth == 0 ? line : frames[0].call_line};
+    return true;
+  }
+  out.words.clear();
   const LineRef here = where();
   if (auto parsed_ok = parse_line(raw, here, normalized, parsed, skipping()); !parsed_ok)
     return parsed_ok.error();
@@ -247,10 +255,7 @@ Result<bool> BlockReader::Impl::process_line(EvaluatedBlock& out) {
     return false;
   }
   if (skipping()) return false;
-  if (++executed > options.max_blocks)
-    return error(1, fmt::format("more than {} blocks executed (the bound max_blocks; an endless loop?)",
-                                options.max_blocks));
-  any_line_executed = true;
+  if (auto counted = count_executed(); !counted) return counted.error();
   if (auto evaluated = evaluate_items(out); !evaluated) return evaluated.error();
   if (auto message = add_message(out); !message) return message.error();
   if (out.words.empty() && out.messages.empty()) return false;
@@ -262,6 +267,15 @@ Result<bool> BlockReader::Impl::process_line(EvaluatedBlock& out) {
 Result<double> BlockReader::Impl::evaluate(const ExpressionRef& expression, bool lenient) {
   const EvaluationContext context{&parameters, this, lenient};
   return evaluator.evaluate(parsed.code, expression, context, where());
+}
+
+// Counts a line that is executed (not skipped) against max_blocks.
+Status BlockReader::Impl::count_executed() {
+  any_line_executed = true;
+  if (++executed > options.max_blocks)
+    return error(1, fmt::format("more than {} blocks executed (the bound max_blocks; an endless loop?)",
+                                options.max_blocks));
+  return ok_status();
 }
 
 // ---- words and assignments ----
@@ -361,12 +375,8 @@ Status BlockReader::Impl::handle_o_word() {
   if (ignore) return ok_status();
   if (skipping() && skipping_o != o_name) return ok_status();
   if (!skipping_to_sub.empty() && keyword != OKeyword::sub && keyword != OKeyword::none) return ok_status();
-  if (!skipping()) {
-    if (++executed > options.max_blocks)
-      return error(1, fmt::format("more than {} blocks executed (the bound max_blocks; an endless loop?)",
-                                  options.max_blocks));
-    any_line_executed = true;
-  }
+  if (!skipping())
+    if (auto counted = count_executed(); !counted) return counted;
   return control(keyword);
 }
 

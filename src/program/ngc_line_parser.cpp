@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 
 #include "program/ngc_parameter_store.hpp"
@@ -251,6 +252,68 @@ Status parse_line(std::string_view raw, const LineRef& where, NormalizedLine& li
   }
   if (o_word_only) return ok_status();
   return parse_items(raw, line, pos, where, out);
+}
+
+namespace {
+
+bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r';
+}
+
+// The number after a word's letter at raw[pos], blanks allowed anywhere in it (LinuxCNC removes them first):
+// one optional sign, then digits and at most one point. False for anything the full parser must judge.
+bool lex_simple_number(std::string_view raw, std::size_t& pos, double& value) {
+  char digits[48];
+  std::size_t count = 0;
+  bool negative = false;
+  bool sign = false;
+  bool point = false;
+  bool digit = false;
+  for (; pos < raw.size(); ++pos) {
+    const char c = raw[pos];
+    if (is_blank(c)) continue;
+    if ((c == '+' || c == '-') && !sign && count == 0) {
+      sign = true;
+      negative = c == '-';
+    } else if (is_digit(c) || (c == '.' && !point)) {
+      if (count + 1 >= sizeof digits) return false;
+      digits[count++] = c;
+      point = point || c == '.';
+      digit = digit || c != '.';
+    } else {
+      break;
+    }
+  }
+  if (!digit) return false;
+  const auto [end, error] = std::from_chars(digits, digits + count, value, std::chars_format::fixed);
+  if (error != std::errc() || end != digits + count) return false;
+  if (negative) value = -value;
+  return true;
+}
+
+}  // namespace
+
+bool lex_simple_line(std::string_view raw, std::vector<gcode::Word>& words) {
+  words.clear();
+  std::size_t pos = 0;
+  bool first = true;
+  while (pos < raw.size()) {
+    const char c = raw[pos];
+    if (is_blank(c)) {
+      ++pos;
+      continue;
+    }
+    const char letter = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+    if (letter < 'A' || letter > 'Z' || letter == 'O') return false;
+    if (letter == 'N' && !first) return false;
+    const int column = static_cast<int>(pos) + 1;
+    ++pos;
+    double value = 0.0;
+    if (!lex_simple_number(raw, pos, value)) return false;
+    if (letter != 'N') words.push_back(gcode::Word{letter, value, column});
+    first = false;
+  }
+  return true;
 }
 
 Status parse_o_tail(const NormalizedLine& line, const LineRef& where, ParsedLine& out) {

@@ -84,6 +84,11 @@ struct ParsedLine {
 /// parsed: LinuxCNC does not read them either, so errors in them do not count.
 Status parse_line(std::string_view raw, const gcode::LineRef& where, NormalizedLine& line, ParsedLine& out,
                   bool o_word_only = false);
+/// The fast path for the lines CAM output is made of (`N10 G1 X12.345 Y-3.2 F1200`): letters, digits, points,
+/// signs and blanks only. Fills `words` and returns true when the line is such a line and well formed; false
+/// (with `words` in any state) for anything else, which the full parser then reads and judges.
+bool lex_simple_line(std::string_view raw, std::vector<gcode::Word>& words);
+
 /// Parses the bracketed expressions after an O-word's keyword into out.o_arguments, then checks that only
 /// comments follow ("Unexpected character after O-word"); up to 30 call arguments.
 Status parse_o_tail(const NormalizedLine& line, const gcode::LineRef& where, ParsedLine& out);
