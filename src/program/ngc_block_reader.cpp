@@ -159,7 +159,7 @@ struct BlockReader::Impl final : NamedParameterSource {
   int depth = 0;
 
   bool percent_opened = false;
-  bool any_line_executed = false;
+  bool any_block_yielded = false;  ///< a '%' after the first block ends the program (or is refused)
   bool finished = false;
   std::uint64_t executed = 0;
   int main_line = 0;
@@ -234,6 +234,7 @@ Result<bool> BlockReader::Impl::process_line(EvaluatedBlock& out) {
     if (auto counted = count_executed(); !counted) return counted.error();
     if (out.words.empty()) return false;
     out.where = SourceRef{file, line, depth == 0 ? line : frames[0].call_line};
+    any_block_yielded = true;
     return true;
   }
   out.words.clear();
@@ -241,8 +242,8 @@ Result<bool> BlockReader::Impl::process_line(EvaluatedBlock& out) {
   if (auto parsed_ok = parse_line(raw, here, normalized, parsed, skipping()); !parsed_ok)
     return parsed_ok.error();
   if (parsed.percent) {
-    if (!percent_opened && !any_line_executed) {
-      percent_opened = true;  // a '%' first opens the program; the next one ends it
+    if (!percent_opened && !any_block_yielded) {
+      percent_opened = true;  // a '%' before the first block opens the program; the next one ends it
       return false;
     }
     if (!percent_opened) return error(1, "Bad character '%' used");
@@ -261,6 +262,7 @@ Result<bool> BlockReader::Impl::process_line(EvaluatedBlock& out) {
   if (out.words.empty() && out.messages.empty()) return false;
   out.where = SourceRef{file, line, depth == 0 ? line : frames[0].call_line};
   out.block_delete = parsed.block_delete;
+  any_block_yielded = true;
   return true;
 }
 
@@ -271,7 +273,6 @@ Result<double> BlockReader::Impl::evaluate(const ExpressionRef& expression, bool
 
 // Counts a line that is executed (not skipped) against max_blocks.
 Status BlockReader::Impl::count_executed() {
-  any_line_executed = true;
   if (++executed > options.max_blocks)
     return error(1, fmt::format("more than {} blocks executed (the bound max_blocks; an endless loop?)",
                                 options.max_blocks));

@@ -210,15 +210,17 @@ TEST(NgcBlockReader, CallsOfSubroutinesDefinedLaterAndInFiles) {
   EXPECT_EQ(move.where.file, 1);
   EXPECT_EQ(move.where.line, 5);
   EXPECT_EQ(move.where.call_line, 2);
-  EXPECT_EQ(run.main_line, 5);
+  EXPECT_EQ(run.main_line, 6);
   std::filesystem::remove_all(folder);
 }
 
 TEST(NgcBlockReader, ProgramNumbersAndPercentLines) {
-  const NgcBrtRun run = ngc_brt_run("%\nO0001\n(a program number line is ignored)\nG0 X1\n%\nG0 X2\n");
+  const NgcBrtRun run = ngc_brt_run(
+      "(a comment may come before the opening percent)\n%\nO0001\n(a program number line is ignored)\nG0 "
+      "X1\n%\nG0 X2\n");
   ASSERT_EQ(run.error, "");
   ASSERT_EQ(run.blocks.size(), 1u);  // the second '%' ends the program
-  EXPECT_EQ(run.main_line, 5);
+  EXPECT_EQ(run.main_line, 6);
   EXPECT_EQ(ngc_brt_error("G0 X1\n%\nm2\n"), "t.ngc:2:1: Bad character '%' used");
   EXPECT_EQ(ngc_brt_error("O100 G0 X1\nm2\n"), "t.ngc:1:6: Unknown control command in o word");
 }
