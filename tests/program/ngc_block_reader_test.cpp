@@ -210,7 +210,7 @@ TEST(NgcBlockReader, CallsOfSubroutinesDefinedLaterAndInFiles) {
   EXPECT_EQ(move.where.file, 1);
   EXPECT_EQ(move.where.line, 5);
   EXPECT_EQ(move.where.call_line, 2);
-  EXPECT_EQ(run.main_line, 6);
+  EXPECT_EQ(run.main_line, 5);
   std::filesystem::remove_all(folder);
 }
 
