@@ -1,6 +1,7 @@
 #pragma once
 // The parameters of an RS274/NGC program as LinuxCNC 2.9 keeps them:
-//  - numbered #1–#5602 (#0 reads as 0 and cannot be set); #1–#30 are the arguments of the subroutine call
+//  - numbered #1–#5601 (LinuxCNC 2.9 has 5602 slots; #0 and #5602 are "out of range" in expressions, #0
+//    reads as 0 in DEBUG comments); #1–#30 are the arguments of the subroutine call
 //    that is running (each call level has its own), the rest are global;
 //  - named locals #<name> (visible in the subroutine call that set them, or in the main program);
 //  - named globals #<_name> (visible everywhere);
@@ -17,7 +18,7 @@
 
 namespace pkm::program::ngc {
 
-constexpr int kParameterCount = 5603;  ///< #0 … #5602
+constexpr int kParameterCount = 5602;  ///< #0 … #5601 (RS274NGC_MAX_PARAMETERS of LinuxCNC 2.9)
 
 /// Answers the read-only predefined named parameters (#<_x>, #<_metric> …) from the machine state.
 class PredefinedParameters {
@@ -29,7 +30,7 @@ class PredefinedParameters {
 };
 
 // ParameterStore (ngc_parameter_store.hpp) offers at least:
-//   double get(int number) const;                 // #0 … #5602; #1–#30 of the running call level
+//   double get(int number) const;                 // #0 … #5601; #1–#30 of the running call level
 //   void set(int number, double value);
 //   std::optional<double> named(std::string_view name) const;   // normalised name; locals, then globals
 //   void set_named(std::string_view name, double value);
