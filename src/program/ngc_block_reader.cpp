@@ -24,7 +24,8 @@ namespace pkm::program::ngc {
 using gcode::error_at;
 using gcode::LineRef;
 
-namespace {
+// Named (not anonymous): BlockReader::Impl, which has external linkage, holds these types.
+namespace reader_detail {
 
 /// Where the next line starts, and the number of the line before it.
 struct Position {
@@ -64,7 +65,9 @@ int round_to_int(double x) {
   return static_cast<int>(std::floor(x + 0.5));
 }
 
-}  // namespace
+}  // namespace reader_detail
+
+using namespace reader_detail;
 
 struct BlockReader::Impl final : NamedParameterSource {
   Impl(std::string_view text, std::string source_name, const ReaderOptions& options_in,

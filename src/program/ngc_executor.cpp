@@ -1,5 +1,6 @@
 // The executor's run loop, the order of execution within a block, and where moves and events go.
 #include "program/ngc_executor.hpp"
+#include "program/ngc_executor_support.hpp"
 
 #include <fmt/format.h>
 
@@ -10,11 +11,9 @@
 
 namespace pkm::program::ngc {
 
-namespace {
+using namespace executor_support;
 
-bool is_cycle(int motion) {
-  return motion == 730 || (motion >= 810 && motion <= 890);
-}
+namespace {
 
 ReaderOptions reader_options(const InterpretOptions& options) {
   ReaderOptions reader;

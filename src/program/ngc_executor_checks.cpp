@@ -4,26 +4,11 @@
 #include <cmath>
 
 #include "program/ngc_executor.hpp"
+#include "program/ngc_executor_support.hpp"
 
 namespace pkm::program::ngc {
 
-namespace {
-
-constexpr double kLargestCount = 1e6;
-
-bool is_whole(double value) {
-  return std::abs(value - std::round(value)) < 1e-6;
-}
-
-bool is_cycle(int motion) {
-  return motion == 730 || (motion >= 810 && motion <= 890);
-}
-
-bool is_arc(int motion) {
-  return motion == 20 || motion == 30;
-}
-
-}  // namespace
+using namespace executor_support;
 
 Status Executor::check_words(const gcode::Block& b, int motion, bool moves) const {
   const gcode::Code& non_modal = b.g[gcode::g_non_modal];

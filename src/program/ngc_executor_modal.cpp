@@ -5,17 +5,12 @@
 #include <cmath>
 
 #include "program/ngc_executor.hpp"
+#include "program/ngc_executor_support.hpp"
 #include "program/ngc_work_offsets.hpp"
 
 namespace pkm::program::ngc {
 
-namespace {
-
-int whole(double value) {
-  return static_cast<int>(std::lround(value));
-}
-
-}  // namespace
+using namespace executor_support;
 
 Status Executor::read_feed_and_speed(const gcode::Block& b) {
   // Units first: F and every length in this block are read in the units the block ends up in.

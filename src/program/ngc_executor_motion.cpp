@@ -5,25 +5,17 @@
 
 #include "program/gcode_arc.hpp"
 #include "program/ngc_executor.hpp"
+#include "program/ngc_executor_support.hpp"
 #include "program/ngc_work_offsets.hpp"
 
 namespace pkm::program::ngc {
+
+using namespace executor_support;
 
 namespace {
 
 constexpr char kLinear[3] = {'X', 'Y', 'Z'};
 constexpr char kRotary[3] = {'A', 'B', 'C'};
-// Tool numbers and turns are ints; larger values are typing errors, not programs.
-constexpr double kLargestCount = 1e6;
-
-bool is_whole(double value) {
-  return std::abs(value - std::round(value)) < 1e-6;
-}
-
-bool is_probe(int motion) {
-  return motion >= 382 && motion <= 385;
-}
-
 const char* motion_name(int motion) {
   switch (motion) {
     case 10:

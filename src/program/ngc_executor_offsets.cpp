@@ -6,17 +6,16 @@
 #include <cmath>
 
 #include "program/ngc_executor.hpp"
+#include "program/ngc_executor_support.hpp"
 #include "program/ngc_work_offsets.hpp"
 
 namespace pkm::program::ngc {
 
+using namespace executor_support;
+
 namespace {
 
 constexpr char kAxes[6] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
-
-int whole(double value) {
-  return static_cast<int>(std::lround(value));
-}
 
 bool any_axis(const gcode::Block& b) {
   return b.first_axis_column() > 0;

@@ -26,7 +26,7 @@ JOINT_TOLERANCE_MM = 1e-6
 def move_ends(program):
     """The end points (program coordinates: mm, A B C degrees) of the program's moves, as pkm interprets them."""
     done = subprocess.run([PKM, "interpret", program, "--json"], capture_output=True, text=True, check=True)
-    return [np.array(m["end"]) for m in json.loads(done.stdout) if m["kind"] in ("rapid", "line")]
+    return [np.array(m["end"]) for m in json.loads(done.stdout)["moves"] if m["kind"] in ("rapid", "line")]
 
 
 def planned(machine, program, out_dir):

@@ -404,7 +404,7 @@ TEST_P(CompTestGoldenPrograms, MatchesRs274) {
 
 INSTANTIATE_TEST_SUITE_P(CutterCompensation, CompTestGoldenPrograms,
                          ::testing::ValuesIn(comp_test_programs()),
-                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+                         [](const ::testing::TestParamInfo<std::string>& param) { return param.param; });
 
 TEST(CutterCompensation, SuiteHasHandWrittenAndGeneratedPrograms) {
   const std::vector<std::string> names = comp_test_programs();
