@@ -623,7 +623,7 @@ Status BlockReader::Impl::control_if(OKeyword keyword) {
     executed_if = true;
   } else if (executed_if) {  // elseif/else after a branch ran: skip to the endif
     skipping_o = o_name;
-  } else if (keyword == OKeyword::else_ || test_value != 0.0) {
+  } else if (keyword == OKeyword::elseif ? test_value != 0.0 : skipping()) {
     skipping_o.clear();
     executed_if = true;
   }
@@ -639,10 +639,15 @@ Status BlockReader::Impl::control_end_loop(OKeyword keyword) {
     if (type != OKeyword::while_ && type != OKeyword::do_)
       return error(parsed.o.column, fmt::format("no matching while/do label: '{}' (found '{}' in line {})",
                                                 line_text(), to_string(type), label->at.line + 1));
-    skipping_o = o_name;
-    skipping_from = line_start;
-    skipping_from.line = line;
-    skipping_keyword = keyword;
+    // A continue met while already skipping to this label (the loop's condition was false) does nothing;
+    // a break always marks a break, even then (LinuxCNC's flags, kept as they are: rs274 is the reference).
+    if (keyword == OKeyword::continue_ && skipping()) return ok_status();
+    if (!skipping()) {
+      skipping_o = o_name;
+      skipping_from = line_start;
+      skipping_from.line = line;
+      skipping_keyword = keyword;
+    }
     if (keyword == OKeyword::break_) {
       doing_break = true;
     } else {
