@@ -190,12 +190,20 @@ bool BlockReader::Impl::read_line() {
 
 Status BlockReader::Impl::end_of_file_error() const {
   const LineRef at{file_names[static_cast<std::size_t>(skipping_from.file)], skipping_from.line};
-  if (!skipping_to_sub.empty())
-    return error_at(at, 1,
-                    fmt::format("subroutine o<{}> not found: no '{}.ngc' on the subroutine path and no "
-                                "'o<{}> sub' after this call in {} (rs274: EOF seeking o-word o<{}>)",
-                                skipping_to_sub, skipping_to_sub, skipping_to_sub,
-                                file_names[static_cast<std::size_t>(cursor.file)], skipping_to_sub));
+  if (!skipping_to_sub.empty()) {
+    const std::string& searched = file_names[static_cast<std::size_t>(cursor.file)];
+    if (cursor.file != skipping_from.file)  // the subroutine's own file was found but does not define it
+      return error_at(
+          at, 1,
+          fmt::format("subroutine o<{}> not found: {} has no 'o<{}> sub' (rs274: EOF seeking o-word "
+                      "o<{}>)",
+                      skipping_to_sub, searched, skipping_to_sub, skipping_to_sub));
+    return error_at(
+        at, 1,
+        fmt::format("subroutine o<{}> not found: no '{}.ngc' on the subroutine path and no "
+                    "'o<{}> sub' after this call in {} (rs274: EOF seeking o-word o<{}>)",
+                    skipping_to_sub, skipping_to_sub, skipping_to_sub, searched, skipping_to_sub));
+  }
   if (skipping()) {
     const char* closing = skipping_keyword == OKeyword::sub      ? "endsub"
                           : skipping_keyword == OKeyword::repeat ? "endrepeat"

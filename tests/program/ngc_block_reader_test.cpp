@@ -219,6 +219,13 @@ TEST(NgcBlockReader, CallsOfSubroutinesDefinedLaterAndInFiles) {
   EXPECT_EQ(move.where.line, 5);
   EXPECT_EQ(move.where.call_line, 2);
   EXPECT_EQ(run.main_line, 5);
+  {
+    std::ofstream out(folder / "empty.ngc");
+    out << "(no subroutine here)\n";
+  }
+  EXPECT_EQ(ngc_brt_error("G0 X0\no<empty> call\nm2\n", options),
+            "t.ngc:2:1: subroutine o<empty> not found: " + (folder / "empty.ngc").string() +
+                " has no 'o<empty> sub' (rs274: EOF seeking o-word o<empty>)");
   std::filesystem::remove_all(folder);
 }
 
