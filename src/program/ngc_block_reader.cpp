@@ -104,21 +104,26 @@ struct BlockReader::Impl final : NamedParameterSource {
   Status control_end_loop(OKeyword keyword);
   Status save_label(OKeyword type);
   Status jump_to(const Label& label);
-  Status open_subroutine_file(bool& opened);
+  Status open_subroutine_file();
   Result<double> evaluate(const ExpressionRef& expression, bool lenient = false);
   Status evaluate_items(EvaluatedBlock& out);
   Status count_executed();
   Status add_message(EvaluatedBlock& out);
   Error error(int column, std::string_view message) const { return error_at(where(), column, message); }
   LineRef where() const { return LineRef{file_names[static_cast<std::size_t>(file)], line}; }
-  std::string line_text() const { return std::string(raw); }
+  std::string line_text() const {  // as rs274 quotes it: without the blanks that end it
+    std::string_view text = raw;
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r'))
+      text.remove_suffix(1);
+    return std::string(text);
+  }
   Label* find_label() {
     auto found = labels.find(std::string_view(o_name));
     return found == labels.end() ? nullptr : &found->second;
   }
   bool skipping() const { return !skipping_o.empty(); }
 
-  const ReaderOptions& options;
+  const ReaderOptions options;  ///< a copy: the caller's may be a temporary
   ParameterStore& parameters;
   const PredefinedParameters& predefined;
 
@@ -535,8 +540,7 @@ Status BlockReader::Impl::control_call() {
   ++depth;
   parameters.push_call(call_arguments, call_argument_count);
   if (const Label* label = find_label()) return jump_to(*label);
-  bool opened = false;
-  if (auto found = open_subroutine_file(opened); !found) return found;
+  if (auto found = open_subroutine_file(); !found) return found;
   skipping_o = o_name;  // look for its `sub` line: in the file just opened, or further down this one
   skipping_to_sub = o_name;
   skipping_from = line_start;
@@ -546,7 +550,7 @@ Status BlockReader::Impl::control_call() {
 }
 
 // Opens `<name>.ngc` from the subroutine path (LinuxCNC's SUBROUTINE_PATH) and moves the cursor to its start.
-Status BlockReader::Impl::open_subroutine_file(bool& opened) {
+Status BlockReader::Impl::open_subroutine_file() {
   for (const std::string& folder : options.subroutine_path) {
     const std::string path = (std::filesystem::path(folder) / (o_name + ".ngc")).string();
     std::error_code ignored;
@@ -557,7 +561,6 @@ Status BlockReader::Impl::open_subroutine_file(bool& opened) {
     texts.emplace_back(*owned_texts.back());
     file_names.push_back(path);
     cursor = Position{static_cast<int>(texts.size()) - 1, 0, 0};
-    opened = true;
     return ok_status();
   }
   return ok_status();
