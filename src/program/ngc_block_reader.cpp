@@ -27,40 +27,40 @@ using gcode::LineRef;
 namespace {
 
 /// Where the next line starts, and the number of the line before it.
-struct Position {
+struct ReaderPosition {
   int file = 0;
   std::size_t offset = 0;
   int line = 0;
 };
 
 /// A labelled O-word line LinuxCNC remembers (its offset_map entry).
-struct Label {
+struct ReaderLabel {
   OKeyword type = OKeyword::none;
-  Position at;  ///< the start of the labelled line (jumping there re-reads it)
+  ReaderPosition at;  ///< the start of the labelled line (jumping there re-reads it)
   int repeat_count = -1;
 };
 
-struct Frame {
-  Position return_to;
+struct ReaderFrame {
+  ReaderPosition return_to;
   std::string sub_name;
   int call_line = 0;  ///< the line of the call
   int call_file = 0;
 };
 
-struct NameHash {
+struct ReaderNameHash {
   using is_transparent = void;
   std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
 };
 
 // A scoped label ("sub#12", "#name", "name") as a program writes it: o12, o<name>.
-std::string written_label(std::string_view scoped) {
+std::string reader_written_label(std::string_view scoped) {
   const std::size_t hash = scoped.rfind('#');
   const std::string_view label = hash == std::string_view::npos ? scoped : scoped.substr(hash + 1);
   const bool number = !label.empty() && label.find_first_not_of("-0123456789") == std::string_view::npos;
   return number ? fmt::format("o{}", label) : fmt::format("o<{}>", label);
 }
 
-int round_to_int(double x) {
+int reader_round_to_int(double x) {
   return static_cast<int>(std::floor(x + 0.5));
 }
 
@@ -103,7 +103,7 @@ struct BlockReader::Impl final : NamedParameterSource {
   Status control_if(OKeyword keyword);
   Status control_end_loop(OKeyword keyword);
   Status save_label(OKeyword type);
-  Status jump_to(const Label& label);
+  Status jump_to(const ReaderLabel& label);
   Status open_subroutine_file();
   Result<double> evaluate(const ExpressionRef& expression, bool lenient = false);
   Status evaluate_items(EvaluatedBlock& out);
@@ -117,7 +117,7 @@ struct BlockReader::Impl final : NamedParameterSource {
       text.remove_suffix(1);
     return std::string(text);
   }
-  Label* find_label() {
+  ReaderLabel* find_label() {
     auto found = labels.find(std::string_view(o_name));
     return found == labels.end() ? nullptr : &found->second;
   }
@@ -132,8 +132,8 @@ struct BlockReader::Impl final : NamedParameterSource {
   std::vector<std::string> file_names;
 
   // The line being read.
-  Position cursor;  ///< where the next line starts
-  Position line_start;
+  ReaderPosition cursor;  ///< where the next line starts
+  ReaderPosition line_start;
   int file = 0;
   int line = 0;
   std::string_view raw;
@@ -144,10 +144,10 @@ struct BlockReader::Impl final : NamedParameterSource {
   std::string scratch;
 
   // LinuxCNC's O-word state.
-  std::unordered_map<std::string, Label, NameHash, std::equal_to<>> labels;
-  std::string skipping_o;       ///< the label skipped to; empty when executing
-  std::string skipping_to_sub;  ///< set while looking for a called subroutine's `sub` line
-  Position skipping_from;       ///< the line that started the skip (for errors at the end of the file)
+  std::unordered_map<std::string, ReaderLabel, ReaderNameHash, std::equal_to<>> labels;
+  std::string skipping_o;        ///< the label skipped to; empty when executing
+  std::string skipping_to_sub;   ///< set while looking for a called subroutine's `sub` line
+  ReaderPosition skipping_from;  ///< the line that started the skip (for errors at the end of the file)
   OKeyword skipping_keyword = OKeyword::none;
   bool defining_sub = false;
   std::string sub_name;  ///< the subroutine being defined (skipped) at level 0
@@ -160,7 +160,7 @@ struct BlockReader::Impl final : NamedParameterSource {
   double call_arguments[30] = {};
   int call_argument_count = 0;
 
-  std::vector<Frame> frames;  ///< grows to the deepest call, never shrinks (no allocation per call)
+  std::vector<ReaderFrame> frames;  ///< grows to the deepest call, never shrinks (no allocation per call)
   int depth = 0;
 
   bool percent_opened = false;
@@ -214,12 +214,12 @@ Status BlockReader::Impl::end_of_file_error() const {
                           : skipping_keyword == OKeyword::repeat ? "endrepeat"
                           : skipping_keyword == OKeyword::if_    ? "endif"
                                                                  : "endwhile";
-    const std::string label = written_label(skipping_o);
+    const std::string label = reader_written_label(skipping_o);
     return error_at(at, 1,
                     fmt::format("'{} {}' has no matching '{} {}': the file ends while skipping to it", label,
                                 to_string(skipping_keyword), label, closing));
   }
-  const Frame& frame = frames[static_cast<std::size_t>(depth - 1)];
+  const ReaderFrame& frame = frames[static_cast<std::size_t>(depth - 1)];
   return error_at(
       LineRef{file_names[static_cast<std::size_t>(frame.call_file)], frame.call_line}, 1,
       fmt::format("subroutine o<{}> called here ends without 'o<{}> endsub' ({} ends)", frame.sub_name,
@@ -472,7 +472,7 @@ Status BlockReader::Impl::control(OKeyword keyword) {
 }
 
 Status BlockReader::Impl::save_label(OKeyword type) {
-  if (const Label* existing = find_label()) {
+  if (const ReaderLabel* existing = find_label()) {
     const bool same_line = existing->at.file == line_start.file && existing->at.line + 1 == line;
     if (same_line)
       return error(parsed.o.column, fmt::format("sub o<{}> found in illegal location (it was called before "
@@ -482,7 +482,7 @@ Status BlockReader::Impl::save_label(OKeyword type) {
                  fmt::format("redefining sub o<{}>: already defined in {} line {}", o_name,
                              file_names[static_cast<std::size_t>(existing->at.file)], existing->at.line + 1));
   }
-  labels.emplace(o_name, Label{type, line_start, -1});
+  labels.emplace(o_name, ReaderLabel{type, line_start, -1});
   return ok_status();
 }
 
@@ -511,7 +511,7 @@ Status BlockReader::Impl::control_return(OKeyword keyword) {
     return error(parsed.o.column, fmt::format("not in a subroutine definition: '{}'", line_text()));
   if (skipping() && keyword == OKeyword::endsub) skipping_o.clear();
   if (depth > 0) {
-    const Frame& frame = frames[static_cast<std::size_t>(depth - 1)];
+    const ReaderFrame& frame = frames[static_cast<std::size_t>(depth - 1)];
     cursor = frame.return_to;
     parameters.pop_call();
     --depth;
@@ -532,14 +532,14 @@ Status BlockReader::Impl::control_call() {
                                               "bound max_call_depth)",
                                               options.max_call_depth));
   if (static_cast<std::size_t>(depth) == frames.size()) frames.emplace_back();
-  Frame& frame = frames[static_cast<std::size_t>(depth)];
+  ReaderFrame& frame = frames[static_cast<std::size_t>(depth)];
   frame.return_to = cursor;
   frame.sub_name = o_name;
   frame.call_line = line;
   frame.call_file = file;
   ++depth;
   parameters.push_call(call_arguments, call_argument_count);
-  if (const Label* label = find_label()) return jump_to(*label);
+  if (const ReaderLabel* label = find_label()) return jump_to(*label);
   if (auto found = open_subroutine_file(); !found) return found;
   skipping_o = o_name;  // look for its `sub` line: in the file just opened, or further down this one
   skipping_to_sub = o_name;
@@ -560,33 +560,33 @@ Status BlockReader::Impl::open_subroutine_file() {
     owned_texts.push_back(std::make_unique<std::string>(std::move(*text)));
     texts.emplace_back(*owned_texts.back());
     file_names.push_back(path);
-    cursor = Position{static_cast<int>(texts.size()) - 1, 0, 0};
+    cursor = ReaderPosition{static_cast<int>(texts.size()) - 1, 0, 0};
     return ok_status();
   }
   return ok_status();
 }
 
-Status BlockReader::Impl::jump_to(const Label& label) {
+Status BlockReader::Impl::jump_to(const ReaderLabel& label) {
   cursor = label.at;
   return ok_status();
 }
 
 Status BlockReader::Impl::control_loop(OKeyword keyword) {
-  Label* label = find_label();
+  ReaderLabel* label = find_label();
   if (keyword == OKeyword::do_) {
     skipping_o.clear();
-    if (label == nullptr) labels.emplace(o_name, Label{OKeyword::do_, line_start, -1});
+    if (label == nullptr) labels.emplace(o_name, ReaderLabel{OKeyword::do_, line_start, -1});
     return ok_status();
   }
   const bool same_line = label != nullptr && label->at.file == line_start.file && label->at.line + 1 == line;
   if (label != nullptr && !same_line && !(keyword == OKeyword::while_ && label->type == OKeyword::do_))
     return error(parsed.o.column, fmt::format("duplicate O-word label: '{}' - defined in line {}",
                                               line_text(), label->at.line + 1));
-  if (label == nullptr) label = &labels.emplace(o_name, Label{keyword, line_start, -1}).first->second;
+  if (label == nullptr) label = &labels.emplace(o_name, ReaderLabel{keyword, line_start, -1}).first->second;
   skipping_o.clear();
   if (keyword == OKeyword::repeat) {
     if (label->type != OKeyword::repeat) return ok_status();
-    if (label->repeat_count == -1) label->repeat_count = round_to_int(test_value);
+    if (label->repeat_count == -1) label->repeat_count = reader_round_to_int(test_value);
     if (label->repeat_count > 0) {
       --label->repeat_count;
       return ok_status();
@@ -607,12 +607,12 @@ Status BlockReader::Impl::control_loop(OKeyword keyword) {
 }
 
 Status BlockReader::Impl::control_if(OKeyword keyword) {
-  const Label* label = find_label();
+  const ReaderLabel* label = find_label();
   if (keyword == OKeyword::if_) {
     if (label != nullptr && !(label->at.file == line_start.file && label->at.line + 1 == line))
       return error(parsed.o.column, fmt::format("duplicate O-word label - already defined in line {}: '{}'",
                                                 label->at.line + 1, line_text()));
-    if (label == nullptr) labels.emplace(o_name, Label{OKeyword::if_, line_start, -1});
+    if (label == nullptr) labels.emplace(o_name, ReaderLabel{OKeyword::if_, line_start, -1});
     executed_if = test_value != 0.0;
     if (executed_if) {
       skipping_o.clear();
@@ -642,7 +642,7 @@ Status BlockReader::Impl::control_if(OKeyword keyword) {
 }
 
 Status BlockReader::Impl::control_end_loop(OKeyword keyword) {
-  const Label* label = find_label();
+  const ReaderLabel* label = find_label();
   if (label == nullptr)
     return error(parsed.o.column, fmt::format("undefined O-word label: '{}'", line_text()));
   const OKeyword type = label->type;
