@@ -61,7 +61,8 @@ bool line_is_digit(char c) {
 
 std::string line_describe_bad_character(char c) {
   const auto u = static_cast<unsigned char>(c);
-  if (u < 0x20 || u >= 0x7f || c == ' ') return fmt::format("Bad character '\\{:03o}' used", u);
+  if (u < 0x20 || u > 'z')
+    return fmt::format("Bad character '\\{:03o}' used", u);  // as LinuxCNC: octal past 'z'
   return fmt::format("Bad character '{}' used", c);
 }
 
