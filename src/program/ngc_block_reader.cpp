@@ -6,6 +6,12 @@
 // Labels other than sub/endsub/call/return are local to the subroutine they are in (LinuxCNC prefixes them
 // with the subroutine's name). Jumps use byte offsets into text held in memory, so loops re-read nothing
 // from disk and the reader's memory does not grow with the number of iterations.
+//
+// Known differences from rs274, on purpose: subroutine files are looked for on ReaderOptions::subroutine_path
+// only (rs274 also tries the working directory and PROGRAM_PREFIX); lines longer than 255 characters are read
+// (rs274 refuses them, "Command too long"); the end-of-file errors name the O-word that is not closed where
+// rs274 says "File ended with no percent sign or program end"; the call depth bound is max_call_depth (rs274:
+// 9 nested calls); reaching the end of the text (without M2 or '%') ends the program without an error.
 #include "program/ngc_block_reader.hpp"
 
 #include <fmt/format.h>
