@@ -6,6 +6,12 @@
 // Labels other than sub/endsub/call/return are local to the subroutine they are in (LinuxCNC prefixes them
 // with the subroutine's name). Jumps use byte offsets into text held in memory, so loops re-read nothing
 // from disk and the reader's memory does not grow with the number of iterations.
+//
+// Known differences from rs274, on purpose: subroutine files are looked for on ReaderOptions::subroutine_path
+// only (rs274 also tries the working directory and PROGRAM_PREFIX); lines longer than 255 characters are read
+// (rs274 refuses them, "Command too long"); the end-of-file errors name the O-word that is not closed where
+// rs274 says "File ended with no percent sign or program end"; the call depth bound is max_call_depth (rs274:
+// 9 nested calls); reaching the end of the text (without M2 or '%') ends the program without an error.
 #include "program/ngc_block_reader.hpp"
 
 #include <fmt/format.h>
@@ -28,40 +34,40 @@ using gcode::LineRef;
 namespace reader_detail {
 
 /// Where the next line starts, and the number of the line before it.
-struct Position {
+struct ReaderPosition {
   int file = 0;
   std::size_t offset = 0;
   int line = 0;
 };
 
 /// A labelled O-word line LinuxCNC remembers (its offset_map entry).
-struct Label {
+struct ReaderLabel {
   OKeyword type = OKeyword::none;
-  Position at;  ///< the start of the labelled line (jumping there re-reads it)
+  ReaderPosition at;  ///< the start of the labelled line (jumping there re-reads it)
   int repeat_count = -1;
 };
 
-struct Frame {
-  Position return_to;
+struct ReaderFrame {
+  ReaderPosition return_to;
   std::string sub_name;
   int call_line = 0;  ///< the line of the call
   int call_file = 0;
 };
 
-struct NameHash {
+struct ReaderNameHash {
   using is_transparent = void;
   std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
 };
 
 // A scoped label ("sub#12", "#name", "name") as a program writes it: o12, o<name>.
-std::string written_label(std::string_view scoped) {
+std::string reader_written_label(std::string_view scoped) {
   const std::size_t hash = scoped.rfind('#');
   const std::string_view label = hash == std::string_view::npos ? scoped : scoped.substr(hash + 1);
   const bool number = !label.empty() && label.find_first_not_of("-0123456789") == std::string_view::npos;
   return number ? fmt::format("o{}", label) : fmt::format("o<{}>", label);
 }
 
-int round_to_int(double x) {
+int reader_round_to_int(double x) {
   return static_cast<int>(std::floor(x + 0.5));
 }
 
@@ -106,22 +112,27 @@ struct BlockReader::Impl final : NamedParameterSource {
   Status control_if(OKeyword keyword);
   Status control_end_loop(OKeyword keyword);
   Status save_label(OKeyword type);
-  Status jump_to(const Label& label);
-  Status open_subroutine_file(bool& opened);
+  Status jump_to(const ReaderLabel& label);
+  Status open_subroutine_file();
   Result<double> evaluate(const ExpressionRef& expression, bool lenient = false);
   Status evaluate_items(EvaluatedBlock& out);
   Status count_executed();
   Status add_message(EvaluatedBlock& out);
   Error error(int column, std::string_view message) const { return error_at(where(), column, message); }
   LineRef where() const { return LineRef{file_names[static_cast<std::size_t>(file)], line}; }
-  std::string line_text() const { return std::string(raw); }
-  Label* find_label() {
+  std::string line_text() const {  // as rs274 quotes it: without the blanks that end it
+    std::string_view text = raw;
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r'))
+      text.remove_suffix(1);
+    return std::string(text);
+  }
+  ReaderLabel* find_label() {
     auto found = labels.find(std::string_view(o_name));
     return found == labels.end() ? nullptr : &found->second;
   }
   bool skipping() const { return !skipping_o.empty(); }
 
-  const ReaderOptions& options;
+  const ReaderOptions options;  ///< a copy: the caller's may be a temporary
   ParameterStore& parameters;
   const PredefinedParameters& predefined;
 
@@ -130,8 +141,8 @@ struct BlockReader::Impl final : NamedParameterSource {
   std::vector<std::string> file_names;
 
   // The line being read.
-  Position cursor;  ///< where the next line starts
-  Position line_start;
+  ReaderPosition cursor;  ///< where the next line starts
+  ReaderPosition line_start;
   int file = 0;
   int line = 0;
   std::string_view raw;
@@ -142,10 +153,10 @@ struct BlockReader::Impl final : NamedParameterSource {
   std::string scratch;
 
   // LinuxCNC's O-word state.
-  std::unordered_map<std::string, Label, NameHash, std::equal_to<>> labels;
-  std::string skipping_o;       ///< the label skipped to; empty when executing
-  std::string skipping_to_sub;  ///< set while looking for a called subroutine's `sub` line
-  Position skipping_from;       ///< the line that started the skip (for errors at the end of the file)
+  std::unordered_map<std::string, ReaderLabel, ReaderNameHash, std::equal_to<>> labels;
+  std::string skipping_o;        ///< the label skipped to; empty when executing
+  std::string skipping_to_sub;   ///< set while looking for a called subroutine's `sub` line
+  ReaderPosition skipping_from;  ///< the line that started the skip (for errors at the end of the file)
   OKeyword skipping_keyword = OKeyword::none;
   bool defining_sub = false;
   std::string sub_name;  ///< the subroutine being defined (skipped) at level 0
@@ -158,7 +169,7 @@ struct BlockReader::Impl final : NamedParameterSource {
   double call_arguments[30] = {};
   int call_argument_count = 0;
 
-  std::vector<Frame> frames;  ///< grows to the deepest call, never shrinks (no allocation per call)
+  std::vector<ReaderFrame> frames;  ///< grows to the deepest call, never shrinks (no allocation per call)
   int depth = 0;
 
   bool percent_opened = false;
@@ -193,23 +204,31 @@ bool BlockReader::Impl::read_line() {
 
 Status BlockReader::Impl::end_of_file_error() const {
   const LineRef at{file_names[static_cast<std::size_t>(skipping_from.file)], skipping_from.line};
-  if (!skipping_to_sub.empty())
-    return error_at(at, 1,
-                    fmt::format("subroutine o<{}> not found: no '{}.ngc' on the subroutine path and no "
-                                "'o<{}> sub' after this call in {} (rs274: EOF seeking o-word o<{}>)",
-                                skipping_to_sub, skipping_to_sub, skipping_to_sub,
-                                file_names[static_cast<std::size_t>(cursor.file)], skipping_to_sub));
+  if (!skipping_to_sub.empty()) {
+    const std::string& searched = file_names[static_cast<std::size_t>(cursor.file)];
+    if (cursor.file != skipping_from.file)  // the subroutine's own file was found but does not define it
+      return error_at(
+          at, 1,
+          fmt::format("subroutine o<{}> not found: {} has no 'o<{}> sub' (rs274: EOF seeking o-word "
+                      "o<{}>)",
+                      skipping_to_sub, searched, skipping_to_sub, skipping_to_sub));
+    return error_at(
+        at, 1,
+        fmt::format("subroutine o<{}> not found: no '{}.ngc' on the subroutine path and no "
+                    "'o<{}> sub' after this call in {} (rs274: EOF seeking o-word o<{}>)",
+                    skipping_to_sub, skipping_to_sub, skipping_to_sub, searched, skipping_to_sub));
+  }
   if (skipping()) {
     const char* closing = skipping_keyword == OKeyword::sub      ? "endsub"
                           : skipping_keyword == OKeyword::repeat ? "endrepeat"
                           : skipping_keyword == OKeyword::if_    ? "endif"
                                                                  : "endwhile";
-    const std::string label = written_label(skipping_o);
+    const std::string label = reader_written_label(skipping_o);
     return error_at(at, 1,
                     fmt::format("'{} {}' has no matching '{} {}': the file ends while skipping to it", label,
                                 to_string(skipping_keyword), label, closing));
   }
-  const Frame& frame = frames[static_cast<std::size_t>(depth - 1)];
+  const ReaderFrame& frame = frames[static_cast<std::size_t>(depth - 1)];
   return error_at(
       LineRef{file_names[static_cast<std::size_t>(frame.call_file)], frame.call_line}, 1,
       fmt::format("subroutine o<{}> called here ends without 'o<{}> endsub' ({} ends)", frame.sub_name,
@@ -462,7 +481,7 @@ Status BlockReader::Impl::control(OKeyword keyword) {
 }
 
 Status BlockReader::Impl::save_label(OKeyword type) {
-  if (const Label* existing = find_label()) {
+  if (const ReaderLabel* existing = find_label()) {
     const bool same_line = existing->at.file == line_start.file && existing->at.line + 1 == line;
     if (same_line)
       return error(parsed.o.column, fmt::format("sub o<{}> found in illegal location (it was called before "
@@ -472,7 +491,7 @@ Status BlockReader::Impl::save_label(OKeyword type) {
                  fmt::format("redefining sub o<{}>: already defined in {} line {}", o_name,
                              file_names[static_cast<std::size_t>(existing->at.file)], existing->at.line + 1));
   }
-  labels.emplace(o_name, Label{type, line_start, -1});
+  labels.emplace(o_name, ReaderLabel{type, line_start, -1});
   return ok_status();
 }
 
@@ -501,7 +520,7 @@ Status BlockReader::Impl::control_return(OKeyword keyword) {
     return error(parsed.o.column, fmt::format("not in a subroutine definition: '{}'", line_text()));
   if (skipping() && keyword == OKeyword::endsub) skipping_o.clear();
   if (depth > 0) {
-    const Frame& frame = frames[static_cast<std::size_t>(depth - 1)];
+    const ReaderFrame& frame = frames[static_cast<std::size_t>(depth - 1)];
     cursor = frame.return_to;
     parameters.pop_call();
     --depth;
@@ -522,16 +541,15 @@ Status BlockReader::Impl::control_call() {
                                               "bound max_call_depth)",
                                               options.max_call_depth));
   if (static_cast<std::size_t>(depth) == frames.size()) frames.emplace_back();
-  Frame& frame = frames[static_cast<std::size_t>(depth)];
+  ReaderFrame& frame = frames[static_cast<std::size_t>(depth)];
   frame.return_to = cursor;
   frame.sub_name = o_name;
   frame.call_line = line;
   frame.call_file = file;
   ++depth;
   parameters.push_call(call_arguments, call_argument_count);
-  if (const Label* label = find_label()) return jump_to(*label);
-  bool opened = false;
-  if (auto found = open_subroutine_file(opened); !found) return found;
+  if (const ReaderLabel* label = find_label()) return jump_to(*label);
+  if (auto found = open_subroutine_file(); !found) return found;
   skipping_o = o_name;  // look for its `sub` line: in the file just opened, or further down this one
   skipping_to_sub = o_name;
   skipping_from = line_start;
@@ -541,7 +559,7 @@ Status BlockReader::Impl::control_call() {
 }
 
 // Opens `<name>.ngc` from the subroutine path (LinuxCNC's SUBROUTINE_PATH) and moves the cursor to its start.
-Status BlockReader::Impl::open_subroutine_file(bool& opened) {
+Status BlockReader::Impl::open_subroutine_file() {
   for (const std::string& folder : options.subroutine_path) {
     const std::string path = (std::filesystem::path(folder) / (o_name + ".ngc")).string();
     std::error_code ignored;
@@ -551,34 +569,33 @@ Status BlockReader::Impl::open_subroutine_file(bool& opened) {
     owned_texts.push_back(std::make_unique<std::string>(std::move(*text)));
     texts.emplace_back(*owned_texts.back());
     file_names.push_back(path);
-    cursor = Position{static_cast<int>(texts.size()) - 1, 0, 0};
-    opened = true;
+    cursor = ReaderPosition{static_cast<int>(texts.size()) - 1, 0, 0};
     return ok_status();
   }
   return ok_status();
 }
 
-Status BlockReader::Impl::jump_to(const Label& label) {
+Status BlockReader::Impl::jump_to(const ReaderLabel& label) {
   cursor = label.at;
   return ok_status();
 }
 
 Status BlockReader::Impl::control_loop(OKeyword keyword) {
-  Label* label = find_label();
+  ReaderLabel* label = find_label();
   if (keyword == OKeyword::do_) {
     skipping_o.clear();
-    if (label == nullptr) labels.emplace(o_name, Label{OKeyword::do_, line_start, -1});
+    if (label == nullptr) labels.emplace(o_name, ReaderLabel{OKeyword::do_, line_start, -1});
     return ok_status();
   }
   const bool same_line = label != nullptr && label->at.file == line_start.file && label->at.line + 1 == line;
   if (label != nullptr && !same_line && !(keyword == OKeyword::while_ && label->type == OKeyword::do_))
     return error(parsed.o.column, fmt::format("duplicate O-word label: '{}' - defined in line {}",
                                               line_text(), label->at.line + 1));
-  if (label == nullptr) label = &labels.emplace(o_name, Label{keyword, line_start, -1}).first->second;
+  if (label == nullptr) label = &labels.emplace(o_name, ReaderLabel{keyword, line_start, -1}).first->second;
   skipping_o.clear();
   if (keyword == OKeyword::repeat) {
     if (label->type != OKeyword::repeat) return ok_status();
-    if (label->repeat_count == -1) label->repeat_count = round_to_int(test_value);
+    if (label->repeat_count == -1) label->repeat_count = reader_round_to_int(test_value);
     if (label->repeat_count > 0) {
       --label->repeat_count;
       return ok_status();
@@ -599,12 +616,12 @@ Status BlockReader::Impl::control_loop(OKeyword keyword) {
 }
 
 Status BlockReader::Impl::control_if(OKeyword keyword) {
-  const Label* label = find_label();
+  const ReaderLabel* label = find_label();
   if (keyword == OKeyword::if_) {
     if (label != nullptr && !(label->at.file == line_start.file && label->at.line + 1 == line))
       return error(parsed.o.column, fmt::format("duplicate O-word label - already defined in line {}: '{}'",
                                                 label->at.line + 1, line_text()));
-    if (label == nullptr) labels.emplace(o_name, Label{OKeyword::if_, line_start, -1});
+    if (label == nullptr) labels.emplace(o_name, ReaderLabel{OKeyword::if_, line_start, -1});
     executed_if = test_value != 0.0;
     if (executed_if) {
       skipping_o.clear();
@@ -626,7 +643,7 @@ Status BlockReader::Impl::control_if(OKeyword keyword) {
     executed_if = true;
   } else if (executed_if) {  // elseif/else after a branch ran: skip to the endif
     skipping_o = o_name;
-  } else if (keyword == OKeyword::else_ || test_value != 0.0) {
+  } else if (keyword == OKeyword::elseif ? test_value != 0.0 : skipping()) {
     skipping_o.clear();
     executed_if = true;
   }
@@ -634,7 +651,7 @@ Status BlockReader::Impl::control_if(OKeyword keyword) {
 }
 
 Status BlockReader::Impl::control_end_loop(OKeyword keyword) {
-  const Label* label = find_label();
+  const ReaderLabel* label = find_label();
   if (label == nullptr)
     return error(parsed.o.column, fmt::format("undefined O-word label: '{}'", line_text()));
   const OKeyword type = label->type;
@@ -642,10 +659,15 @@ Status BlockReader::Impl::control_end_loop(OKeyword keyword) {
     if (type != OKeyword::while_ && type != OKeyword::do_)
       return error(parsed.o.column, fmt::format("no matching while/do label: '{}' (found '{}' in line {})",
                                                 line_text(), to_string(type), label->at.line + 1));
-    skipping_o = o_name;
-    skipping_from = line_start;
-    skipping_from.line = line;
-    skipping_keyword = keyword;
+    // A continue met while already skipping to this label (the loop's condition was false) does nothing;
+    // a break always marks a break, even then (LinuxCNC's flags, kept as they are: rs274 is the reference).
+    if (keyword == OKeyword::continue_ && skipping()) return ok_status();
+    if (!skipping()) {
+      skipping_o = o_name;
+      skipping_from = line_start;
+      skipping_from.line = line;
+      skipping_keyword = keyword;
+    }
     if (keyword == OKeyword::break_) {
       doing_break = true;
     } else {

@@ -16,15 +16,15 @@ using gcode::LineRef;
 namespace {
 
 // LinuxCNC 2.9's TOLERANCE_EQUAL: EQ, NE, LE and GE treat values this close as equal.
-constexpr double kEqualTolerance = 0.0001;
+constexpr double kExpressionEqualTolerance = 0.0001;
 // LinuxCNC converts degrees with the long double pi (M_PIl); doing the same keeps the last bits equal.
-constexpr long double kPiLong = 3.141592653589793238462643383279502884L;
+constexpr long double kExpressionPiLong = 3.141592653589793238462643383279502884L;
 
-bool is_digit(char c) {
+bool expression_is_digit(char c) {
   return c >= '0' && c <= '9';
 }
 
-int precedence(OpCode op) {
+int expression_precedence(OpCode op) {
   switch (op) {
     case OpCode::and_:
     case OpCode::or_:
@@ -51,18 +51,18 @@ int precedence(OpCode op) {
   }
 }
 
-void emit(ExpressionCode& code, OpCode op, int column, double value = 0.0) {
+void expression_emit(ExpressionCode& code, OpCode op, int column, double value = 0.0) {
   code.code.push_back(Instruction{op, column, value, 0, 0});
 }
 
-bool starts_with(const NormalizedLine& line, std::size_t pos, std::string_view word) {
+bool expression_starts_with(const NormalizedLine& line, std::size_t pos, std::string_view word) {
   return std::string_view(line.text).substr(pos, word.size()) == word;
 }
 
 // Reads a binary operator or the closing bracket at line.text[pos] (LinuxCNC's read_operation).
 // `closing` tells the bracket apart from the operators.
-Status read_binary_operator(const NormalizedLine& line, std::size_t& pos, const LineRef& where, OpCode& op,
-                            bool& closing) {
+Status expression_read_binary_operator(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
+                                       OpCode& op, bool& closing) {
   struct Named {
     std::string_view text;
     OpCode op;
@@ -101,7 +101,7 @@ Status read_binary_operator(const NormalizedLine& line, std::size_t& pos, const 
       break;
   }
   for (const Named& named : kNamed) {
-    if (named.text[0] == c && starts_with(line, pos, named.text)) {
+    if (named.text[0] == c && expression_starts_with(line, pos, named.text)) {
       op = named.op;
       pos += named.text.size();
       return ok_status();
@@ -113,12 +113,12 @@ Status read_binary_operator(const NormalizedLine& line, std::size_t& pos, const 
 }
 
 // A number as LinuxCNC reads it: signs, then digits and points; the whole run must convert.
-Status parse_number(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
-                    ExpressionCode& code) {
+Status expression_parse_number(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
+                               ExpressionCode& code) {
   const std::size_t start = pos;
   std::size_t end = pos;
   while (line.at(end) == '+' || line.at(end) == '-') ++end;
-  while (is_digit(line.at(end)) || line.at(end) == '.') ++end;
+  while (expression_is_digit(line.at(end)) || line.at(end) == '.') ++end;
   const std::string_view run = std::string_view(line.text).substr(start, end - start);
   std::size_t p = 0;
   bool negative = false;
@@ -126,7 +126,7 @@ Status parse_number(const NormalizedLine& line, std::size_t& pos, const LineRef&
   double value = 0.0;
   const char* first = run.data() + p;
   const char* last = run.data() + run.size();
-  const bool starts_well = p < run.size() && (is_digit(run[p]) || run[p] == '.');
+  const bool starts_well = p < run.size() && (expression_is_digit(run[p]) || run[p] == '.');
   const auto [ptr, ec] = starts_well ? std::from_chars(first, last, value, std::chars_format::fixed)
                                      : std::from_chars_result{first, std::errc::invalid_argument};
   if (ec != std::errc())
@@ -135,14 +135,14 @@ Status parse_number(const NormalizedLine& line, std::size_t& pos, const LineRef&
   if (ptr != last)
     return error_at(where, line.column(start),
                     fmt::format("bad number format (trailing characters) parsing '{}'", run));
-  emit(code, OpCode::number, line.column(start), negative ? -value : value);
+  expression_emit(code, OpCode::number, line.column(start), negative ? -value : value);
   pos = end;
   return ok_status();
 }
 
 // `#…` at line.text[pos]: a name, or a real value giving the number. `exists` asks whether it exists.
-Status parse_parameter(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
-                       ExpressionCode& code, bool exists) {
+Status expression_parse_parameter(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
+                                  ExpressionCode& code, bool exists) {
   const int column = line.column(pos);
   ++pos;
   if (line.at(pos) == '<') {
@@ -160,17 +160,17 @@ Status parse_parameter(const NormalizedLine& line, std::size_t& pos, const LineR
     code.code[first].op = exists ? OpCode::exists_number : OpCode::parameter;  // a constant number: #12
     code.code[first].column = column;
   } else {
-    emit(code, exists ? OpCode::exists_at : OpCode::parameter_at, column);
+    expression_emit(code, exists ? OpCode::exists_at : OpCode::parameter_at, column);
   }
   return ok_status();
 }
 
-struct Function {
+struct ExpressionFunction {
   std::string_view name;
   OpCode op;
 };
 // In LinuxCNC's order of trial: a longer name sharing a first letter is tried where LinuxCNC tries it.
-constexpr Function kFunctions[] = {
+constexpr ExpressionFunction kExpressionFunctions[] = {
     {"abs", OpCode::abs},   {"acos", OpCode::acos}, {"asin", OpCode::asin},    {"atan", OpCode::atan2},
     {"cos", OpCode::cos},   {"exp", OpCode::exp},   {"exists", OpCode::check}, {"fix", OpCode::fix},
     {"fup", OpCode::fup},   {"ln", OpCode::ln},     {"round", OpCode::round},  {"sin", OpCode::sin},
@@ -178,24 +178,24 @@ constexpr Function kFunctions[] = {
 };
 
 // EXISTS[#…]: LinuxCNC's read_bracketed_parameter.
-Status parse_exists(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
-                    ExpressionCode& code) {
+Status expression_parse_exists(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
+                               ExpressionCode& code) {
   ++pos;  // '['
   if (line.at(pos) != '#') return error_at(where, line.column(pos), "Expected # reading parameter");
-  if (auto read = parse_parameter(line, pos, where, code, true); !read) return read;
+  if (auto read = expression_parse_parameter(line, pos, where, code, true); !read) return read;
   if (line.at(pos) != ']') return error_at(where, line.column(pos), "Expected ] reading bracketed parameter");
   ++pos;
   return ok_status();
 }
 
 // A function call at line.text[pos] (a letter): LinuxCNC's read_unary.
-Status parse_function(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
-                      ExpressionCode& code) {
+Status expression_parse_function(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
+                                 ExpressionCode& code) {
   const int column = line.column(pos);
   const char first = line.at(pos);
-  const Function* found = nullptr;
-  for (const Function& function : kFunctions) {
-    if (function.name[0] == first && starts_with(line, pos, function.name)) {
+  const ExpressionFunction* found = nullptr;
+  for (const ExpressionFunction& function : kExpressionFunctions) {
+    if (function.name[0] == first && expression_starts_with(line, pos, function.name)) {
       found = &function;
       break;
     }
@@ -208,7 +208,7 @@ Status parse_function(const NormalizedLine& line, std::size_t& pos, const LineRe
   pos += found->name.size();
   if (line.at(pos) != '[')
     return error_at(where, line.column(pos), "Left bracket missing after unary operation name");
-  if (found->name == "exists") return parse_exists(line, pos, where, code);
+  if (found->name == "exists") return expression_parse_exists(line, pos, where, code);
   ExpressionRef argument;
   if (auto read = parse_bracketed_expression(line, pos, where, code, argument); !read) return read;
   if (found->op == OpCode::atan2) {
@@ -219,8 +219,8 @@ Status parse_function(const NormalizedLine& line, std::size_t& pos, const LineRe
       return error_at(where, line.column(pos), "Left bracket missing after slash with atan");
     if (auto read = parse_bracketed_expression(line, pos, where, code, argument); !read) return read;
   }
-  emit(code, found->op, column);
-  emit(code, OpCode::check, column);
+  expression_emit(code, found->op, column);
+  expression_emit(code, OpCode::check, column);
   return ok_status();
 }
 
@@ -284,18 +284,18 @@ Status parse_real_value(const NormalizedLine& line, std::size_t& pos, const Line
   } else if (c == '[') {
     ExpressionRef inner;
     status = parse_bracketed_expression(line, pos, where, code, inner);
-    if (status) emit(code, OpCode::check, out.column);
+    if (status) expression_emit(code, OpCode::check, out.column);
   } else if (c == '#') {
-    status = parse_parameter(line, pos, where, code, false);
-  } else if ((c == '+' || c == '-') && next != '\0' && !is_digit(next) && next != '.') {
+    status = expression_parse_parameter(line, pos, where, code, false);
+  } else if ((c == '+' || c == '-') && next != '\0' && !expression_is_digit(next) && next != '.') {
     ++pos;  // a sign before a bracket, a parameter or a function
     ExpressionRef operand;
     status = parse_real_value(line, pos, where, code, operand);
-    if (status && c == '-') emit(code, OpCode::negate, out.column);
+    if (status && c == '-') expression_emit(code, OpCode::negate, out.column);
   } else if (c >= 'a' && c <= 'z') {
-    status = parse_function(line, pos, where, code);
+    status = expression_parse_function(line, pos, where, code);
   } else {
-    status = parse_number(line, pos, where, code);
+    status = expression_parse_number(line, pos, where, code);
   }
   out.end = static_cast<std::uint32_t>(code.code.size());
   return status;
@@ -320,11 +320,11 @@ Status parse_bracketed_expression(const NormalizedLine& line, std::size_t& pos, 
     const int column = line.column(pos);
     OpCode op = OpCode::check;
     bool closing = false;
-    if (auto read = read_binary_operator(line, pos, where, op, closing); !read) return read;
-    const int level = closing ? 1 : precedence(op);
-    while (depth > 0 && precedence(pending[depth - 1].op) >= level) {
+    if (auto read = expression_read_binary_operator(line, pos, where, op, closing); !read) return read;
+    const int level = closing ? 1 : expression_precedence(op);
+    while (depth > 0 && expression_precedence(pending[depth - 1].op) >= level) {
       --depth;
-      emit(code, pending[depth].op, pending[depth].column);
+      expression_emit(code, pending[depth].op, pending[depth].column);
     }
     if (closing) break;
     pending[depth++] = Pending{op, column};
@@ -346,33 +346,33 @@ bool near_integer(double value, int& out) {
 
 namespace {
 
-double to_degrees(double radians) {
-  return static_cast<double>(static_cast<long double>(radians) * 180.0L / kPiLong);
+double expression_to_degrees(double radians) {
+  return static_cast<double>(static_cast<long double>(radians) * 180.0L / kExpressionPiLong);
 }
-long double to_radians(double degrees) {
-  return static_cast<long double>(degrees) * kPiLong / 180.0L;
+long double expression_to_radians(double degrees) {
+  return static_cast<long double>(degrees) * kExpressionPiLong / 180.0L;
 }
 
 // LinuxCNC's ROUND: half away from zero, through a C int.
-double round_like_linuxcnc(double value) {
+double expression_round_like_linuxcnc(double value) {
   const double shifted = value + (value < 0.0 ? -0.5 : 0.5);
   if (!(std::fabs(shifted) < 2147483648.0)) return -2147483648.0;  // what the int conversion gives on x86
   return static_cast<double>(static_cast<int>(shifted));
 }
 
 // A function of one value; an error message (with `ok` false) for LinuxCNC's domain errors.
-double apply_function(OpCode op, double x, const char*& error) {
+double expression_apply_function(OpCode op, double x, const char*& error) {
   switch (op) {
     case OpCode::abs:
       return std::fabs(x);
     case OpCode::acos:
       if (x < -1.0 || x > 1.0) error = "Argument to acos out of range";
-      return to_degrees(std::acos(x));
+      return expression_to_degrees(std::acos(x));
     case OpCode::asin:
       if (x < -1.0 || x > 1.0) error = "Argument to asin out of range";
-      return to_degrees(std::asin(x));
+      return expression_to_degrees(std::asin(x));
     case OpCode::cos:
-      return static_cast<double>(std::cos(to_radians(x)));
+      return static_cast<double>(std::cos(expression_to_radians(x)));
     case OpCode::exp:
       return std::exp(x);
     case OpCode::fix:
@@ -383,24 +383,24 @@ double apply_function(OpCode op, double x, const char*& error) {
       if (x <= 0.0) error = "Zero or negative argument to ln";
       return std::log(x);
     case OpCode::round:
-      return round_like_linuxcnc(x);
+      return expression_round_like_linuxcnc(x);
     case OpCode::sin:
-      return static_cast<double>(std::sin(to_radians(x)));
+      return static_cast<double>(std::sin(expression_to_radians(x)));
     case OpCode::sqrt:
       if (x < 0.0) error = "Negative argument to sqrt";
       return std::sqrt(x);
     case OpCode::tan:
-      return static_cast<double>(std::tan(to_radians(x)));
+      return static_cast<double>(std::tan(expression_to_radians(x)));
     default:
       return x;
   }
 }
 
-double truth(bool value) {
+double expression_truth(bool value) {
   return value ? 1.0 : 0.0;
 }
 
-double apply_binary(OpCode op, double a, double b, const char*& error) {
+double expression_apply_binary(OpCode op, double a, double b, const char*& error) {
   switch (op) {
     case OpCode::power:
       if (a < 0.0 && std::floor(b) != b) error = "Attempt to raise negative to non integer power";
@@ -419,23 +419,23 @@ double apply_binary(OpCode op, double a, double b, const char*& error) {
     case OpCode::minus:
       return a - b;
     case OpCode::eq:
-      return truth(std::fabs(a - b) < kEqualTolerance);
+      return expression_truth(std::fabs(a - b) < kExpressionEqualTolerance);
     case OpCode::ne:
-      return truth(std::fabs(a - b) >= kEqualTolerance);
+      return expression_truth(std::fabs(a - b) >= kExpressionEqualTolerance);
     case OpCode::gt:
-      return truth(a > b);
+      return expression_truth(a > b);
     case OpCode::ge:
-      return truth(std::fabs(a - b) < kEqualTolerance || a >= b);
+      return expression_truth(std::fabs(a - b) < kExpressionEqualTolerance || a >= b);
     case OpCode::lt:
-      return truth(a < b);
+      return expression_truth(a < b);
     case OpCode::le:
-      return truth(std::fabs(a - b) < kEqualTolerance || a <= b);
+      return expression_truth(std::fabs(a - b) < kExpressionEqualTolerance || a <= b);
     case OpCode::and_:
-      return truth(a != 0.0 && b != 0.0);
+      return expression_truth(a != 0.0 && b != 0.0);
     case OpCode::or_:
-      return truth(a != 0.0 || b != 0.0);
+      return expression_truth(a != 0.0 || b != 0.0);
     case OpCode::xor_:
-      return truth((a != 0.0) != (b != 0.0));
+      return expression_truth((a != 0.0) != (b != 0.0));
     default:
       return a;
   }
@@ -449,7 +449,7 @@ Status ExpressionEvaluator::push_parameter(const ExpressionCode& code, const Ins
     const std::string_view name = code.name(in);
     const std::optional<double> value = context.names->named(name);
     if (in.op == OpCode::exists_named) {
-      stack_.push_back(truth(value.has_value()));
+      stack_.push_back(expression_truth(value.has_value()));
     } else if (value) {
       stack_.push_back(*value);
     } else if (context.undefined_names_read_zero) {
@@ -468,7 +468,7 @@ Status ExpressionEvaluator::push_parameter(const ExpressionCode& code, const Ins
   if (!near_integer(raw, number)) return error_at(where, in.column, "Non integer value for integer");
   const bool in_range = number >= 1 && number < kParameterCount;
   if (in.op == OpCode::exists_number || in.op == OpCode::exists_at) {
-    stack_.push_back(truth(in_range));
+    stack_.push_back(expression_truth(in_range));
     return ok_status();
   }
   if (!in_range) return error_at(where, in.column, "Parameter number out of range");
@@ -506,7 +506,7 @@ Result<double> ExpressionEvaluator::evaluate(const ExpressionCode& code, const E
       case OpCode::atan2: {
         const double x = stack_.back();
         stack_.pop_back();
-        stack_.back() = to_degrees(std::atan2(stack_.back(), x));
+        stack_.back() = expression_to_degrees(std::atan2(stack_.back(), x));
         break;
       }
       case OpCode::abs:
@@ -521,12 +521,12 @@ Result<double> ExpressionEvaluator::evaluate(const ExpressionCode& code, const E
       case OpCode::sin:
       case OpCode::sqrt:
       case OpCode::tan:
-        stack_.back() = apply_function(in.op, stack_.back(), error);
+        stack_.back() = expression_apply_function(in.op, stack_.back(), error);
         break;
       default: {
         const double b = stack_.back();
         stack_.pop_back();
-        stack_.back() = apply_binary(in.op, stack_.back(), b, error);
+        stack_.back() = expression_apply_binary(in.op, stack_.back(), b, error);
         break;
       }
     }
@@ -538,9 +538,9 @@ Result<double> ExpressionEvaluator::evaluate(const ExpressionCode& code, const E
 namespace {
 
 // Reads names straight from a store (no predefined names): what evaluate_expression_text offers.
-class StoreNames final : public NamedParameterSource {
+class ExpressionStoreNames final : public NamedParameterSource {
  public:
-  explicit StoreNames(const ParameterStore& store) : store_(store) {}
+  explicit ExpressionStoreNames(const ParameterStore& store) : store_(store) {}
   std::optional<double> named(std::string_view name) const override { return store_.named(name); }
 
  private:
@@ -561,7 +561,7 @@ Result<double> evaluate_expression_text(std::string_view text, const EvaluationC
   if (pos != line.size()) return error_at(where, line.column(pos), "Unexpected characters after expression");
   ExpressionEvaluator evaluator;
   EvaluationContext effective = context;
-  std::optional<StoreNames> store_names;
+  std::optional<ExpressionStoreNames> store_names;
   if (effective.names == nullptr && effective.numbered != nullptr) {
     store_names.emplace(*effective.numbered);
     effective.names = &*store_names;

@@ -53,35 +53,36 @@ const char* to_string(OKeyword keyword) {
 
 namespace {
 
-constexpr int kMaxCallArguments = 30;
+constexpr int kLineMaxCallArguments = 30;
 
-bool is_digit(char c) {
+bool line_is_digit(char c) {
   return c >= '0' && c <= '9';
 }
 
-std::string describe_bad_character(char c) {
+std::string line_describe_bad_character(char c) {
   const auto u = static_cast<unsigned char>(c);
-  if (u < 0x20 || u >= 0x7f || c == ' ') return fmt::format("Bad character '\\{:03o}' used", u);
+  if (u < 0x20 || u > 'z')
+    return fmt::format("Bad character '\\{:03o}' used", u);  // as LinuxCNC: octal past 'z'
   return fmt::format("Bad character '{}' used", c);
 }
 
 // An N word at line.text[pos] ('n'): digits, optionally with a decimal part; its value is not kept.
-Status skip_n_word(const NormalizedLine& line, std::size_t& pos, const LineRef& where) {
+Status line_skip_n_word(const NormalizedLine& line, std::size_t& pos, const LineRef& where) {
   const std::size_t start = pos++;
   const std::size_t digits = pos;
-  while (is_digit(line.at(pos))) ++pos;
+  while (line_is_digit(line.at(pos))) ++pos;
   if (pos == digits) return error_at(where, line.column(start), "Bad format unsigned integer");
   if (line.at(pos) == '.')
-    for (++pos; is_digit(line.at(pos));) ++pos;
+    for (++pos; line_is_digit(line.at(pos));) ++pos;
   return ok_status();
 }
 
 // The O-word keywords, tried in LinuxCNC's order (each a prefix test on what follows the number or name).
-struct KeywordText {
+struct LineKeywordText {
   std::string_view text;
   OKeyword keyword;
 };
-constexpr KeywordText kKeywords[] = {
+constexpr LineKeywordText kLineKeywords[] = {
     {"sub", OKeyword::sub},
     {"endsub", OKeyword::endsub},
     {"call", OKeyword::call},
@@ -99,7 +100,7 @@ constexpr KeywordText kKeywords[] = {
     {"return", OKeyword::return_},
 };
 
-Status parse_o_head(const NormalizedLine& line, std::size_t pos, const LineRef& where, ParsedLine& out) {
+Status line_parse_o_head(const NormalizedLine& line, std::size_t pos, const LineRef& where, ParsedLine& out) {
   OWordHead& o = out.o;
   o.column = line.column(pos);
   ++pos;
@@ -112,7 +113,7 @@ Status parse_o_head(const NormalizedLine& line, std::size_t pos, const LineRef& 
   }
   o.keyword_column = line.column(pos);
   const std::string_view rest = std::string_view(line.text).substr(pos);
-  for (const KeywordText& keyword : kKeywords) {
+  for (const LineKeywordText& keyword : kLineKeywords) {
     if (rest.substr(0, keyword.text.size()) == keyword.text) {
       o.keyword = keyword.keyword;
       o.after = pos + keyword.text.size();
@@ -127,7 +128,7 @@ Status parse_o_head(const NormalizedLine& line, std::size_t pos, const LineRef& 
   return ok_status();
 }
 
-bool starts_with_lower(std::string_view text, std::string_view prefix) {
+bool line_starts_with_lower(std::string_view text, std::string_view prefix) {
   if (text.size() < prefix.size()) return false;
   for (std::size_t i = 0; i < prefix.size(); ++i)
     if (std::tolower(static_cast<unsigned char>(text[i])) != prefix[i]) return false;
@@ -135,7 +136,7 @@ bool starts_with_lower(std::string_view text, std::string_view prefix) {
 }
 
 // Records the comment at line.text[pos] ('(') as the line's last one and moves past its ')'.
-void read_comment(std::string_view raw, const NormalizedLine& line, std::size_t& pos, ParsedLine& out) {
+void line_read_comment(std::string_view raw, const NormalizedLine& line, std::size_t& pos, ParsedLine& out) {
   const std::size_t open = pos;
   while (line.at(pos) != ')') ++pos;  // normalize_line guarantees the ')'
   const auto raw_open = static_cast<std::size_t>(line.column(open) - 1);
@@ -157,7 +158,7 @@ void read_comment(std::string_view raw, const NormalizedLine& line, std::size_t&
   out.comment_text = text;
   out.comment_column = line.column(open);
   for (const Kind& kind : kKinds) {
-    if (starts_with_lower(text, kind.prefix)) {
+    if (line_starts_with_lower(text, kind.prefix)) {
       out.comment = kind.kind;
       out.comment_text = text.substr(kind.prefix.size());
       return;
@@ -166,8 +167,8 @@ void read_comment(std::string_view raw, const NormalizedLine& line, std::size_t&
 }
 
 // The value after a word's letter or an assignment's '=': a plain number is kept as a constant.
-Status parse_item_value(const NormalizedLine& line, std::size_t& pos, const LineRef& where, ParsedLine& out,
-                        LineItem& item) {
+Status line_parse_item_value(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
+                             ParsedLine& out, LineItem& item) {
   const std::size_t first = out.code.code.size();
   if (auto read = parse_real_value(line, pos, where, out.code, item.expression); !read) return read;
   if (out.code.code.size() == first + 1 && out.code.code[first].op == OpCode::number) {
@@ -178,7 +179,8 @@ Status parse_item_value(const NormalizedLine& line, std::size_t& pos, const Line
   return ok_status();
 }
 
-Status parse_assignment(const NormalizedLine& line, std::size_t& pos, const LineRef& where, ParsedLine& out) {
+Status line_parse_assignment(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
+                             ParsedLine& out) {
   LineItem item;
   item.column = line.column(pos);
   ++pos;  // '#'
@@ -194,29 +196,29 @@ Status parse_assignment(const NormalizedLine& line, std::size_t& pos, const Line
   if (line.at(pos) != '=')
     return error_at(where, line.column(pos), "Equal sign missing in parameter setting");
   ++pos;
-  if (auto read = parse_item_value(line, pos, where, out, item); !read) return read;
+  if (auto read = line_parse_item_value(line, pos, where, out, item); !read) return read;
   out.items.push_back(item);
   return ok_status();
 }
 
-Status parse_items(std::string_view raw, const NormalizedLine& line, std::size_t pos, const LineRef& where,
-                   ParsedLine& out) {
+Status line_parse_items(std::string_view raw, const NormalizedLine& line, std::size_t pos,
+                        const LineRef& where, ParsedLine& out) {
   while (pos < line.size()) {
     const char c = line.at(pos);
     if (c == ';') break;
     if (c == '(') {
-      read_comment(raw, line, pos, out);
+      line_read_comment(raw, line, pos, out);
     } else if (c == '#') {
-      if (auto read = parse_assignment(line, pos, where, out); !read) return read;
+      if (auto read = line_parse_assignment(line, pos, where, out); !read) return read;
     } else if ((c >= 'a' && c <= 'z' && c != 'n' && c != 'o') || c == '@' || c == '^' || c == '$') {
       LineItem item;
       item.letter = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
       item.column = line.column(pos);
       ++pos;
-      if (auto read = parse_item_value(line, pos, where, out, item); !read) return read;
+      if (auto read = line_parse_item_value(line, pos, where, out, item); !read) return read;
       out.items.push_back(item);
     } else {
-      return error_at(where, line.column(pos), describe_bad_character(c));
+      return error_at(where, line.column(pos), line_describe_bad_character(c));
     }
   }
   return ok_status();
@@ -245,24 +247,24 @@ Status parse_line(std::string_view raw, const LineRef& where, NormalizedLine& li
     return ok_status();
   }
   if (line.at(pos) == 'n')
-    if (auto skipped = skip_n_word(line, pos, where); !skipped) return skipped;
+    if (auto skipped = line_skip_n_word(line, pos, where); !skipped) return skipped;
   if (line.at(pos) == 'o') {
     out.is_o_word = true;
-    return parse_o_head(line, pos, where, out);
+    return line_parse_o_head(line, pos, where, out);
   }
   if (o_word_only) return ok_status();
-  return parse_items(raw, line, pos, where, out);
+  return line_parse_items(raw, line, pos, where, out);
 }
 
 namespace {
 
-bool is_blank(char c) {
+bool line_is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r';
 }
 
 // The number after a word's letter at raw[pos], blanks allowed anywhere in it (LinuxCNC removes them first):
 // one optional sign, then digits and at most one point. False for anything the full parser must judge.
-bool lex_simple_number(std::string_view raw, std::size_t& pos, double& value) {
+bool line_lex_simple_number(std::string_view raw, std::size_t& pos, double& value) {
   char digits[48];
   std::size_t count = 0;
   bool negative = false;
@@ -271,11 +273,11 @@ bool lex_simple_number(std::string_view raw, std::size_t& pos, double& value) {
   bool digit = false;
   for (; pos < raw.size(); ++pos) {
     const char c = raw[pos];
-    if (is_blank(c)) continue;
+    if (line_is_blank(c)) continue;
     if ((c == '+' || c == '-') && !sign && count == 0) {
       sign = true;
       negative = c == '-';
-    } else if (is_digit(c) || (c == '.' && !point)) {
+    } else if (line_is_digit(c) || (c == '.' && !point)) {
       if (count + 1 >= sizeof digits) return false;
       digits[count++] = c;
       point = point || c == '.';
@@ -299,7 +301,7 @@ bool lex_simple_line(std::string_view raw, std::vector<gcode::Word>& words) {
   bool first = true;
   while (pos < raw.size()) {
     const char c = raw[pos];
-    if (is_blank(c)) {
+    if (line_is_blank(c)) {
       ++pos;
       continue;
     }
@@ -309,7 +311,7 @@ bool lex_simple_line(std::string_view raw, std::vector<gcode::Word>& words) {
     const int column = static_cast<int>(pos) + 1;
     ++pos;
     double value = 0.0;
-    if (!lex_simple_number(raw, pos, value)) return false;
+    if (!line_lex_simple_number(raw, pos, value)) return false;
     if (letter != 'N') words.push_back(gcode::Word{letter, value, column});
     first = false;
   }
@@ -339,7 +341,7 @@ Status parse_o_tail(const NormalizedLine& line, const LineRef& where, ParsedLine
         ++pos;
         continue;
       }
-      if (out.o_arguments.size() >= kMaxCallArguments)
+      if (out.o_arguments.size() >= kLineMaxCallArguments)
         return error_at(where, line.column(pos), "Too many subroutine parameters");
       if (auto read = parse_bracketed_expression(line, pos, where, out.code, expression); !read) return read;
       out.o_arguments.push_back(expression);
@@ -358,7 +360,7 @@ namespace {
 
 // A %d, %f or %.Nf directive at text[i] ('%'): sets `format` (digits after the point) and moves past it;
 // anything else is copied as LinuxCNC copies it.
-void read_format(std::string_view text, std::size_t& i, int& decimals, std::string& out) {
+void line_read_format(std::string_view text, std::size_t& i, int& decimals, std::string& out) {
   ++i;  // '%'
   const char c = i < text.size() ? text[i] : '\0';
   if (c == 'd') {
@@ -369,7 +371,7 @@ void read_format(std::string_view text, std::size_t& i, int& decimals, std::stri
     ++i;
   } else if (c == '.') {
     ++i;
-    if (i + 1 < text.size() && is_digit(text[i]) && text[i + 1] == 'f') {
+    if (i + 1 < text.size() && line_is_digit(text[i]) && text[i + 1] == 'f') {
       decimals = text[i] - '0';
       i += 2;
     } else {
@@ -380,7 +382,7 @@ void read_format(std::string_view text, std::size_t& i, int& decimals, std::stri
   }
 }
 
-void append_value(std::optional<double> value, int decimals, std::string& out) {
+void line_append_value(std::optional<double> value, int decimals, std::string& out) {
   if (!value) {
     out += "######";
     return;
@@ -400,7 +402,7 @@ Status expand_parameters_in_comment(std::string_view text, const ParameterStore&
   std::string name;
   for (std::size_t i = 0; i < text.size();) {
     if (text[i] == '%') {
-      read_format(text, i, decimals, out);
+      line_read_format(text, i, decimals, out);
       continue;
     }
     if (text[i] != '#') {
@@ -409,14 +411,14 @@ Status expand_parameters_in_comment(std::string_view text, const ParameterStore&
     }
     ++i;
     if (i >= text.size()) return error_at(where, column, "Named parameter not terminated");
-    if (is_digit(text[i])) {
+    if (line_is_digit(text[i])) {
       long number = 0;
-      for (; i < text.size() && is_digit(text[i]); ++i)
+      for (; i < text.size() && line_is_digit(text[i]); ++i)
         number = std::min(number * 10 + (text[i] - '0'), 100000L);
       const bool known = number < kParameterCount;
-      append_value(known ? std::optional<double>(number == 0 ? 0.0 : store.get(static_cast<int>(number)))
-                         : std::nullopt,
-                   decimals, out);
+      line_append_value(known ? std::optional<double>(number == 0 ? 0.0 : store.get(static_cast<int>(number)))
+                              : std::nullopt,
+                        decimals, out);
     } else if (text[i] == '<') {
       name.clear();
       for (++i; i < text.size() && text[i] != '>'; ++i)
@@ -424,7 +426,7 @@ Status expand_parameters_in_comment(std::string_view text, const ParameterStore&
           name.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(text[i]))));
       if (i >= text.size()) return error_at(where, column, "Named parameter not terminated");
       ++i;
-      append_value(names.named(name), decimals, out);
+      line_append_value(names.named(name), decimals, out);
     } else {
       out.push_back('#');
     }

@@ -14,10 +14,10 @@ namespace pkm::program::ngc {
 
 namespace {
 
-constexpr int kDebugEnableParameter = 5599;  // LinuxCNC shows (DEBUG,…) only while #5599 > 0
+constexpr int kStoreDebugEnableParameter = 5599;  // LinuxCNC shows (DEBUG,…) only while #5599 > 0
 
 // The parameters LinuxCNC writes to the .var file even when the file did not list them.
-bool always_persisted(int n) {
+bool store_always_persisted(int n) {
   if (n >= 5161 && n <= 5169) return true;  // G28 home
   if (n >= 5181 && n <= 5189) return true;  // G30 home
   if (n >= 5210 && n <= 5219) return true;  // G92 applied flag and offsets
@@ -29,12 +29,12 @@ bool always_persisted(int n) {
   return false;
 }
 
-bool is_name_blank(char c) {
+bool store_is_name_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r';
 }
 
 // Parses "NUMBER VALUE" at the start of a .var line; false when the line is not one (LinuxCNC skips it).
-bool parse_var_line(std::string_view line, int& number, double& value) {
+bool store_parse_var_line(std::string_view line, int& number, double& value) {
   std::size_t p = 0;
   auto skip_blanks = [&] {
     while (p < line.size() && (line[p] == ' ' || line[p] == '\t' || line[p] == '\r')) ++p;
@@ -54,14 +54,14 @@ bool parse_var_line(std::string_view line, int& number, double& value) {
 }
 
 // The numbers listed in an existing .var file (empty when there is none).
-std::vector<int> numbers_in_var_file(const std::string& path) {
+std::vector<int> store_numbers_in_var_file(const std::string& path) {
   std::vector<int> numbers;
   std::ifstream in(path);
   std::string line;
   while (std::getline(in, line)) {
     int number = 0;
     double value = 0.0;
-    if (parse_var_line(line, number, value)) numbers.push_back(number);
+    if (store_parse_var_line(line, number, value)) numbers.push_back(number);
   }
   return numbers;
 }
@@ -69,7 +69,7 @@ std::vector<int> numbers_in_var_file(const std::string& path) {
 }  // namespace
 
 ParameterStore::ParameterStore() : values_(static_cast<std::size_t>(kParameterCount), 0.0), levels_(1) {
-  values_[kDebugEnableParameter] = 1.0;
+  values_[kStoreDebugEnableParameter] = 1.0;
 }
 
 bool ParameterStore::is_read_only(int number) {
@@ -80,14 +80,14 @@ bool ParameterStore::is_read_only(int number) {
 void ParameterStore::normalise_name(std::string_view name, std::string& out) {
   out.clear();
   for (char c : name) {
-    if (is_name_blank(c)) continue;
+    if (store_is_name_blank(c)) continue;
     out.push_back((c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c);
   }
 }
 
 std::string_view ParameterStore::normalised(std::string_view name, std::string& scratch) {
   const bool clean = std::none_of(name.begin(), name.end(),
-                                  [](char c) { return is_name_blank(c) || (c >= 'A' && c <= 'Z'); });
+                                  [](char c) { return store_is_name_blank(c) || (c >= 'A' && c <= 'Z'); });
   if (clean) return name;
   normalise_name(name, scratch);
   return scratch;
@@ -156,7 +156,7 @@ Status ParameterStore::load_var_file(const std::string& path) {
     ++line_number;
     int number = 0;
     double value = 0.0;
-    if (!parse_var_line(line, number, value)) continue;
+    if (!store_parse_var_line(line, number, value)) continue;
     if (number <= 0 || number >= kParameterCount)
       return make_error(ErrorCode::bad_input,
                         fmt::format("{}:{}: parameter number out of range: {}", path, line_number, number));
@@ -168,20 +168,20 @@ Status ParameterStore::load_var_file(const std::string& path) {
     numbers.push_back(number);
   }
   values_ = std::move(values);
-  values_[kDebugEnableParameter] = 1.0;
+  values_[kStoreDebugEnableParameter] = 1.0;
   loaded_numbers_ = std::move(numbers);
   return ok_status();
 }
 
 Status ParameterStore::save_var_file(const std::string& path) const {
   std::set<int> numbers(loaded_numbers_.begin(), loaded_numbers_.end());
-  for (int n : numbers_in_var_file(path)) {
+  for (int n : store_numbers_in_var_file(path)) {
     if (n <= 0 || n >= kParameterCount)
       return make_error(ErrorCode::bad_input, fmt::format("{}: parameter number out of range: {}", path, n));
     numbers.insert(n);
   }
   for (int n = 5161; n <= 5390; ++n)
-    if (always_persisted(n)) numbers.insert(n);
+    if (store_always_persisted(n)) numbers.insert(n);
   std::string text;
   for (int n : numbers) text += fmt::format("{}\t{:.6f}\n", n, values_[static_cast<std::size_t>(n)]);
 

@@ -149,6 +149,14 @@ TEST(NgcBlockReader, WhileWithBreakAndContinue) {
             "e1.000000|b1.000000|e3.000000|b3.000000|end 4.000000|");
 }
 
+TEST(NgcBlockReader, AContinueInTheBodyOfALoopThatEndsIsSkippedOver) {
+  // When the condition turns false, rs274 skips the body to the endwhile; the continue it passes must not
+  // send it round again.
+  EXPECT_EQ(ngc_brt_messages("#1=0\no1 while [#1 lt 2]\n#1=[#1+1]\no2 if [#1 gt 4]\no1 continue\no2 endif\n"
+                             "o1 endwhile\n(DEBUG,done %d#1)\nm2\n"),
+            "done 2|");
+}
+
 TEST(NgcBlockReader, DoWhileRepeatAndNesting) {
   EXPECT_EQ(ngc_brt_messages("#1=0\no5 do\n#1=[#1+1]\n(DEBUG,d#1)\no5 while [#1 lt 3]\nm2\n"),
             "d1.000000|d2.000000|d3.000000|");
@@ -211,6 +219,13 @@ TEST(NgcBlockReader, CallsOfSubroutinesDefinedLaterAndInFiles) {
   EXPECT_EQ(move.where.line, 5);
   EXPECT_EQ(move.where.call_line, 2);
   EXPECT_EQ(run.main_line, 5);
+  {
+    std::ofstream out(folder / "empty.ngc");
+    out << "(no subroutine here)\n";
+  }
+  EXPECT_EQ(ngc_brt_error("G0 X0\no<empty> call\nm2\n", options),
+            "t.ngc:2:1: subroutine o<empty> not found: " + (folder / "empty.ngc").string() +
+                " has no 'o<empty> sub' (rs274: EOF seeking o-word o<empty>)");
   std::filesystem::remove_all(folder);
 }
 
