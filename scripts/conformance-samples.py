@@ -216,9 +216,9 @@ def parse_rs274(text):
                 tools.append(tool)
             continue
         kind = MOTIONS[name]
-        if state.feed_pending and kind in ("line", "arc"):  # the feed's units are those of its first move
+        if state.feed_pending and kind in ("line", "arc", "probe"):  # the feed's units: those of its first move
             state.feed_scale, state.feed_pending = state.scale, False
-        values = numbers(args) if kind in ("rapid", "line", "arc", "dwell") else []
+        values = numbers(args) if kind in ("rapid", "line", "arc", "dwell", "probe") else []
         motions.append({"kind": kind, "text": line.strip(), "args": values, "scale": state.scale,
                         "plane": state.plane, "feed_mm_min": state.feed_raw * state.feed_scale,
                         "feed_scale": state.feed_scale, "g5x_index": state.g5x_index, "g5x": list(state.g5x),
@@ -258,6 +258,10 @@ def arc_length(start, move):
 
 
 def feed_difference(move, start, start_abc, theirs):
+    if "feed_per_revolution_mm" in move:  # G95: rs274 prints the feed per revolution
+        if differs(move["feed_per_revolution_mm"], theirs["feed_mm_min"], tolerance_mm(theirs["feed_scale"])):
+            return f"feed {move['feed_per_revolution_mm']:.4f} mm/rev, rs274 {theirs['feed_mm_min']:.4f}"
+        return ""
     if "inverse_time_per_min" not in move:
         if differs(move["feed_mm_min"], theirs["feed_mm_min"], tolerance_mm(theirs["feed_scale"])):
             return f"feed {move['feed_mm_min']:.4f} mm/min, rs274 {theirs['feed_mm_min']:.4f}"
@@ -326,6 +330,8 @@ def frame_difference(move, theirs):
 
 
 def move_difference(move, start, start_abc, theirs):
+    if move.get("probe") and theirs["kind"] == "probe":  # G38.x: a straight move to the target in pkm
+        theirs = dict(theirs, kind="line", args=theirs["args"][:6])
     if move["kind"] != theirs["kind"]:
         return f"kind {move['kind']}, rs274 {theirs['kind']}"
     expected_args = {"rapid": 6, "line": 6, "arc": 9, "dwell": 1}.get(theirs["kind"])
@@ -343,7 +349,8 @@ def move_difference(move, start, start_abc, theirs):
     return difference
 
 
-TOOL_CHANGE = re.compile(r"\bM0*6\b.*?\bT0*(\d+)|\bT0*(\d+)\b.*?\bM0*6\b|\bM61\s*Q0*(\d+)", re.IGNORECASE)
+# pkm's tool-change events are exactly "M6 T<n>" and "M61 Q<n>" (messages may mention M6 too).
+TOOL_CHANGE = re.compile(r"^(?:M6 T|M61 Q)(\d+)$")
 
 
 def pkm_tool_changes(events):
@@ -367,7 +374,9 @@ def describe(move, files):
 
 def first_difference(document, motions, tools):
     """(index, rs274's call, pkm's move, what) of the first disagreement, or None."""
-    moves, files = document["moves"], document.get("files", [])
+    # Moves pkm adds that the program does not make (the operator's retraction after G88) are not rs274's.
+    moves = [m for m in document["moves"] if not m.get("inserted")]
+    files = document.get("files", [])
     start, start_abc, tool_length = [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], 0.0
     for i, (move, theirs) in enumerate(zip(moves, motions)):
         # A new tool length offset moves the tool tip's Z without a move (work coordinates).

@@ -68,6 +68,9 @@ nlohmann::json move_json(const program::CanonicalProgram& program, const program
   j["plane"] = plane_name(m.plane);
   j["feed_mm_min"] = m.feed_mm_min;
   if (m.inverse_time) j["inverse_time_per_min"] = m.inverse_time_per_min;
+  if (m.feed_per_revolution_mm > 0.0) j["feed_per_revolution_mm"] = m.feed_per_revolution_mm;
+  if (m.probe) j["probe"] = true;
+  if (m.inserted) j["inserted"] = true;
   if (m.kind == program::MoveKind::dwell) j["dwell_s"] = m.dwell_s;
   if (m.orientation == program::OrientationSource::tool_axis) j["tool_axis"] = vector_json(m.tool_axis);
   j["tool_length_mm"] = m.tool_length_mm;

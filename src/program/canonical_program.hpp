@@ -68,6 +68,10 @@ struct CanonicalMove {
   // end of the move; G64 blends, within path_tolerance_mm of the corner when G64 P gave one.
   double path_tolerance_mm = -1.0;  ///< G64 P tolerance in mm; -1 = none given (G64 or G64 P0: no limit)
   bool exact_stop = false;          ///< G61 / G61.1: come to a stop at the end of this move
+  bool probe = false;               ///< G38.2–G38.5: a probing move (offline: to its target, no contact)
+  /// A move the program does not make and LinuxCNC leaves to the operator: the retraction to the clear plane
+  /// after G88 (and G84 outside G17), which pkm plans so that the path stays continuous.
+  bool inserted = false;
 };
 
 /// Non-motion events, recorded with their line so reports can show them (tool change, spindle, coolant).

@@ -181,6 +181,8 @@ int Block::first_axis_column() const {
     const int c = (*this)[axis].column;
     if (c > 0 && (column == 0 || c < column)) column = c;
   }
+  for (const Value* polar : {&polar_radius, &polar_angle})
+    if (polar->column > 0 && (column == 0 || polar->column < column)) column = polar->column;
   return column;
 }
 
@@ -188,6 +190,8 @@ Status build_block(const LexedLine& line, const LineRef& where, Block& out) {
   out.g.fill(Code{});
   out.m.fill(Code{});
   out.letters.fill(Value{});
+  out.polar_radius = Value{};
+  out.polar_angle = Value{};
   for (const Word& word : line.words) {
     if (word.letter == 'G' || word.letter == 'M') {
       const bool is_g = word.letter == 'G';
@@ -224,7 +228,12 @@ Status build_block(const LexedLine& line, const LineRef& where, Block& out) {
     }
     if (const char* why = unsupported_letter(word.letter))
       return error_at(where, word.column, fmt::format("{} {}", word.letter, why));
-    Value& slot = out.letters[static_cast<std::size_t>(word.letter - 'A')];
+    const bool polar = word.letter == '@' || word.letter == '^';
+    if (!polar && (word.letter < 'A' || word.letter > 'Z'))
+      return error_at(where, word.column, fmt::format("unexpected character '{}'", word.letter));
+    Value& slot = word.letter == '@'   ? out.polar_radius
+                  : word.letter == '^' ? out.polar_angle
+                                       : out.letters[static_cast<std::size_t>(word.letter - 'A')];
     if (slot.given())
       return error_at(where, word.column, fmt::format("two {} words in one block", word.letter));
     slot = Value{word.value, word.column};

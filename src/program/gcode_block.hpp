@@ -59,9 +59,11 @@ struct Block {
   std::array<Code, g_group_count> g;
   std::array<Code, m_group_count> m;
   std::array<Value, 26> letters;  ///< indexed by letter − 'A'; G and M are not stored here
+  Value polar_radius;             ///< `@`: LinuxCNC's polar distance in the XY plane
+  Value polar_angle;              ///< `^`: LinuxCNC's polar angle in degrees
 
   const Value& operator[](char letter) const { return letters[static_cast<std::size_t>(letter - 'A')]; }
-  /// Column of the first of X Y Z A B C in this block, or 0.
+  /// Column of the first of X Y Z A B C @ ^ in this block, or 0.
   int first_axis_column() const;
 };
 

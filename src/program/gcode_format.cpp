@@ -33,9 +33,19 @@ bool format_is_event_word(std::string_view word) {
       return format_is_plain_number(number);
     case 'T':
       return format_all_digits(number);
-    case 'M':
-      // M3 M4 M5 spindle, M6 tool change, M7 M8 M9 coolant: the M-codes the interpreter records as events.
-      return number.size() == 1 && number[0] >= '3' && number[0] <= '9';
+    case 'M': {
+      // The M-codes the interpreter records as events: pauses, spindle, tools, coolant, overrides, I/O,
+      // modal state and user M-codes.
+      if (!format_all_digits(number) || number.size() > 3) return false;
+      const int m = std::stoi(std::string(number));
+      return m == 0 || m == 1 || (m >= 3 && m <= 9) || m == 19 || (m >= 48 && m <= 53) || m == 60 ||
+             (m >= 61 && m <= 68) || (m >= 70 && m <= 73) || (m >= 100 && m <= 199);
+    }
+    case 'P':
+    case 'Q':
+    case 'E':
+    case 'L':
+      return format_is_plain_number(number);
     default:
       return false;
   }
@@ -67,6 +77,20 @@ double number_value(std::string_view text) {
   double value = 0.0;
   std::from_chars(text.data(), text.data() + text.size(), value, std::chars_format::fixed);
   return value;
+}
+
+std::string event_text(std::string_view what) {
+  if (is_gcode_event(what)) return std::string(what);
+  // Messages come back as the comments that made them, so that reading the program again gives them again.
+  // The interpreter writes them "KIND: text" (ngc_executor.cpp).
+  for (const std::string_view kind : {"MSG: ", "DEBUG: ", "PRINT: "}) {
+    if (what.substr(0, kind.size()) == kind) {
+      std::string out = comment(what.substr(kind.size()));
+      out.insert(1, std::string(kind.substr(0, kind.size() - 2)) + ",");
+      return out;
+    }
+  }
+  return comment(what);
 }
 
 std::string comment(std::string_view text) {

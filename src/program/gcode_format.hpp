@@ -21,6 +21,10 @@ double number_value(std::string_view text);
 /// ends with its line).
 std::string comment(std::string_view text);
 
+/// An event as G-code: its own words when it is one ("M62 P1"), the comment that makes it for messages
+/// ("MSG: hello" → "(MSG,hello)"), else a plain comment.
+std::string event_text(std::string_view what);
+
 /// Whether `what` is an event the G-code interpreter records and reads back the same from its own text:
 /// blank-separated words S<number>, T<whole number> and M3 to M9 ("M3 S12000", "M6 T3", "M8", "T4").
 bool is_gcode_event(std::string_view what);

@@ -122,7 +122,7 @@ void GcodeProgramWriter::end_line(int source_line) {
 void GcodeProgramWriter::write_events_through(int line) {
   for (; next_event_ < program_.events.size() && program_.events[next_event_].line <= line; ++next_event_) {
     const ProgramEvent& event = program_.events[next_event_];
-    out_ += gcode::is_gcode_event(event.what) ? event.what : gcode::comment(event.what);
+    out_ += gcode::event_text(event.what);
     end_line(event.line);
   }
 }

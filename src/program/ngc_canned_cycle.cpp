@@ -343,7 +343,44 @@ struct Pattern {
   double current_c = 0.0;             ///< the tool's level
   double initial = 0.0;               ///< the series' initial level (G98)
   int repeats = 1;
+  // G91 with polar words (XY plane): each hole adds to the distance from the origin and to the angle.
+  double step_radius = 0.0;  ///< program units
+  double step_angle_rad = 0.0;
 };
+
+// LinuxCNC's polar words in a cycle (XY plane): G90 `@` `^` place the hole (a word left out keeps the
+// tool's own distance or angle), G91 steps them from hole to hole.
+void locate_polar(const Block& block, const CycleContext& context, Pattern& pattern) {
+  if (context.plane != Plane::xy || (!block.polar_radius.given() && !block.polar_angle.given())) return;
+  constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+  if (context.incremental) {
+    if (block.polar_radius.given()) pattern.step_radius = block.polar_radius.value;
+    if (block.polar_angle.given()) pattern.step_angle_rad = block.polar_angle.value * kRadPerDeg;
+    return;
+  }
+  const double radius =
+      block.polar_radius.given() ? block.polar_radius.value : std::hypot(pattern.b, pattern.a);
+  const double angle =
+      block.polar_angle.given() ? block.polar_angle.value * kRadPerDeg : std::atan2(pattern.b, pattern.a);
+  pattern.a = radius * std::cos(angle);
+  pattern.b = radius * std::sin(angle);
+}
+
+// One G91 polar step from the hole before (LinuxCNC: the distance first, then the angle).
+void step_polar(Pattern& pattern) {
+  if (pattern.step_radius != 0.0) {
+    const double radius = std::hypot(pattern.b, pattern.a) + pattern.step_radius;
+    const double angle = std::atan2(pattern.b, pattern.a);
+    pattern.a = radius * std::cos(angle);
+    pattern.b = radius * std::sin(angle);
+  }
+  if (pattern.step_angle_rad != 0.0) {
+    const double radius = std::hypot(pattern.b, pattern.a);
+    const double angle = std::atan2(pattern.b, pattern.a) + pattern.step_angle_rad;
+    pattern.a = radius * std::cos(angle);
+    pattern.b = radius * std::sin(angle);
+  }
+}
 
 // G91: in-plane words are steps, R is relative to the series' initial level, the depth relative to R.
 void locate(const Block& block, const CycleContext& context, const CycleMemory& memory, double r_written,
@@ -369,6 +406,7 @@ void locate(const Block& block, const CycleContext& context, const CycleMemory& 
     if (word_a.given()) pattern.a = word_a.value;
     if (word_b.given()) pattern.b = word_b.value;
   }
+  locate_polar(block, context, pattern);
 }
 
 /// All the moves of the block; leaves in `pattern` the last hole.
@@ -382,6 +420,7 @@ void drill(Emitter& out, const CycleContext& context, Pattern& pattern, Hole& ho
   for (int n = 0; n < pattern.repeats; ++n) {
     pattern.a += pattern.step_a;
     pattern.b += pattern.step_b;
+    step_polar(pattern);
     if (n == 0 && pattern.current_c > hole.r) {  // from where the tool is, over the hole, down to R
       out.rapid(pattern.a, pattern.b, pattern.current_c);
       out.rapid(pattern.a, pattern.b, hole.r);

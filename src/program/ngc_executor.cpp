@@ -1,12 +1,12 @@
 // The executor's run loop, the order of execution within a block, and where moves and events go.
 #include "program/ngc_executor.hpp"
-#include "program/ngc_executor_support.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "program/ngc_block_reader.hpp"
+#include "program/ngc_executor_support.hpp"
 #include "program/ngc_work_offsets.hpp"
 
 namespace pkm::program::ngc {
@@ -102,10 +102,9 @@ Status Executor::execute(const gcode::Block& b) {
   const gcode::Code& motion_code = b.g[gcode::g_motion];
   const int motion = motion_code.given() ? motion_code.number : state_.motion;
   const bool arc_words = b['I'].given() || b['J'].given() || b['K'].given() || b['R'].given();
-  const bool axis_users =
-      b.g[gcode::g_non_modal].given() && !b.g[gcode::g_non_modal].is(40) && !b.g[gcode::g_non_modal].is(530);
-  // A block moves when it names a motion code, or has axis words no G10/G28/G30/G92 takes, or gives arc
-  // data to a modal G2/G3.
+  const bool axis_users = codes_take_axis_words(b);
+  // A block moves when it names a motion code, or has axis words no G10/G28/G30/G52/G92/G43.1 takes, or
+  // gives arc data to a modal G2/G3.
   const bool moves = motion != 800 && (motion_code.given() || (b.first_axis_column() > 0 && !axis_users) ||
                                        ((motion == 20 || motion == 30) && arc_words));
   if (auto checked = check_words(b, motion, moves); !checked) return checked;
@@ -131,7 +130,6 @@ Status Executor::execute(const gcode::Block& b) {
     state_.retract_to_r = retract.is(990);
   if (auto other = non_modal(b); !other) return other;
   if (is_cycle(state_.motion) && !is_cycle(motion)) cycle_memory_ = CycleMemory{};
-  if (is_cycle(motion) && motion != state_.motion) cycle_memory_ = CycleMemory{};
   state_.motion = motion;
   if (moves) {
     if (auto moved = this->motion(b, motion); !moved) return moved;
@@ -194,7 +192,7 @@ void Executor::refresh_frame() {
   };
   if (same(frame, state_.frame)) return;
   state_.frame = frame;
-  if (frame.identity()) {
+  if (frame.identity() && frame.system == 1) {
     state_.frame_index = 0;
     return;
   }

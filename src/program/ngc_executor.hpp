@@ -60,7 +60,8 @@ class Executor final : public PredefinedParameters, private CycleSink {
   Status feed_for(const gcode::Block& b, int motion, CanonicalMove& m) const;
   Status stop(const gcode::Block& b);
 
-  Eigen::Vector3d target_of(const gcode::Block& b, Eigen::Vector3d& abc_deg) const;
+  Status target_of(const gcode::Block& b, Eigen::Vector3d& end_mm, Eigen::Vector3d& abc_deg) const;
+  Status polar_target(const gcode::Block& b, Eigen::Vector3d& end_mm) const;
   Eigen::Vector3d machine_target_of(const gcode::Block& b, Eigen::Vector3d& abc_deg) const;
   Eigen::Vector3d machine_mm(const Eigen::Vector3d& program_mm) const;
   Eigen::Vector3d program_from_machine_mm(const Eigen::Vector3d& machine_mm) const;

@@ -12,9 +12,7 @@ using namespace executor_support;
 
 Status Executor::check_words(const gcode::Block& b, int motion, bool moves) const {
   const gcode::Code& non_modal = b.g[gcode::g_non_modal];
-  const bool axis_users = non_modal.given() && !non_modal.is(40) && !non_modal.is(530) &&
-                          !non_modal.is(281) && !non_modal.is(301) && !non_modal.is(921) &&
-                          !non_modal.is(922) && !non_modal.is(923);
+  const bool axis_users = codes_take_axis_words(b);
   // Axis words need a motion mode (or G10, G28, G30, G52, G92) to use them.
   if (const int axis_column = b.first_axis_column(); axis_column > 0 && motion == 800 && !axis_users) {
     if (b.g[gcode::g_motion].given())

@@ -62,9 +62,6 @@ Status Executor::tools_and_spindle(const gcode::Block& b) {
                            "Cannot change tools with cutter radius compensation on");
   if (tool_change.is(60)) {
     state_.current_tool = state_.selected_tool;
-    const ToolEntry* entry = tools_ ? tools_->find(state_.current_tool) : nullptr;
-    state_.spindle_tool_length_mm = entry ? entry->length_mm : 0.0;
-    state_.spindle_tool_diameter_mm = entry ? entry->diameter_mm : 0.0;
     add_event(fmt::format("M6 T{}", state_.current_tool));
   } else if (tool_change.is(610)) {
     if (!b['Q'].given())
@@ -73,6 +70,9 @@ Status Executor::tools_and_spindle(const gcode::Block& b) {
     add_event(fmt::format("M61 Q{}", state_.current_tool));
   }
   if (tool_change.given()) {
+    const ToolEntry* entry = tools_ ? tools_->find(state_.current_tool) : nullptr;
+    state_.spindle_tool_length_mm = entry ? entry->length_mm : 0.0;
+    state_.spindle_tool_diameter_mm = entry ? entry->diameter_mm : 0.0;
     parameters_.set(parameter::tool_number, state_.current_tool);
     parameters_.set(parameter::tool_diameter, state_.spindle_tool_diameter_mm / state_.mm_per_unit());
   }

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "program/gcode_arc.hpp"
 #include "program/ngc_executor.hpp"
@@ -40,9 +41,9 @@ int motion_column(const gcode::Block& b) {
 
 }  // namespace
 
-Eigen::Vector3d Executor::target_of(const gcode::Block& b, Eigen::Vector3d& abc_deg) const {
+Status Executor::target_of(const gcode::Block& b, Eigen::Vector3d& end, Eigen::Vector3d& abc_deg) const {
   const double scale = state_.mm_per_unit();
-  Eigen::Vector3d end = state_.position_mm;
+  end = state_.position_mm;
   abc_deg = state_.abc_deg;
   for (int i = 0; i < 3; ++i) {
     if (const gcode::Value& v = b[kLinear[i]]; v.given())
@@ -50,7 +51,39 @@ Eigen::Vector3d Executor::target_of(const gcode::Block& b, Eigen::Vector3d& abc_
     if (const gcode::Value& v = b[kRotary[i]]; v.given())
       abc_deg[i] = (state_.incremental ? state_.abc_deg[i] : 0.0) + v.value;
   }
-  return end;
+  if (b.polar_radius.given() || b.polar_angle.given()) return polar_target(b, end);
+  return ok_status();
+}
+
+// LinuxCNC's polar words: `@` the distance from the program origin in the XY plane, `^` the angle (degrees
+// from +X); in G91 they add to the current point's distance and angle. A word left out keeps the current one.
+Status Executor::polar_target(const gcode::Block& b, Eigen::Vector3d& end) const {
+  const int column = b.polar_radius.given() ? b.polar_radius.column : b.polar_angle.column;
+  if (b['X'].given() || b['Y'].given())
+    return gcode::error_at(where(), column, "Cannot specify X or Y words with polar coordinate");
+  const double scale = state_.mm_per_unit();
+  const Eigen::Vector2d current = state_.position_mm.head<2>();
+  const bool at_origin = current.isZero(0.0);
+  double radius_mm = current.norm();
+  double angle_rad = std::atan2(current.y(), current.x());
+  if (state_.incremental) {
+    if (at_origin)
+      return gcode::error_at(
+          where(), column,
+          b.polar_radius.given()
+              ? "Incremental motion with polar coordinates is indeterminate when at the origin"
+              : "G91 motion with polar coordinates is indeterminate when at the origin");
+    if (b.polar_radius.given()) radius_mm += b.polar_radius.value * scale;
+    if (b.polar_angle.given()) angle_rad += b.polar_angle.value * std::numbers::pi / 180.0;
+  } else {
+    if (b.polar_radius.given() && !b.polar_angle.given() && at_origin)
+      return gcode::error_at(where(), column, "Must specify angle in polar coordinate if at the origin");
+    if (b.polar_radius.given()) radius_mm = b.polar_radius.value * scale;
+    if (b.polar_angle.given()) angle_rad = b.polar_angle.value * std::numbers::pi / 180.0;
+  }
+  end.x() = radius_mm * std::cos(angle_rad);
+  end.y() = radius_mm * std::sin(angle_rad);
+  return ok_status();
 }
 
 // G53: the named axes go to machine coordinates; the others stay.
@@ -72,7 +105,7 @@ Status Executor::motion(const gcode::Block& b, int motion) {
   if (motion == 730 || (motion >= 810 && motion <= 890)) return cycle(b, motion);
   if (motion == 0 || motion == 10 || is_probe(motion)) return straight(b, motion);
   CanonicalMove m = new_move(MoveKind::arc);
-  m.end_mm = target_of(b, m.end_abc_deg);
+  if (auto target = target_of(b, m.end_mm, m.end_abc_deg); !target) return target;
   if (auto fed = feed_for(b, motion, m); !fed) return fed;
   if (auto made = arc(b, motion, m); !made) return made;
   if (auto emitted = emit(m); !emitted) return emitted;
@@ -89,7 +122,13 @@ Status Executor::straight(const gcode::Block& b, int motion) {
     return gcode::error_at(where(), b.g[gcode::g_non_modal].column, "Cannot use G53 with cutter radius comp");
   const Eigen::Vector3d start = state_.position_mm;
   CanonicalMove m = new_move(motion == 0 ? MoveKind::rapid : MoveKind::line);
-  m.end_mm = machine ? machine_target_of(b, m.end_abc_deg) : target_of(b, m.end_abc_deg);
+  if (machine && (b.polar_radius.given() || b.polar_angle.given()))
+    return gcode::error_at(where(), b.g[gcode::g_non_modal].column, "Cannot use polar coordinates with G53");
+  if (machine) {
+    m.end_mm = machine_target_of(b, m.end_abc_deg);
+  } else if (auto target = target_of(b, m.end_mm, m.end_abc_deg); !target) {
+    return target;
+  }
   if (auto fed = feed_for(b, motion, m); !fed) return fed;
   if (m.inverse_time) {
     // rs274 reports an inverse-time feed as the equivalent XYZ speed; for rotary-only moves there is none.
@@ -106,6 +145,7 @@ Status Executor::straight(const gcode::Block& b, int motion) {
       parameters_.set(parameter::probe + 3 + i, m.end_abc_deg[i]);
     }
     parameters_.set(parameter::probe_tripped, 0.0);
+    m.probe = true;
   }
   if (auto emitted = emit(m); !emitted) return emitted;
   state_.position_mm = m.end_mm;
@@ -224,7 +264,11 @@ Status Executor::cycle(const gcode::Block& b, int motion) {
   if (ran && cycle_status_ && (cycle_memory_.end_mm - state_.position_mm).norm() > 1e-9) {
     // After G88 (the operator retracts by hand) and G84 outside G17, LinuxCNC takes the tool to be at the
     // clear plane although no move took it there; pkm's path must be continuous, so a rapid does.
-    rapid(cycle_memory_.end_mm);
+    CanonicalMove m = new_move(MoveKind::rapid);
+    m.end_mm = cycle_memory_.end_mm;
+    m.inserted = true;
+    cycle_status_ = emit(m);
+    state_.position_mm = cycle_memory_.end_mm;
   }
   state_.exact_stop = exact;
   if (!ran) return ran;

@@ -159,7 +159,8 @@ Status Executor::set_axis_offsets(const gcode::Block& b, int code) {
 Status Executor::return_home(const gcode::Block& b, int code) {
   const int stored = code == 280 ? parameter::g28 : parameter::g30;
   Eigen::Vector3d abc = state_.abc_deg;
-  const Eigen::Vector3d through = target_of(b, abc);
+  Eigen::Vector3d through = state_.position_mm;
+  if (auto target = target_of(b, through, abc); !target) return target;
   CanonicalMove m = new_move(MoveKind::rapid);
   m.end_mm = through;
   m.end_abc_deg = abc;

@@ -2,6 +2,8 @@
 // Small helpers the executor's files share: what a motion code is, and whole numbers.
 #include <cmath>
 
+#include "program/gcode_block.hpp"
+
 namespace pkm::program::ngc::executor_support {
 
 /// Tool numbers and turns are ints; larger values are typing errors, not programs.
@@ -25,6 +27,15 @@ inline bool is_whole(double value) {
 
 inline int whole(double value) {
   return static_cast<int>(std::lround(value));
+}
+
+/// G10, G28, G30, G52, G92 and G43.1 take the block's axis words for themselves: the block does not move
+/// by them (G28/G30 make their own moves).
+inline bool codes_take_axis_words(const gcode::Block& b) {
+  const gcode::Code& non_modal = b.g[gcode::g_non_modal];
+  const bool takes =
+      non_modal.is(100) || non_modal.is(280) || non_modal.is(300) || non_modal.is(520) || non_modal.is(920);
+  return takes || b.g[gcode::g_tool_length].is(431);
 }
 
 }  // namespace pkm::program::ngc::executor_support

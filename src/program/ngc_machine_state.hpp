@@ -25,8 +25,8 @@ struct MachineState {
   int selected_tool = 0;        ///< T
   int current_tool = 0;         ///< in the spindle (M6, M61)
   double tool_length_mm = 0.0;  ///< G43 offset in effect (Z)
-  // The data of the tool in the spindle, copied from the table at M6 (and by G10 L1/L10/L11 of that tool).
-  // M61 changes the tool's number only: G43 without H then still uses these, as rs274 does.
+  // The data of the tool in the spindle, copied from the table at M6 and M61 (and by G10 L1/L10/L11 of that
+  // tool): G43 without H uses these.
   double spindle_tool_length_mm = 0.0;
   double spindle_tool_diameter_mm = 0.0;
   double tool_diameter_mm = 0.0;

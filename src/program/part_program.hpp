@@ -2,8 +2,8 @@
 // Reading part programs into canonical moves: G-code (RS274/NGC) and APT CL data.
 // Every error names the file, line and column: "prog.ngc:12:5: unknown G-code G5.3".
 #include <Eigen/Core>
-#include <string>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -23,7 +23,8 @@ struct InterpretOptions {
   bool block_delete = true;
   /// Folders searched for subroutine files `<name>.ngc` (LinuxCNC [RS274NGC] SUBROUTINE_PATH).
   std::vector<std::string> subroutine_path;
-  /// LinuxCNC parameter file (.var) read at start (work offsets, G28/G30 positions …); empty = none, all zero.
+  /// LinuxCNC parameter file (.var) read at start (work offsets, G28/G30 positions …); empty = none, all
+  /// zero.
   std::string parameter_file;
   /// Write the parameters back to parameter_file at the end of the program (atomically), as LinuxCNC does.
   bool write_parameter_file = false;
