@@ -124,8 +124,9 @@ void print_program_json(const program::CanonicalProgram& program) {
     std::cout << (i == 0 ? "\n" : ",\n");
     print_nested(json_text(event), "    ");
   }
-  std::cout << (program.events.empty() ? "],\n" : "\n  ],\n") << "  \"end_line\": " << program.end_line
-            << "\n}\n";
+  std::cout << (program.events.empty() ? "],\n" : "\n  ],\n")
+            << "  \"notes\": " << json_text(nlohmann::json(program.notes))
+            << ",\n  \"end_line\": " << program.end_line << "\n}\n";
 }
 
 // "sub.ngc:12" for a move or event written in another file than the main program; "" otherwise.
@@ -206,6 +207,10 @@ void add_interpret_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("interpret", program.error());
       return;
     }
+    // As LinuxCNC: (PRINT,…) goes to stderr; and what the interpreter noted (no tool table …).
+    for (const program::ProgramEvent& e : program->events)
+      if (e.what.rfind("PRINT: ", 0) == 0) std::cerr << e.what.substr(7) << "\n";
+    for (const std::string& note : program->notes) std::cerr << "pkm interpret: note: " << note << "\n";
     if (*json) {
       print_program_json(*program);
     } else if (*count) {

@@ -131,6 +131,7 @@ void add_plan_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("plan", result.error(), *json);
       return;
     }
+    for (const std::string& note : result->program_notes) std::cerr << "pkm plan: note: " << note << "\n";
     if (*json) {
       nlohmann::json summary = result->summary;
       summary["planning_time_s"] = result->planning_s;

@@ -21,6 +21,10 @@ void add_program_options(CLI::App& cmd, ProgramArguments& arguments, bool with_t
   auto* parameter_file = cmd.add_option("--parameter-file", arguments.given.parameter_file,
                                         "LinuxCNC parameter file (.var) read at the start: work offsets, "
                                         "G28/G30 positions, persistent parameters");
+  cmd.add_option("--max-blocks", arguments.given.max_blocks,
+                 "executed blocks (loop bodies count each time) after which a program is refused as one that "
+                 "never ends; default 100000000")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 62));
   cmd.add_flag("--write-parameter-file", arguments.given.write_parameter_file,
                "write the parameters back to --parameter-file at the program's end, as LinuxCNC does")
       ->needs(parameter_file);

@@ -10,6 +10,7 @@ program::InterpretOptions interpret_options(const ProgramOptions& options) {
   interpret.subroutine_path = options.subroutine_path;
   interpret.parameter_file = options.parameter_file;
   interpret.write_parameter_file = options.write_parameter_file;
+  interpret.max_blocks = options.max_blocks;
   return interpret;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // A part program file read for a machine: the interpreter starts where the machine's program starts (the home
 // tool point in program coordinates and its angles), so a first move without some axes keeps them there.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ struct ProgramOptions {
   std::vector<std::string> subroutine_path;  ///< folders searched for `o<name> call` files, in order
   std::string parameter_file;                ///< LinuxCNC .var file read at start; empty: all parameters 0
   bool write_parameter_file = false;         ///< write the parameters back at the program's end
+  std::uint64_t max_blocks = 100'000'000;    ///< executed blocks before a program is refused as endless
 };
 
 /// The interpreter's options for `options`, starting at program zero (as `pkm interpret` and rs274 do).

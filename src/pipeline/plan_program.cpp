@@ -33,6 +33,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   output.elastic = job.elastic;
   output.stiffness = job.stiffness;
   output.dynamics_load = &job.dynamics_load;
+  output.program_notes = program->notes;
   if (job.progress && plan->duration_s * job.plan.rate_hz > 200000) output.progress = job.progress;
   // The CSVs, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs{"plan"};
@@ -42,6 +43,8 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();
   result.summary = planning::summary_json(*plan, machine, *run);
+  for (const std::string& note : program->notes) result.summary["warnings"].push_back(note);
+  result.program_notes = program->notes;
   result.run = *run;
   result.plan = std::move(*plan);
   return result;

@@ -40,6 +40,7 @@ struct PlanProgramResult {
   nlohmann::json summary;                         ///< summary.json as written
   std::optional<redundancy::OptimizeResult> law;  ///< with the law's job: what it chose
   nlohmann::json law_summary;                     ///< its summary (redundancy::optimize_summary_json)
+  std::vector<std::string> program_notes;  ///< how the interpreter read the program (no tool table …)
 };
 
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job);

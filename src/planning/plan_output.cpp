@@ -245,8 +245,9 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     if (!written) continue;
     if (auto committed = file->commit(); !committed) return committed.error();
   }
-  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n",
-                 json_text(summary_json(plan, machine, *run)));
+  nlohmann::json summary = summary_json(plan, machine, *run);
+  for (const std::string& note : options.program_notes) summary["warnings"].push_back(note);
+  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", json_text(summary));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
     if (auto committed = f->commit(); !committed) return committed.error();
   }

@@ -9,6 +9,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/result.hpp"
 #include "io/output_set.hpp"
@@ -37,6 +38,9 @@ struct OutputOptions {
   const statics::LoadModel* dynamics_load = nullptr;
   /// Called now and then with the fraction done (0…1), e.g. to draw a progress bar.
   std::function<void(double)> progress;
+  /// What the interpreter noted about how it read the program (CanonicalProgram::notes): added to the
+  /// summary's warnings.
+  std::vector<std::string> program_notes;
 };
 
 /// Streams the plan at the servo rate into the three files, staged in `outputs` (which must have its

@@ -122,7 +122,13 @@ void GcodeProgramWriter::end_line(int source_line) {
 void GcodeProgramWriter::write_events_through(int line) {
   for (; next_event_ < program_.events.size() && program_.events[next_event_].line <= line; ++next_event_) {
     const ProgramEvent& event = program_.events[next_event_];
-    out_ += gcode::event_text(event.what);
+    const std::string text = gcode::event_text(event.what);
+    if (text.front() == '(' && options_.write_source_lines) {
+      // LinuxCNC acts on the last comment of a line only: the source note goes first, the message last.
+      fmt::format_to(std::back_inserter(out_), "(src {}) {}\n", event.line, text);
+      continue;
+    }
+    out_ += text;
     end_line(event.line);
   }
 }

@@ -112,6 +112,13 @@ Status expression_read_binary_operator(const NormalizedLine& line, std::size_t& 
   return error_at(where, column, "Unknown operation");
 }
 
+// A number for a message: a run of millions of digits is named by its start and its length.
+std::string expression_quoted_number(std::string_view run) {
+  constexpr std::size_t kShown = 32;
+  if (run.size() <= kShown) return fmt::format("'{}'", run);
+  return fmt::format("'{}…' ({} characters)", run.substr(0, kShown), run.size());
+}
+
 // A number as LinuxCNC reads it: signs, then digits and points; the whole run must convert.
 Status expression_parse_number(const NormalizedLine& line, std::size_t& pos, const LineRef& where,
                                ExpressionCode& code) {
@@ -130,11 +137,13 @@ Status expression_parse_number(const NormalizedLine& line, std::size_t& pos, con
   const auto [ptr, ec] = starts_well ? std::from_chars(first, last, value, std::chars_format::fixed)
                                      : std::from_chars_result{first, std::errc::invalid_argument};
   if (ec != std::errc())
-    return error_at(where, line.column(start),
-                    fmt::format("bad number format (conversion failed) parsing '{}'", run));
+    return error_at(
+        where, line.column(start),
+        fmt::format("bad number format (conversion failed) parsing {}", expression_quoted_number(run)));
   if (ptr != last)
-    return error_at(where, line.column(start),
-                    fmt::format("bad number format (trailing characters) parsing '{}'", run));
+    return error_at(
+        where, line.column(start),
+        fmt::format("bad number format (trailing characters) parsing {}", expression_quoted_number(run)));
   expression_emit(code, OpCode::number, line.column(start), negative ? -value : value);
   pos = end;
   return ok_status();

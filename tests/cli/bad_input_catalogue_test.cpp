@@ -77,7 +77,19 @@ void catalogue_write_inputs(const fs::path& t) {
   catalogue_write(t / "crlf.ngc", "G21 G90\r\nG1 X1 F100\r\nG1 X2\r\nM2\r\n");
   catalogue_write(t / "long_line.ngc", catalogue_repeat("G21 G90\nG1 X", "7", 2000000, " F100\nM2\n"));
   catalogue_write(t / "huge_number.ngc", catalogue_repeat("G21 G90\nG1 X", "9", 400, " F100\nM2\n"));
-  catalogue_write(t / "unsupported.ngc", "G21 G90\nG1 X1 F100\n  G41 D1\nM2\n");
+  catalogue_write(t / "unsupported.ngc", "G21 G90\nG1 X1 F100\n  G33 X2 K1\nM2\n");
+  // The language's own errors: parameters, expressions, O-words, bounds, compensation.
+  catalogue_write(t / "undefined_parameter.ngc", "G21 G90\nG0 X#<width>\nM2\n");
+  catalogue_write(t / "divide_by_zero.ngc", "G21 G90\n#1 = 0\nG1 X[10 / #1] F100\nM2\n");
+  catalogue_write(t / "unmatched_oword.ngc", "G21 G90\no100 if [1 GT 2]\nG1 X1 F100\n");
+  catalogue_write(t / "stray_endwhile.ngc", "G21 G90\nG1 X1 F100\no7 endwhile\nM2\n");
+  catalogue_write(t / "recursion.ngc",
+                  "o<deeper> sub\n  o<deeper> call\no<deeper> endsub\nG21\no<deeper> call\nM2\n");
+  catalogue_write(t / "endless_loop.ngc", "G21 G90\no1 while [1]\n  G1 X1 F100\no1 endwhile\nM2\n");
+  catalogue_write(
+      t / "gouge.ngc",
+      "G21 G90 G17\nG0 X0 Y0\nG41.1 D10\nG1 X20 Y0 F100\nG1 X20 Y2\nG1 X22 Y2\nG1 X22 Y20\nG40 G1 X0 "
+      "Y20\nM2\n");
   catalogue_write(t / "nan.cl", "UNITS/MM\nFEDRAT/100\nGOTO/1,nan,0\nFINI\n");
   catalogue_write(t / "unknown.cl", "UNITS/MM\nFEDRAT/100\n  FROBNICATE/1\nFINI\n");
   catalogue_write(t / "unreachable.ngc", "G21 G90\nG1 X0 Y0 Z0 F3000\nG1 X900 F3000\nM2\n");
@@ -237,7 +249,7 @@ std::vector<CatalogueCase> catalogue_cases() {
        plan_of("{t}/empty.ngc", "{m}") + "--out {t}/out",
        2,
        {"{t}/empty.ngc: the program moves nothing"}},
-      {"program_binary", interpret + "{t}/binary.ngc", 2, {"{t}/binary.ngc:1:1: unexpected byte 0x01"}},
+      {"program_binary", interpret + "{t}/binary.ngc", 2, {"{t}/binary.ngc:1:1: Bad character '\\001' used"}},
       {"cl_binary",
        interpret + "{t}/binary.cl",
        2,
@@ -250,12 +262,38 @@ std::vector<CatalogueCase> catalogue_cases() {
       {"program_very_long_line",
        interpret + "{t}/long_line.ngc",
        2,
-       {"{t}/long_line.ngc:2:4: number too long in X word"}},
+       {"{t}/long_line.ngc:2:5: bad number format (conversion failed) parsing '7777",
+        "(2000000 characters)"}},
       {"program_huge_number",
        interpret + "{t}/huge_number.ngc",
        2,
-       {"{t}/huge_number.ngc:2:4: number too long in X word"}},
-      {"program_unsupported_code", interpret + "{t}/unsupported.ngc", 2, {"{t}/unsupported.ngc:3:3:", "G41"}},
+       {"{t}/huge_number.ngc:2:5: bad number format (conversion failed) parsing '9999", "(400 characters)"}},
+      {"program_unsupported_code", interpret + "{t}/unsupported.ngc", 2, {"{t}/unsupported.ngc:3:3:", "G33"}},
+      {"program_undefined_parameter",
+       interpret + "{t}/undefined_parameter.ngc",
+       2,
+       {"{t}/undefined_parameter.ngc:2:5: Named parameter #<width> not defined"}},
+      {"program_divide_by_zero",
+       interpret + "{t}/divide_by_zero.ngc",
+       2,
+       {"{t}/divide_by_zero.ngc:3:", "Attempt to divide by zero"}},
+      {"program_unclosed_oword",
+       interpret + "{t}/unmatched_oword.ngc",
+       2,
+       {"{t}/unmatched_oword.ngc:", "o100"}},
+      {"program_stray_endwhile",
+       interpret + "{t}/stray_endwhile.ngc",
+       2,
+       {"{t}/stray_endwhile.ngc:3:1:", "o7 endwhile"}},
+      {"program_recursion_too_deep",
+       interpret + "{t}/recursion.ngc",
+       2,
+       {"{t}/recursion.ngc:2:", "Too many subroutine levels"}},
+      {"program_endless_loop",
+       interpret + "{t}/endless_loop.ngc --max-blocks 5000",
+       2,
+       {"{t}/endless_loop.ngc:", "5000"}},
+      {"program_compensation_gouge", interpret + "{t}/gouge.ngc", 2, {"{t}/gouge.ngc:", "gouging"}},
       {"cl_nan_coordinate", interpret + "{t}/nan.cl", 2, {"{t}/nan.cl:3:8: bad number 'nan'"}},
       {"cl_unknown_statement",
        interpret + "{t}/unknown.cl",

@@ -108,11 +108,11 @@ def test_program_error_has_line_and_column(tmp_path):
     with pytest.raises(pkm.ProgramError) as caught:
         pkm.interpret(bad)
     error = caught.value
-    # The CLI says where: "bad.ngc:3:8: Y word without a number".
+    # The CLI says where, as rs274 reads it: "bad.ngc:3:9: No characters found in reading real value".
     completed = subprocess.run([PKM, "interpret", str(bad)], capture_output=True, text=True)
     assert completed.returncode != 0
     assert f"{bad}:{error.line}:{error.column}:" in completed.stderr
-    assert (error.file, error.line, error.column) == (str(bad), 3, 8)
+    assert (error.file, error.line, error.column) == (str(bad), 3, 9)
     assert isinstance(error, ValueError)
 
 
