@@ -145,10 +145,10 @@ Rs274Run parse_rs274(const std::string& text) {
     } else if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "STRAIGHT_PROBE" ||
                name == "ARC_FEED" || name == "DWELL") {
       Rs274Motion m;
-      m.kind = name == "STRAIGHT_TRAVERSE"
-                   ? MoveKind::rapid
-                   : (name == "STRAIGHT_FEED" || name == "STRAIGHT_PROBE" ? MoveKind::line
-                                              : (name == "ARC_FEED" ? MoveKind::arc : MoveKind::dwell));
+      m.kind = name == "STRAIGHT_TRAVERSE" ? MoveKind::rapid
+                                           : (name == "STRAIGHT_FEED" || name == "STRAIGHT_PROBE"
+                                                  ? MoveKind::line
+                                                  : (name == "ARC_FEED" ? MoveKind::arc : MoveKind::dwell));
       if (feed_pending && (m.kind == MoveKind::line || m.kind == MoveKind::arc)) {
         feed_scale = scale;
         feed_pending = false;
@@ -178,7 +178,8 @@ void expect_near_mm(double ours, double printed, double scale, const std::string
 void compare_feed(const CanonicalMove& ours, const Eigen::Vector3d& start, const Eigen::Vector3d& start_abc,
                   const Rs274Motion& theirs) {
   if (ours.feed_per_revolution_mm > 0.0) {  // G95: rs274 prints the feed per revolution
-    EXPECT_NEAR(ours.feed_per_revolution_mm, theirs.feed_raw * theirs.feed_scale, tolerance_mm(theirs.feed_scale))
+    EXPECT_NEAR(ours.feed_per_revolution_mm, theirs.feed_raw * theirs.feed_scale,
+                tolerance_mm(theirs.feed_scale))
         << "feed per revolution of " << theirs.text;
     return;
   }
@@ -254,7 +255,8 @@ CanonicalMove gcode_conformance_in_program_frame(const CanonicalProgram& program
   out.end_mm = numbers.end_mm;
   out.center_mm = numbers.center_mm;
   out.end_abc_deg = numbers.end_abc_deg;
-  const double rotation_rad = program.frames[static_cast<std::size_t>(move.frame)].xy_rotation_deg * M_PI / 180.0;
+  const double rotation_rad =
+      program.frames[static_cast<std::size_t>(move.frame)].xy_rotation_deg * M_PI / 180.0;
   out.normal = Eigen::AngleAxisd(-rotation_rad, Eigen::Vector3d::UnitZ()) * move.normal;
   return out;
 }
