@@ -156,21 +156,23 @@ CanonicalMove Executor::new_move(MoveKind kind) const {
 Status Executor::emit(const CanonicalMove& m) {
   compensated_.clear();
   if (auto passed = compensation_.move(m, where(), motion_column_, compensated_); !passed) return passed;
-  for (CanonicalMove& out : compensated_) {
-    if (out.frame != 0) move_to_work(program_->frames[static_cast<std::size_t>(out.frame)], out);
-    program_->moves.push_back(out);
-  }
+  append_compensated();
   return ok_status();
 }
 
 Status Executor::flush_compensation() {
   compensated_.clear();
   if (auto flushed = compensation_.flush(compensated_, where(), motion_column_); !flushed) return flushed;
+  append_compensated();
+  return ok_status();
+}
+
+// What compensation let out, from program coordinates into the work frame of each move.
+void Executor::append_compensated() {
   for (CanonicalMove& out : compensated_) {
     if (out.frame != 0) move_to_work(program_->frames[static_cast<std::size_t>(out.frame)], out);
     program_->moves.push_back(out);
   }
-  return ok_status();
 }
 
 void Executor::add_event(std::string what) {

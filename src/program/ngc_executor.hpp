@@ -68,6 +68,7 @@ class Executor final : public PredefinedParameters, private CycleSink {
   CanonicalMove new_move(MoveKind kind) const;
   Status emit(const CanonicalMove& m);
   Status flush_compensation();
+  void append_compensated();
   void add_event(std::string what);
   void refresh_frame();
   void reframe();
