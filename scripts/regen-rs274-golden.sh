@@ -8,6 +8,7 @@
 #   -g          batch mode (run the whole file)
 #   -b          block delete ON (rs274's default is OFF; pkm's InterpretOptions::block_delete is true)
 #   -t tools.tbl  the suite's tool table (rs274 reads it in inches; the test gives pkm the same table in mm)
+#   -v NN_name.var  the program's parameter file, when it has one (inches too; the test converts it likewise)
 # Fails if rs274 is missing or if any program does not run to its end (an rs274 error).
 # With --check, writes nothing: runs rs274 into a temporary directory and fails if any output differs from the
 # committed golden file (CI runs this, so the golden files are always LinuxCNC's current answers).
@@ -32,7 +33,13 @@ status=0
 count=0
 for program in [0-9][0-9]_*.ngc; do
   golden="$out_dir/${program%.ngc}.rs274"
-  "$RS274" -g -b -t tools.tbl "$program" < /dev/null > "$golden" 2>&1 || true
+  # A program with a parameter file NN_name.var gets a copy of it (rs274 writes its parameters back at the end).
+  var_options=()
+  if [ -f "${program%.ngc}.var" ]; then
+    cp "${program%.ngc}.var" "$rs274_home/params.var"
+    var_options=(-v "$rs274_home/params.var")
+  fi
+  "$RS274" -g -b -t tools.tbl "${var_options[@]}" "$program" < /dev/null > "$golden" 2>&1 || true
   if ! grep -qE 'PROGRAM_END\(\)|FINISH\(\)' "$golden"; then
     echo "regen-rs274-golden: $program did not run to its end under rs274:" >&2
     tail -n 3 "$golden" >&2

@@ -187,7 +187,7 @@ void Executor::add_event(std::string what) {
 // The frame follows the parameters: after G10, G92 and G54… the executor re-reads them. An unchanged frame
 // keeps its index, so a program without offsets stays in frame 0 (no transform at all).
 void Executor::refresh_frame() {
-  const WorkFrame frame = read_work_frame(parameters_, state_.mm_per_unit());
+  const WorkFrame frame = read_work_frame(parameters_);
   auto same = [](const WorkFrame& a, const WorkFrame& b) {
     return a.system == b.system && a.g5x_mm == b.g5x_mm && a.g5x_abc_deg == b.g5x_abc_deg &&
            a.xy_rotation_deg == b.xy_rotation_deg && a.g92_mm == b.g92_mm && a.g92_abc_deg == b.g92_abc_deg;

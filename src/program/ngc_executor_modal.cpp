@@ -16,7 +16,6 @@ Status Executor::read_feed_and_speed(const gcode::Block& b) {
   // Units first: F and every length in this block are read in the units the block ends up in.
   if (const gcode::Code& units = b.g[gcode::g_units]; units.given()) {
     const bool inch = units.is(200);
-    if (inch != state_.inch) rescale_length_parameters(parameters_, inch ? 1.0 / 25.4 : 25.4);
     state_.inch = inch;
     compensation_.set_inch(inch);
   }
@@ -74,7 +73,7 @@ Status Executor::tools_and_spindle(const gcode::Block& b) {
     state_.spindle_tool_length_mm = entry ? entry->length_mm : 0.0;
     state_.spindle_tool_diameter_mm = entry ? entry->diameter_mm : 0.0;
     parameters_.set(parameter::tool_number, state_.current_tool);
-    parameters_.set(parameter::tool_diameter, state_.spindle_tool_diameter_mm / state_.mm_per_unit());
+    parameters_.set(parameter::tool_diameter, state_.spindle_tool_diameter_mm);
   }
   const gcode::Code& spindle = b.m[gcode::m_spindle];
   if (spindle.is(30) || spindle.is(40)) {
@@ -136,8 +135,6 @@ void Executor::save_or_restore_state(const gcode::Block& b) {
     restored.frame = state_.frame;
     restored.frame_index = state_.frame_index;
     restored.cutter_code = state_.cutter_code;
-    if (restored.inch != state_.inch)
-      rescale_length_parameters(parameters_, restored.inch ? 1.0 / 25.4 : 25.4);
     state_ = restored;
   }
   add_event(gcode::code_name('M', code.number));
@@ -233,7 +230,7 @@ Status Executor::set_tool_length(const gcode::Block& b) {
   compensation_.set_position(state_.position_mm);
   state_.tool_length_mm = length_mm;
   state_.tool_length_code = code.number;
-  parameters_.set(parameter::tool_offset + 2, length_mm / state_.mm_per_unit());
+  parameters_.set(parameter::tool_offset + 2, length_mm);
   return ok_status();
 }
 

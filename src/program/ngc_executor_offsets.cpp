@@ -73,7 +73,7 @@ Status Executor::set_g10_tool(const gcode::Block& b, int l) {
       if (l == 10) {
         entry.length_mm = state_.tool_length_mm + state_.position_mm.z() - z_mm;
       } else {
-        entry.length_mm = machine_z_mm - parameters_.get(parameter::system_base(9) + 2) * unit - z_mm;
+        entry.length_mm = machine_z_mm - parameters_.get(parameter::system_base(9) + 2) - z_mm;
       }
     }
   }
@@ -94,18 +94,18 @@ Status Executor::set_g10_offsets(const gcode::Block& b, int l) {
   const double unit = state_.mm_per_unit();
   if (l == 2) {
     for (int i = 0; i < 6; ++i)
-      if (b[kAxes[i]].given()) parameters_.set(base + i, b[kAxes[i]].value);
+      if (b[kAxes[i]].given()) parameters_.set(base + i, b[kAxes[i]].value * (i < 3 ? unit : 1.0));
     if (b['R'].given()) parameters_.set(base + 9, b['R'].value);
   } else {
     // L20: the offsets that make the current point have the given coordinates in system P.
     if (b['R'].given()) parameters_.set(base + 9, b['R'].value);
     const Eigen::Vector3d work_mm = to_work_mm(state_.frame, state_.position_mm);
     const Eigen::Vector3d work_abc = state_.abc_deg + state_.frame.g5x_abc_deg + state_.frame.g92_abc_deg;
-    WorkFrame target = read_work_frame(parameters_, unit);
+    WorkFrame target = read_work_frame(parameters_);
     const int active = static_cast<int>(parameters_.get(parameter::active_system) + 0.5);
     if (system != active) {
       // read_work_frame reads the active system; the target's own offsets and rotation are wanted here.
-      for (int i = 0; i < 3; ++i) target.g5x_mm[i] = parameters_.get(base + i) * unit;
+      for (int i = 0; i < 3; ++i) target.g5x_mm[i] = parameters_.get(base + i);
       target.xy_rotation_deg = parameters_.get(base + 9);
     }
     Eigen::Vector3d wanted = to_program_mm(target, work_mm);
@@ -114,7 +114,7 @@ Status Executor::set_g10_offsets(const gcode::Block& b, int l) {
     target.g5x_mm.setZero();
     const Eigen::Vector3d g5x_mm = work_mm - to_work_mm(target, wanted);
     for (int i = 0; i < 3; ++i)
-      if (b[kAxes[i]].given()) parameters_.set(base + i, g5x_mm[i] / unit);
+      if (b[kAxes[i]].given()) parameters_.set(base + i, g5x_mm[i]);
     for (int i = 0; i < 3; ++i)
       if (b[kAxes[i + 3]].given())
         parameters_.set(base + 3 + i, work_abc[i] - target.g92_abc_deg[i] - b[kAxes[i + 3]].value);
@@ -133,11 +133,13 @@ Status Executor::set_axis_offsets(const gcode::Block& b, int code) {
                              fmt::format("{} needs at least one axis word", gcode::code_name('G', code)));
     const bool applied = parameters_.get(parameter::g92_applied) != 0.0;
     for (int i = 0; i < 6; ++i) {
-      const double old_units = applied ? parameters_.get(parameter::g92 + i) : 0.0;
-      double value = old_units;
+      // mm for X Y Z, degrees for A B C.
+      const double old_value = applied ? parameters_.get(parameter::g92 + i) : 0.0;
+      double value = old_value;
       if (b[kAxes[i]].given()) {
-        const double current = i < 3 ? state_.position_mm[i] / unit : state_.abc_deg[i - 3];
-        value = code == 520 ? b[kAxes[i]].value : current + old_units - b[kAxes[i]].value;
+        const double word = b[kAxes[i]].value * (i < 3 ? unit : 1.0);
+        const double current = i < 3 ? state_.position_mm[i] : state_.abc_deg[i - 3];
+        value = code == 520 ? word : current + old_value - word;
       }
       parameters_.set(parameter::g92 + i, value);
     }
@@ -168,10 +170,9 @@ Status Executor::return_home(const gcode::Block& b, int code) {
   state_.position_mm = through;
   state_.abc_deg = abc;
   const bool all = !any_axis(b);
-  const double unit = state_.mm_per_unit();
   Eigen::Vector3d machine = machine_mm(state_.position_mm);
   for (int i = 0; i < 3; ++i)
-    if (all || b[kAxes[i]].given()) machine[i] = parameters_.get(stored + i) * unit;
+    if (all || b[kAxes[i]].given()) machine[i] = parameters_.get(stored + i);
   Eigen::Vector3d home = program_from_machine_mm(machine);
   for (int i = 0; i < 3; ++i)
     if (!(all || b[kAxes[i]].given())) home[i] = state_.position_mm[i];
@@ -191,7 +192,7 @@ void Executor::store_home(int code) {
   const int stored = code == 281 ? parameter::g28 : parameter::g30;
   const Eigen::Vector3d machine = machine_mm(state_.position_mm);
   for (int i = 0; i < 3; ++i) {
-    parameters_.set(stored + i, machine[i] / state_.mm_per_unit());
+    parameters_.set(stored + i, machine[i]);
     parameters_.set(stored + 3 + i,
                     state_.abc_deg[i] + state_.frame.g5x_abc_deg[i] + state_.frame.g92_abc_deg[i]);
   }

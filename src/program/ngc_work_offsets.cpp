@@ -14,26 +14,26 @@ Eigen::Matrix3d rotation_z(double angle_deg) {
   return Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
-void read_six(const ParameterStore& parameters, int first, double mm_per_unit, Eigen::Vector3d& xyz_mm,
+void read_six(const ParameterStore& parameters, int first, Eigen::Vector3d& xyz_mm,
               Eigen::Vector3d& abc_deg) {
   for (int i = 0; i < 3; ++i) {
-    xyz_mm[i] = parameters.get(first + i) * mm_per_unit;
+    xyz_mm[i] = parameters.get(first + i);
     abc_deg[i] = parameters.get(first + 3 + i);
   }
 }
 
 }  // namespace
 
-WorkFrame read_work_frame(const ParameterStore& parameters, double mm_per_unit) {
+WorkFrame read_work_frame(const ParameterStore& parameters) {
   WorkFrame frame;
   int system = static_cast<int>(parameters.get(parameter::active_system) + 0.5);
   if (system < 1 || system > 9) system = 1;
   frame.system = system;
-  read_six(parameters, parameter::system_base(system), mm_per_unit, frame.g5x_mm, frame.g5x_abc_deg);
+  read_six(parameters, parameter::system_base(system), frame.g5x_mm, frame.g5x_abc_deg);
   frame.xy_rotation_deg = parameters.get(parameter::system_base(system) + 9);
   // LinuxCNC keeps the G92 parameters when G92.2 suspends the offset: only an applied G92 counts.
   if (parameters.get(parameter::g92_applied) != 0.0)
-    read_six(parameters, parameter::g92, mm_per_unit, frame.g92_mm, frame.g92_abc_deg);
+    read_six(parameters, parameter::g92, frame.g92_mm, frame.g92_abc_deg);
   return frame;
 }
 
@@ -55,17 +55,6 @@ void move_to_work(const WorkFrame& frame, CanonicalMove& move) {
     move.tool_axis = rotation_z(frame.xy_rotation_deg) * move.tool_axis;
   }
   move.end_abc_deg += frame.g5x_abc_deg + frame.g92_abc_deg;
-}
-
-void rescale_length_parameters(ParameterStore& parameters, double factor) {
-  auto scale_xyz = [&](int first) {
-    for (int i = 0; i < 3; ++i) parameters.set(first + i, parameters.get(first + i) * factor);
-  };
-  scale_xyz(parameter::g28);
-  scale_xyz(parameter::g30);
-  scale_xyz(parameter::g92);
-  scale_xyz(parameter::probe);
-  for (int system = 1; system <= 9; ++system) scale_xyz(parameter::system_base(system));
 }
 
 }  // namespace pkm::program::ngc

@@ -248,6 +248,30 @@ void compare_move(const CanonicalMove& ours, const Eigen::Vector3d& start, const
   compare_feed(ours, start, start_abc, theirs);
 }
 
+// rs274 standalone reads parameter files in inches too (its machine units); pkm's are in mm. The lengths
+// (the X Y Z of G28, G30, G92 and the nine work offsets) are scaled, the angles and rotations kept.
+bool gcode_conformance_is_length_parameter(int number) {
+  const auto xyz_from = [number](int first) { return number >= first && number < first + 3; };
+  if (xyz_from(5161) || xyz_from(5181) || xyz_from(5211)) return true;
+  for (int system = 1; system <= 9; ++system)
+    if (xyz_from(5201 + 20 * system)) return true;
+  return false;
+}
+
+std::string gcode_conformance_var_in_mm(const fs::path& var, const std::string& name) {
+  std::istringstream in(read_all(var));
+  const fs::path out_path = fs::temp_directory_path() / ("pkm_gcode_conformance_" + name + ".var");
+  const fs::path staged = out_path.string() + "." + std::to_string(getpid());
+  std::ofstream out(staged);
+  int number = 0;
+  double value = 0.0;
+  while (in >> number >> value)
+    out << number << '\t' << (gcode_conformance_is_length_parameter(number) ? value * 25.4 : value) << '\n';
+  out.close();
+  fs::rename(staged, out_path);
+  return out_path.string();
+}
+
 // A move with its end, centre and arc axis in the program's own coordinates, as rs274 prints them.
 CanonicalMove gcode_conformance_in_program_frame(const CanonicalProgram& program, const CanonicalMove& move) {
   CanonicalMove out = move;
@@ -274,6 +298,8 @@ TEST_P(GcodeConformance, MatchesRs274) {
 
   pkm::program::InterpretOptions options;
   options.tool_table_path = tool_table_in_mm();
+  if (const fs::path var = gcode_conformance_conformance_dir() / (name + ".var"); fs::exists(var))
+    options.parameter_file = gcode_conformance_var_in_mm(var, name);
   options.block_delete = true;  // the golden files were made with rs274 -b
   const auto result = pkm::program::interpret_gcode(read_all(program_path), program_path.string(), options);
   ASSERT_TRUE(result.ok()) << result.error().message;

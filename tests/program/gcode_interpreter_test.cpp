@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -639,3 +640,46 @@ TEST(GcodeLoadPartProgram, ClExtensionsGoToTheClReader) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------------------
+// Parameter files (LinuxCNC's .var): offsets read at the start, written back at the end when asked.
+
+TEST(GcodeParameterFile, OffsetsComeFromTheFileAndGoBackToIt) {
+  const std::string var =
+      gcode_interpreter_write_temp("offsets.var", "5161\t1.0\n5220\t1\n5221\t10.0\n5222\t20.0\n5223\t-5.0\n");
+  InterpretOptions options;
+  options.parameter_file = var;
+  options.write_parameter_file = true;
+  // The tool starts at the work frame's zero, which the program sees at (-10, -20, 5) through G54.
+  const auto program =
+      interpret_gcode("G21 G90\nG0 X1 Y2 Z3\nG10 L2 P1 X4\nG1 X0 F100\nG0 Y0\nG28.1\nM2\n", "t.ngc", options);
+  ASSERT_TRUE(program.ok()) << program.error().message;
+  ASSERT_EQ(program->moves.size(), 3u);
+  EXPECT_TRUE(program->moves[0].end_mm.isApprox(Eigen::Vector3d(11.0, 22.0, -2.0)))
+      << program->moves[0].end_mm;
+  // G10 L2 moves G54 itself: the tool stays, its program X changes, and X0 is now at work X 4.
+  EXPECT_NEAR(program->moves[1].end_mm.x(), 4.0, 1e-12);
+  const auto& frame = program->frames.at(static_cast<std::size_t>(program->moves[1].frame));
+  EXPECT_NEAR(frame.g5x_mm.x(), 4.0, 1e-12);
+  EXPECT_NEAR(pkm::program::program_coordinates(*program, program->moves[1]).end_mm.x(), 0.0, 1e-12);
+  // The file now holds the new offset and the G28 position stored by G28.1 (machine coordinates, mm).
+  std::ifstream in(var);
+  std::map<int, double> written;
+  int number = 0;
+  double value = 0.0;
+  while (in >> number >> value) written[number] = value;
+  EXPECT_NEAR(written.at(5221), 4.0, 1e-9);
+  EXPECT_NEAR(written.at(5222), 20.0, 1e-9);
+  EXPECT_NEAR(written.at(5161), 4.0, 1e-9);
+  EXPECT_NEAR(written.at(5162), 20.0, 1e-9);
+}
+
+TEST(GcodeParameterFile, OffsetsStayInMillimetresInAnInchProgram) {
+  // As LinuxCNC: parameters hold the machine's units (mm), whatever G20 says; #5420 is in program units.
+  const auto program = interpret_gcode(
+      "G20 G90\nG10 L2 P1 X1\nG54 G0 X0\n#1 = #5221\n#2 = #5420\nG0 Y[#1 / 100] Z#2\nM2\n", "t.ngc");
+  ASSERT_TRUE(program.ok()) << program.error().message;
+  const auto numbers = pkm::program::program_coordinates(*program, program->moves.back());
+  EXPECT_NEAR(numbers.end_mm.y(), 25.4 / 100.0 * 25.4, 1e-9);  // #5221 = 25.4 (mm), read as inches
+  EXPECT_NEAR(numbers.end_mm.z(), 0.0, 1e-12);                 // #5420 = X in program units = 0
+}
