@@ -1,6 +1,9 @@
 #include "pipeline/plan_program.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <map>
 
 #include "io/output_set.hpp"
 #include "pipeline/load_program.hpp"
@@ -9,11 +12,36 @@
 
 namespace pkm::pipeline {
 
+nlohmann::json subroutine_lines(const program::CanonicalProgram& program) {
+  // The path and the ticks keep only the main program's line, so the report could show a subroutine call's
+  // text but not the lines that moved the tool; this keeps where they were written, a few per calling line.
+  constexpr std::size_t kMaxPlaces = 8;
+  std::map<int, std::vector<std::string>> places;
+  std::vector<std::string> names;
+  for (const std::string& file : program.files)
+    names.push_back(std::filesystem::path(file).filename().string());
+  for (const program::CanonicalMove& move : program.moves) {
+    if (move.source_file == 0 && move.source_line == move.line) continue;
+    if (move.line <= 0 || move.source_line <= 0) continue;
+    std::vector<std::string>& here = places[move.line];
+    if (here.size() >= kMaxPlaces) continue;
+    const std::size_t file = static_cast<std::size_t>(move.source_file);
+    const std::string name = file < names.size() ? names[file] : std::string("?");
+    std::string place = name + ":" + std::to_string(move.source_line);
+    if (std::find(here.begin(), here.end(), place) == here.end()) here.push_back(std::move(place));
+  }
+  nlohmann::json out = nlohmann::json::object();
+  for (auto& [line, list] : places) out[std::to_string(line)] = std::move(list);
+  return out;
+}
+
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
   auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
 
   PlanProgramResult result;
+  // Before the law rewrites the program: the places of its moves are the ones the user wrote.
+  nlohmann::json called = subroutine_lines(*program);
   if (job.law) {
     auto optimized = redundancy::optimize_program(*program, machine, *job.law);
     if (!optimized) return optimized.error();
@@ -34,6 +62,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   output.stiffness = job.stiffness;
   output.dynamics_load = &job.dynamics_load;
   output.program_notes = program->notes;
+  output.subroutine_lines = called;
   if (job.progress && plan->duration_s * job.plan.rate_hz > 200000) output.progress = job.progress;
   // The CSVs, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs{"plan"};
@@ -44,6 +73,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   if (Status committed = outputs.commit(); !committed) return committed.error();
   result.summary = planning::summary_json(*plan, machine, *run);
   for (const std::string& note : program->notes) result.summary["warnings"].push_back(note);
+  if (!called.empty()) result.summary["subroutine_lines"] = std::move(called);
   result.program_notes = program->notes;
   result.run = *run;
   result.plan = std::move(*plan);

@@ -43,6 +43,11 @@ struct PlanProgramResult {
   std::vector<std::string> program_notes;  ///< how the interpreter read the program (no tool table …)
 };
 
+/// Where the moves of each main-program line were written when that is elsewhere (a subroutine call): per
+/// line ("12"), up to 8 distinct "file:line" in order of first appearance, the file by its name without the
+/// folder. Empty when every move was written on its own line. summary.json's "subroutine_lines".
+nlohmann::json subroutine_lines(const program::CanonicalProgram& program);
+
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job);
 
 }  // namespace pkm::pipeline

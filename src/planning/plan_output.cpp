@@ -247,6 +247,7 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   }
   nlohmann::json summary = summary_json(plan, machine, *run);
   for (const std::string& note : options.program_notes) summary["warnings"].push_back(note);
+  if (!options.subroutine_lines.empty()) summary["subroutine_lines"] = options.subroutine_lines;
   fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", json_text(summary));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
     if (auto committed = f->commit(); !committed) return committed.error();

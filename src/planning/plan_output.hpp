@@ -41,6 +41,9 @@ struct OutputOptions {
   /// What the interpreter noted about how it read the program (CanonicalProgram::notes): added to the
   /// summary's warnings.
   std::vector<std::string> program_notes;
+  /// Where the moves of a calling line were written (pipeline::subroutine_lines): the summary's
+  /// "subroutine_lines" when not empty.
+  nlohmann::json subroutine_lines = nlohmann::json::object();
 };
 
 /// Streams the plan at the servo rate into the three files, staged in `outputs` (which must have its

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 
@@ -112,6 +113,28 @@ nlohmann::json machine_json(const Machine& machine) {
           {"limits", limit_json}};
 }
 
+namespace {
+
+// A calling line's text alone does not say which lines moved the tool: the plan's summary keeps where they
+// were written ("subroutine_lines"); the report carries it for the lines it shows.
+nlohmann::json subroutine_places(const nlohmann::json& summary, const std::set<int>& lines) {
+  nlohmann::json called = nlohmann::json::object();
+  if (!summary.is_object() || !summary.contains("subroutine_lines") ||
+      !summary["subroutine_lines"].is_object())
+    return called;
+  for (const auto& item : summary["subroutine_lines"].items()) {
+    const std::string& line = item.key();
+    const nlohmann::json& places = item.value();
+    int number = 0;
+    const auto [end, error] = std::from_chars(line.data(), line.data() + line.size(), number);
+    if (error != std::errc{} || end != line.data() + line.size() || !places.is_array()) continue;
+    if (lines.count(number) > 0) called[line] = places;
+  }
+  return called;
+}
+
+}  // namespace
+
 nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneBuilder& scene) {
   std::set<int> lines = scene.lines();
   for (const auto& row : parts.table)
@@ -120,6 +143,8 @@ nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneB
     if (entry.contains("line")) lines.insert(entry["line"].get<int>());
   nlohmann::json program = {{"file", parts.program_file},
                             {"lines", program_lines(parts.program_file, lines)}};
+  nlohmann::json called = subroutine_places(parts.summary, lines);
+  if (!called.empty()) program["subroutine_lines"] = std::move(called);
   return {{"format", "pkm-report-1"},
           {"kind", parts.kind},
           {"title", parts.title},

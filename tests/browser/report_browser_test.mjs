@@ -5,6 +5,8 @@
 //   - scrubbing (the range input, as a user drags it) moves the animation, and #current-line shows the program
 //     line that the run's own file (path.csv / contour.csv) gives for that moment, with its source text;
 //   - play advances the animation and pause stops it;
+//   - a program that calls a subroutine has, for the calling line, where the moves it executes were written
+//     (summary.json's subroutine_lines): in #current-line and beside the line's links;
 //   - a plan with --dynamics --elastic has its force, power, energy and dynamic-error plots, and the
 //     #strut-colour switch colours the struts by drive force (redder the harder a drive pushes, bluer the harder
 //     it pulls), following the animation; reports without drive forces have no such switch;
@@ -65,6 +67,9 @@ mkdirSync(args.out, { recursive: true });
 const cases = [
   { name: 'plan-pocket', command: 'plan', program: 'examples/programs/pocket.ngc', machine: 'examples/machines/hexapod_ch5.yaml',
     rows: 'path.csv', extra: [] },
+  // A subroutine called in a loop: the calling line names where the drilling moves were written.
+  { name: 'plan-bolt-circle', command: 'plan', program: 'examples/programs/bolt_circle.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], subroutines: true },
   { name: 'interpolate-ch5-line', command: 'interpolate', program: 'examples/programs/ch5_line.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier-corrected'] },
   { name: 'plan-planar-circle', command: 'plan', program: 'examples/programs/planar_circle.ngc',
@@ -276,6 +281,27 @@ async function checkCalibrationPlots(page, data, dir, fail) {
   if (data.kind !== 'calibration' || data.charts.length) fail(`kind ${data.kind}, ${data.charts.length} time plots`);
 }
 
+/**
+ * The calling lines of a program with subroutines: the report names where their moves were written, and
+ * #current-line shows it on a frame of such a line ("line 19: o<drill_hole> call … → bolt_circle.ngc:11").
+ */
+async function checkSubroutineLines(page, data, dir, fail) {
+  const summary = JSON.parse(readFileSync(join(dir, 'summary.json'), 'utf8'));
+  const called = Object.entries(data.program.subroutine_lines ?? {});
+  if (!called.length) return fail(`no subroutine_lines in the report (summary: ${JSON.stringify(summary.subroutine_lines)})`);
+  const frameLines = data.scene.frames.line;
+  const entry = called.find(([line]) => frameLines.includes(Number(line)));
+  if (!entry) return fail(`no frame on a calling line (${called.map(([l]) => l).join(', ')})`);
+  const [line, places] = entry;
+  if (JSON.stringify(summary.subroutine_lines?.[line]) !== JSON.stringify(places))
+    fail(`line ${line}: the report says ${JSON.stringify(places)}, summary.json ${JSON.stringify(summary.subroutine_lines?.[line])}`);
+  const text = await page.evaluate((i) => {
+    window.pkmReport.setFrame(i);
+    return document.getElementById('current-line').textContent;
+  }, frameLines.indexOf(Number(line)));
+  if (!text.startsWith(`line ${line}: `) || !text.includes(`\u2192 ${places[0]}`)) fail(`#current-line "${text}" does not name ${places[0]}`);
+}
+
 /** The dynamics plots are there and the struts can be coloured by drive force, in step with the animation. */
 async function checkForceColouring(page, data, fail) {
   const ids = data.charts.map((ch) => ch.id);
@@ -423,6 +449,9 @@ try {
     if (c.servo) await checkServoPlots(page, data, dir, fail);
     else if (data.servo || (await page.evaluate(() => window.pkmReport.servoPlots() !== null || document.getElementById('servo-plots') !== null)))
       fail('a report without a servo run has servo plots');
+
+    if (c.subroutines) await checkSubroutineLines(page, data, dir, fail);
+    else if (data.program.subroutine_lines) fail('a program without subroutine calls has subroutine_lines');
 
     if (c.dynamics) await checkForceColouring(page, data, fail);
     else if (await page.evaluate(() => document.getElementById('strut-colour') !== null || window.pkmReport.strutColoring() !== null))

@@ -126,7 +126,7 @@ export function normalize(raw) {
       actuator_names: arr(machine.actuator_names),
       limits: obj(machine.limits),
     },
-    program: { file: program.file ?? '', lines: obj(program.lines) },
+    program: { file: program.file ?? '', lines: obj(program.lines), subroutine_lines: obj(program.subroutine_lines) },
     table: arr(d.table).map(obj),
     limits_reached: arr(d.limits_reached).map(obj),
     summary: d.summary,
@@ -164,4 +164,18 @@ export function normalize(raw) {
 export function lineText(data, line) {
   const t = data.program.lines[String(line)];
   return t == null ? '' : String(t).trim();
+}
+
+/** Where the moves a program line executes were written, when elsewhere (a subroutine call): "file:line"s. */
+export function lineCalls(data, line) {
+  return arr(data.program.subroutine_lines[String(line)]).map(String);
+}
+
+/** "line 12: o<drill_hole> call [0] → drill_hole.ngc:2, drill_hole.ngc:3", as much as is known. */
+export function lineDescription(data, line) {
+  const src = lineText(data, line);
+  const calls = lineCalls(data, line);
+  let text = src ? `line ${line}: ${src}` : `line ${line}`;
+  if (calls.length) text += ` \u2192 ${calls.join(', ')}`;
+  return text;
 }

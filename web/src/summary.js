@@ -2,6 +2,7 @@
 // summary JSON (collapsed).
 import { h } from './dom.js';
 import { fmtTime } from './format.js';
+import { lineCalls, lineDescription } from './data.js';
 
 export function renderHeader(data) {
   const m = data.machine;
@@ -51,6 +52,22 @@ export function lineLink(line, frameOf, onLine) {
   );
 }
 
+/**
+ * A program line's link, followed by where the moves it executes were written when that is elsewhere (a
+ * subroutine call): the calling line alone does not say which lines moved the tool.
+ */
+function lineRef(data, line, frameOf, onLine) {
+  const link = lineLink(line, frameOf, onLine);
+  const calls = lineCalls(data, line);
+  if (!calls.length) return link;
+  return h(
+    'span',
+    { class: 'line-with-calls', title: lineDescription(data, line) },
+    link,
+    h('span', { class: 'line-calls' }, `\u2192 ${calls.join(', ')}`),
+  );
+}
+
 export function renderSummary(data, { frameOf, onLine, onTime }) {
   const rows = data.table.map((r) =>
     h(
@@ -58,7 +75,7 @@ export function renderSummary(data, { frameOf, onLine, onTime }) {
       null,
       h('th', { scope: 'row' }, r.label ?? ''),
       h('td', { class: 'val' }, breakable(String(r.value ?? ''))),
-      h('td', { class: 'ref' }, Number(r.line) > 0 ? lineLink(Number(r.line), frameOf, onLine) : null),
+      h('td', { class: 'ref' }, Number(r.line) > 0 ? lineRef(data, Number(r.line), frameOf, onLine) : null),
     ),
   );
   const table = h('table', { id: 'summary-table', class: 'summary-table' }, h('tbody', null, rows));
@@ -83,7 +100,7 @@ export function renderSummary(data, { frameOf, onLine, onTime }) {
               h(
                 'span',
                 { class: 'where' },
-                Number(l.line) > 0 ? lineLink(Number(l.line), frameOf, onLine) : null,
+                Number(l.line) > 0 ? lineRef(data, Number(l.line), frameOf, onLine) : null,
                 Number.isFinite(t)
                   ? h('a', { href: '#', class: 'time-ref', title: 'show this moment', onclick: (e) => { e.preventDefault(); onTime(t); } }, `${fmtTime(t)} s`)
                   : null,

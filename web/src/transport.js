@@ -2,7 +2,7 @@
 // program line. Keyboard: space plays/pauses, arrows step, Home/End jump.
 import { h, icon } from './dom.js';
 import { fmtTime } from './format.js';
-import { lineText } from './data.js';
+import { lineDescription } from './data.js';
 
 const PLAY = 'M8 5v14l11-7z';
 const PAUSE = 'M6 5h4v14H6zm8 0h4v14h-4z';
@@ -47,8 +47,7 @@ export function createTransport(player, data, extra = []) {
     if (l !== shownLine) {
       shownLine = l;
       if (l > 0) {
-        const src = lineText(data, l);
-        line.textContent = src ? `line ${l}: ${src}` : `line ${l}`;
+        line.textContent = lineDescription(data, l);
       } else {
         line.textContent = '—';
       }
