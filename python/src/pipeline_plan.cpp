@@ -14,6 +14,7 @@
 #include "dynamics/run_elastic.hpp"
 #include "json_to_python.hpp"
 #include "pipeline/load_program.hpp"
+#include "pipeline/plan_program.hpp"
 #include "pipeline_bindings.hpp"
 #include "pipeline_law_options.hpp"
 #include "pipeline_support.hpp"
@@ -149,6 +150,9 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
   auto program = pipeline::load_program_for(machine, a.program_path, a.program_options);
   if (!program) return program.error();
   PlanRun r;
+  // As pkm plan's summary: the interpreter's notes and where subroutine calls' moves were written.
+  const std::vector<std::string> notes = program->notes;
+  const nlohmann::json calls = pipeline::subroutine_lines(*program);
   if (law) {
     auto optimized = redundancy::optimize_program(*program, machine, *law);
     if (!optimized) return optimized.error();
@@ -162,6 +166,8 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
   r.plan = std::move(*plan);
   if (Status streamed = stream_ticks(machine, a, *load, r); !streamed) return streamed.error();
   r.summary = planning::summary_json(r.plan, machine, r.run);
+  for (const std::string& note : notes) r.summary["warnings"].push_back(note);
+  if (!calls.empty()) r.summary["subroutine_lines"] = calls;
   if (!a.out_dir.empty()) {
     // The CLI's files as well: the plan streamed once more into the output set.
     planning::OutputOptions output;
@@ -170,6 +176,8 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
     output.dynamics = a.dynamics;
     output.elastic = a.elastic;
     output.dynamics_load = &*load;
+    output.program_notes = notes;
+    output.subroutine_lines = calls;
     auto written = planning::write_plan_outputs(r.plan, machine, a.out_dir, output);
     if (!written) return written.error();
   }
