@@ -419,7 +419,8 @@ TEST(GcodeInterpreterErrors, BlockNumberMustOpenTheBlock) {
 TEST(GcodeInterpreterErrors, UnknownAndUnsupportedCodes) {
   expect_error_at(gcode_interpreter_error_of("G21\nG12 X1\n"), 2, 1, "unknown G-code G12");
   expect_error_at(gcode_interpreter_error_of("G5.3\n"), 1, 1, "unsupported G-code G5.3 (spline");
-  expect_error_at(gcode_interpreter_error_of("G21 G7\n"), 1, 5, "unsupported G-code G7 (lathe diameter mode)");
+  expect_error_at(gcode_interpreter_error_of("G21 G7\n"), 1, 5,
+                  "unsupported G-code G7 (lathe diameter mode)");
   expect_error_at(gcode_interpreter_error_of("G76 X1\n"), 1, 1, "lathe tapping or threading cycle");
   expect_error_at(gcode_interpreter_error_of("G17.1\n"), 1, 1, "UVW plane");
   expect_error_at(gcode_interpreter_error_of("M250\n"), 1, 1, "unknown M-code M250");
@@ -626,6 +627,17 @@ TEST(GcodeLoadPartProgram, ClExtensionsGoToTheClReader) {
   if (!result.ok()) {
     EXPECT_EQ(result.error().message.find("bad number 'X1.2.3'"), std::string::npos);
   }
+}
+
+// The moves of canned cycles count against max_blocks: an L or a tiny Q makes one block expand to millions
+// of moves, which the count of blocks alone would not bound (found by fuzz/fuzz_gcode).
+TEST(GcodeInterpreterErrors, CycleMovesCountAgainstMaxBlocks) {
+  InterpretOptions options;
+  options.max_blocks = 1000;
+  const std::string block = "G81 X1 R2 Z-2 L50 F100\n";  // 50 holes of 4 moves
+  EXPECT_EQ(gcode_interpreter_run("G0 Z10\n" + block + block, options).moves.size(), 401u);
+  expect_error_at(gcode_interpreter_error_of("G0 Z10\n" + block + block + block, options), 4, 15,
+                  "50 holes in one cycle block: more than the 600 moves left to it");
 }
 
 }  // namespace
