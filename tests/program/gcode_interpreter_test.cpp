@@ -640,4 +640,12 @@ TEST(GcodeInterpreterErrors, CycleMovesCountAgainstMaxBlocks) {
                   "50 holes in one cycle block: more than the 600 moves left to it");
 }
 
+// #5220 may hold anything a program writes there; one that names no coordinate system is G54, for G10 P0
+// as for the frame (converting 1e30 to int was undefined: found by fuzz/fuzz_gcode's UBSan).
+TEST(GcodeInterpreter, AnActiveSystemParameterOutOfRangeIsG54) {
+  const CanonicalProgram p = gcode_interpreter_run("#5220=[10**30]\nG10 L2 P0 X5\nG0 X1\n");
+  ASSERT_EQ(p.moves.size(), 1u);
+  expect_vec(p.moves[0].end_mm, Eigen::Vector3d(6.0, 0.0, 0.0));
+}
+
 }  // namespace
