@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <unordered_map>
 
 #include "program/ngc_line_parser.hpp"
@@ -68,7 +69,11 @@ std::string reader_written_label(std::string_view scoped) {
 }
 
 int reader_round_to_int(double x) {
-  return static_cast<int>(std::floor(x + 0.5));
+  const double rounded = std::floor(x + 0.5);
+  // LinuxCNC's (int) of a count beyond int's range gives INT_MIN on x86 (so `repeat [1e10]` runs its body
+  // no time); in C++ that conversion is undefined, so the x86 answer is given here.
+  if (!(std::fabs(rounded) < 2147483648.0)) return std::numeric_limits<int>::min();
+  return static_cast<int>(rounded);
 }
 
 }  // namespace reader_detail

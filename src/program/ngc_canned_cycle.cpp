@@ -40,6 +40,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <string>
@@ -54,6 +55,10 @@ using gcode::LineRef;
 constexpr double kMmPerInch = 25.4;
 constexpr double kPeckClearanceInch = 0.010;  // LinuxCNC's G73/G83 back-off, in either unit system
 constexpr double kPeckClearanceMm = 0.254;
+// pkm's bound on the moves one cycle block expands to (L holes times the pecks of each): LinuxCNC has none,
+// so a huge L or a tiny Q made one block run for hours (or, with a Q too small to change the depth, for
+// ever); a real program stays far below it.
+constexpr double kMaxCycleMoves = 1'000'000;
 
 /// Indices (0 = X, 1 = Y, 2 = Z) of the plane's first and second axes and of its normal.
 struct Axes {
@@ -131,8 +136,17 @@ void tap_feed(Emitter& out, Plane plane, double a, double b, double c) {
   }
 }
 
+/// Pecks of one hole before the last feed to the bottom (LinuxCNC's loop counts them the same way).
+double peck_count(const Hole& h) {
+  return std::max(0.0, std::ceil((h.r - h.bottom) / h.peck) - 1.0);
+}
+
 void drill_pecks(Emitter& out, const Hole& h, double a, double b, bool out_to_r) {
-  for (double depth = h.r - h.peck; depth > h.bottom; depth -= h.peck) {
+  // The count bounds the loop too: far from the origin a small Q can leave `depth - peck` equal to `depth`.
+  // One more than counted, so that the rounding of the repeated subtraction goes as in LinuxCNC.
+  const double pecks = peck_count(h) + 1.0;
+  double n = 0.0;
+  for (double depth = h.r - h.peck; depth > h.bottom && n < pecks; depth -= h.peck, n += 1.0) {
     out.feed(a, b, depth);
     if (out_to_r) out.rapid(a, b, h.r);  // G83: clear the chips out of the hole
     out.rapid(a, b, depth + h.peck_clearance);
@@ -323,6 +337,10 @@ Status check_required(const Block& block, const LineRef& where, const CycleConte
   if (!r_word.given() && !same_cycle)
     return error_at(where, cycle_column(block), "R clearance plane unspecified in cycle");
   const gcode::Value& l_word = block['L'];
+  // Checked before the conversion to int, which a huge L would overflow.
+  if (l_word.given() && l_word.value > kMaxCycleMoves)
+    return error_at(where, l_word.column,
+                    fmt::format("L repeat count above {} in cycle (pkm's bound)", kMaxCycleMoves));
   repeats = l_word.given() ? int(std::lround(l_word.value)) : 1;
   if (repeats == 0) return error_at(where, l_word.column, "Cannot do zero repeats of cycle");
   const char normal = axis_letter(axes.c);
@@ -333,6 +351,22 @@ Status check_required(const Block& block, const LineRef& where, const CycleConte
   r_written = r_word.given() ? r_word.value : memory.r_mm / unit_mm;
   depth_written = depth_word.given() ? depth_word.value : memory.z_mm / unit_mm;
   return ok_status();
+}
+
+/// Refuses a block that would expand to more moves than kMaxCycleMoves or what is left of the program's
+/// budget for cycles (at most 3 moves a peck, 14 steps a hole).
+Status check_size(const Block& block, const LineRef& where, const CycleContext& context, int repeats,
+                  const Hole& hole) {
+  const bool pecking = context.code == 730 || context.code == 830;
+  const double pecks = pecking ? peck_count(hole) : 0.0;
+  const double budget = std::min(kMaxCycleMoves, double(context.max_moves));
+  if (double(repeats) * (14.0 + 3.0 * pecks) <= budget) return ok_status();
+  const std::string what =
+      pecking ? fmt::format("{} holes of {} pecks", repeats, pecks) : fmt::format("{} holes", repeats);
+  return error_at(where, pecking ? word_column(block, {'Q', 'L'}) : word_column(block, {'L'}),
+                  fmt::format("{} in one cycle block: more than the {} moves left to it (pkm's bound: {} a "
+                              "block, max_blocks for all the cycles of a program)",
+                              what, budget, kMaxCycleMoves));
 }
 
 /// Where the holes of a block are, plane-local, program units.
@@ -483,6 +517,7 @@ Status run_canned_cycle(const gcode::Block& block, const gcode::LineRef& where, 
   Eigen::Vector3d ijk = Eigen::Vector3d::Zero();
   if (Status s = resolve_words(block, where, context, memory, same_cycle, hole, ijk); !s) return s;
   hole.peck_clearance = context.inch ? kPeckClearanceInch : kPeckClearanceMm;
+  if (Status s = check_size(block, where, context, pattern.repeats, hole); !s) return s;
   hole.offset_a = ijk[axes.a];
   hole.offset_b = ijk[axes.b];
   hole.middle = context.incremental ? hole.bottom + ijk[axes.c] : ijk[axes.c];  // K: absolute, or from bottom

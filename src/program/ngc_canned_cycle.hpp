@@ -8,11 +8,13 @@
 //   - Block values are in program units (inch after G20); `context.inch` says which. Points given to the
 //     sink are program coordinates in mm (the same coordinates rs274 prints, converted to mm).
 //   - Errors carry file:line:column of the offending word (missing R, Z or P; negative L; R below Z; Q ≤ 0
-//     for G73/G83 …), with LinuxCNC's reasons.
+//     for G73/G83 …), with LinuxCNC's reasons; and pkm's bound on the moves of a block (L holes times the
+//     pecks of each: at most a million, and no more than `max_moves`).
 //   - CycleMemory holds what LinuxCNC keeps between the blocks of one series of cycles (the Z to retract to
 //     for G98, the sticky R/Z/Q/P …). The executor resets it to CycleMemory{} when the motion mode leaves
 //     the cycles (G80, G0–G3 …), so the next cycle block starts a new series.
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 
 #include "core/result.hpp"
@@ -42,6 +44,9 @@ struct CycleContext {
   double spindle_speed = 0.0;  ///< S in effect (G84/G74-style tapping restarts the spindle with it)
   bool spindle_clockwise = true;
   bool spindle_turning = true;  ///< false after M5: G84, G86, G87 and G88 refuse to run (LinuxCNC does)
+  /// Moves the block may still make (the executor's budget for all the cycles of a program, max_blocks):
+  /// one block can expand to millions of moves (L, Q), which no count of blocks would otherwise bound.
+  std::uint64_t max_moves = UINT64_MAX;
 };
 
 /// LinuxCNC's memory between the blocks of one series of cycles; run_canned_cycle reads and updates it.

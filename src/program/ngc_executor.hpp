@@ -84,6 +84,7 @@ class Executor final : public PredefinedParameters, private CycleSink {
   ParameterStore parameters_;
   CutterCompensation compensation_;
   CycleMemory cycle_memory_;
+  std::uint64_t cycle_moves_ = 0;           ///< moves the canned cycles made so far (bounded by max_blocks)
   std::vector<CanonicalMove> compensated_;  ///< scratch: what compensation emits for one move
   const std::string* file_name_ = &source_;
   int line_ = 0;

@@ -260,7 +260,11 @@ Status Executor::cycle(const gcode::Block& b, int motion) {
   const bool exact = state_.exact_stop;
   state_.exact_stop = true;
   cycle_status_ = ok_status();
+  // The moves of all the cycles count against max_blocks: an L or a Q can make a block of millions of them.
+  context.max_moves = options_.max_blocks > cycle_moves_ ? options_.max_blocks - cycle_moves_ : 0;
+  const std::size_t moves_before = program_->moves.size();
   Status ran = run_canned_cycle(b, where(), context, cycle_memory_, *this);
+  cycle_moves_ += program_->moves.size() - moves_before;
   if (ran && cycle_status_ && (cycle_memory_.end_mm - state_.position_mm).norm() > 1e-9) {
     // After G88 (the operator retracts by hand) and G84 outside G17, LinuxCNC takes the tool to be at the
     // clear plane although no move took it there; pkm's path must be continuous, so a rapid does.

@@ -89,7 +89,7 @@ Status Executor::set_g10_offsets(const gcode::Block& b, int l) {
   int system = whole(b['P'].value);
   if (system < 0 || system > 9)
     return gcode::error_at(where(), b['P'].column, "G10 L2/L20 P must be 0 (the active system) to 9");
-  if (system == 0) system = static_cast<int>(parameters_.get(parameter::active_system) + 0.5);
+  if (system == 0) system = active_system_of(parameters_);
   const int base = parameter::system_base(system);
   const double unit = state_.mm_per_unit();
   if (l == 2) {
@@ -102,7 +102,7 @@ Status Executor::set_g10_offsets(const gcode::Block& b, int l) {
     const Eigen::Vector3d work_mm = to_work_mm(state_.frame, state_.position_mm);
     const Eigen::Vector3d work_abc = state_.abc_deg + state_.frame.g5x_abc_deg + state_.frame.g92_abc_deg;
     WorkFrame target = read_work_frame(parameters_);
-    const int active = static_cast<int>(parameters_.get(parameter::active_system) + 0.5);
+    const int active = active_system_of(parameters_);
     if (system != active) {
       // read_work_frame reads the active system; the target's own offsets and rotation are wanted here.
       for (int i = 0; i < 3; ++i) target.g5x_mm[i] = parameters_.get(base + i);

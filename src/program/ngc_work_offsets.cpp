@@ -2,6 +2,7 @@
 #include "program/ngc_work_offsets.hpp"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <numbers>
 
 #include "program/ngc_parameter_store.hpp"
@@ -24,10 +25,16 @@ void read_six(const ParameterStore& parameters, int first, Eigen::Vector3d& xyz_
 
 }  // namespace
 
+int active_system_of(const ParameterStore& parameters) {
+  // Checked before the conversion to int: a program can write any number to #5220, and converting one
+  // beyond int's range is undefined.
+  const double rounded = std::floor(parameters.get(parameter::active_system) + 0.5);
+  return rounded >= 1.0 && rounded <= 9.0 ? static_cast<int>(rounded) : 1;
+}
+
 WorkFrame read_work_frame(const ParameterStore& parameters) {
   WorkFrame frame;
-  int system = static_cast<int>(parameters.get(parameter::active_system) + 0.5);
-  if (system < 1 || system > 9) system = 1;
+  const int system = active_system_of(parameters);
   frame.system = system;
   read_six(parameters, parameter::system_base(system), frame.g5x_mm, frame.g5x_abc_deg);
   frame.xy_rotation_deg = parameters.get(parameter::system_base(system) + 9);

@@ -33,6 +33,9 @@ constexpr int system_base(int n) {
 }
 }  // namespace parameter
 
+/// The active coordinate system (1 = G54 … 9 = G59.3) as #5220 holds it; a value the program wrote there
+/// that names none (0, 12, 1e30 …) is G54.
+int active_system_of(const ParameterStore& parameters);
 /// The work offsets in effect, read from the parameters, in mm and degrees.
 WorkFrame read_work_frame(const ParameterStore& parameters);
 

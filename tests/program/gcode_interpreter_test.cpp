@@ -639,6 +639,25 @@ TEST(GcodeLoadPartProgram, ClExtensionsGoToTheClReader) {
   }
 }
 
+// The moves of canned cycles count against max_blocks: an L or a tiny Q makes one block expand to millions
+// of moves, which the count of blocks alone would not bound (found by fuzz/fuzz_gcode).
+TEST(GcodeInterpreterErrors, CycleMovesCountAgainstMaxBlocks) {
+  InterpretOptions options;
+  options.max_blocks = 1000;
+  const std::string block = "G81 X1 R2 Z-2 L50 F100\n";  // 50 holes of 4 moves
+  EXPECT_EQ(gcode_interpreter_run("G0 Z10\n" + block + block, options).moves.size(), 401u);
+  expect_error_at(gcode_interpreter_error_of("G0 Z10\n" + block + block + block, options), 4, 15,
+                  "50 holes in one cycle block: more than the 600 moves left to it");
+}
+
+// #5220 may hold anything a program writes there; one that names no coordinate system is G54, for G10 P0
+// as for the frame (converting 1e30 to int was undefined: found by fuzz/fuzz_gcode's UBSan).
+TEST(GcodeInterpreter, AnActiveSystemParameterOutOfRangeIsG54) {
+  const CanonicalProgram p = gcode_interpreter_run("#5220=[10**30]\nG10 L2 P0 X5\nG0 X1\n");
+  ASSERT_EQ(p.moves.size(), 1u);
+  expect_vec(p.moves[0].end_mm, Eigen::Vector3d(6.0, 0.0, 0.0));
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------

@@ -173,6 +173,13 @@ TEST(NgcBlockReader, DoWhileRepeatAndNesting) {
             "3|");
 }
 
+// A count beyond int's range: LinuxCNC's (int) gives INT_MIN on x86, so the body runs no time; in C++ the
+// conversion was undefined (found by fuzz/fuzz_gcode's UBSan).
+TEST(NgcBlockReader, RepeatCountsBeyondIntRunTheBodyNoTime) {
+  EXPECT_EQ(ngc_brt_messages("o1 repeat [10**30]\n(DEBUG,r)\no1 endrepeat\n(DEBUG,after)\nm2\n"), "after|");
+  EXPECT_EQ(ngc_brt_messages("o1 repeat [-10**30]\n(DEBUG,r)\no1 endrepeat\n(DEBUG,after)\nm2\n"), "after|");
+}
+
 TEST(NgcBlockReader, SubroutinesArgumentsReturnValuesAndRecursion) {
   EXPECT_EQ(ngc_brt_messages("o<s> call [3]\n(DEBUG,v=#<_value> r=#<_value_returned>)\n"
                              "o<s2> call [1] [2] [3]\n(DEBUG,v=#<_value> r=#<_value_returned> #1)\nm2\n"

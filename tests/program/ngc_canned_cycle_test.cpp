@@ -359,4 +359,42 @@ TEST(NgcCannedCycle, G88EndsAtTheClearPlaneInLinuxCncsView) {
   EXPECT_EQ(memory.code, 880);
 }
 
+/// The status of one cycle block `words` run from the origin with `code`, the steps it sent in `steps`.
+pkm::Status cycle_test_run_block(int code, const std::string& words, std::vector<CycleTestStep>& steps) {
+  CycleTestRecorder out(steps);
+  CycleMemory memory;
+  CycleContext context;
+  context.code = code;
+  const std::string source = "test.ngc";
+  return pkm::program::ngc::run_canned_cycle(cycle_test_block(words), LineRef{source, 7}, context, memory,
+                                             out);
+}
+
+// LinuxCNC has no bound: a tiny Q or a huge L made one block run for hours (found by fuzz/fuzz_gcode).
+TEST(NgcCannedCycle, BlocksOfMoreThanAMillionMovesAreRefused) {
+  std::vector<CycleTestStep> steps;
+  auto s = cycle_test_run_block(730, "G73 X1 R2 Z-2 Q0.000000001", steps);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(
+      s.error().message,
+      "test.ngc:7:15: 1 holes of 3999999999 pecks in one cycle block: more than the 1000000 moves left to "
+      "it (pkm's bound: 1000000 a block, max_blocks for all the cycles of a program)");
+  s = cycle_test_run_block(810, "G81 X1 R2 Z-2 L1000000000000", steps);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().message, "test.ngc:7:15: L repeat count above 1000000 in cycle (pkm's bound)");
+  s = cycle_test_run_block(810, "G81 X1 R2 Z-2 L100000", steps);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().location.column, 15);
+  EXPECT_NE(s.error().message.find("100000 holes in one cycle block"), std::string::npos)
+      << s.error().message;
+  EXPECT_TRUE(steps.empty());
+}
+
+// Far from the origin, R - Q rounds back to R: the pecks stop at their count (16 / 0.01) instead of never.
+TEST(NgcCannedCycle, PecksThatDoNotChangeTheDepthEnd) {
+  std::vector<CycleTestStep> steps;
+  ASSERT_TRUE(cycle_test_run_block(730, "G73 X1 R100000000000000000 Z99999999999999984 Q0.01", steps).ok());
+  EXPECT_LE(steps.size(), 2u * 1601u + 4u);  // a feed and a chip-break rapid a peck, and the hole's own
+}
+
 }  // namespace
