@@ -65,6 +65,8 @@ Status Executor::tools_and_spindle(const gcode::Block& b) {
   } else if (tool_change.is(610)) {
     if (!b['Q'].given())
       return gcode::error_at(where(), tool_change.column, "M61 needs a Q word (tool number)");
+    if (whole(b['Q'].value) < 0 || !is_whole(b['Q'].value))
+      return gcode::error_at(where(), b['Q'].column, "M61 Q must be a tool number (a whole number ≥ 0)");
     state_.current_tool = whole(b['Q'].value);
     add_event(fmt::format("M61 Q{}", state_.current_tool));
   }

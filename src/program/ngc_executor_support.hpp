@@ -1,6 +1,7 @@
 #pragma once
 // Small helpers the executor's files share: what a motion code is, and whole numbers.
 #include <cmath>
+#include <limits>
 
 #include "program/gcode_block.hpp"
 
@@ -25,7 +26,10 @@ inline bool is_whole(double value) {
   return std::abs(value - std::round(value)) < 1e-6;
 }
 
+/// The nearest int; a value beyond int's reach (a program may write any number) is INT_MIN, which no tool,
+/// L or P word accepts, so the caller's range check refuses it.
 inline int whole(double value) {
+  if (!(std::abs(value) < 1e9)) return std::numeric_limits<int>::min();
   return static_cast<int>(std::lround(value));
 }
 
