@@ -129,6 +129,18 @@ nlohmann::json summary_json(const MotionPlan& plan, const Machine& machine, cons
   return summary;
 }
 
+namespace {
+
+// What the program's reading adds to the summary: the interpreter's notes among the warnings, and where a
+// calling line's moves were written.
+nlohmann::json summary_with_program(nlohmann::json summary, const OutputOptions& options) {
+  for (const std::string& note : options.program_notes) summary["warnings"].push_back(note);
+  if (!options.subroutine_lines.empty()) summary["subroutine_lines"] = options.subroutine_lines;
+  return summary;
+}
+
+}  // namespace
+
 Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
                                       const std::string& directory, const OutputOptions& options) {
   OutputSet outputs{"plan"};
@@ -245,10 +257,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
     if (!written) continue;
     if (auto committed = file->commit(); !committed) return committed.error();
   }
-  nlohmann::json summary = summary_json(plan, machine, *run);
-  for (const std::string& note : options.program_notes) summary["warnings"].push_back(note);
-  if (!options.subroutine_lines.empty()) summary["subroutine_lines"] = options.subroutine_lines;
-  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n", json_text(summary));
+  fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n",
+                 json_text(summary_with_program(summary_json(plan, machine, *run), options)));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
     if (auto committed = f->commit(); !committed) return committed.error();
   }
