@@ -139,6 +139,46 @@ nlohmann::json summary_with_program(nlohmann::json summary, const OutputOptions&
   return summary;
 }
 
+// The header rows of actuators.csv and path.csv.
+void write_csv_headers(int actuators, bool angular, fmt::memory_buffer& actuators_csv,
+                       fmt::memory_buffer& path_csv) {
+  fmt::format_to(std::back_inserter(actuators_csv), "time_s");
+  for (int j = 1; j <= actuators; ++j)
+    fmt::format_to(std::back_inserter(actuators_csv), ",q{}_{}", j, angular ? "deg" : "mm");
+  actuators_csv.push_back('\n');
+  fmt::format_to(std::back_inserter(path_csv),
+                 "time_s,line,s,x_program_mm,y_program_mm,z_program_mm,a_abc_deg,b_abc_deg,c_abc_deg,"
+                 "path_speed_mm_s,feed_mm_s,path_error_mm\n");
+}
+
+// One row of path.csv: the tool point in program coordinates, A B C, speed, feed cap and path error.
+void write_path_row(const ServoTick& tick, const RunMonitor& monitor, const Machine& machine,
+                    fmt::memory_buffer& path_csv) {
+  const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
+  const Eigen::Vector3d abc =
+      angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
+  fmt::format_to(std::back_inserter(path_csv),
+                 "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},{:.4f},", tick.time_s,
+                 tick.line, tick.s, p.x(), p.y(), p.z(), abc.x(), abc.y(), abc.z(), tick.path_speed,
+                 monitor.last_feed_cap());
+  // An empty field where the error was not evaluated (first tick, --no-path-error, FK failure).
+  if (const double e = monitor.last_path_error_mm(); std::isfinite(e))
+    fmt::format_to(std::back_inserter(path_csv), "{:.3e}", e);
+  path_csv.push_back('\n');
+}
+
+// The analyses' files that this run wrote.
+Status commit_analyses(PlanOutputFile& forces, PlanOutputFile& response, PlanOutputFile& deflection,
+                       const OutputOptions& options) {
+  for (auto [file, written] :
+       {std::pair{&forces, options.dynamics}, std::pair{&response, options.dynamics && options.elastic},
+        std::pair{&deflection, options.stiffness}}) {
+    if (!written) continue;
+    if (auto committed = file->commit(); !committed) return committed;
+  }
+  return ok_status();
+}
+
 }  // namespace
 
 Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& machine,
@@ -163,29 +203,14 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
   const bool angular = mechanism.actuators_are_angles();
   const double scale = angular ? deg_from_rad(1.0) : 1.0;
   auto& a = actuators_csv.buffer;
-  fmt::format_to(std::back_inserter(a), "time_s");
-  for (int j = 1; j <= n; ++j) fmt::format_to(std::back_inserter(a), ",q{}_{}", j, angular ? "deg" : "mm");
-  a.push_back('\n');
-  fmt::format_to(std::back_inserter(path_csv.buffer),
-                 "time_s,line,s,x_program_mm,y_program_mm,z_program_mm,a_abc_deg,b_abc_deg,c_abc_deg,"
-                 "path_speed_mm_s,feed_mm_s,path_error_mm\n");
+  write_csv_headers(n, angular, a, path_csv.buffer);
 
   PlanTickObservers observers;
   observers.tick = [&](const ServoTick& tick, const RunMonitor& monitor) -> Status {
     fmt::format_to(std::back_inserter(a), "{:.6f}", tick.time_s);
     for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(a), ",{:.6f}", tick.actuators[j] * scale);
     a.push_back('\n');
-    const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
-    const Eigen::Vector3d abc =
-        angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
-    fmt::format_to(std::back_inserter(path_csv.buffer),
-                   "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},{:.4f},", tick.time_s,
-                   tick.line, tick.s, p.x(), p.y(), p.z(), abc.x(), abc.y(), abc.z(), tick.path_speed,
-                   monitor.last_feed_cap());
-    // An empty field where the error was not evaluated (first tick, --no-path-error, FK failure).
-    if (const double e = monitor.last_path_error_mm(); std::isfinite(e))
-      fmt::format_to(std::back_inserter(path_csv.buffer), "{:.3e}", e);
-    path_csv.buffer.push_back('\n');
+    write_path_row(tick, monitor, machine, path_csv.buffer);
     for (PlanOutputFile* f : {&actuators_csv, &path_csv}) {
       if (auto flushed = f->flush_if_large(); !flushed) return flushed;
     }
@@ -251,12 +276,8 @@ Result<RunSummary> write_plan_outputs(const MotionPlan& plan, const Machine& mac
 
   auto run = stream_plan(plan, machine, options, observers);
   if (!run) return run;
-  for (auto [file, written] : {std::pair{&forces_csv, options.dynamics},
-                               std::pair{&response_csv, options.dynamics && options.elastic},
-                               std::pair{&deflection_csv, options.stiffness}}) {
-    if (!written) continue;
-    if (auto committed = file->commit(); !committed) return committed.error();
-  }
+  if (auto committed = commit_analyses(forces_csv, response_csv, deflection_csv, options); !committed)
+    return committed.error();
   fmt::format_to(std::back_inserter(summary_file.buffer), "{}\n",
                  json_text(summary_with_program(summary_json(plan, machine, *run), options)));
   for (PlanOutputFile* f : {&actuators_csv, &path_csv, &summary_file}) {
