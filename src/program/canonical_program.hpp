@@ -84,6 +84,7 @@ struct ProgramEvent {
 
 struct CanonicalProgram {
   std::string source;                             ///< file the program came from
+  std::string format;                             ///< how it was read: "G-code (RS274/NGC)", "NX CLSF" …
   std::vector<std::string> files;                 ///< [0] = source, then the subroutine files that were read
   std::vector<WorkFrame> frames = {WorkFrame{}};  ///< [0] = no offsets
   std::vector<CanonicalMove> moves;

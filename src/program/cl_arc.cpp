@@ -14,20 +14,24 @@ double radial_distance(const ClCircle& circle, const Eigen::Vector3d& p) {
   return (d - circle.axis * circle.axis.dot(d)).norm();
 }
 
-// G17/G18/G19 name the plane by its normal; an oblique CL arc gets the one its axis is closest to.
-Plane nearest_plane(const Eigen::Vector3d& axis) {
+}  // namespace
+
+Plane cl_nearest_plane(const Eigen::Vector3d& axis) {
   const Eigen::Vector3d a = axis.cwiseAbs();
   if (a.z() >= a.x() && a.z() >= a.y()) return Plane::xy;
   return a.y() >= a.x() ? Plane::zx : Plane::yz;
 }
 
-}  // namespace
-
 double cl_arc_radius_tolerance(double radius_mm) {
   return std::max(0.005, 1e-3 * radius_mm);
 }
 
-std::string make_cl_arc(const ClCircle& circle, const Eigen::Vector3d& start_mm, CanonicalMove& move) {
+std::string make_cl_arc(const ClCircle& stated, const Eigen::Vector3d& start_mm, CanonicalMove& move) {
+  ClCircle circle = stated;
+  if (!(circle.radius_mm > 0.0)) {  // no radius written: the start point is on the circle by definition
+    circle.radius_mm = radial_distance(circle, start_mm);
+    if (!(circle.radius_mm > 1e-6)) return "CIRCLE: the start point is on the circle's axis (radius 0)";
+  }
   const double tolerance = cl_arc_radius_tolerance(circle.radius_mm);
   const double start_r = radial_distance(circle, start_mm);
   if (std::abs(start_r - circle.radius_mm) > tolerance) {
@@ -42,8 +46,8 @@ std::string make_cl_arc(const ClCircle& circle, const Eigen::Vector3d& start_mm,
   move.kind = MoveKind::arc;
   move.center_mm = circle.center_mm + circle.axis * circle.axis.dot(start_mm - circle.center_mm);
   move.normal = circle.axis;
-  move.plane = nearest_plane(circle.axis);
-  move.turns = 1;
+  move.plane = cl_nearest_plane(circle.axis);
+  move.turns = std::max(1, circle.turns);
   return {};
 }
 

@@ -17,12 +17,16 @@ namespace pkm::program {
 struct ClCircle {
   Eigen::Vector3d center_mm = Eigen::Vector3d::Zero();  ///< any point on the axis
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();      ///< unit; travel is counter-clockwise about it
-  double radius_mm = 0.0;
+  double radius_mm = 0.0;  ///< 0: not stated (a six-value CIRCLE): the start point's distance from the axis
+  int turns = 1;           ///< TIMES,n: a helix of n turns (n − 1 full turns before the end point)
 };
 
 /// The largest difference between the stated radius and the start's or end's distance from the axis that is
 /// taken for rounding in the CL file: 0.005 mm, or 0.1 % of the radius for large arcs.
 double cl_arc_radius_tolerance(double radius_mm);
+
+/// G17/G18/G19 name the plane by its normal; an oblique CL arc gets the one its axis is closest to.
+Plane cl_nearest_plane(const Eigen::Vector3d& axis);
 
 /// Turns `move` (whose end_mm is set) into the arc of `circle` starting at `start_mm`: kind, center_mm (moved
 /// along the axis to the start's height), normal, plane (the principal plane nearest to the arc's), turns.

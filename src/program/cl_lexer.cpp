@@ -53,17 +53,32 @@ int ClLexer::line_count() const {
 bool ClLexer::gather() {
   buffer_.clear();
   segments_.clear();
-  bool continued = false;  // the previous line ended in '$'
+  comment_ = {};
+  comment_at_ = {};
+  annotation_ = false;
+  bool continued = false;   // the previous line ended in '$'
+  bool& annotation = annotation_;
   while (pos_ < text_.size()) {
     std::size_t eol = text_.find('\n', pos_);
     if (eol == std::string_view::npos) eol = text_.size();
     std::string_view line = text_.substr(pos_, eol - pos_);
     pos_ = eol + 1;
     ++line_;
-    if (const std::size_t comment = line.find("$$"); comment != std::string_view::npos) {
+    std::size_t first = 0;
+    while (first < line.size() && is_blank(line[first])) ++first;
+    if (!continued && line.substr(first).starts_with("$$->")) {
+      // Pro/CLfile writes statements for the post-processor as "$$-> WORD / values": read as a statement,
+      // continued with '$' over plain lines like any other.
+      first += 4;
+      annotation = true;
+    } else if (!continued && line.substr(first).starts_with("$$")) {
+      comment_ = trim(line.substr(first + 2));
+      comment_at_ = {line_, static_cast<int>(first) + 1};
+      return true;
+    }
+    if (const std::size_t comment = line.find("$$", first); comment != std::string_view::npos) {
       line = line.substr(0, comment);
     }
-    std::size_t first = 0;
     while (first < line.size() && is_blank(line[first])) ++first;
     line = line.substr(first);
     while (!line.empty() && is_blank(line.back())) line.remove_suffix(1);
@@ -102,6 +117,16 @@ void ClLexer::split(ClStatement& out) const {
   out.args.clear();
   out.has_slash = false;
   out.is_text = false;
+  out.is_comment = false;
+  out.is_annotation = annotation_;
+  if (comment_at_.line > 0) {  // a whole-line "$$ comment"
+    out.word.clear();
+    out.is_comment = true;
+    out.at = comment_at_;
+    out.text = comment_;
+    out.text_at = comment_at_;
+    return;
+  }
   const std::string_view s = trim(statement_);  // a first line of just "$" leaves the blanks of the next
   out.at = position_of(s.data());
 

@@ -2,7 +2,8 @@
 // Splits APT CL data into statements. The syntax (as NX, Catia and Mastercam write it):
 //  - one statement per line, `WORD/arg,arg,...` or a bare `WORD` (RAPID, END, END-OF-PATH);
 //  - a `$` as the last non-blank character continues the statement on the next line;
-//  - `$$` starts a comment that runs to the end of the line;
+//  - `$$` starts a comment that runs to the end of the line; a line that is only a comment is returned as a
+//    comment statement (kept as an event), and `$$-> WORD/…` (Pro/CLfile) as a statement marked annotation;
 //  - text statements (PARTNO, PPRINT, INSERT, TPRINT) take the rest of the statement verbatim, commas and
 //  all;
 //  - major words may contain a blank (`TOOL PATH/...`); case does not matter.
@@ -35,6 +36,8 @@ struct ClStatement {
   ClPosition at;     ///< first character of the word
   bool has_slash = false;
   bool is_text = false;     ///< a text statement: `text` holds its argument, `args` is empty
+  bool is_comment = false;  ///< a whole-line `$$ comment`: `text` holds it, `word` is empty
+  bool is_annotation = false;  ///< written as `$$-> WORD/…` (Pro/CLfile's statements for the post-processor)
   std::string_view text;    ///< everything after the '/' (text statements: after the word), trimmed
   ClPosition text_at;       ///< first character of `text`
   std::vector<ClArg> args;  ///< comma-separated values after '/', trimmed
@@ -68,6 +71,9 @@ class ClLexer {
   std::string_view statement_;  // into text_ (one line) or buffer_ (continued)
   std::string buffer_;
   std::vector<Segment> segments_;
+  std::string_view comment_;  // a whole-line comment's text (comment_at_.line > 0)
+  ClPosition comment_at_;
+  bool annotation_ = false;  // the statement was written after "$$->"
 };
 
 }  // namespace pkm::program

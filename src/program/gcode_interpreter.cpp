@@ -20,6 +20,7 @@ Result<CanonicalProgram> interpret_gcode(std::string_view text, const std::strin
   CanonicalProgram program;
   ngc::Executor executor(source_name, options, std::move(tools));
   if (auto run = executor.run(text, program); !run) return run.error();
+  program.format = std::string(program_format_name(ProgramFormat::gcode));
   return program;
 }
 

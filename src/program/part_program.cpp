@@ -1,29 +1,20 @@
-// load_part_program: picks the reader by the file's extension.
+// load_part_program: picks the reader by the file's content (program_format.hpp), or as the user says.
 #include "program/part_program.hpp"
-
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
 
 #include "program/text_file.hpp"
 
 namespace pkm::program {
 
-namespace {
-
-bool is_cl_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".cl" || extension == ".cls" || extension == ".apt";
-}
-
-}  // namespace
-
 Result<CanonicalProgram> load_part_program(const std::string& path, const InterpretOptions& options) {
   auto text = read_text_file(path, "part program");
   if (!text) return text.error();
-  if (is_cl_extension(path)) return read_cl_data(*text, path, options);
+  const ProgramFormat format =
+      options.format == ProgramFormat::automatic ? detect_program_format(*text) : options.format;
+  if (is_cl_format(format)) {
+    InterpretOptions cl_options = options;
+    cl_options.format = format;
+    return read_cl_data(*text, path, cl_options);
+  }
   return interpret_gcode(*text, path, options);
 }
 

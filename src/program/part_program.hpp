@@ -9,6 +9,7 @@
 
 #include "core/result.hpp"
 #include "program/canonical_program.hpp"
+#include "program/program_format.hpp"
 
 namespace pkm::program {
 
@@ -31,17 +32,22 @@ struct InterpretOptions {
   /// Bounds that turn a program that never ends into an error at its line.
   std::uint64_t max_blocks = 100'000'000;
   int max_call_depth = 100;
+  /// The language, and for CL data the CAM system's dialect; automatic: decided from the content.
+  ProgramFormat format = ProgramFormat::automatic;
+  /// CL data: turn the points and tool axes from the frame MSYS/CSYS/TRNTYP give into the part frame (false:
+  /// keep the CL frame the file is written in).
+  bool apply_cl_transforms = true;
 };
 
 /// G-code (RS274/NGC as CAM post-processors write it). `source_name` is used in messages.
 Result<CanonicalProgram> interpret_gcode(std::string_view text, const std::string& source_name,
                                          const InterpretOptions& options = {});
 
-/// APT CL data (.cl, .cls, .apt): GOTO, FEDRAT, RAPID, TLAXIS, CIRCLE, UNITS, END.
+/// APT CL data in the dialect `options.format` names (automatic: recognised from the text; docs/cl-data.md).
 Result<CanonicalProgram> read_cl_data(std::string_view text, const std::string& source_name,
                                       const InterpretOptions& options = {});
 
-/// Reads a file and picks the reader by extension: .cl, .cls, .apt → CL data; anything else → G-code.
+/// Reads a file and picks the reader by its content (or `options.format`), whatever its extension.
 Result<CanonicalProgram> load_part_program(const std::string& path, const InterpretOptions& options = {});
 
 }  // namespace pkm::program
