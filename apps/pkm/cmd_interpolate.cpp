@@ -147,7 +147,8 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "interpolate", "turn a part program into whole drive steps per servo period (ch5 interpolation)");
   auto args = std::make_shared<InterpolateArguments>();
-  cmd->add_option("program", args->program, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
+  cmd->add_option("program", args->program,
+                  "part program: G-code, or CL data (told apart by content; --format)")
       ->required();
   cmd->add_option("--machine", args->machine, "machine file (YAML)")->required();
   cmd->add_option("--out", args->out, "directory for steps.csv, steps.bin, contour.csv and summary.json")

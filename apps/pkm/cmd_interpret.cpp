@@ -1,6 +1,7 @@
 // pkm interpret PROGRAM [--machine M.yaml] [--tool-table T.tbl] [--subroutine-path DIR]... [--parameter-file
-// F.var [--write-parameter-file]] [--json | --count]: the canonical moves of a part program (G-code, or APT
-// CL data by extension), in mm and degrees: work coordinates, and with --json also the program's own.
+// F.var [--write-parameter-file]] [--format F] [--no-transform] [--json | --count]: the canonical moves of a
+// part program (G-code, or CL data: the language and CAM dialect from the content), in mm and degrees: work
+// coordinates, and with --json also the program's own; CL data's tool axes where G-code has A B C.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -97,7 +98,8 @@ void print_nested(const std::string& text, const std::string& indent) {
 // The document as json.dump(2) would print it, one move at a time: a JSON document of every move of a
 // 3-million-line program took more than 3 GB; this needs one move's worth (and one frame's per frame).
 void print_program_json(const program::CanonicalProgram& program) {
-  std::cout << "{\n  \"source\": " << json_text(nlohmann::json(program.source)) << ",\n  \"files\": ";
+  std::cout << "{\n  \"source\": " << json_text(nlohmann::json(program.source))
+            << ",\n  \"format\": " << json_text(nlohmann::json(program.format)) << ",\n  \"files\": ";
   // files[0] is the program itself; a reader that lists no files (CL data) read only that one.
   std::string files = json_text(
       nlohmann::json(program.files.empty() ? std::vector<std::string>{program.source} : program.files));
@@ -153,18 +155,30 @@ std::string move_detail(const program::CanonicalProgram& program, const program:
 }
 
 void print_summary(const program::CanonicalProgram& program) {
-  std::cout << fmt::format("{} moves, {} events, program ends on line {}\n", program.moves.size(),
-                           program.events.size(), program.end_line);
+  std::cout << fmt::format("{} moves, {} events, program ends on line {}{}\n", program.moves.size(),
+                           program.events.size(), program.end_line,
+                           program.format.empty() ? "" : " (" + program.format + ")");
+}
+
+// A program that states tool axes (CL data) shows them (i, j, k) where a G-code program shows A B C.
+bool states_tool_axes(const program::CanonicalProgram& program) {
+  return std::any_of(program.moves.begin(), program.moves.end(), [](const program::CanonicalMove& m) {
+    return m.orientation == program::OrientationSource::tool_axis;
+  });
 }
 
 void print_table(const program::CanonicalProgram& program) {
+  const bool axes = states_tool_axes(program);
   std::cout << fmt::format("{:>6}  {:<5}  {:>11} {:>11} {:>11}  {:>9} {:>9} {:>9}  {:>10}  {}\n", "line",
-                           "kind", "x mm", "y mm", "z mm", "a deg", "b deg", "c deg", "feed", "detail");
+                           "kind", "x mm", "y mm", "z mm", axes ? "tool i" : "a deg",
+                           axes ? "tool j" : "b deg", axes ? "tool k" : "c deg", "feed", "detail");
   for (const program::CanonicalMove& m : program.moves) {
+    const Eigen::Vector3d& angles =
+        m.orientation == program::OrientationSource::tool_axis ? m.tool_axis : m.end_abc_deg;
     std::cout << fmt::format(
         "{:>6}  {:<5}  {:>11.4f} {:>11.4f} {:>11.4f}  {:>9.4f} {:>9.4f} {:>9.4f}  {:>10.1f}  {}\n", m.line,
-        program::move_kind_name(m.kind), m.end_mm.x(), m.end_mm.y(), m.end_mm.z(), m.end_abc_deg.x(),
-        m.end_abc_deg.y(), m.end_abc_deg.z(), m.feed_mm_min, move_detail(program, m));
+        program::move_kind_name(m.kind), m.end_mm.x(), m.end_mm.y(), m.end_mm.z(), angles.x(), angles.y(),
+        angles.z(), m.feed_mm_min, move_detail(program, m));
   }
   for (const program::ProgramEvent& e : program.events) {
     const std::string where = written_in(program, e.source_file, e.source_line);
@@ -183,7 +197,9 @@ void add_interpret_command(CLI::App& app, int& exit_code) {
   auto arguments = std::make_shared<ProgramArguments>();
   auto json = std::make_shared<bool>(false);
   auto count = std::make_shared<bool>(false);
-  cmd->add_option("program", *program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
+  cmd->add_option(
+         "program", *program_path,
+         "part program: G-code, or CL data (NX, Creo, CATIA, SolidWorks CAM, APT), told apart by content")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML); only validated for now");
   add_program_options(*cmd, *arguments);

@@ -115,7 +115,8 @@ void add_modes_margin_command(CLI::App& app, int& exit_code) {
       "assembly-mode margin along a program: the smallest actuator change that brings the machine onto a "
       "singular configuration where its assembly mode can meet another, and the other assembly modes");
   auto a = std::make_shared<ModesMarginArguments>();
-  cmd->add_option("program", a->program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
+  cmd->add_option("program", a->program_path,
+                  "part program: G-code, or CL data (told apart by content; --format)")
       ->required();
   cmd->add_option("--machine", a->machine_path, "machine file (YAML)")->required();
   cmd->add_option("--samples", a->samples, "poses between the start and the end, evenly spaced in time")

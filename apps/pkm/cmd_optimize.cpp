@@ -70,7 +70,8 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
   auto report_file = std::make_shared<std::string>();
   auto arguments = std::make_shared<RedundancyArguments>();
   auto program_arguments = std::make_shared<ProgramArguments>();
-  cmd->add_option("program", *program_path, "part program: G-code (X Y Z) or APT CL data (.cl, .cls, .apt)")
+  cmd->add_option("program", *program_path,
+                  "part program: G-code (X Y Z) or CL data (told apart by content; --format)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
   cmd->add_option("--out", *out_path, "the post-processed G-code program (.ngc)")->required();

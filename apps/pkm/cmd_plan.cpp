@@ -43,7 +43,8 @@ void add_plan_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<planning::PlanOptions>();
   auto tolerance = std::make_shared<double>(0.0);
   auto report_file = std::make_shared<std::string>();
-  cmd->add_option("program", *program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
+  cmd->add_option("program", *program_path,
+                  "part program: G-code, or CL data (told apart by content; --format)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML)")->required();
   cmd->add_option("--out", *out_dir, "directory for actuators.csv, path.csv and summary.json")->required();

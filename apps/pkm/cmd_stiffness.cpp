@@ -26,7 +26,8 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
   auto model_name = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto program_arguments = std::make_shared<ProgramArguments>();
-  cmd->add_option("program", job->program_path, "part program: G-code, or APT CL data (.cl, .cls, .apt)")
+  cmd->add_option("program", job->program_path,
+                  "part program: G-code, or CL data (told apart by content; --format)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML) with a stiffness: section")->required();
   cmd->add_option(

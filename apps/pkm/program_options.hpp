@@ -1,7 +1,8 @@
 #pragma once
 // The options every command that reads a part program takes, as LinuxCNC's INI and tool table give them to
 // its interpreter: --tool-table, --subroutine-path (repeatable, or a colon-separated list as in
-// [RS274NGC] SUBROUTINE_PATH), --parameter-file and --write-parameter-file.
+// [RS274NGC] SUBROUTINE_PATH), --parameter-file and --write-parameter-file; and --format / --no-transform,
+// which say how to read CL data.
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>

@@ -20,7 +20,7 @@
 namespace pkm::pipeline {
 
 struct InterpolateJob {
-  std::string program_path;                ///< G-code, or APT CL data (.cl, .cls, .apt)
+  std::string program_path;                ///< G-code, or CL data (told apart by content)
   ProgramOptions program_options;          ///< tool table, subroutine path, parameter file
   std::optional<double> period_ms;         ///< servo period h, 0.1…20 ms
   std::optional<double> step;              ///< drive resolution Δ, mm per step (deg for angular actuators)

@@ -11,6 +11,8 @@ program::InterpretOptions interpret_options(const ProgramOptions& options) {
   interpret.parameter_file = options.parameter_file;
   interpret.write_parameter_file = options.write_parameter_file;
   interpret.max_blocks = options.max_blocks;
+  interpret.format = options.format;
+  interpret.apply_cl_transforms = options.apply_cl_transforms;
   return interpret;
 }
 

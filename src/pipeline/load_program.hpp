@@ -19,6 +19,9 @@ struct ProgramOptions {
   std::string parameter_file;                ///< LinuxCNC .var file read at start; empty: all parameters 0
   bool write_parameter_file = false;         ///< write the parameters back at the program's end
   std::uint64_t max_blocks = 100'000'000;    ///< executed blocks before a program is refused as endless
+  /// G-code, or which CAM system's CL data; automatic: decided from the content (docs/cl-data.md).
+  program::ProgramFormat format = program::ProgramFormat::automatic;
+  bool apply_cl_transforms = true;  ///< CL data: MSYS/CSYS/ROTABL applied (false: the CL frame kept)
 };
 
 /// The interpreter's options for `options`, starting at program zero (as `pkm interpret` and rs274 do).

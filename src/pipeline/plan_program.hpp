@@ -17,7 +17,7 @@
 namespace pkm::pipeline {
 
 struct PlanJob {
-  std::string program_path;        ///< G-code, or APT CL data (.cl, .cls, .apt)
+  std::string program_path;        ///< G-code, or CL data (told apart by content)
   ProgramOptions program_options;  ///< tool table, subroutine path, parameter file
   planning::PlanOptions plan;      ///< servo rate, override, blending tolerance (unset: the machine file's)
   std::optional<redundancy::OptimizeOptions> law;  ///< choose the free coordinates first

@@ -16,7 +16,7 @@
 namespace pkm::pipeline {
 
 struct StiffnessJob {
-  std::string program_path;             ///< G-code, or APT CL data (.cl, .cls, .apt)
+  std::string program_path;             ///< G-code, or CL data (told apart by content)
   ProgramOptions program_options;       ///< tool table, subroutine path, parameter file
   statics::LoadModel load;              ///< the cutting load (statics/load_model.hpp)
   std::optional<StiffnessModel> model;  ///< unset: the machine file's

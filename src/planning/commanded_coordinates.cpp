@@ -155,7 +155,11 @@ Status check_commanded_coordinates(const Machine& machine, const CanonicalProgra
   const AxisMask mask = mechanism.controlled_axes();
   if (mask.count() == 6) return ok_status();
   Eigen::Vector3d position_mm = program.start_mm;
+  // A program of tool axes starts from (0,0,1), the axis CL data has before its first TLAXIS or 6-value GOTO:
+  // a first move tilted away from it is a change of the tool axis like any later one.
   ProgramOrientation orientation{program.start_abc_deg, std::nullopt};
+  if (!program.moves.empty() && program.moves.front().orientation == program::OrientationSource::tool_axis)
+    orientation.tool_axis = Eigen::Vector3d::UnitZ();
   for (const CanonicalMove& move : program.moves) {
     if (move.kind == MoveKind::dwell) continue;
     if (auto moved = moved_position(mask, move, position_mm))

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace pkm::program {
 namespace {
@@ -20,6 +21,31 @@ Plane cl_nearest_plane(const Eigen::Vector3d& axis) {
   const Eigen::Vector3d a = axis.cwiseAbs();
   if (a.z() >= a.x() && a.z() >= a.y()) return Plane::xy;
   return a.y() >= a.x() ? Plane::zx : Plane::yz;
+}
+
+namespace {
+
+Eigen::Vector3d radial_part(const CanonicalMove& arc, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d d = p - arc.center_mm;
+  return d - arc.normal * arc.normal.dot(d);
+}
+
+}  // namespace
+
+Eigen::Vector3d cl_arc_start_tangent(const CanonicalMove& arc, const Eigen::Vector3d& start_mm) {
+  return arc.normal.cross(radial_part(arc, start_mm)).normalized();
+}
+
+Eigen::Vector3d cl_arc_end_tangent(const CanonicalMove& arc) {
+  return arc.normal.cross(radial_part(arc, arc.end_mm)).normalized();
+}
+
+double cl_arc_sweep_rad(const CanonicalMove& arc, const Eigen::Vector3d& start_mm) {
+  const Eigen::Vector3d a = radial_part(arc, start_mm);
+  const Eigen::Vector3d b = radial_part(arc, arc.end_mm);
+  double angle = std::atan2(arc.normal.dot(a.cross(b)), a.dot(b));
+  if (angle <= 1e-9) angle += 2.0 * std::numbers::pi;
+  return angle;
 }
 
 double cl_arc_radius_tolerance(double radius_mm) {

@@ -31,6 +31,15 @@ Plane cl_nearest_plane(const Eigen::Vector3d& axis);
 /// Turns `move` (whose end_mm is set) into the arc of `circle` starting at `start_mm`: kind, center_mm (moved
 /// along the axis to the start's height), normal, plane (the principal plane nearest to the arc's), turns.
 /// Returns an empty string, or why the points do not lie on the circle.
+/// Unit tangent of an arc move (counter-clockwise about its normal) where it leaves `start_mm`, and where it
+/// arrives at its end; the helix's rise is left out (the checks that use them compare directions in the arc's
+/// plane).
+Eigen::Vector3d cl_arc_start_tangent(const CanonicalMove& arc, const Eigen::Vector3d& start_mm);
+Eigen::Vector3d cl_arc_end_tangent(const CanonicalMove& arc);
+/// The angle the arc sweeps from `start_mm` to its end, in (0, 2π] (a return to the start is a full turn),
+/// counter-clockwise about its normal; further TIMES turns not counted.
+double cl_arc_sweep_rad(const CanonicalMove& arc, const Eigen::Vector3d& start_mm);
+
 std::string make_cl_arc(const ClCircle& circle, const Eigen::Vector3d& start_mm, CanonicalMove& move);
 
 }  // namespace pkm::program

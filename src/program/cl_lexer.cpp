@@ -56,7 +56,7 @@ bool ClLexer::gather() {
   comment_ = {};
   comment_at_ = {};
   annotation_ = false;
-  bool continued = false;   // the previous line ended in '$'
+  bool continued = false;  // the previous line ended in '$'
   bool& annotation = annotation_;
   while (pos_ < text_.size()) {
     std::size_t eol = text_.find('\n', pos_);

@@ -35,12 +35,12 @@ struct ClStatement {
   std::string word;  ///< major word in upper case, inner blanks collapsed: "GOTO", "TOOL PATH"
   ClPosition at;     ///< first character of the word
   bool has_slash = false;
-  bool is_text = false;     ///< a text statement: `text` holds its argument, `args` is empty
-  bool is_comment = false;  ///< a whole-line `$$ comment`: `text` holds it, `word` is empty
+  bool is_text = false;        ///< a text statement: `text` holds its argument, `args` is empty
+  bool is_comment = false;     ///< a whole-line `$$ comment`: `text` holds it, `word` is empty
   bool is_annotation = false;  ///< written as `$$-> WORD/…` (Pro/CLfile's statements for the post-processor)
-  std::string_view text;    ///< everything after the '/' (text statements: after the word), trimmed
-  ClPosition text_at;       ///< first character of `text`
-  std::vector<ClArg> args;  ///< comma-separated values after '/', trimmed
+  std::string_view text;       ///< everything after the '/' (text statements: after the word), trimmed
+  ClPosition text_at;          ///< first character of `text`
+  std::vector<ClArg> args;     ///< comma-separated values after '/', trimmed
 };
 
 class ClLexer {

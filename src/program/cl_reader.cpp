@@ -15,8 +15,8 @@
 #include <utility>
 
 #include "program/cl_number.hpp"
-#include "program/cl_reader_cycle.hpp"
 #include "program/cl_reader_cutcom.hpp"
+#include "program/cl_reader_cycle.hpp"
 #include "program/cl_reader_nurbs.hpp"
 #include "program/cl_reader_state.hpp"
 
@@ -51,24 +51,24 @@ enum class ClWord {
 const ClWord* find_cl_word(std::string_view word) {
   // GOTO first: it is nearly every statement of a real file.
   static constexpr std::array<std::pair<std::string_view, ClWord>, 54> words = {{
-      {"GOTO", ClWord::go_to},         {"FEDRAT", ClWord::fedrat},     {"RAPID", ClWord::rapid},
-      {"CIRCLE", ClWord::circle},      {"TLAXIS", ClWord::tlaxis},     {"FROM", ClWord::from},
-      {"GOHOME", ClWord::gohome},      {"UNITS", ClWord::units},       {"UNIT", ClWord::units},
-      {"MULTAX", ClWord::multax},      {"END", ClWord::end},           {"FINI", ClWord::end},
-      {"SPINDL", ClWord::spindl},      {"DELAY", ClWord::delay},       {"CUTCOM", ClWord::cutcom},
-      {"OPSKIP", ClWord::opskip},      {"CYCLE", ClWord::cycle},       {"CUTTER", ClWord::cutter},
-      {"TLDATA", ClWord::cutter},      {"MSYS", ClWord::msys},         {"CSYS", ClWord::csys},
-      {"TRNTYP", ClWord::trntyp},      {"ROTABL", ClWord::rotabl},     {"NURBS", ClWord::nurbs},
-      {"COOLNT", ClWord::event},       {"LOADTL", ClWord::event},      {"LOAD", ClWord::event},
-      {"TOOL PATH", ClWord::event},    {"END-OF-PATH", ClWord::event}, {"PARTNO", ClWord::event},
-      {"PPRINT", ClWord::event},       {"INSERT", ClWord::event},      {"TPRINT", ClWord::event},
-      {"MACHIN", ClWord::event},       {"SELECT", ClWord::event},      {"CLEARP", ClWord::event},
-      {"PAINT", ClWord::event},        {"OPSTOP", ClWord::event},      {"STOP", ClWord::event},
-      {"SETUP", ClWord::event},        {"OPFEATSTART", ClWord::event}, {"OPFEATEND", ClWord::event},
-      {"MOVE_ATTRIB", ClWord::event},  {"BOX", ClWord::event},         {"TOOLNO", ClWord::event},
-      {"AUTOPS", ClWord::event},       {"MODE", ClWord::event},        {"OPERATION", ClWord::event},
-      {"TLON", ClWord::event},         {"INDIRV", ClWord::event},      {"SEQNO", ClWord::event},
-      {"ORIGIN", ClWord::event},       {"HEAD", ClWord::event},        {"FINISH", ClWord::event},
+      {"GOTO", ClWord::go_to},        {"FEDRAT", ClWord::fedrat},     {"RAPID", ClWord::rapid},
+      {"CIRCLE", ClWord::circle},     {"TLAXIS", ClWord::tlaxis},     {"FROM", ClWord::from},
+      {"GOHOME", ClWord::gohome},     {"UNITS", ClWord::units},       {"UNIT", ClWord::units},
+      {"MULTAX", ClWord::multax},     {"END", ClWord::end},           {"FINI", ClWord::end},
+      {"SPINDL", ClWord::spindl},     {"DELAY", ClWord::delay},       {"CUTCOM", ClWord::cutcom},
+      {"OPSKIP", ClWord::opskip},     {"CYCLE", ClWord::cycle},       {"CUTTER", ClWord::cutter},
+      {"TLDATA", ClWord::cutter},     {"MSYS", ClWord::msys},         {"CSYS", ClWord::csys},
+      {"TRNTYP", ClWord::trntyp},     {"ROTABL", ClWord::rotabl},     {"NURBS", ClWord::nurbs},
+      {"COOLNT", ClWord::event},      {"LOADTL", ClWord::event},      {"LOAD", ClWord::event},
+      {"TOOL PATH", ClWord::event},   {"END-OF-PATH", ClWord::event}, {"PARTNO", ClWord::event},
+      {"PPRINT", ClWord::event},      {"INSERT", ClWord::event},      {"TPRINT", ClWord::event},
+      {"MACHIN", ClWord::event},      {"SELECT", ClWord::event},      {"CLEARP", ClWord::event},
+      {"PAINT", ClWord::event},       {"OPSTOP", ClWord::event},      {"STOP", ClWord::event},
+      {"SETUP", ClWord::event},       {"OPFEATSTART", ClWord::event}, {"OPFEATEND", ClWord::event},
+      {"MOVE_ATTRIB", ClWord::event}, {"BOX", ClWord::event},         {"TOOLNO", ClWord::event},
+      {"AUTOPS", ClWord::event},      {"MODE", ClWord::event},        {"OPERATION", ClWord::event},
+      {"TLON", ClWord::event},        {"INDIRV", ClWord::event},      {"SEQNO", ClWord::event},
+      {"ORIGIN", ClWord::event},      {"HEAD", ClWord::event},        {"FINISH", ClWord::event},
   }};
   for (const auto& [name, kind] : words) {
     if (name == word) return &kind;
@@ -105,6 +105,7 @@ ClReader::ClReader(const std::string& source, const InterpretOptions& options, P
   program_.start_abc_deg = options.start_abc_deg;
   program_.moves.reserve(static_cast<std::size_t>(line_count));  // about one move per statement
   position_ = options.start_mm;
+  initial_mm_ = options.start_mm;
 }
 
 ClReader::~ClReader() = default;
@@ -188,7 +189,29 @@ Result<CanonicalProgram> ClReader::finish(int line_count) {
   }
   if (auto status = flush_compensation(last); !status) return status.error();
   if (!ended_) program_.end_line = line_count;
+  note_arc_directions();
   return std::move(program_);
+}
+
+// What the arc checks found, for the user (pkm interpret prints notes; plan adds them to its warnings).
+void ClReader::note_arc_directions() {
+  if (longer_arcs_ > 0) {
+    add_note(
+        fmt::format("{} arc(s) of more than 180° taken the long way round: SolidWorks CAM writes the "
+                    "axis of the shorter arc, and the longer one continues the move before it",
+                    longer_arcs_));
+  }
+  if (reversed_arc_lines_.empty()) return;
+  std::string lines;
+  for (std::size_t i = 0; i < reversed_arc_lines_.size() && i < 10; ++i)
+    lines += fmt::format("{}{}", i == 0 ? "" : ", ", reversed_arc_lines_[i]);
+  if (reversed_arc_lines_.size() > 10) lines += fmt::format(" and {} more", reversed_arc_lines_.size() - 10);
+  add_note(
+      fmt::format("warning: {} arc(s) start against the direction of the move before them (lines {}): "
+                  "read as {}, whose CIRCLE turns {} about its axis; if that is not the CAM system "
+                  "that wrote the file, give --format",
+                  reversed_arc_lines_.size(), lines, program_format_name(dialect_),
+                  dialect_ == ProgramFormat::nx ? "clockwise" : "counter-clockwise"));
 }
 
 Error ClReader::error_at(ClPosition at, std::string_view message) const {

@@ -1,7 +1,7 @@
 // CUTCOM/LEFT|RIGHT|OFF: the path offset by the cutter radius, as the G-code interpreter's G41/G42/G40.
-#include <fmt/format.h>
-
 #include "program/cl_reader_cutcom.hpp"
+
+#include <fmt/format.h>
 
 namespace pkm::program {
 

@@ -1,8 +1,8 @@
 // CYCLE/DRILL|DEEP|TAP|BORE|… … CYCLE/OFF: every GOTO in between is a hole, drilled along the tool axis the
 // way the G-code canned cycles drill along Z.
-#include <fmt/format.h>
-
 #include "program/cl_reader_cycle.hpp"
+
+#include <fmt/format.h>
 
 namespace pkm::program {
 

@@ -2,8 +2,10 @@
 // stage transforms them); see docs/cl-data.md for each dialect's arc direction.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "program/cl_reader_state.hpp"
 
@@ -18,10 +20,10 @@ bool looks_like_unit_vector(const double* v) {
 
 }  // namespace
 
-// GOTO/x,y,z[,i,j,k] and the multi-point forms CAM systems write for point lists: x,y,z repeated, or
-// x,y,z,i,j,k repeated under MULTAX/ON. Without MULTAX said, six values are a point and its tool axis (as
-// every CAM system writes one 5-axis point), and 6n values are n such points when every (i,j,k) is a unit
-// vector; otherwise triples.
+// GOTO/x,y,z[,i,j,k] and the multi-point forms of APT for point lists: x,y,z repeated, or x,y,z,i,j,k
+// repeated under MULTAX/ON. Six values are one point and its tool axis (as every CAM system writes a 5-axis
+// point) unless MULTAX/OFF was said; without MULTAX said, 6n values (n > 1) are n such points when every
+// (i,j,k) is a unit vector, and triples otherwise.
 Status ClReader::points(const ClStatement& s, std::vector<ClPoint>& out) const {
   out.clear();
   const std::size_t n = s.args.size();
@@ -31,14 +33,14 @@ Status ClReader::points(const ClStatement& s, std::vector<ClPoint>& out) const {
   }
   std::vector<double> v(n);
   if (auto status = numbers(s, 0, n, v.data()); !status) return status;
-  bool sextuples = multax_.value_or(false) && n % 6 == 0;
-  if (!multax_.has_value() && n % 6 == 0) {
+  bool sextuples = n % 6 == 0 && multax_.value_or(n == 6);
+  if (!multax_.has_value() && n % 6 == 0 && n > 6) {
     sextuples = true;
     for (std::size_t k = 3; k < n && sextuples; k += 6) sextuples = looks_like_unit_vector(&v[k]);
   }
   if (multax_.value_or(false) && n % 6 != 0 && n != 3) {
-    return error_at(s.at, fmt::format("{} under MULTAX/ON takes x,y,z,i,j,k per point, got {} values",
-                                      s.word, n));
+    return error_at(s.at,
+                    fmt::format("{} under MULTAX/ON takes x,y,z,i,j,k per point, got {} values", s.word, n));
   }
   const std::size_t stride = sextuples ? 6 : 3;
   for (std::size_t k = 0; k < n; k += stride) {
@@ -74,15 +76,52 @@ Status ClReader::go_to_point(const ClStatement& s, const Eigen::Vector3d& end_mm
   CanonicalMove move = move_to(s, rapid_next_ ? MoveKind::rapid : MoveKind::line, end_mm);
   if (circle_) {
     if (rapid_next_) return error_at(s.at, "RAPID cannot apply to a circular move (CIRCLE)");
-    if (const std::string why = make_cl_arc(*circle_, position_, move); !why.empty()) return error_at(s.at, why);
+    if (const std::string why = make_cl_arc(*circle_, position_, move); !why.empty())
+      return error_at(s.at, why);
     circle_.reset();
+    check_arc_direction(s, move);
   }
   if (move.kind != MoveKind::rapid) {
     if (auto status = set_feed(s, move); !status) return status;
   }
   rapid_next_ = false;
+  remember_direction(move, position_);
   position_ = end_mm;
   return emit(move, s.at);
+}
+
+// The direction the tool travels at the end of a cutting move; none after a rapid (an arc after a rapid has
+// nothing to continue).
+void ClReader::remember_direction(const CanonicalMove& move, const Eigen::Vector3d& start_mm) {
+  last_direction_.reset();
+  if (move.kind == MoveKind::arc) {
+    last_direction_ = cl_arc_end_tangent(move);
+  } else if (move.kind == MoveKind::line && (move.end_mm - start_mm).norm() > 1e-9) {
+    last_direction_ = (move.end_mm - start_mm).normalized();
+  }
+}
+
+// Tangent continuity. SolidWorks CAM states the axis of the shorter of the two arcs between the points, also
+// for an arc of more than 180° (which then runs the other way about it); of the two, the one that continues
+// the move before it is meant. Every dialect: an arc that starts reversing the move before it is reported,
+// the sign of a wrong arc convention (--format).
+void ClReader::check_arc_direction(const ClStatement& s, CanonicalMove& arc) {
+  if (!last_direction_) return;
+  constexpr double kReversedCos = -0.9;  // more than about 154° from the previous direction
+  constexpr double kTangentCos = 0.9;
+  const double written = cl_arc_start_tangent(arc, position_).dot(*last_direction_);
+  const bool full_turn = (arc.end_mm - position_).norm() < 1e-9;
+  if (dialect_ == ProgramFormat::solidworks && !full_turn && written < kReversedCos &&
+      cl_arc_sweep_rad(arc, position_) <= std::numbers::pi + 1e-9) {
+    CanonicalMove longer = arc;
+    longer.normal = -arc.normal;
+    if (cl_arc_start_tangent(longer, position_).dot(*last_direction_) > kTangentCos) {
+      arc = longer;
+      ++longer_arcs_;
+      return;
+    }
+  }
+  if (written < kReversedCos) reversed_arc_lines_.push_back(s.at.line);
 }
 
 Status ClReader::from(const ClStatement& s) {
@@ -104,13 +143,20 @@ Status ClReader::from(const ClStatement& s) {
   return emit(move_to(s, MoveKind::rapid, p), s.at);
 }
 
-// GOHOME: a rapid back to the FROM point (the start when no FROM was given), at the tool axis in effect.
+// GOHOME: a rapid back to the FROM point (the start when no FROM was given); NX writes the point itself
+// (GOHOME/x,y,z), which is then where the tool goes.
 Status ClReader::gohome(const ClStatement& s) {
   if (auto status = not_after_circle(s); !status) return status;
   if (cycle_active()) return error_at(s.at, "GOHOME inside a CYCLE (CYCLE/OFF first)");
-  const Eigen::Vector3d home = home_mm_.value_or(program_.start_mm);
-  for (const ClArg& arg : s.args) {  // GOHOME/XAXIS… variants name axes; all go home here
-    if (!cl_starts_like_word(arg.text)) return error_at(arg.at, "GOHOME takes no coordinates");
+  Eigen::Vector3d home = home_mm_.value_or(initial_mm_);
+  const bool words_only = std::all_of(s.args.begin(), s.args.end(),
+                                      [](const ClArg& arg) { return cl_starts_like_word(arg.text); });
+  if (!words_only) {  // GOHOME/x,y,z[,i,j,k]; the axis-naming variants (GOHOME/XAXIS…) all go home here
+    std::vector<ClPoint> list;
+    if (auto status = points(s, list); !status) return status;
+    if (list.size() != 1) return error_at(s.at, "GOHOME takes one point (x,y,z or x,y,z,i,j,k)");
+    if (list[0].axis) axis_ = *list[0].axis;
+    home = list[0].p_mm;
   }
   rapid_next_ = false;
   position_ = home;
@@ -130,8 +176,8 @@ Status ClReader::rapid(const ClStatement& s) {
 Status ClReader::circle(const ClStatement& s) {
   if (auto status = not_after_circle(s); !status) return status;
   if (s.args.size() < 6) {
-    return error_at(s.at,
-                    fmt::format("CIRCLE takes at least 6 values (xc,yc,zc,i,j,k[,r]), got {}", s.args.size()));
+    return error_at(
+        s.at, fmt::format("CIRCLE takes at least 6 values (xc,yc,zc,i,j,k[,r]), got {}", s.args.size()));
   }
   std::array<double, 3> c{};
   if (auto status = numbers(s, 0, 3, c.data()); !status) return status;

@@ -1,7 +1,7 @@
 // NX NURBS/ records: the spline evaluated into line moves within the tolerance.
-#include <fmt/format.h>
-
 #include "program/cl_reader_nurbs.hpp"
+
+#include <fmt/format.h>
 
 namespace pkm::program {
 

@@ -59,7 +59,8 @@ Status ClReader::tlaxis(const ClStatement& s) {
 
 // UNITS/MM|INCHES (UNIT/… as some systems write it).
 Status ClReader::units(const ClStatement& s) {
-  if (s.args.size() == 1 && (cl_equals_upper(s.args[0].text, "MM") || cl_equals_upper(s.args[0].text, "METRIC"))) {
+  if (s.args.size() == 1 &&
+      (cl_equals_upper(s.args[0].text, "MM") || cl_equals_upper(s.args[0].text, "METRIC"))) {
     scale_ = 1.0;
   } else if (s.args.size() == 1 &&
              (cl_equals_upper(s.args[0].text, "INCHES") || cl_equals_upper(s.args[0].text, "INCH") ||

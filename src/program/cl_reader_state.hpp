@@ -56,6 +56,7 @@ class ClReader {
   Status not_after_circle(const ClStatement& s) const;
   void record_event(const ClStatement& s);
   void add_note(std::string note);
+  void note_arc_directions();
 
   // --- the output stage (cl_reader.cpp) ---
   /// A move at the current tool axis, in the CL frame (before transform and compensation).
@@ -75,6 +76,8 @@ class ClReader {
   Status rapid(const ClStatement& s);
   Status circle(const ClStatement& s);
   Status delay(const ClStatement& s);
+  void remember_direction(const CanonicalMove& move, const Eigen::Vector3d& start_mm);
+  void check_arc_direction(const ClStatement& s, CanonicalMove& arc);
   /// GOTO/FROM values: one or more points (x,y,z or x,y,z,i,j,k), in mm of the CL frame.
   struct ClPoint {
     Eigen::Vector3d p_mm;
@@ -98,6 +101,7 @@ class ClReader {
   Status csys(const ClStatement& s);
   Status trntyp(const ClStatement& s);
   Status rotabl(const ClStatement& s);
+  void update_transform();  ///< transform_ from frame_ and table_rotation_
 
   // Cycles, compensation, NURBS (their own files).
   Status cycle(const ClStatement& s);
@@ -121,10 +125,10 @@ class ClReader {
   const bool apply_transforms_;
   const ProgramFormat dialect_;
   CanonicalProgram program_;
-  double scale_ = 1.0;  ///< mm per program length unit (UNITS)
+  double scale_ = 1.0;                                  ///< mm per program length unit (UNITS)
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();  ///< tool tip, CL frame, mm
-  Eigen::Vector3d axis_ = Eigen::Vector3d::UnitZ();      ///< tool axis, CL frame
-  std::optional<double> feed_;                           ///< mm/min, or mm/rev when feed_per_rev_
+  Eigen::Vector3d axis_ = Eigen::Vector3d::UnitZ();     ///< tool axis, CL frame
+  std::optional<double> feed_;                          ///< mm/min, or mm/rev when feed_per_rev_
   bool feed_per_rev_ = false;
   double spindle_rpm_ = 0.0;
   bool spindle_rpm_known_ = false;
@@ -137,7 +141,14 @@ class ClReader {
   double cutter_diameter_mm_ = 0;  ///< CUTTER/d, TLDATA/MILL,d (0: not known)
   /// CL frame → output frame (MSYS, CSYS, TRNTYP, ROTABL); identity when --no-transform.
   Eigen::Isometry3d transform_ = Eigen::Isometry3d::Identity();
-  std::optional<Eigen::Vector3d> home_mm_;  ///< FROM before any motion: where GOHOME goes
+  std::optional<Eigen::Vector3d> home_mm_;                ///< FROM before any motion: where GOHOME goes
+  Eigen::Vector3d initial_mm_ = Eigen::Vector3d::Zero();  ///< the start (CL frame) when there is no FROM
+  /// ROTABL: the rotary table's turn so far (the CL points are written on the turned part).
+  Eigen::Matrix3d table_rotation_ = Eigen::Matrix3d::Identity();
+  Eigen::Isometry3d frame_ = Eigen::Isometry3d::Identity();  ///< MSYS/CSYS, before the table's turn
+  std::optional<Eigen::Vector3d> last_direction_;  ///< unit, CL frame: where the last cutting move went
+  std::vector<int> reversed_arc_lines_;            ///< arcs that start against the move before them
+  int longer_arcs_ = 0;  ///< SolidWorks arcs taken the long way round (tangent continuity)
   bool skipping_ = false;
   bool ended_ = false;
   std::unique_ptr<ClCycleState> cycle_;

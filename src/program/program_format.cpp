@@ -59,13 +59,11 @@ ProgramFormat marker_of_comment(std::string_view comment) {
 
 // Major words of APT CL data as CAM systems write them; the ones only NX writes name it.
 constexpr std::array<std::string_view, 44> kClWords = {
-    "GOTO",     "FROM",       "RAPID",      "FEDRAT",      "TLAXIS",      "UNITS",       "UNIT",
-    "MULTAX",   "CIRCLE",     "END",        "FINI",        "SPINDL",      "DELAY",       "CUTCOM",
-    "COOLNT",   "LOADTL",     "LOAD",       "CUTTER",      "PARTNO",      "PPRINT",      "INSERT",
-    "TPRINT",   "MACHIN",     "SELECT",     "CLEARP",      "OPSTOP",      "OPSKIP",      "CYCLE",
-    "GOHOME",   "ROTABL",     "CSYS",       "TRNTYP",      "SETUP",       "OPFEATSTART", "OPFEATEND",
-    "TOOLNO",   "INDIRV",     "AUTOPS",     "STOP",        "TOOL PATH",   "END-OF-PATH", "MSYS",
-    "PAINT",    "TLDATA",
+    "GOTO",   "FROM",   "RAPID",  "FEDRAT",    "TLAXIS",      "UNITS",  "UNIT",        "MULTAX",    "CIRCLE",
+    "END",    "FINI",   "SPINDL", "DELAY",     "CUTCOM",      "COOLNT", "LOADTL",      "LOAD",      "CUTTER",
+    "PARTNO", "PPRINT", "INSERT", "TPRINT",    "MACHIN",      "SELECT", "CLEARP",      "OPSTOP",    "OPSKIP",
+    "CYCLE",  "GOHOME", "ROTABL", "CSYS",      "TRNTYP",      "SETUP",  "OPFEATSTART", "OPFEATEND", "TOOLNO",
+    "INDIRV", "AUTOPS", "STOP",   "TOOL PATH", "END-OF-PATH", "MSYS",   "PAINT",       "TLDATA",
 };
 constexpr std::array<std::string_view, 5> kNxWords = {"TOOL PATH", "END-OF-PATH", "MSYS", "PAINT", "TLDATA"};
 
@@ -119,8 +117,8 @@ std::string_view program_format_name(ProgramFormat format) {
 
 std::optional<ProgramFormat> parse_program_format(std::string_view key) {
   for (const FormatEntry& e : kFormats) {
-    if (e.key.size() == key.size() &&
-        std::equal(key.begin(), key.end(), e.key.begin(), [](char a, char b) { return upper(a) == upper(b); }))
+    if (e.key.size() == key.size() && std::equal(key.begin(), key.end(), e.key.begin(),
+                                                 [](char a, char b) { return upper(a) == upper(b); }))
       return e.format;
   }
   return std::nullopt;

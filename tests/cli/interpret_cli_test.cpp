@@ -144,7 +144,7 @@ TEST(InterpretCli, CountPrintsOnlyTheSummary) {
   const std::string program = interpret_cli_write_temp("count.ngc", "G21 F100\nG1 X1\nG1 X2\nM3 S100\nM2\n");
   const CliRun r = interpret_cli_run("interpret " + program + " --count", false);
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  EXPECT_EQ(r.out, "2 moves, 1 events, program ends on line 5\n");
+  EXPECT_EQ(r.out, "2 moves, 1 events, program ends on line 5 (G-code (RS274/NGC))\n");
   const CliRun both = interpret_cli_run("interpret " + program + " --count --json");
   EXPECT_NE(both.exit_code, 0) << both.out;
 }

@@ -64,6 +64,16 @@ TEST(CommandedCoordinates, ATriceptRefusesOrientationButNotAConstantToolAxis) {
   EXPECT_EQ(refused.error().location.line, 4);
   EXPECT_NE(refused.error().message.find("the tool axis is not a controlled coordinate"), std::string::npos)
       << refused.error().message;
+  // Tilted from its first point on and never changing: still a tool axis the tricept cannot set.
+  const std::string tilted_throughout =
+      "UNITS/MM\nFEDRAT/600\nGOTO/0,0,0,0.5,0,0.8660254\nGOTO/10,0,0\nFINI\n";
+  auto constant_tilt = program::read_cl_data(tilted_throughout, "prog.cl", start);
+  ASSERT_TRUE(constant_tilt.ok()) << constant_tilt.error().message;
+  const Status refused_first = planning::check_commanded_coordinates(tricept, *constant_tilt);
+  ASSERT_FALSE(refused_first.ok());
+  EXPECT_EQ(refused_first.error().location.line, 3);
+  EXPECT_NE(refused_first.error().message.find("by 30.0000 deg"), std::string::npos)
+      << refused_first.error().message;
 }
 
 TEST(CommandedCoordinates, APlanarMachineRefusesZ) {

@@ -311,8 +311,12 @@ TEST(ClReaderArc, Errors) {
             "test.cl:3:1: DELAY between CIRCLE (line 2) and the GOTO to its end point");
   EXPECT_EQ(cl_reader_error_of("FROM/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nRAPID\nGOTO/0,10,0\n"),
             "test.cl:4:1: RAPID cannot apply to a circular move (CIRCLE)");
-  EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,1\n"),
-            "test.cl:1:1: CIRCLE takes at least 7 values (xc,yc,zc,i,j,k,r), got 6");
+  EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0\n"),
+            "test.cl:1:1: CIRCLE takes at least 6 values (xc,yc,zc,i,j,k[,r]), got 5");
+  EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,1,10,SIDEWAYS\n"),
+            "test.cl:1:23: unknown CIRCLE modifier 'SIDEWAYS'");
+  EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,1,10,TIMES,1.5\n"),
+            "test.cl:1:29: TIMES takes a whole number of turns, 1 or more");
   EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,0,10\n"),
             "test.cl:1:14: the axis vector (i,j,k) has zero length");
   EXPECT_EQ(cl_reader_error_of("CIRCLE/0,0,0,0,0,1,-10\n"),
@@ -396,8 +400,8 @@ TEST(ClReaderOpskip, StatementsBetweenOnAndOffFollowTheBlockDeleteSwitch) {
 }
 
 TEST(ClReaderErrors, UnknownStatement) {
-  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\n  GOHOME\n"), "test.cl:2:3: unknown statement 'GOHOME'");
-  EXPECT_EQ(cl_reader_error_of("CYCLE/DRILL,10,FEDTO,0\n"), "test.cl:1:1: unknown statement 'CYCLE'");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\n  GOBACK\n"), "test.cl:2:3: unknown statement 'GOBACK'");
+  EXPECT_EQ(cl_reader_error_of("ROTATE/DRILL,10,FEDTO,0\n"), "test.cl:1:1: unknown statement 'ROTATE'");
   EXPECT_EQ(cl_reader_error_of("1.0,2.0,3.0\n"), "test.cl:1:1: unknown statement '1.0,2.0,3.0'");
 }
 
@@ -417,21 +421,20 @@ TEST(ClReaderErrors, ZeroToolAxis) {
 
 TEST(ClReaderErrors, WrongValueCounts) {
   EXPECT_EQ(cl_reader_error_of("FEDRAT/100\nGOTO/1,2,3,4\n"),
-            "test.cl:2:1: GOTO takes 3 values (x,y,z) or 6 (x,y,z,i,j,k), got 4");
+            "test.cl:2:1: GOTO takes x,y,z or x,y,z,i,j,k (or several of them), got 4 values");
   EXPECT_EQ(cl_reader_error_of("GOTO/1,2\n"),
-            "test.cl:1:1: GOTO takes 3 values (x,y,z) or 6 (x,y,z,i,j,k), got 2");
+            "test.cl:1:1: GOTO takes x,y,z or x,y,z,i,j,k (or several of them), got 2 values");
   EXPECT_EQ(cl_reader_error_of("FROM/1,2,3,4,5\n"),
-            "test.cl:1:1: FROM takes 3 values (x,y,z) or 6 (x,y,z,i,j,k), got 5");
+            "test.cl:1:1: FROM takes x,y,z or x,y,z,i,j,k (or several of them), got 5 values");
+  EXPECT_EQ(cl_reader_error_of("FROM/1,2,3,4,5,6,7,8,9\n"), "test.cl:1:1: FROM takes one point (x,y,z or x,y,z,i,j,k)");
+  EXPECT_EQ(cl_reader_error_of("MULTAX/ON\nFEDRAT/100\nGOTO/1,2,3,4,5,6,7,8,9\n"),
+            "test.cl:3:1: GOTO under MULTAX/ON takes x,y,z,i,j,k per point, got 9 values");
   EXPECT_EQ(cl_reader_error_of("TLAXIS/0,1\n"), "test.cl:1:1: TLAXIS takes 3 values (i,j,k), got 2");
   EXPECT_EQ(cl_reader_error_of("RAPID/1\n"), "test.cl:1:7: RAPID takes no values");
 }
 
 TEST(ClReaderErrors, StateThatIsMissingOrNotSupported) {
   EXPECT_EQ(cl_reader_error_of("GOTO/1,2,3\n"), "test.cl:1:1: cutting move before any feed rate (FEDRAT)");
-  EXPECT_EQ(
-      cl_reader_error_of("CUTCOM/LEFT\n"),
-      "test.cl:1:8: cutter compensation is not supported (only CUTCOM/OFF): write tool-tip (centre-line) CL "
-      "data");
   EXPECT_EQ(cl_reader_error_of("UNITS/FEET\n"), "test.cl:1:7: UNITS takes MM or INCHES");
   EXPECT_EQ(cl_reader_error_of("SPINDL/SFM,300\n"),
             "test.cl:1:8: surface speed (SFM/SMM) is not supported: give the speed in RPM");
