@@ -76,6 +76,16 @@ const ClWord* find_cl_word(std::string_view word) {
   return nullptr;
 }
 
+// APT source statements that move the tool along surfaces (CATIA writes some into its "APT" output):
+// TLON,GOFWD/(CIRCLE/…),ON,(LINE/…) and the like need the geometry engine of an APT processor.
+bool is_part_surface_motion(std::string_view word) {
+  for (const std::string_view w : {"TLON", "TLLFT", "TLRGT", "GOFWD", "GOLFT", "GORGT", "GOBACK", "GOUP",
+                                   "GODOWN", "PSIS", "GO"}) {
+    if (word.starts_with(w) && (word.size() == w.size() || word[w.size()] == ',')) return true;
+  }
+  return false;
+}
+
 // NX writes its own annotations as CSI_SET_… statements; pkm keeps them as events.
 bool is_nx_annotation(std::string_view word) {
   return word.starts_with("CSI_");
@@ -126,6 +136,11 @@ Status ClReader::apply(const ClStatement& s) {
   const bool read_annotation = kind != nullptr && (*kind == ClWord::csys || *kind == ClWord::cutter);
   if (s.is_annotation && !read_annotation) return annotation(s);
   if (kind == nullptr && is_nx_annotation(s.word)) return annotation(s);
+  if (kind == nullptr && is_part_surface_motion(s.word)) {
+    return error_at(s.at, fmt::format("'{}' is APT part-program motion (drive and check surfaces), not CL "
+                                      "data: output the CAM program as CL records (GOTO, CIRCLE)",
+                                      std::string_view(s.word).substr(0, 40)));
+  }
   if (kind == nullptr) {
     const std::string_view shown = std::string_view(s.word).substr(0, 40);
     return error_at(s.at, fmt::format("unknown statement '{}'", shown));

@@ -400,7 +400,10 @@ TEST(ClReaderOpskip, StatementsBetweenOnAndOffFollowTheBlockDeleteSwitch) {
 }
 
 TEST(ClReaderErrors, UnknownStatement) {
-  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\n  GOBACK\n"), "test.cl:2:3: unknown statement 'GOBACK'");
+  EXPECT_EQ(cl_reader_error_of("FEDRAT/100\n  GOBAK\n"), "test.cl:2:3: unknown statement 'GOBAK'");
+  EXPECT_EQ(cl_reader_error_of("INDIRV/1,0,0\nTLON,GOFWD/(CIRCLE/0,0,0,5),ON,(LINE/0,0,0,1,1,0)\n"),
+            "test.cl:2:1: 'TLON,GOFWD' is APT part-program motion (drive and check surfaces), not CL data: "
+            "output the CAM program as CL records (GOTO, CIRCLE)");
   EXPECT_EQ(cl_reader_error_of("ROTATE/DRILL,10,FEDTO,0\n"), "test.cl:1:1: unknown statement 'ROTATE'");
   EXPECT_EQ(cl_reader_error_of("1.0,2.0,3.0\n"), "test.cl:1:1: unknown statement '1.0,2.0,3.0'");
 }
