@@ -241,6 +241,7 @@ Status cycle_lengths(ClReader& r, const ClStatement& s, const Words& w, ClCycleS
                            name, s.at.line));
     c.code = 810;
   }
+  if (c.r_mm < -c.depth_mm) return r.error_at(c.r_at, "the R clearance is below the hole bottom (the depth)");
   if (c.code == 820 && !w.dwell.value)
     r.add_note(fmt::format("CYCLE/{} at line {} gives no dwell: 0 s at the bottom", name, s.at.line));
   return ok_status();
@@ -306,20 +307,22 @@ class ClCycleSink final : public ngc::CycleSink {
   Eigen::Vector3d last_;
 };
 
-void set_word(gcode::Block& b, char letter, double value, ClPosition at) {
-  b.letters[static_cast<std::size_t>(letter - 'A')] = {value, at.column > 0 ? at.column : 1};
+void set_word(gcode::Block& b, char letter, double value, int column) {
+  b.letters[static_cast<std::size_t>(letter - 'A')] = {value, column};
 }
 
-/// The G-code block that drills the hole at `top` (series frame).
-gcode::Block hole_block(const ClCycleState& c, const Eigen::Vector3d& top, ClPosition at) {
+/// The G-code block that drills the hole at `top` (series frame). Its words all point at the GOTO: the
+/// engine reports its errors on the GOTO's line.
+gcode::Block hole_block(const ClCycleState& c, int code, const Eigen::Vector3d& top, ClPosition at) {
+  const int column = at.column > 0 ? at.column : 1;
   gcode::Block b;
-  b.g[gcode::g_motion] = {c.code, at.column};
-  set_word(b, 'X', top.x(), at);
-  set_word(b, 'Y', top.y(), at);
-  set_word(b, 'Z', top.z() - c.depth_mm, c.depth_at);
-  set_word(b, 'R', top.z() + c.r_mm, c.r_at);
-  if (c.code == 830 || c.code == 730) set_word(b, 'Q', c.peck_mm, c.peck_at);
-  if (c.code == 820 || c.code == 840) set_word(b, 'P', c.dwell_s, c.dwell_at);
+  b.g[gcode::g_motion] = {code, column};
+  set_word(b, 'X', top.x(), column);
+  set_word(b, 'Y', top.y(), column);
+  set_word(b, 'Z', top.z() - c.depth_mm, column);
+  set_word(b, 'R', top.z() + c.r_mm, column);
+  if (code == 830 || code == 730) set_word(b, 'Q', c.peck_mm, column);
+  if (code == 820 || code == 840) set_word(b, 'P', c.dwell_s, column);
   return b;
 }
 
@@ -399,9 +402,7 @@ Status ClReader::cycle_point(const ClStatement& s, const ClPoint& point) {
     c.memory.code = context.code;
     c.memory.old_z_mm = top.z() + *c.retract_mm.value;
   }
-  gcode::Block block = hole_block(c, top, s.at);
-  block.g[gcode::g_motion].number = context.code;
-  if (context.code == 810) block.letters['Q' - 'A'] = {};
+  const gcode::Block block = hole_block(c, context.code, top, s.at);
   ClCycleSink sink(*this, s, c);
   sink.r_level = top.z() + c.r_mm;
   const gcode::LineRef where{source_, s.at.line};

@@ -397,7 +397,7 @@ TEST(ClReaderOpskip, StatementsBetweenOnAndOffFollowTheBlockDeleteSwitch) {
 
 TEST(ClReaderErrors, UnknownStatement) {
   EXPECT_EQ(cl_reader_error_of("FEDRAT/100\n  GOHOME\n"), "test.cl:2:3: unknown statement 'GOHOME'");
-  EXPECT_EQ(cl_reader_error_of("CYCLE/DRILL,10,FEDTO,0\n"), "test.cl:1:1: unknown statement 'CYCLE'");
+  EXPECT_EQ(cl_reader_error_of("CYCLE/DRILL,10,FEDTO,0\n"), "test.cl:1:22: CYCLE gives the FEDTO twice");
   EXPECT_EQ(cl_reader_error_of("1.0,2.0,3.0\n"), "test.cl:1:1: unknown statement '1.0,2.0,3.0'");
 }
 
@@ -428,10 +428,8 @@ TEST(ClReaderErrors, WrongValueCounts) {
 
 TEST(ClReaderErrors, StateThatIsMissingOrNotSupported) {
   EXPECT_EQ(cl_reader_error_of("GOTO/1,2,3\n"), "test.cl:1:1: cutting move before any feed rate (FEDRAT)");
-  EXPECT_EQ(
-      cl_reader_error_of("CUTCOM/LEFT\n"),
-      "test.cl:1:8: cutter compensation is not supported (only CUTCOM/OFF): write tool-tip (centre-line) CL "
-      "data");
+  EXPECT_EQ(cl_reader_error_of("CUTCOM/LEFT\n"),
+            "test.cl:1:8: CUTCOM/LEFT needs the cutter's diameter (CUTTER/d or TLDATA)");
   EXPECT_EQ(cl_reader_error_of("UNITS/FEET\n"), "test.cl:1:7: UNITS takes MM or INCHES");
   EXPECT_EQ(cl_reader_error_of("SPINDL/SFM,300\n"),
             "test.cl:1:8: surface speed (SFM/SMM) is not supported: give the speed in RPM");
