@@ -41,7 +41,7 @@ constexpr double kMaxVariablePecks = 1'000'000;
 constexpr double kSameAxisTolerance = 1e-9;
 
 /// The values of a CYCLE definition as written, before they become a cycle.
-struct Words {
+struct CycleWords {
   ClArg name;
   bool deep = false;  // DRILL,DEEP (NX)
   std::optional<bool> g98;
@@ -81,7 +81,7 @@ bool cycle_keyword(std::string_view text) {
   return cl_starts_like_word(text) || cl_equals_upper(text, "1STPECK");
 }
 
-ClCycleValue* value_slot(const std::string& word, Words& w) {
+ClCycleValue* value_slot(const std::string& word, CycleWords& w) {
   if (word == "RAPTO" || word == "CLEAR") return &w.r;
   if (word == "FEDTO" || word == "DEPTH") return &w.depth;
   if (word == "RTRCTO") return &w.retract;
@@ -92,7 +92,17 @@ ClCycleValue* value_slot(const std::string& word, Words& w) {
   return nullptr;
 }
 
-Status store(const ClReader& r, const ClArg& arg, ClCycleValue& slot, std::string_view what) {
+// A word the CYCLE forms know: after a keyword that needs a value, anything else is a bad number.
+bool known_cycle_word(std::string_view text) {
+  static constexpr std::string_view kWords[] = {"RAPTO", "CLEAR", "FEDTO",   "DEPTH",   "RTRCTO",  "DWELL",
+                                                "STEP",  "INCR",  "1STPECK", "PECKING", "SUBPECK", "MMPM",
+                                                "IPM",   "MMPR",  "IPR",     "DEEP",    "G98",     "G99"};
+  for (const std::string_view w : kWords)
+    if (cl_equals_upper(text, w)) return true;
+  return false;
+}
+
+Status store_cycle_value(const ClReader& r, const ClArg& arg, ClCycleValue& slot, std::string_view what) {
   if (slot.value) return r.error_at(arg.at, fmt::format("CYCLE gives the {} twice", what));
   double v = 0.0;
   if (auto status = r.number(arg, v); !status) return status;
@@ -102,23 +112,23 @@ Status store(const ClReader& r, const ClArg& arg, ClCycleValue& slot, std::strin
 
 // Unnamed numbers (APT's CYCLE/DRILL,d,IPM,f,c; CAMWorks' depth, clearance, retract printed twice): the
 // depth, the R clearance, the retract height in that order.
-Status positional(const ClReader& r, const ClArg& arg, Words& w) {
+Status store_positional(const ClReader& r, const ClArg& arg, CycleWords& w) {
   const int k = w.positional++;
-  if (k == 0) return store(r, arg, w.depth, "depth");
-  if (k == 1) return store(r, arg, w.r, "clearance");
-  if (k == 2) return store(r, arg, w.retract, "retract height");
+  if (k == 0) return store_cycle_value(r, arg, w.depth, "depth");
+  if (k == 1) return store_cycle_value(r, arg, w.r, "clearance");
+  if (k == 2) return store_cycle_value(r, arg, w.retract, "retract height");
   double v = 0.0;
   if (auto status = r.number(arg, v); !status) return status;
   if (k == 3 && w.retract.value && v == *w.retract.value) return ok_status();  // CAMWorks repeats it
   return r.error_at(arg.at, fmt::format("unexpected value '{}' in CYCLE", arg.text));
 }
 
-Status read_words(const ClReader& r, const std::vector<ClArg>& t, Words& w) {
+Status read_words(const ClReader& r, const std::vector<ClArg>& t, CycleWords& w) {
   w.name = t[0];
   for (std::size_t i = 1; i < t.size(); ++i) {
     const ClArg& a = t[i];
     if (!cycle_keyword(a.text)) {
-      if (auto status = positional(r, a, w); !status) return status;
+      if (auto status = store_positional(r, a, w); !status) return status;
       continue;
     }
     const std::string word = upper_text(a.text);
@@ -137,23 +147,23 @@ Status read_words(const ClReader& r, const std::vector<ClArg>& t, Words& w) {
     }
     ClCycleValue* slot = value_slot(word, w);
     if (slot == nullptr) return r.error_at(a.at, fmt::format("unknown CYCLE word '{}'", a.text));
-    if (i + 1 >= t.size() || cycle_keyword(t[i + 1].text))
+    if (i + 1 >= t.size() || known_cycle_word(t[i + 1].text))
       return r.error_at(a.at, fmt::format("{} needs a value", word));
     if (slot == &w.feed) {
       w.feed_unit = word;
       w.feed_unit_at = a.at;
     }
-    if (auto status = store(r, t[++i], *slot, word); !status) return status;
+    if (auto status = store_cycle_value(r, t[++i], *slot, word); !status) return status;
     // PECKING,first,later (CAMWorks): the later pecks follow the first.
     if (word == "PECKING" && i + 1 < t.size() && !cycle_keyword(t[i + 1].text)) {
-      if (auto status = store(r, t[++i], w.sub_peck, "later peck"); !status) return status;
+      if (auto status = store_cycle_value(r, t[++i], w.sub_peck, "later peck"); !status) return status;
     }
   }
   return ok_status();
 }
 
 /// The G-code cycle (×10) that drills the holes of the named CL cycle.
-Status choose_code(const ClReader& r, const Words& w, int& code) {
+Status choose_code(const ClReader& r, const CycleWords& w, int& code) {
   const std::string name = upper_text(w.name.text);
   const bool pecks = w.peck.value.has_value();
   if (name == "DRILL") {
@@ -184,7 +194,7 @@ Status choose_code(const ClReader& r, const Words& w, int& code) {
 }
 
 /// The cycle's feed in mm/min (and mm/rev when given per revolution).
-Status cycle_feed(const ClReader& r, const ClStatement& s, const Words& w, ClCycleState& c) {
+Status cycle_feed(const ClReader& r, const ClStatement& s, const CycleWords& w, ClCycleState& c) {
   if (!w.feed.value) {  // the FEDRAT in effect
     if (!r.feed_)
       return r.error_at(s.at,
@@ -210,7 +220,7 @@ Status cycle_feed(const ClReader& r, const ClStatement& s, const Words& w, ClCyc
 }
 
 /// The lengths of the definition, in mm; notes where the data leave a reading open.
-Status cycle_lengths(ClReader& r, const ClStatement& s, const Words& w, ClCycleState& c) {
+Status cycle_lengths(ClReader& r, const ClStatement& s, const CycleWords& w, ClCycleState& c) {
   const std::string name = upper_text(w.name.text);
   if (!w.depth.value)
     return r.error_at(w.name.at,
@@ -357,7 +367,7 @@ Status ClReader::cycle(const ClStatement& s) {
   if (cutcom_ && cutcom_->compensation.active())
     return error_at(s.at, "CYCLE with cutter compensation on (CUTCOM/OFF first)");
   if (auto status = flush_compensation(s.at); !status) return status;
-  Words words;
+  CycleWords words;
   if (auto status = read_words(*this, tokens, words); !status) return status;
   ClCycleState c;
   c.at = s.at;

@@ -141,7 +141,7 @@ TEST(ClCutcom, Errors) {
   EXPECT_EQ(
       cutcom_error_of("CUTTER/6\nFEDRAT/100\nCUTCOM/LEFT\nGOTO/10,0,0\nGOTO/20,0,0,0,0.6,0.8\n"),
       "test.cl:5:1: a move with the tool axis tilted from the CUTCOM plane's normal under compensation");
-  EXPECT_EQ(cutcom_error_of("CUTTER/6\nFEDRAT/100\nCUTCOM/LEFT\nRAPID\nGOTO/0,0,10\n"
+  EXPECT_EQ(cutcom_error_of("CUTTER/6\nFEDRAT/100\nCUTCOM/LEFT\nRAPID\nGOTO/20,0,10\n"
                             "CYCLE/DRILL,8,MMPM,250,3\n"),
             "test.cl:6:1: CYCLE with cutter compensation on (CUTCOM/OFF first)");
 }
