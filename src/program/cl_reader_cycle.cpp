@@ -385,7 +385,8 @@ Status ClReader::cycle(const ClStatement& s) {
 Status ClReader::cycle_point(const ClStatement& s, const ClPoint& point) {
   using namespace cl_cycle_detail;
   if (circle_) return error_at(s.at, "a GOTO after CIRCLE inside a CYCLE (CYCLE/OFF first)");
-  if (rapid_next_) return error_at(s.at, "RAPID inside a CYCLE: the cycle makes the holes' moves");
+  if (rapid_next_)
+    return error_at(s.at, "RAPID inside a CYCLE: the cycle makes the holes' moves (CYCLE/OFF missing?)");
   if (cutcom_ && cutcom_->compensation.active())
     return error_at(s.at, "CYCLE hole with cutter compensation on (CUTCOM/OFF first)");
   ClCycleState& c = *cycle_;

@@ -239,7 +239,7 @@ TEST(ClCycle, ErrorsNameLineAndColumn) {
   EXPECT_EQ(cycle_error_of(before + "CYCLE/DRILL,8,3\n"),
             "test.cl:3:1: CYCLE/DRILL without a feed (MMPM,f) and no FEDRAT before");
   EXPECT_EQ(cycle_error_of(before + "CYCLE/DRILL,8,MMPM,250,3\nRAPID\nGOTO/0,0,0\n"),
-            "test.cl:5:1: RAPID inside a CYCLE: the cycle makes the holes' moves");
+            "test.cl:5:1: RAPID inside a CYCLE: the cycle makes the holes' moves (CYCLE/OFF missing?)");
   EXPECT_EQ(cycle_error_of(before + "CYCLE/DRILL,8,MMPM,250,3\nCIRCLE/0,0,0,0,0,1,5\nGOTO/5,0,0\n"),
             "test.cl:5:1: a GOTO after CIRCLE inside a CYCLE (CYCLE/OFF first)");
   EXPECT_EQ(cycle_error_of(before + "CYCLE/TAP,8,MMPM,250,3\nGOTO/0,0,0\n"),
