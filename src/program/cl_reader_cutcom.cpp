@@ -96,9 +96,9 @@ Status ClReader::cutcom(const ClStatement& s) {
   const bool left = cl_equals_upper(w.side->text, "LEFT");
   if (cl_writes_centre_path(*this)) {
     c.centre_path = true;
-    add_note(
-        fmt::format("CUTCOM/{} (first at line {}): {} writes the tool-centre path, which is not offset again",
-                    left ? "LEFT" : "RIGHT", s.at.line, program_format_name(dialect_)));
+    // One note for the file (add_note keeps one of each text): the statements are events with their lines.
+    add_note(fmt::format("CUTCOM/LEFT and RIGHT: {} writes the tool-centre path, which is not offset again",
+                         program_format_name(dialect_)));
     return ok_status();
   }
   if (!(cutter_diameter_mm_ > 0.0))

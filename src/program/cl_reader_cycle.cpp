@@ -220,7 +220,7 @@ Status cycle_feed(const ClReader& r, const ClStatement& s, const CycleWords& w, 
 }
 
 /// The lengths of the definition, in mm; notes where the data leave a reading open.
-Status cycle_lengths(ClReader& r, const ClStatement& s, const CycleWords& w, ClCycleState& c) {
+Status cycle_lengths(ClReader& r, const CycleWords& w, ClCycleState& c) {
   const std::string name = upper_text(w.name.text);
   if (!w.depth.value)
     return r.error_at(w.name.at,
@@ -228,8 +228,7 @@ Status cycle_lengths(ClReader& r, const ClStatement& s, const CycleWords& w, ClC
   if (!w.r.value)
     return r.error_at(w.name.at, fmt::format("CYCLE/{} needs the R clearance (RAPTO, CLEAR)", name));
   if (*w.depth.value < 0.0)
-    r.add_note(fmt::format("CYCLE at line {}: a negative depth ({}) is read as that depth below the hole top",
-                           s.at.line, *w.depth.value));
+    r.add_note("a negative CYCLE depth (FEDTO, DEPTH) is read as that depth below the hole top");
   c.depth_mm = std::abs(*w.depth.value) * r.scale_;
   c.depth_at = w.depth.at;
   c.r_mm = *w.r.value * r.scale_;
@@ -247,13 +246,12 @@ Status cycle_lengths(ClReader& r, const ClStatement& s, const CycleWords& w, ClC
   if (w.sub_peck.value && !(c.sub_peck_mm > 0.0))
     return r.error_at(w.sub_peck.at, "the peck must be positive");
   if ((c.code == 830 || c.code == 730) && !w.peck.value) {
-    r.add_note(fmt::format("CYCLE/{} at line {} gives no peck (STEP): each hole is drilled in one feed (G81)",
-                           name, s.at.line));
+    r.add_note(fmt::format("CYCLE/{} with no peck (STEP): each hole is drilled in one feed (G81)", name));
     c.code = 810;
   }
   if (c.r_mm < -c.depth_mm) return r.error_at(c.r_at, "the R clearance is below the hole bottom (the depth)");
   if (c.code == 820 && !w.dwell.value)
-    r.add_note(fmt::format("CYCLE/{} at line {} gives no dwell: 0 s at the bottom", name, s.at.line));
+    r.add_note(fmt::format("CYCLE/{} with no dwell: 0 s at the bottom", name));
   return ok_status();
 }
 
@@ -372,7 +370,7 @@ Status ClReader::cycle(const ClStatement& s) {
   ClCycleState c;
   c.at = s.at;
   if (auto status = choose_code(*this, words, c.code); !status) return status;
-  if (auto status = cycle_lengths(*this, s, words, c); !status) return status;
+  if (auto status = cycle_lengths(*this, words, c); !status) return status;
   if (auto status = cycle_feed(*this, s, words, c); !status) return status;
   if (auto status = check_variable_pecks(*this, c); !status) return status;
   if (c.sub_peck_mm > 0.0 && c.sub_peck_mm == c.peck_mm) c.sub_peck_mm = 0.0;  // plain G83
