@@ -405,6 +405,7 @@ TEST(ClReaderErrors, UnknownStatement) {
             "test.cl:2:1: 'TLON,GOFWD' is APT part-program motion (drive and check surfaces), not CL data: "
             "output the CAM program as CL records (GOTO, CIRCLE)");
   EXPECT_EQ(cl_reader_error_of("ROTATE/DRILL,10,FEDTO,0\n"), "test.cl:1:1: unknown statement 'ROTATE'");
+  EXPECT_EQ(cl_reader_error_of("CYCLE/DRILL,10,FEDTO,0\n"), "test.cl:1:22: CYCLE gives the FEDTO twice");
   EXPECT_EQ(cl_reader_error_of("1.0,2.0,3.0\n"), "test.cl:1:1: unknown statement '1.0,2.0,3.0'");
 }
 
@@ -438,6 +439,8 @@ TEST(ClReaderErrors, WrongValueCounts) {
 
 TEST(ClReaderErrors, StateThatIsMissingOrNotSupported) {
   EXPECT_EQ(cl_reader_error_of("GOTO/1,2,3\n"), "test.cl:1:1: cutting move before any feed rate (FEDRAT)");
+  EXPECT_EQ(cl_reader_error_of("CUTCOM/LEFT\n"),
+            "test.cl:1:8: CUTCOM/LEFT needs the cutter's diameter (CUTTER/d or TLDATA)");
   EXPECT_EQ(cl_reader_error_of("UNITS/FEET\n"), "test.cl:1:7: UNITS takes MM or INCHES");
   EXPECT_EQ(cl_reader_error_of("SPINDL/SFM,300\n"),
             "test.cl:1:8: surface speed (SFM/SMM) is not supported: give the speed in RPM");
