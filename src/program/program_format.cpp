@@ -66,6 +66,14 @@ constexpr std::array<std::string_view, 44> kClWords = {
     "INDIRV", "AUTOPS", "STOP",   "TOOL PATH", "END-OF-PATH", "MSYS",   "PAINT",       "TLDATA",
 };
 constexpr std::array<std::string_view, 5> kNxWords = {"TOOL PATH", "END-OF-PATH", "MSYS", "PAINT", "TLDATA"};
+// SolidWorks CAM and CAMWorks write no comment naming themselves; these words of theirs do.
+constexpr std::array<std::string_view, 5> kSolidWorksWords = {"UNIT", "TRNTYP", "OPFEATSTART", "OPFEATEND",
+                                                              "MOVE_ATTRIB"};
+
+bool is_solidworks_word(std::string_view word) {
+  return word.starts_with("CSI_SET_") ||
+         std::find(kSolidWorksWords.begin(), kSolidWorksWords.end(), word) != kSolidWorksWords.end();
+}
 
 // "GOTO  /1,2" → "GOTO"; "tool path/x" → "TOOL PATH"; "" when the line does not start with a word of letters.
 std::string leading_word(std::string_view line) {
@@ -138,7 +146,7 @@ ProgramFormat detect_program_format(std::string_view text) {
   constexpr int kLinesToRead = 400;
   int cl_lines = 0, gcode_lines = 0, read = 0;
   ProgramFormat marker = ProgramFormat::automatic;
-  bool nx_words = false;
+  bool nx_words = false, solidworks_words = false;
   std::size_t pos = 0;
   while (pos < text.size() && read < kLinesToRead) {
     std::size_t eol = text.find('\n', pos);
@@ -155,9 +163,12 @@ ProgramFormat detect_program_format(std::string_view text) {
       continue;
     }
     const std::string word = leading_word(line);
-    if (!word.empty() && std::find(kClWords.begin(), kClWords.end(), word) != kClWords.end()) {
+    const bool solidworks_word = is_solidworks_word(word);
+    if (!word.empty() &&
+        (solidworks_word || std::find(kClWords.begin(), kClWords.end(), word) != kClWords.end())) {
       ++cl_lines;
       nx_words = nx_words || std::find(kNxWords.begin(), kNxWords.end(), word) != kNxWords.end();
+      solidworks_words = solidworks_words || solidworks_word;
       if (marker == ProgramFormat::automatic && (word == "PARTNO" || word == "PPRINT"))
         marker = marker_of_comment(line);
     } else if (looks_like_gcode(line)) {
@@ -166,7 +177,8 @@ ProgramFormat detect_program_format(std::string_view text) {
   }
   if (cl_lines <= gcode_lines) return ProgramFormat::gcode;
   if (marker != ProgramFormat::automatic) return marker;
-  return nx_words ? ProgramFormat::nx : ProgramFormat::apt;
+  if (nx_words) return ProgramFormat::nx;
+  return solidworks_words ? ProgramFormat::solidworks : ProgramFormat::apt;
 }
 
 }  // namespace pkm::program

@@ -55,8 +55,12 @@ TEST(ProgramFormatDetection, NamesTheCamSystemFromItsHeader) {
       ProgramFormat::creo);
   EXPECT_EQ(detect_program_format("$$ CATIA APT VERSION 1.0\n$$*CATIA0\nGOTO/1,2,3\n"), ProgramFormat::catia);
   EXPECT_EQ(detect_program_format("PARTNO/X\n$$ CAMWorks 2022\nGOTO/1,2,3\n"), ProgramFormat::solidworks);
+  // SolidWorks CAM names itself nowhere; its own words do (UNIT, CSI_SET_…, TRNTYP, CAMWorks' OPFEATSTART).
   EXPECT_EQ(detect_program_format("UNIT/MM\nCSI_SET_FLUTE_LENGTH/20.\nGOTO/1,2,3\nGOTO/4,5,6\n"),
-            ProgramFormat::apt);
+            ProgramFormat::solidworks);
+  EXPECT_EQ(detect_program_format("OPFEATSTART/Drill1\nRAPID/\nGOTO/ 1,2,3\nOPFEATEND/Drill1\n"),
+            ProgramFormat::solidworks);
+  EXPECT_EQ(detect_program_format("UNITS/MM\nFEDRAT/100\nGOTO/1,2,3\nGOTO/4,5,6\nFINI\n"), ProgramFormat::apt);
   EXPECT_EQ(detect_program_format("units/mm\nfedrat/100\ngoto/1,2,3\nfini\n"), ProgramFormat::apt);
 }
 
