@@ -167,3 +167,68 @@ TEST(InterpretCli, SubroutinePathAndParameterFileOptions) {
 }
 
 }  // namespace
+
+namespace {
+
+// A quarter arc entered tangentially, written as NX writes it (clockwise about the stated axis), in a file
+// whose name says nothing: the reader goes by the content.
+constexpr const char* kNxQuarter =
+    "TOOL PATH/QUARTER,TOOL,MILL\nTLDATA/MILL,10.0000,0.0000,75.0000,0.0000,0.0000\n"
+    "MSYS/0.0000,0.0000,0.0000,1.0000000,0.0000000,0.0000000,0.0000000,1.0000000,0.0000000\n"
+    "FROM/10.0000,-5.0000,0.0000\nFEDRAT/MMPM,100.0000\nGOTO/"
+    "10.0000,0.0000,0.0000,0.5000000,0.0000000,0.8660254\n"
+    "CIRCLE/0.0000,0.0000,0.0000,0.0000000,0.0000000,-1.0000000,10.0000,0.0600,0.5000,10.0000,0.0000\n"
+    "GOTO/0.0000,10.0000,0.0000\nEND-OF-PATH\n";
+
+TEST(InterpretCliCl, TheDialectComesFromTheContentAndIsNamed) {
+  const std::string program = interpret_cli_write_temp("quarter.nc", kNxQuarter);
+  const CliRun r = interpret_cli_run("interpret " + program + " --count");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out, "2 moves, 4 events, program ends on line 9 (NX CLSF)\n");
+  const CliRun json = interpret_cli_run("interpret " + program + " --json", false);
+  ASSERT_EQ(json.exit_code, 0) << json.out;
+  const auto document = nlohmann::json::parse(json.out);
+  EXPECT_EQ(document["format"], "NX CLSF");
+  const auto& arc = document["moves"][1];
+  EXPECT_EQ(arc["kind"], "arc");
+  EXPECT_NEAR(arc["normal"][2].get<double>(), 1.0, 1e-12);  // counter-clockwise in XY, as the path goes
+  EXPECT_NEAR(arc["tool_axis"][0].get<double>(), 0.5, 1e-7);
+}
+
+TEST(InterpretCliCl, TheTableShowsTheToolAxis) {
+  const std::string program = interpret_cli_write_temp("quarter_table.cls", kNxQuarter);
+  const CliRun r = interpret_cli_run("interpret " + program, false);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("tool i"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0.5000    0.0000    0.8660"), std::string::npos) << r.out;
+}
+
+TEST(InterpretCliCl, AWrongFormatIsReportedAndAnUnknownOneRefused) {
+  const std::string program = interpret_cli_write_temp("quarter_apt.cls", kNxQuarter);
+  const CliRun apt = interpret_cli_run("interpret " + program + " --count --format apt");
+  ASSERT_EQ(apt.exit_code, 0) << apt.out;
+  EXPECT_NE(apt.out.find("1 arc(s) start against the direction of the move before them (lines 8)"),
+            std::string::npos)
+      << apt.out;
+  const CliRun unknown = interpret_cli_run("interpret " + program + " --format mastercam");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(
+      unknown.out.find("unknown format 'mastercam': one of auto, gcode, apt, nx, creo, catia, solidworks"),
+      std::string::npos)
+      << unknown.out;
+}
+
+TEST(InterpretCliCl, NoTransformKeepsTheClFrame) {
+  std::string text = kNxQuarter;
+  const std::string identity = "MSYS/0.0000,0.0000,0.0000,1.0000000";
+  text.replace(text.find(identity), identity.size(), "MSYS/100.0000,0.0000,0.0000,1.0000000");
+  const std::string program = interpret_cli_write_temp("quarter_frame.cls", text);
+  const CliRun moved = interpret_cli_run("interpret " + program + " --json", false);
+  const CliRun kept = interpret_cli_run("interpret " + program + " --json --no-transform", false);
+  ASSERT_EQ(moved.exit_code, 0) << moved.out;
+  ASSERT_EQ(kept.exit_code, 0) << kept.out;
+  EXPECT_NEAR(nlohmann::json::parse(moved.out)["moves"][0]["end"][0].get<double>(), 110.0, 1e-9);
+  EXPECT_NEAR(nlohmann::json::parse(kept.out)["moves"][0]["end"][0].get<double>(), 10.0, 1e-9);
+}
+
+}  // namespace
