@@ -12,9 +12,17 @@ void bind_interpret(py::module_& m) {
   m.def(
       "interpret",
       [](const py::object& program_path, const Machine* machine, const py::object& tool_table,
-         const py::object& subroutine_path, const py::object& parameter_file) {
+         const py::object& subroutine_path, const py::object& parameter_file, const std::string& format,
+         bool transform) {
         const std::string path = optional_path(program_path);
-        const pipeline::ProgramOptions options = program_options(tool_table, subroutine_path, parameter_file);
+        pipeline::ProgramOptions options = program_options(tool_table, subroutine_path, parameter_file);
+        const auto parsed = program::parse_program_format(format);
+        if (!parsed) {
+          throw py::value_error("unknown format '" + format + "': one of " +
+                                std::string(program::program_format_keys()));
+        }
+        options.format = *parsed;
+        options.apply_cl_transforms = transform;
         Result<program::CanonicalProgram> program = make_error(ErrorCode::bad_input, "not interpreted");
         {
           py::gil_scoped_release released;
@@ -27,8 +35,11 @@ void bind_interpret(py::module_& m) {
         return program_arrays(unwrap(std::move(program)));
       },
       py::arg("program_path"), py::arg("machine") = py::none(), py::arg("tool_table") = py::none(),
-      py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(),
-      R"doc(The canonical moves of a part program: G-code, or APT CL data by extension (.cl, .cls, .apt).
+      py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(), py::arg("format") = "auto",
+      py::arg("transform") = true,
+      R"doc(The canonical moves of a part program: G-code, or CL data (NX CLSF, Pro/CLfile, CATIA, SolidWorks CAM /
+CAMWorks, APT), told apart by the content whatever the file's name; `format` forces one ("gcode", "apt",
+"nx", "creo", "catia", "solidworks"), `transform=False` keeps CL points in the frame MSYS/CSYS/ROTABL give.
 
 Without `machine` the interpreter starts at program zero, as `pkm interpret` does; with a machine it starts
 where that machine's programs start (its home tool point in program coordinates, and its A B C), as `pkm plan`
@@ -49,7 +60,7 @@ Returns a dict of arrays, one row per move (M moves):
   center_mm, normal (M, 3): arc centre and unit axis (NaN for other moves); turns (M,) int32 (0: no arc);
   feed_mm_min (M,); inverse_time_per_min (M,) (G93; NaN otherwise); dwell_s (M,); tool_length_mm (M,);
   path_tolerance_mm (M,) (G64 P; NaN: none); exact_stop (M,) bool (G61);
-and source, files (the main program, then the subroutine files read), frames, events (list of (line, text)),
+and source, format (how it was read: "G-code (RS274/NGC)", "NX CLSF" …), files (the main program, then the subroutine files read), frames, events (list of (line, text)),
 start_mm, start_abc_deg, end_line.
 Raises pkm.ProgramError (file, line, column) for a malformed program, pkm.FileIOError if it cannot be read.)doc");
 }

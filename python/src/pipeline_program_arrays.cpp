@@ -77,6 +77,7 @@ py::dict program_arrays(const program::CanonicalProgram& program) {
   if (program.files.empty()) files.append(program.source);  // [0] is the program itself, as in the CLI's JSON
   py::dict out;
   out["source"] = program.source;
+  out["format"] = program.format;
   out["files"] = files;
   out["line"] = numpy_from(std::move(line));
   out["source_file"] = numpy_from(std::move(source_file));

@@ -72,6 +72,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();
   result.summary = planning::summary_json(*plan, machine, *run);
+  result.summary["program_format"] = program->format;
   for (const std::string& note : program->notes) result.summary["warnings"].push_back(note);
   if (!called.empty()) result.summary["subroutine_lines"] = std::move(called);
   result.program_notes = program->notes;

@@ -94,6 +94,21 @@ def test_interpret_takes_the_subroutine_path_and_parameter_file_keywords(tmp_pat
         pkm.interpret(program_path("circle.ngc"), subroutine_path=42)
 
 
+def test_interpret_names_the_format_and_takes_the_format_keywords():
+    # The example CL program is NX CLSF by its content; forced to G-code it is refused, and an unknown key is
+    # a ValueError naming the keys.
+    moves = pkm.interpret(program_path("ball_end_5axis.cl"))
+    assert moves["format"] == "NX CLSF"
+    assert pkm.interpret(program_path("circle.ngc"))["format"] == "G-code (RS274/NGC)"
+    kept = pkm.interpret(program_path("ball_end_5axis.cl"), format="apt", transform=False)
+    assert kept["format"] == "APT CL data"
+    np.testing.assert_array_equal(kept["tool_axis"], moves["tool_axis"])  # MSYS is the identity there
+    with pytest.raises(pkm.ProgramError):
+        pkm.interpret(program_path("ball_end_5axis.cl"), format="gcode")
+    with pytest.raises(ValueError, match="one of auto, gcode"):
+        pkm.interpret(program_path("circle.ngc"), format="mastercam")
+
+
 def test_interpret_with_machine_starts_at_its_home(ch5):
     # ch5's program zero is its home tool point, so the start is program zero either way; the moves agree.
     alone = pkm.interpret(program_path("ch5_line.ngc"))
