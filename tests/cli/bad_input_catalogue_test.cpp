@@ -92,6 +92,16 @@ void catalogue_write_inputs(const fs::path& t) {
       "Y20\nM2\n");
   catalogue_write(t / "nan.cl", "UNITS/MM\nFEDRAT/100\nGOTO/1,nan,0\nFINI\n");
   catalogue_write(t / "unknown.cl", "UNITS/MM\nFEDRAT/100\n  FROBNICATE/1\nFINI\n");
+  catalogue_write(t / "cutcom_no_cutter.apt",
+                  "UNITS/MM\nFEDRAT/100\nGOTO/0,0,0\nCUTCOM/LEFT\nGOTO/10,0,0\nFINI\n");
+  catalogue_write(t / "cycle_no_depth.apt", "UNITS/MM\nFEDRAT/100\nCYCLE/DRILL,RAPTO,2\nGOTO/0,0,0\nFINI\n");
+  catalogue_write(t / "nurbs_counts.cls",
+                  "TOOL PATH/S,TOOL,MILL\nFEDRAT/MMPM,100\nGOTO/0,0,0\nNURBS/\nKNOT/0.3,0.6,1.0\n"
+                  "CNTRL/1,0,0\nCNTRL/2,1,0\nCNTRL/3,0,0\nCNTRL/4,1,0\nEND-OF-PATH\n");
+  catalogue_write(t / "trntyp_offset.apt", "UNIT/MM\nTRNTYP/WORLD,10,0,0\nFINI\n");
+  catalogue_write(
+      t / "catia_surface.aptsource",
+      "$$*CATIA0\nMULTAX\nFEDRAT/100,MMPM\nGOTO/0,0,0\nTLON,GOFWD/(CIRCLE/0,0,0,5),ON,(LINE/0,0,0,1,1,0)\n");
   catalogue_write(t / "unreachable.ngc", "G21 G90\nG1 X0 Y0 Z0 F3000\nG1 X900 F3000\nM2\n");
   catalogue_write(t / "tools.tbl", kCatalogueBinary);
 
@@ -300,6 +310,24 @@ std::vector<CatalogueCase> catalogue_cases() {
        interpret + "{t}/unknown.cl",
        2,
        {"{t}/unknown.cl:3:3: unknown statement 'FROBNICATE'"}},
+      {"cl_cutcom_without_cutter",
+       interpret + "{t}/cutcom_no_cutter.apt",
+       2,
+       {"{t}/cutcom_no_cutter.apt:4:", "CUTCOM/LEFT needs the cutter's diameter (CUTTER/d or TLDATA)"}},
+      {"cl_cycle_without_depth", interpret + "{t}/cycle_no_depth.apt", 2, {"{t}/cycle_no_depth.apt:3:"}},
+      {"cl_nurbs_wrong_counts", interpret + "{t}/nurbs_counts.cls", 2, {"{t}/nurbs_counts.cls:4:"}},
+      {"cl_trntyp_offset",
+       interpret + "{t}/trntyp_offset.apt",
+       2,
+       {"{t}/trntyp_offset.apt:2:", "TRNTYP/WORLD with an offset is not supported"}},
+      {"cl_catia_surface_motion",
+       interpret + "{t}/catia_surface.aptsource",
+       2,
+       {"{t}/catia_surface.aptsource:5:1: 'TLON,GOFWD' is APT part-program motion"}},
+      {"program_unknown_format",
+       interpret + "{t}/nan.cl --format mastercam",
+       2,
+       {"unknown format 'mastercam': one of auto, gcode, apt, nx, creo, catia, solidworks"}},
       {"cl_continued_200k_lines",
        interpret + "{t}/continued.cl",
        2,
