@@ -25,7 +25,7 @@ RELEASE_FLAGS ?=
 # without the " # GetParam() = ..." that ctest appends to parameterised ones); SANITIZE_SKIP= runs them too.
 SANITIZE_SKIP ?= ^($(shell grep -v '^\#' tests/sanitizer_skip.txt | grep . | paste -sd'|'))( |$$)
 
-.PHONY: deps configure build python linuxcnc run test sanitize lint conformance browser-test screenshots fuzz nightly bench format tidy consumer clean
+.PHONY: deps configure build python linuxcnc run test sanitize lint conformance cl-real browser-test screenshots fuzz nightly bench format tidy consumer clean
 
 # make test and make linuxcnc also install LinuxCNC (the module builds against it; the tests run it); make run
 # does not need it.
@@ -102,6 +102,12 @@ conformance: build
 	@bash scripts/regen-cycle-golden.sh --check
 	@bash scripts/regen-comp-golden.sh --check
 	@/usr/bin/python3 scripts/conformance-samples.py --pkm $(BUILD)/pkm --jobs $(JOBS)
+
+# Real CAM systems' CL files (docs/cl-data.md): CL_REAL=folder where the files of tests/program/cl_real_sources.tsv
+# were fetched (their licences keep them out of the repository).
+cl-real: build
+	@test -n "$(CL_REAL)" || { echo "make cl-real CL_REAL=FOLDER: the folder holding the files listed in tests/program/cl_real_sources.tsv"; exit 2; }
+	@/usr/bin/python3 scripts/cl-real-smoke.py "$(CL_REAL)" --pkm $(BUILD)/pkm
 
 # The HTML report in headless Chromium (installs Debian's chromium): tests/browser/report_browser_test.mjs.
 browser-test: build

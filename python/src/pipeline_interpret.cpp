@@ -35,8 +35,8 @@ void bind_interpret(py::module_& m) {
         return program_arrays(unwrap(std::move(program)));
       },
       py::arg("program_path"), py::arg("machine") = py::none(), py::arg("tool_table") = py::none(),
-      py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(), py::arg("format") = "auto",
-      py::arg("transform") = true,
+      py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(),
+      py::arg("format") = "auto", py::arg("transform") = true,
       R"doc(The canonical moves of a part program: G-code, or CL data (NX CLSF, Pro/CLfile, CATIA, SolidWorks CAM /
 CAMWorks, APT), told apart by the content whatever the file's name; `format` forces one ("gcode", "apt",
 "nx", "creo", "catia", "solidworks"), `transform=False` keeps CL points in the frame MSYS/CSYS/ROTABL give.

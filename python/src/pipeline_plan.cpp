@@ -153,6 +153,7 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
   // As pkm plan's summary: the interpreter's notes and where subroutine calls' moves were written.
   const std::vector<std::string> notes = program->notes;
   const nlohmann::json calls = pipeline::subroutine_lines(*program);
+  const std::string format = program->format;
   if (law) {
     auto optimized = redundancy::optimize_program(*program, machine, *law);
     if (!optimized) return optimized.error();
@@ -166,6 +167,7 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
   r.plan = std::move(*plan);
   if (Status streamed = stream_ticks(machine, a, *load, r); !streamed) return streamed.error();
   r.summary = planning::summary_json(r.plan, machine, r.run);
+  r.summary["program_format"] = format;
   for (const std::string& note : notes) r.summary["warnings"].push_back(note);
   if (!calls.empty()) r.summary["subroutine_lines"] = calls;
   if (!a.out_dir.empty()) {

@@ -27,7 +27,8 @@ struct ProgramOptions {
 /// The interpreter's options for `options`, starting at program zero (as `pkm interpret` and rs274 do).
 program::InterpretOptions interpret_options(const ProgramOptions& options);
 
-/// G-code or CL data by extension, read with `options`, starting where the machine's programs start.
+/// G-code or CL data (told apart by content, or options.format), read with `options`, starting where the
+/// machine's programs start.
 Result<program::CanonicalProgram> load_program_for(const Machine& machine, const std::string& program_path,
                                                    const ProgramOptions& options = {});
 

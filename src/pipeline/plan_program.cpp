@@ -42,6 +42,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   PlanProgramResult result;
   // Before the law rewrites the program: the places of its moves are the ones the user wrote.
   nlohmann::json called = subroutine_lines(*program);
+  const std::string format = program->format;
   if (job.law) {
     auto optimized = redundancy::optimize_program(*program, machine, *job.law);
     if (!optimized) return optimized.error();
@@ -72,7 +73,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();
   result.summary = planning::summary_json(*plan, machine, *run);
-  result.summary["program_format"] = program->format;
+  result.summary["program_format"] = format;
   for (const std::string& note : program->notes) result.summary["warnings"].push_back(note);
   if (!called.empty()) result.summary["subroutine_lines"] = std::move(called);
   result.program_notes = program->notes;

@@ -79,8 +79,8 @@ const ClWord* find_cl_word(std::string_view word) {
 // APT source statements that move the tool along surfaces (CATIA writes some into its "APT" output):
 // TLON,GOFWD/(CIRCLE/…),ON,(LINE/…) and the like need the geometry engine of an APT processor.
 bool is_part_surface_motion(std::string_view word) {
-  for (const std::string_view w : {"TLON", "TLLFT", "TLRGT", "GOFWD", "GOLFT", "GORGT", "GOBACK", "GOUP",
-                                   "GODOWN", "PSIS", "GO"}) {
+  for (const std::string_view w :
+       {"TLON", "TLLFT", "TLRGT", "GOFWD", "GOLFT", "GORGT", "GOBACK", "GOUP", "GODOWN", "PSIS", "GO"}) {
     if (word.starts_with(w) && (word.size() == w.size() || word[w.size()] == ',')) return true;
   }
   return false;

@@ -8,9 +8,8 @@
 //   - NX CLSF heads its data "$$ centerline data", and its CUTCOM paths run lead-in arcs whose radius is the
 //     tool radius (12.5 mm with TLDATA 25): as a contour the offset arc would have no radius at all;
 //   - Pro/CLfile says so itself: "$$-> CUTCOM_GEOMETRY_TYPE / OUTPUT_ON_CENTER";
-//   - SolidWorks CAM and CAMWorks circle holes of radius 2.5 mm and lead in on 0.1–1.4 mm arcs with 12 and 14
-//   mm
-//     cutters, which no contour reading allows.
+//   - SolidWorks CAM and CAMWorks circle holes of radius 2.5 mm and lead in on 0.1–1.4 mm arcs with 12 and
+//     14 mm cutters, which no contour reading allows.
 // So NX, Pro/CLfile (unless its last CUTCOM_GEOMETRY_TYPE says otherwise) and SolidWorks/CAMWorks keep the
 // path as written (an event and a note); generic APT and CATIA data follow APT, where CUTCOM means the CL
 // points are the part contour, and are offset by the radius.

@@ -28,8 +28,8 @@ Status ClReader::points(const ClStatement& s, std::vector<ClPoint>& out) const {
   out.clear();
   const std::size_t n = s.args.size();
   if (n < 3 || n % 3 != 0) {
-    return error_at(s.at, fmt::format("{} takes x,y,z or x,y,z,i,j,k (or several of them), got {} values",
-                                      s.word, n));
+    return error_at(
+        s.at, fmt::format("{} takes x,y,z or x,y,z,i,j,k (or several of them), got {} values", s.word, n));
   }
   std::vector<double> v(n);
   if (auto status = numbers(s, 0, n, v.data()); !status) return status;

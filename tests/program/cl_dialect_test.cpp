@@ -60,7 +60,8 @@ TEST(ProgramFormatDetection, NamesTheCamSystemFromItsHeader) {
             ProgramFormat::solidworks);
   EXPECT_EQ(detect_program_format("OPFEATSTART/Drill1\nRAPID/\nGOTO/ 1,2,3\nOPFEATEND/Drill1\n"),
             ProgramFormat::solidworks);
-  EXPECT_EQ(detect_program_format("UNITS/MM\nFEDRAT/100\nGOTO/1,2,3\nGOTO/4,5,6\nFINI\n"), ProgramFormat::apt);
+  EXPECT_EQ(detect_program_format("UNITS/MM\nFEDRAT/100\nGOTO/1,2,3\nGOTO/4,5,6\nFINI\n"),
+            ProgramFormat::apt);
   EXPECT_EQ(detect_program_format("units/mm\nfedrat/100\ngoto/1,2,3\nfini\n"), ProgramFormat::apt);
 }
 

@@ -430,7 +430,8 @@ TEST(ClReaderErrors, WrongValueCounts) {
             "test.cl:1:1: GOTO takes x,y,z or x,y,z,i,j,k (or several of them), got 2 values");
   EXPECT_EQ(cl_reader_error_of("FROM/1,2,3,4,5\n"),
             "test.cl:1:1: FROM takes x,y,z or x,y,z,i,j,k (or several of them), got 5 values");
-  EXPECT_EQ(cl_reader_error_of("FROM/1,2,3,4,5,6,7,8,9\n"), "test.cl:1:1: FROM takes one point (x,y,z or x,y,z,i,j,k)");
+  EXPECT_EQ(cl_reader_error_of("FROM/1,2,3,4,5,6,7,8,9\n"),
+            "test.cl:1:1: FROM takes one point (x,y,z or x,y,z,i,j,k)");
   EXPECT_EQ(cl_reader_error_of("MULTAX/ON\nFEDRAT/100\nGOTO/1,2,3,4,5,6,7,8,9\n"),
             "test.cl:3:1: GOTO under MULTAX/ON takes x,y,z,i,j,k per point, got 9 values");
   EXPECT_EQ(cl_reader_error_of("TLAXIS/0,1\n"), "test.cl:1:1: TLAXIS takes 3 values (i,j,k), got 2");
