@@ -21,7 +21,7 @@ if [ "${#names[@]}" -eq 0 ]; then names=(gcode cl machine load steps_csv steps_b
 seeds_of() {
   case $1 in
     gcode) echo "examples/programs/*.ngc tests/program/conformance/*.ngc tests/program/conformance/*/*.ngc" ;;
-    cl) echo "examples/programs/*.cl examples/programs/*.cls examples/programs/*.apt" ;;
+    cl) echo "examples/programs/*.cl tests/program/cl_dialects/*" ;;
     machine) echo "examples/machines/*.yaml" ;;
     *) echo "fuzz/seeds/$1/*" ;;
   esac

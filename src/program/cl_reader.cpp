@@ -116,6 +116,7 @@ ClReader::ClReader(const std::string& source, const InterpretOptions& options, P
   program_.moves.reserve(static_cast<std::size_t>(line_count));  // about one move per statement
   position_ = options.start_mm;
   initial_mm_ = options.start_mm;
+  emitted_end_mm_ = options.start_mm;
 }
 
 ClReader::~ClReader() = default;
@@ -313,6 +314,8 @@ Status ClReader::set_feed(const ClStatement& s, CanonicalMove& move) const {
 }
 
 Status ClReader::emit(const CanonicalMove& move, ClPosition at) {
+  remember_direction(move, emitted_end_mm_);
+  emitted_end_mm_ = move.end_mm;
   if (!cutcom_active()) {
     output(move);
     return ok_status();

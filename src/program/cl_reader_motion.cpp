@@ -85,13 +85,12 @@ Status ClReader::go_to_point(const ClStatement& s, const Eigen::Vector3d& end_mm
     if (auto status = set_feed(s, move); !status) return status;
   }
   rapid_next_ = false;
-  remember_direction(move, position_);
   position_ = end_mm;
   return emit(move, s.at);
 }
 
-// The direction the tool travels at the end of a cutting move; none after a rapid (an arc after a rapid has
-// nothing to continue).
+// The direction the tool travels at the end of a cutting move; none after a rapid or a dwell (an arc after
+// them has nothing to continue). Called by emit() for every move, the cycles' and splines' too.
 void ClReader::remember_direction(const CanonicalMove& move, const Eigen::Vector3d& start_mm) {
   last_direction_.reset();
   if (move.kind == MoveKind::arc) {
@@ -133,6 +132,7 @@ Status ClReader::from(const ClStatement& s) {
   const Eigen::Vector3d p = list[0].p_mm;
   if (program_.moves.empty() && !home_mm_) {
     home_mm_ = p;
+    emitted_end_mm_ = p;
     program_.start_mm = apply_transforms_ ? Eigen::Vector3d(transform_ * p) : p;
     position_ = p;
     return ok_status();
