@@ -90,7 +90,6 @@ class Executor final : public PredefinedParameters, private CycleSink {
   int line_ = 0;
   int motion_column_ = 1;  ///< of the block being executed, for errors about its moves
   SourceRef source_ref_;
-  int sequence_number_ = 0;
   bool ended_ = false;
   bool no_table_noted_ = false;
   Status cycle_status_ = ok_status();  ///< the first failure while a cycle emits its moves
