@@ -25,7 +25,7 @@ RELEASE_FLAGS ?=
 # without the " # GetParam() = ..." that ctest appends to parameterised ones); SANITIZE_SKIP= runs them too.
 SANITIZE_SKIP ?= ^($(shell grep -v '^\#' tests/sanitizer_skip.txt | grep . | paste -sd'|'))( |$$)
 
-.PHONY: deps configure build python linuxcnc run test sanitize lint conformance cl-real browser-test screenshots fuzz nightly bench format tidy consumer clean
+.PHONY: deps configure build python linuxcnc run test sanitize lint conformance cl-real package package-test browser-test screenshots fuzz nightly bench format tidy consumer clean
 
 # make test and make linuxcnc also install LinuxCNC (the module builds against it; the tests run it); make run
 # does not need it.
@@ -152,6 +152,15 @@ consumer: build
 	@cmake --build $(BUILD)/consumer -j $(JOBS)
 	$(BUILD)/consumer/pkm_consumer
 	$(BUILD)/consumer/pkm_plan_consumer examples/machines/hexapod_ch5.yaml
+
+# The Debian package (cmake/package.cmake) in build/, and that package used as a user would: unpacked into a root
+# of its own (dpkg-deb -x), its pkm run on an example, its man page and completion present, its version the
+# project's.
+package: build
+	@cd $(BUILD) && cpack -G DEB > /dev/null && ls pkm_*.deb
+
+package-test: package
+	@bash scripts/package-test.sh $(BUILD)
 
 format:
 	@find src apps tests bench fuzz python linuxcnc tools -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i

@@ -8,9 +8,13 @@ from typing import Any, Literal, Optional, Sequence, TypedDict, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+__version__: str  # pkm --version's (CMake's project version)
+
 # --- machine and kinematics ------------------------------------------------------------------------------------
 # (python/src/machine.cpp, machine_dict.cpp, batch_*.cpp)
-# Poses: rows [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad] in the machine's angle convention, shape (N, 6) or (6,).
+# Poses: rows [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad] in the machine's angle convention, shape (N, 6) or (6,);
+# angles="deg" (python/pkm/_angles.py) takes and returns them in degrees instead.
+_Angles = Literal["rad", "deg"]
 # Actuator values: mm, or rad for angular actuators (Machine.actuator_unit), shape (N, n) or (n,).
 
 _Errors = Literal["raise", "nan"]
@@ -78,33 +82,36 @@ class Machine:
     def platform_size_mm(self) -> float: ...
 
     def ik(self, poses: ArrayLike, *, errors: _Errors = "raise", check_limits: bool = True,
-           out: Optional[_Array] = None) -> _Array:
+           out: Optional[_Array] = None, angles: _Angles = "rad") -> _Array:
         """Actuator values (N, n) of poses (N, 6) [x, y, z mm, a, b, c rad]; (n,) for one pose (6,)."""
 
     @overload
     def fk(self, actuators: ArrayLike, guess: Optional[ArrayLike] = None, *, warm: bool = True,
            extrapolate: bool = False, errors: _Errors = "raise", check_limits: bool = True, tolerance_mm: float = 1e-10,
-           max_iterations: int = 60, same_branch: bool = True, info: Literal[False] = False) -> _Array: ...
+           max_iterations: int = 60, same_branch: bool = True, info: Literal[False] = False,
+           angles: _Angles = "rad") -> _Array: ...
     @overload
     def fk(self, actuators: ArrayLike, guess: Optional[ArrayLike] = None, *, warm: bool = True,
            extrapolate: bool = False, errors: _Errors = "raise", check_limits: bool = True, tolerance_mm: float = 1e-10,
-           max_iterations: int = 60, same_branch: bool = True, info: Literal[True]) -> tuple[_Array, FkInfo]: ...
+           max_iterations: int = 60, same_branch: bool = True, info: Literal[True],
+           angles: _Angles = "rad") -> tuple[_Array, FkInfo]: ...
 
     def fk_all(self, actuators: ArrayLike, *, check_limits: bool = True, tolerance_mm: float = 1e-10,
                max_iterations: int = 60) -> list[FkSolutionDict]:
         """Every assembly mode of one row (n,) of actuator values, nearest to home first."""
 
-    def pose_from_abc(self, poses: ArrayLike) -> _Array:
+    def pose_from_abc(self, poses: ArrayLike, *, angles: _Angles = "rad") -> _Array:
         """Poses (N, 6) with G-code's A B C (rad, R = Rz(C)·Ry(B)·Rx(A)) in the machine's own convention."""
 
-    def abc_from_pose(self, poses: ArrayLike) -> _Array:
+    def abc_from_pose(self, poses: ArrayLike, *, angles: _Angles = "rad") -> _Array:
         """The machine's own poses (N, 6) with G-code's A B C (rad, R = Rz(C)·Ry(B)·Rx(A))."""
 
-    def jacobian(self, poses: ArrayLike, *, errors: _Errors = "raise", check_limits: bool = True) -> _Array:
+    def jacobian(self, poses: ArrayLike, *, errors: _Errors = "raise", check_limits: bool = True,
+                 angles: _Angles = "rad") -> _Array:
         """d(actuators)/d(controlled coordinates): (N, n, m), or (n, m) for one pose."""
 
     def conditioning(self, poses: ArrayLike, *, errors: _Errors = "nan",
-                     check_limits: bool = True) -> dict[str, Any]:
+                     check_limits: bool = True, angles: _Angles = "rad") -> dict[str, Any]:
         """det, condition_number, min_singular_value, delta_rho (mm/mm), s_x, s_y, s_z: (N,) arrays."""
 
     def __getstate__(self) -> tuple[str, str]: ...
@@ -130,7 +137,9 @@ def _ik_loop_seconds(machine: Machine, poses: ArrayLike, check_limits: bool = Tr
 def interpret(program_path: str | os.PathLike[str], machine: Optional[Machine] = None,
               tool_table: Optional[str | os.PathLike[str]] = None,
               subroutine_path: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
-              parameter_file: Optional[str | os.PathLike[str]] = None) -> dict[str, Any]:
+              parameter_file: Optional[str | os.PathLike[str]] = None,
+              format: Literal["auto", "gcode", "apt", "nx", "creo", "catia", "solidworks"] = "auto",
+              transform: bool = True) -> dict[str, Any]:
     """The canonical moves of a part program as arrays (line, kind, end_mm, end_abc_deg, center_mm, ...)."""
 
 def plan(machine: Machine, program_path: str | os.PathLike[str], *, servo_period_ms: Optional[float] = None,
@@ -173,10 +182,10 @@ def optimize(machine: Machine, program_path: str | os.PathLike[str], law: str, *
     """The free coordinates chosen by a drive control law: summary (as `pkm optimize --json`), free_rad (K, F),
     line, position_mm, actuators_mm, chosen / constant metrics, the rewritten program."""
 
-def modes(machine: Machine, pose: ArrayLike) -> dict[str, Any]:
+def modes(machine: Machine, pose: ArrayLike, *, angles: _Angles = "rad") -> dict[str, Any]:
     """Natural frequencies (frequencies_Hz) and mode shapes (shapes, columns) of the elastic struts at a pose."""
 
-def compliance(machine: Machine, pose: ArrayLike) -> dict[str, Any]:
+def compliance(machine: Machine, pose: ArrayLike, *, angles: _Angles = "rad") -> dict[str, Any]:
     """The tool's 6 × 6 compliance at a pose and its principal stiffness (translational_stiffness_N_um ...)."""
 
 def workspace(machine: Machine, *, plane: str = "xy", centre: Optional[ArrayLike] = None, range_mm: float = 200.0,

@@ -189,3 +189,39 @@ def test_out_argument_is_checked(hexapod):
             hexapod.ik(poses, out=bad)
     with pytest.raises(ValueError, match="share memory"):
         hexapod.ik(poses, out=poses)
+
+
+def test_a_misspelt_keyword_is_named_in_one_line(hexapod):
+    # pybind11 alone would print every overload's signature; pkm names the keyword and the nearest accepted one.
+    cases = [(lambda: hexapod.ik(hexapod.home, error="nan"), "ik() got an unexpected keyword argument 'error'; "
+              "did you mean 'errors'?"),
+             (lambda: pkm.interpret("x.ngc", subroutine_paht="."), "did you mean 'subroutine_path'?"),
+             (lambda: pkm.Machine.load(paht="x.yaml"), "load() got an unexpected keyword argument 'paht'")]
+    for call, expected in cases:
+        with pytest.raises(TypeError) as caught:
+            call()
+        message = str(caught.value)
+        assert expected in message and "\n" not in message, message
+    # Right keywords still pass through, and the version is the command's.
+    assert hexapod.ik(hexapod.home, errors="nan").shape == (6,)
+    assert pkm.__version__.count(".") == 2
+
+
+def test_poses_can_be_given_and_returned_in_degrees(hexapod):
+    in_degrees = np.array([[-20.0, 10.0, 700.0, 5.0, -3.0, 10.0], [10.0, -5.0, 690.0, -4.0, 2.0, -8.0]])
+    in_radians = in_degrees.copy()
+    in_radians[:, 3:] = np.radians(in_radians[:, 3:])
+    actuators = hexapod.ik(in_radians)
+    np.testing.assert_array_equal(hexapod.ik(in_degrees, angles="deg"), actuators)
+    np.testing.assert_allclose(hexapod.fk(actuators, angles="deg"), in_degrees, atol=1e-9)
+    poses, _ = hexapod.fk(actuators, info=True, angles="deg")
+    np.testing.assert_allclose(poses, in_degrees, atol=1e-9)
+    np.testing.assert_allclose(hexapod.jacobian(in_degrees, angles="deg"), hexapod.jacobian(in_radians))
+    np.testing.assert_allclose(pkm.modes(hexapod, in_degrees[0], angles="deg")["frequencies_Hz"],
+                               pkm.modes(hexapod, in_radians[0])["frequencies_Hz"])
+    np.testing.assert_allclose(hexapod.pose_from_abc(hexapod.abc_from_pose(in_degrees, angles="deg"), angles="deg"),
+                               in_degrees, atol=1e-9)
+    with pytest.raises(ValueError, match="'rad' or 'deg'"):
+        hexapod.ik(in_degrees, angles="degrees")
+    with pytest.raises(TypeError, match="did you mean 'angles'"):
+        hexapod.ik(in_degrees, angle="deg")
