@@ -190,8 +190,9 @@ void print_table(const program::CanonicalProgram& program) {
 }  // namespace
 
 void add_interpret_command(CLI::App& app, int& exit_code) {
-  auto* cmd =
-      app.add_subcommand("interpret", "the canonical moves of a part program (G-code, or CL data: NX, Creo, CATIA, SolidWorks CAM, APT)");
+  auto* cmd = app.add_subcommand(
+      "interpret",
+      "the canonical moves of a part program (G-code, or CL data: NX, Creo, CATIA, SolidWorks CAM, APT)");
   auto program_path = std::make_shared<std::string>();
   auto machine_path = std::make_shared<std::string>();
   auto arguments = std::make_shared<ProgramArguments>();

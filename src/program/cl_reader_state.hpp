@@ -148,8 +148,8 @@ class ClReader {
   Eigen::Isometry3d frame_ = Eigen::Isometry3d::Identity();  ///< MSYS/CSYS, before the table's turn
   std::optional<Eigen::Vector3d> last_direction_;  ///< unit, CL frame: where the last cutting move went
   Eigen::Vector3d emitted_end_mm_ = Eigen::Vector3d::Zero();  ///< CL frame: where the last emitted move ends
-  std::vector<int> reversed_arc_lines_;            ///< arcs that start against the move before them
-  int longer_arcs_ = 0;  ///< SolidWorks arcs taken the long way round (tangent continuity)
+  std::vector<int> reversed_arc_lines_;  ///< arcs that start against the move before them
+  int longer_arcs_ = 0;                  ///< SolidWorks arcs taken the long way round (tangent continuity)
   bool skipping_ = false;
   bool ended_ = false;
   std::unique_ptr<ClCycleState> cycle_;
