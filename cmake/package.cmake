@@ -7,17 +7,18 @@ set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_VENDOR "the pkm authors")
 set(CPACK_PACKAGE_CONTACT "the pkm authors")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "kinematics, motion planning and analysis for parallel-kinematic machines")
-set(CPACK_PACKAGE_DESCRIPTION
-    "pkm plans, executes and analyses motion for parallel-kinematic machine tools (hexapods, tripods, tricepts, "
-    "planar mechanisms, glides): G-code and CAM CL data in, actuator motion within every limit out, with drive "
-    "forces, stiffness, servo error and calibration.")
+string(CONCAT CPACK_PACKAGE_DESCRIPTION
+       "pkm plans, executes and analyses motion for parallel-kinematic machine tools (hexapods, tripods, tricepts, "
+       "planar mechanisms, glides): G-code and CAM CL data in, actuator motion within every limit out, with drive "
+       "forces, stiffness, servo error and calibration.")
 set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-# find_package(pkm) needs these for the components a consumer asks for (cmake/pkmConfig.cmake.in).
+# The Python module needs numpy; find_package(pkm) needs the development packages of the components asked for
+# (cmake/pkmConfig.cmake.in).
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
-    "libeigen3-dev, libyaml-cpp-dev, libfmt-dev, nlohmann-json3-dev, libnlopt-cxx-dev, libboost-dev, cmake")
+    "python3-numpy, libeigen3-dev, libyaml-cpp-dev, libfmt-dev, nlohmann-json3-dev, libnlopt-cxx-dev, libboost-dev, cmake")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "linuxcnc-uspace")
 include(CPack)
