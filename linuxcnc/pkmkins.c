@@ -131,8 +131,8 @@ int rtapi_app_main(void) {
         return -1;
     }
     publish_counts(0);
-    rtapi_print_msg(RTAPI_MSG_INFO, "pkmkins: %s, %d joints, coordinates %s\n", machine,
-                    pkmkins_joint_count(kins), pkmkins_coordinates(kins));
+    rtapi_print_msg(RTAPI_MSG_INFO, "pkmkins (pkm %s): %s, %d joints, coordinates %s\n", pkmkins_version(),
+                    machine, pkmkins_joint_count(kins), pkmkins_coordinates(kins));
     hal_ready(comp_id);
     return 0;
 }

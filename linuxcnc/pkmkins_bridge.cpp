@@ -17,6 +17,7 @@
 #include "core/pose.hpp"
 #include "core/units.hpp"
 #include "io/machine_file.hpp"
+#include "io/version.hpp"
 #include "machine/machine.hpp"
 #include "machine/mechanism.hpp"
 
@@ -149,6 +150,10 @@ void pkmkins_free(pkmkins_machine* machine) {
 
 int pkmkins_joint_count(const pkmkins_machine* machine) {
   return machine->joints;
+}
+
+const char* pkmkins_version(void) {
+  return pkm::pkm_version().data();  // a literal: NUL-terminated
 }
 
 const char* pkmkins_coordinates(const pkmkins_machine* machine) {

@@ -28,6 +28,8 @@ pkmkins_machine* pkmkins_load(const char* machine_file, char* error, size_t erro
 void pkmkins_free(pkmkins_machine* machine);
 
 int pkmkins_joint_count(const pkmkins_machine* machine);
+/* The version of pkm the module was built from ("0.1.0"), as pkm --version prints it. */
+const char* pkmkins_version(void);
 /* The coordinates the machine controls as LinuxCNC axis letters, e.g. "XYZABC" or "ZAB". */
 const char* pkmkins_coordinates(const pkmkins_machine* machine);
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Uses the Debian package make package built (BUILD/pkm_*.deb) as a user would, from a root of its own: the
 # installed pkm answers its version (the project's), plans a shipped example, reads a CL program; the man page,
-# the bash completion, the documentation and the CMake package are where Debian puts them.
+# the bash completion and the documentation are where Debian puts them; the Python module imports; an outside
+# project builds against the installed libraries with find_package(pkm).
 set -euo pipefail
 build=${1:?usage: scripts/package-test.sh BUILD}
 cd "$(dirname "$0")/.."
@@ -25,6 +26,10 @@ config=$(find "$root/usr/lib" -path '*/cmake/pkm/pkmConfig.cmake' | head -n 1)
 site="$root/usr/lib/python3/dist-packages"
 [ "$(PYTHONPATH="$site" /usr/bin/python3 -c 'import pkm; print(pkm.__version__)')" = "$version" ] \
   || { echo "package-test: the installed Python module does not import, or is not version $version"; exit 1; }
+# An outside project finds the installed libraries with find_package(pkm) (examples/consumer).
+cmake -S examples/consumer -B "$root/consumer" -DCMAKE_PREFIX_PATH="$root/usr" > /dev/null
+cmake --build "$root/consumer" -j "$(nproc)" > /dev/null
+"$root/consumer/pkm_plan_consumer" examples/machines/hexapod_ch5.yaml > /dev/null
 bash -c "source '$root/usr/share/bash-completion/completions/pkm'; COMP_WORDS=(pkm interpret --fo); COMP_CWORD=2; _pkm; [ \"\${COMPREPLY[*]}\" = --format ]" \
   || { echo "package-test: the bash completion does not complete 'pkm interpret --fo'"; exit 1; }
-echo "package-test: $(basename "$deb") installs pkm $version (plans, reads CL data, man page, completion, CMake package, Python module)"
+echo "package-test: $(basename "$deb") installs pkm $version (plans, reads CL data, man page, completion, find_package(pkm), Python module)"

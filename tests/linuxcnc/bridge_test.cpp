@@ -20,6 +20,7 @@
 #include "core/pose.hpp"
 #include "core/units.hpp"
 #include "io/machine_file.hpp"
+#include "io/version.hpp"
 #include "machine/machine.hpp"
 #include "machine/mechanism.hpp"
 #include "pkmkins_bridge.h"
@@ -100,6 +101,10 @@ std::string bridge_read_text(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+TEST(PkmkinsBridge, ReportsThePkmVersionItWasBuiltFrom) {
+  EXPECT_EQ(std::string(pkmkins_version()), std::string(pkm::pkm_version()));
 }
 
 TEST(PkmkinsBridge, EveryShippedMachineLoadsWithHomeJointsAndCoordinates) {
