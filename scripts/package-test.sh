@@ -30,6 +30,8 @@ site="$root/usr/lib/python3/dist-packages"
 cmake -S examples/consumer -B "$root/consumer" -DCMAKE_PREFIX_PATH="$root/usr" > /dev/null
 cmake --build "$root/consumer" -j "$(nproc)" > /dev/null
 "$root/consumer/pkm_plan_consumer" examples/machines/hexapod_ch5.yaml > /dev/null
+# Every command of the documentation, as written, with the installed pkm and Python module.
+/usr/bin/python3 scripts/doc-commands.py --bin "$root/usr/bin" --python-site "$site"
 bash -c "source '$root/usr/share/bash-completion/completions/pkm'; COMP_WORDS=(pkm interpret --fo); COMP_CWORD=2; _pkm; [ \"\${COMPREPLY[*]}\" = --format ]" \
   || { echo "package-test: the bash completion does not complete 'pkm interpret --fo'"; exit 1; }
-echo "package-test: $(basename "$deb") installs pkm $version (plans, reads CL data, man page, completion, find_package(pkm), Python module)"
+echo "package-test: $(basename "$deb") installs pkm $version (plans, reads CL data, man page, completion, find_package(pkm), Python module, the documentation's commands)"

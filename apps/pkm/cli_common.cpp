@@ -6,6 +6,7 @@
 
 #include "io/json_text.hpp"
 #include "io/printable_text.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 
@@ -28,6 +29,8 @@ int exit_code_for(ErrorCode code) {
 
 int report_error(const std::string& command, const Error& error) {
   // The one place every message passes: quoted binary input (a CL file that is not text) is escaped here.
+  // A progress line still on the terminal ends first, so that the message starts a line of its own.
+  finish_active_progress();
   std::cerr << "pkm " << command << ": error: " << printable_text(error.message) << "\n";
   return exit_code_for(error.code);
 }
@@ -54,15 +57,6 @@ std::string fixed(double value, int decimals) {
 
 void print_json(const nlohmann::json& json) {
   std::cout << json_text(json) << "\n";
-}
-
-void draw_progress(double fraction) {
-  constexpr int width = 40;
-  const int filled = static_cast<int>(fraction * width);
-  std::string bar(static_cast<std::size_t>(filled), '#');
-  bar.append(static_cast<std::size_t>(width - filled), '.');
-  std::cerr << fmt::format("\r  [{}] {:3.0f} %", bar, fraction * 100.0) << (fraction >= 1.0 ? "\n" : "")
-            << std::flush;
 }
 
 }  // namespace pkm::cli

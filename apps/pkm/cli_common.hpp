@@ -28,7 +28,4 @@ std::string fixed(double value, int decimals);
 /// Prints JSON (2-space indent) on stdout.
 void print_json(const nlohmann::json& json);
 
-/// A progress bar on stderr for long runs ("[#####.....]  50 %"), redrawn in place; a newline at 100 %.
-void draw_progress(double fraction);
-
 }  // namespace pkm::cli

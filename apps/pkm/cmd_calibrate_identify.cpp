@@ -12,6 +12,7 @@
 #include "cli_common.hpp"
 #include "cmd_calibrate.hpp"
 #include "number_options.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -76,7 +77,9 @@ void add_calibrate_identify_command(CLI::App& calibrate, int& exit_code) {
       exit_code = report_error("calibrate identify", machine.error());
       return;
     }
+    ProgressDisplay progress("calibrate identify", "identifying the geometry");
     auto result = pipeline::calibration_identify(*machine, *job);
+    progress.finish();
     if (!result) {
       exit_code = report_error("calibrate identify", result.error());
       return;

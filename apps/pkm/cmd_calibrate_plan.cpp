@@ -8,6 +8,7 @@
 
 #include "cli_common.hpp"
 #include "cmd_calibrate.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 
@@ -43,7 +44,9 @@ void add_calibrate_plan_command(CLI::App& calibrate, int& exit_code) {
       exit_code = report_error("calibrate plan", machine.error());
       return;
     }
+    ProgressDisplay progress("calibrate plan", "choosing the poses");
     auto result = pipeline::calibration_plan(*machine, *job);
+    progress.finish();
     if (!result) {
       exit_code = report_error("calibrate plan", result.error());
       return;

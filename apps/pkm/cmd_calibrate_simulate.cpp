@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "cmd_calibrate.hpp"
 #include "number_options.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 
@@ -71,7 +72,9 @@ void add_calibrate_simulate_command(CLI::App& calibrate, int& exit_code) {
       exit_code = report_error("calibrate simulate", machine.error());
       return;
     }
+    ProgressDisplay progress("calibrate simulate", "Monte-Carlo trials");
     auto result = pipeline::calibration_simulate(*machine, *job);
+    progress.finish();
     if (!result) {
       exit_code = report_error("calibrate simulate", result.error());
       return;

@@ -6,7 +6,6 @@
 // error the drives would produce; --report FILE adds the HTML report. Nothing is left in DIR if the run
 // fails.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <iostream>
@@ -17,6 +16,7 @@
 #include "number_options.hpp"
 #include "pipeline/interpolate_program.hpp"
 #include "program_options.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 
@@ -208,8 +208,10 @@ void add_interpolate_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("interpolate", job.error());
       return;
     }
-    if (isatty(STDERR_FILENO)) job->progress = draw_progress;
+    ProgressDisplay progress("interpolate", "reading the program");
+    job->progress = progress.sink();
     auto result = pipeline::interpolate_program(*machine, *job);
+    progress.finish();
     if (!result) {
       exit_code = report_error("interpolate", result.error());
       return;

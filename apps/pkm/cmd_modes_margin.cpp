@@ -16,6 +16,7 @@
 #include "planning/motion_plan.hpp"
 #include "planning/path_sampling.hpp"
 #include "program_options.hpp"
+#include "progress_display.hpp"
 #include "workspace/modes_margin_output.hpp"
 
 namespace pkm::cli {
@@ -81,13 +82,18 @@ int run_modes_margin(const ModesMarginArguments& a) {
   const std::string command = "modes-margin";
   auto machine = load_machine_or_report(a.machine_path);
   if (!machine) return report_error(command, machine.error());
+  ProgressDisplay progress("modes-margin", "reading the program");
   auto program = pipeline::load_program_for(*machine, a.program_path, a.program.options());
   if (!program) return report_error(command, program.error());
-  auto plan = planning::plan_motion(*machine, *program, planning::PlanOptions{});
+  planning::PlanOptions plan_options;
+  plan_options.progress = progress.sink();
+  auto plan = planning::plan_motion(*machine, *program, plan_options);
   if (!plan) return report_error(command, plan.error());
   workspace::ProgramModesMarginOptions options;
   options.samples = a.samples;
+  report_progress(plan_options.progress, "assembly-mode margin along the path");
   auto result = workspace::modes_margin_along_plan(*machine, *plan, options);
+  progress.finish();
   if (!result) return report_error(command, result.error());
   // Everything is computed before the file is touched: a failure above leaves a previous CSV as it was.
   if (!a.out_path.empty()) {

@@ -15,6 +15,7 @@
 #include "program/gcode_writer.hpp"
 #include "program/part_program.hpp"
 #include "program_options.hpp"
+#include "progress_display.hpp"
 #include "redundancy_options.hpp"
 #include "report/optimize_report.hpp"
 #include "report/report_html.hpp"
@@ -101,7 +102,9 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("optimize", program.error());
       return;
     }
+    ProgressDisplay progress("optimize", "choosing the free coordinates");
     auto result = redundancy::optimize_program(*program, *machine, *options);
+    progress.finish();
     if (!result) {
       exit_code = report_error("optimize", result.error());
       return;

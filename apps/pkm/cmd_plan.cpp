@@ -4,7 +4,6 @@
 // motion (actuators.csv, path.csv) and summary.json into DIR. With --law, the coordinates the operation
 // leaves free are first chosen by that drive control law (as `pkm optimize` does) and the result is planned.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <iostream>
 
@@ -16,6 +15,7 @@
 #include "planning/machine_warnings.hpp"
 #include "planning/run_accuracy.hpp"
 #include "program_options.hpp"
+#include "progress_display.hpp"
 #include "redundancy_options.hpp"
 #include "statics/load_model.hpp"
 
@@ -122,12 +122,14 @@ void add_plan_command(CLI::App& app, int& exit_code) {
       }
       job.dynamics_load = std::move(*loads);
     }
-    if (isatty(STDERR_FILENO)) job.progress = draw_progress;
     job.out_directory = *out_dir;
     job.report_path = *report_file;
     for (const std::string& warning : planning::machine_warnings(*machine))
       std::cerr << "pkm plan: warning: " << warning << "\n";
+    ProgressDisplay progress("plan", "reading the program");
+    job.progress = progress.sink();
     auto result = pipeline::plan_program(*machine, job);
+    progress.finish();
     if (!result) {
       exit_code = report_error("plan", result.error(), *json);
       return;

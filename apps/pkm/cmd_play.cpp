@@ -21,6 +21,7 @@
 #include "io/atomic_file.hpp"
 #include "io/json_text.hpp"
 #include "number_options.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 
@@ -145,7 +146,9 @@ void add_play_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("play", opened.error());
       return;
     }
+    ProgressDisplay progress("play", "releasing the steps at the servo rate");
     auto played = interpolation::play(reader, sink, *settings);
+    progress.finish();
     if (!played) {
       exit_code = report_error("play", played.error());
       return;

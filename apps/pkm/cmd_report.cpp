@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "io/input_file.hpp"
 #include "pipeline/folder_report.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 
@@ -33,7 +34,10 @@ void add_report_command(CLI::App& app, int& exit_code) {
     }
     const std::string file =
         out->empty() ? (std::filesystem::path(*directory) / "report.html").string() : *out;
-    if (Status written = pipeline::write_folder_report(*directory, file, *options); !written) {
+    ProgressDisplay progress("report", "reading the run and writing the report");
+    Status written = pipeline::write_folder_report(*directory, file, *options);
+    progress.finish();
+    if (!written) {
       Error error = written.error();
       // The run's machine could not be had: say which option names another.
       if (error.location.key == "machine") error.message += "; give it with --machine";

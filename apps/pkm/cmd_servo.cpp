@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "pipeline/servo_program.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
 
@@ -91,7 +92,10 @@ void add_servo_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("servo", machine.error());
       return;
     }
+    ProgressDisplay progress("servo", "reading the plan");
+    job->progress = progress.sink();
     auto result = pipeline::servo_program(*machine, *job);
+    progress.finish();
     if (!result) {
       exit_code = report_error("servo", result.error());
       return;

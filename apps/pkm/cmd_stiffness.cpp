@@ -12,6 +12,7 @@
 #include "number_options.hpp"
 #include "pipeline/stiffness_program.hpp"
 #include "program_options.hpp"
+#include "progress_display.hpp"
 #include "stiffness/compliance_model.hpp"
 
 namespace pkm::cli {
@@ -78,7 +79,10 @@ void add_stiffness_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("stiffness", machine.error());
       return;
     }
+    ProgressDisplay progress("stiffness", "reading the program");
+    job->progress = progress.sink();
     auto result = pipeline::stiffness_program(*machine, *job);
+    progress.finish();
     if (!result) {
       exit_code = report_error("stiffness", result.error());
       return;

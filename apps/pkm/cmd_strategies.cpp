@@ -14,6 +14,7 @@
 #include "number_options.hpp"
 #include "path/ellipsoid_cap.hpp"
 #include "pipeline/strategy_comparison.hpp"
+#include "progress_display.hpp"
 #include "statics/load_model.hpp"
 
 namespace pkm::cli {
@@ -177,7 +178,9 @@ void add_strategies_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("strategies", machine.error());
       return;
     }
+    ProgressDisplay progress("strategies", "planning and analysing each strategy");
     auto comparison = pipeline::compare_strategies(*machine, *prepared);
+    progress.finish();
     if (!comparison) {
       exit_code = report_error("strategies", comparison.error());
       return;

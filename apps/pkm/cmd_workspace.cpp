@@ -19,6 +19,7 @@
 #include "number_options.hpp"
 #include "pipeline/calibration_workspace.hpp"
 #include "pipeline/run_report.hpp"
+#include "progress_display.hpp"
 #include "workspace/workspace_output.hpp"
 
 namespace pkm::cli {
@@ -95,7 +96,9 @@ int run_workspace(const WorkspaceArguments& a) {
     options.calibrated_error = layer->error_at_pose;
     calibration_layer = std::move(*layer);
   }
+  ProgressDisplay progress("workspace", "mapping the grid");
   auto map = workspace::workspace_map(*machine, *grid, options);
+  progress.finish();
   if (!map) return report_error("workspace", map.error());
   const workspace::WorkspaceMapSummary summary = workspace::summarise_workspace_map(*map);
   // Everything is computed before DIR is touched: a failure above leaves no directory behind.

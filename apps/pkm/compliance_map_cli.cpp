@@ -8,6 +8,7 @@
 #include "cli_common.hpp"
 #include "compliance_cli.hpp"
 #include "io/pose_input.hpp"
+#include "progress_display.hpp"
 #include "stiffness/stiffness_map.hpp"
 
 namespace pkm::cli {
@@ -30,7 +31,9 @@ int run_compliance_map(const ComplianceMapArguments& arguments) {
   if (!parameters) return compliance_map_error("", parameters.error());
   auto grid = map_grid_poses(mech, arguments.grid);
   if (!grid) return compliance_map_error("", grid.error());
+  ProgressDisplay progress("compliance", "stiffness over the grid");
   auto points = stiffness::stiffness_map(grid->poses, stiffness::strut_compliance_at(*machine, *parameters));
+  progress.finish();
   if (!points) return compliance_map_error("", points.error());
   if (Status written = stiffness::write_stiffness_map_csv(arguments.out_path, mech, grid->poses, *points);
       !written) {

@@ -9,6 +9,7 @@
 #include "io/version.hpp"
 #include "number_options.hpp"
 #include "output_options.hpp"
+#include "progress_display.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_bench_command(app, exit_code);
   pkm::cli::group_commands(app);
   pkm::cli::add_output_options(app);
+  pkm::cli::add_progress_options(app);
   // A stopped run removes its staging folder and temporaries and exits 130 (SIGINT) or 143 (SIGTERM).
   pkm::install_output_cleanup_handlers();
   if (auto refused = pkm::cli::refuse_unknown_command(app, argc, argv)) return *refused;

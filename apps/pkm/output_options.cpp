@@ -15,19 +15,11 @@ constexpr std::array<std::string_view, 10> kFolderWriters{
     "plan",           "interpolate",        "stiffness",          "servo",          "workspace", "strategies",
     "calibrate plan", "calibrate simulate", "calibrate identify", "linuxcnc config"};
 
-std::string full_name(const CLI::App& sub) {
-  std::string name = sub.get_name();
-  for (const CLI::App* parent = sub.get_parent(); parent != nullptr && parent->get_parent() != nullptr;
-       parent = parent->get_parent())
-    name = parent->get_name() + " " + name;
-  return name;
-}
-
 void add_force_flags(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
     add_force_flags(*sub);
     for (const std::string_view writer : kFolderWriters) {
-      if (full_name(*sub) == writer)
+      if (full_command_name(*sub) == writer)
         sub->add_flag("--force")->description(
             "replace the output set of another command in the --out folder, whole");
     }
@@ -44,7 +36,7 @@ void set_context_from(const CLI::App& app) {
   const CLI::App* leaf = &app;
   while (!leaf->get_subcommands().empty()) leaf = leaf->get_subcommands().front();
   OutputContext context;
-  context.command = full_name(*leaf);
+  context.command = full_command_name(*leaf);
   const CLI::Option* force = leaf->get_option_no_throw("--force");
   context.force = force != nullptr && force->count() > 0;
   if (std::string machine = first_result(*leaf, "--machine"); !machine.empty())
@@ -55,6 +47,14 @@ void set_context_from(const CLI::App& app) {
 }
 
 }  // namespace
+
+std::string full_command_name(const CLI::App& sub) {
+  std::string name = sub.get_name();
+  for (const CLI::App* parent = sub.get_parent(); parent != nullptr && parent->get_parent() != nullptr;
+       parent = parent->get_parent())
+    name = parent->get_name() + " " + name;
+  return name;
+}
 
 void add_output_options(CLI::App& app) {
   add_force_flags(app);

@@ -6,6 +6,9 @@
 
 namespace pkm::cli {
 
+/// A subcommand's name with its parents': "calibrate plan".
+std::string full_command_name(const CLI::App& sub);
+
 /// Adds --force to the commands that write an output folder, and sets the output context from the parsed
 /// command line before the command runs.
 void add_output_options(CLI::App& app);

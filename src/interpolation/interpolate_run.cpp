@@ -129,7 +129,8 @@ class RunRecorder {
       if (Status written = sink->write(period); !written) return written;
     }
     if (options_.progress && period.index % 4096 == 0 && duration_s_ > 0.0) {
-      options_.progress(std::min(1.0, period.time_s / duration_s_));
+      report_progress(options_.progress, "interpolating", std::min(1.0, period.time_s / duration_s_),
+                      period.line);
     }
     return ok_status();
   }
@@ -143,7 +144,7 @@ class RunRecorder {
     for (StepSink* sink : sinks_) {
       if (Status done = sink->finish(); !done) return done;
     }
-    if (options_.progress) options_.progress(1.0);
+    report_progress(options_.progress, "interpolating", 1.0);
     return ok_status();
   }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/duration_histogram.hpp"
+#include "core/progress.hpp"
 #include "core/result.hpp"
 #include "interpolation/contour/contour_monitor.hpp"
 #include "interpolation/methods/carrier_interpolator.hpp"
@@ -53,7 +54,7 @@ struct InterpolateOptions {
   std::optional<double> max_step_rate_hz;  ///< per drive; limits the steps per period
   EstimatingSettings estimating;           ///< deviation and candidates (its step is step_mm)
   double amplification_spacing = 1.0;      ///< path units between the δρ samples
-  std::function<void(double)> progress;    ///< fraction done, now and then
+  ProgressSink progress;                   ///< told how far the run is, now and then
   /// Called after every period with what the drives did to the tool then, and the programmed point at the
   /// period's end (base frame): traces and reports (contour_trace.hpp).
   std::function<void(const StepPeriod&, const PeriodContour&, const Eigen::Vector3d& path_mm)> on_period;

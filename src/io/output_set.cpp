@@ -312,6 +312,9 @@ Result<OutputManifest> OutputSet::next_manifest(std::vector<std::string>& stale)
   for (const std::string& file : contents.files)
     if (!*previous || !std::binary_search((*previous)->files.begin(), (*previous)->files.end(), file))
       unlisted.push_back(file);
+  std::erase_if(unlisted, [&](const std::string& file) {
+    return std::find(others_allowed_.begin(), others_allowed_.end(), file) != others_allowed_.end();
+  });
   if (!unlisted.empty() && !context.force)
     return make_error(ErrorCode::io,
                       fmt::format("cannot write into directory {}: {} is in no pkm output set ({}); pkm "

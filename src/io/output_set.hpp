@@ -61,6 +61,10 @@ class OutputSet {
   /// the set. For files outside DIR, or beside the staged ones (a report page in DIR).
   Result<std::string> stage_file(const std::string& path);
 
+  /// Files another program writes into DIR as it uses the set (LinuxCNC's parameter file beside its
+  /// configuration): a folder holding them is not refused as someone else's, and they are never deleted.
+  void allow_files_of_others(std::vector<std::string> names) { others_allowed_ = std::move(names); }
+
   /// Puts every file of the set into place, or (on error) none, leaving the previous ones as they were.
   /// Errors name the file: "cannot write DIR/path.csv: Is a directory".
   Status commit();
@@ -102,6 +106,7 @@ class OutputSet {
   std::vector<std::string> created_directories_;  // by this set, innermost last
   std::vector<int> created_slots_;
   std::vector<Member> members_;
+  std::vector<std::string> others_allowed_;
   bool committed_ = false;
 };
 

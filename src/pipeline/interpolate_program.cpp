@@ -55,6 +55,7 @@ Result<interpolation::InterpolateOptions> resolved_options(const Machine& machin
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job) {
   auto options = resolved_options(machine, job);
   if (!options) return options.error();
+  report_progress(job.progress, "reading the program");
   auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
   planning::PlanOptions plan_options;
@@ -62,12 +63,13 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
   plan_options.override_pct = job.override_pct;
   // The linear law has no jerk limit: trapezoidal path speed.
   plan_options.jerk_limited = job.accel != interpolation::RampShape::linear;
+  plan_options.progress = job.progress;
   auto plan = planning::plan_motion(machine, *program, plan_options);
   if (!plan) return plan.error();
   auto timing = interpolation::IdealTiming::from_plan(*plan, machine);
   if (!timing) return timing.error();
 
-  if (job.progress && plan->duration_s / options->period_s > 200000) options->progress = job.progress;
+  options->progress = job.progress;
   const bool files = !job.out_directory.empty();
   if (!files && !job.report_path.empty()) {
     return make_error(ErrorCode::bad_input, "an interpolation report needs an output directory");
@@ -121,6 +123,7 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
         !written) {
       return written.error();
     }
+    if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
     if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
     if (Status committed = outputs.commit(); !committed) return committed.error();
   }

@@ -33,7 +33,7 @@ struct InterpolateJob {
   /// Method, ρ_max, δρ_max, chord check, orientation criterion, error samples, estimating settings. Its
   /// period, step, step rate and feed override are set from the fields above.
   interpolation::InterpolateOptions options;
-  std::function<void(double)> progress;  ///< fraction done, for runs over 200 000 periods
+  ProgressSink progress;  ///< told the phase, how far it is and the program line, now and then
   /// Called at every period with its steps, its contour error and the path point (callers that keep the
   /// periods in memory: Python); the files are written as well when out_directory is given.
   std::function<void(const interpolation::StepPeriod&, const interpolation::PeriodContour&,

@@ -328,6 +328,9 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
 
   OutputSet outputs{"linuxcnc config"};
   if (auto made = outputs.use_directory(directory); !made) return made.error();
+  // LinuxCNC keeps the interpreter's parameters in the file the INI names, beside the configuration: writing
+  // the configuration again after a run must not take them for someone else's files.
+  outputs.allow_files_of_others({"pkm.var", "pkm.var.bak"});
   // LinuxCNC's A B C are G-code's (abc), as pkmkins converts them: its home and axis limits are too.
   const PoseVector home = vector_from_pose(AngleConvention::abc, m.home());
   std::vector<std::pair<std::string, std::string>> files = {

@@ -36,6 +36,7 @@ nlohmann::json subroutine_lines(const program::CanonicalProgram& program) {
 }
 
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
+  report_progress(job.progress, "reading the program");
   auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
 
@@ -44,6 +45,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   nlohmann::json called = subroutine_lines(*program);
   const std::string format = program->format;
   if (job.law) {
+    report_progress(job.progress, "choosing the free coordinates");
     auto optimized = redundancy::optimize_program(*program, machine, *job.law);
     if (!optimized) return optimized.error();
     result.law_summary = redundancy::optimize_summary_json(*optimized, *job.law);
@@ -51,7 +53,9 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
     result.law = std::move(*optimized);
   }
   const auto started = std::chrono::steady_clock::now();
-  auto plan = planning::plan_motion(machine, *program, job.plan);
+  planning::PlanOptions plan_options = job.plan;
+  plan_options.progress = job.progress;
+  auto plan = planning::plan_motion(machine, *program, plan_options);
   if (!plan) return plan.error();
   result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
@@ -64,12 +68,13 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   output.dynamics_load = &job.dynamics_load;
   output.program_notes = program->notes;
   output.subroutine_lines = called;
-  if (job.progress && plan->duration_s * job.plan.rate_hz > 200000) output.progress = job.progress;
+  output.progress = job.progress;
   // The CSVs, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs{"plan"};
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   auto run = planning::write_plan_outputs(*plan, machine, outputs, output);
   if (!run) return run.error();
+  if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
   if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();
   result.summary = planning::summary_json(*plan, machine, *run);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "core/progress.hpp"
 #include "machine/machine.hpp"
 #include "pipeline/load_program.hpp"
 #include "planning/motion_plan.hpp"
@@ -28,7 +29,7 @@ struct PlanJob {
   bool elastic = false;
   /// The tool's deflection under `dynamics_load`, the struts as springs (deflection.csv; docs/stiffness.md)
   bool stiffness = false;
-  std::function<void(double)> progress;  ///< fraction written, for runs over 200 000 ticks
+  ProgressSink progress;  ///< told the phase, how far it is and the program line, now and then
   std::string out_directory;
   std::string report_path;  ///< empty: no report
 };

@@ -232,17 +232,20 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
                                   "docs/machine-file.md)",
                                   machine.source));
   }
+  report_progress(job.progress, "reading the plan");
   auto input = read_planned_run(machine, job.plan_directory);
   if (!input) return input.error();
   // Its files first (a damaged file is named as such), then that they are one plan's and nothing else.
   if (Status checked = check_output_set(job.plan_directory, {"plan"}); !checked) return checked.error();
   auto steps = servo::loop_steps_per_period(machine, input->period_s);
   if (!steps) return steps.error();
+  report_progress(job.progress, "the drives' inertia along the run");
   auto plant = servo::plant_along_run(machine, *input, job.inertia_stride);
   if (!plant) return plant.error();
   const int m = machine.mechanism->actuator_count();
   // The drives are tuned once, for the inertia at the run's start (as a drive is commissioned).
   const servo::DriveMatrix& start = plant->inertia.front();
+  report_progress(job.progress, "designing the loops");
   auto design = servo::design_loops(machine, start.diagonal().head(m));
   if (!design) return design.error();
   if (Status stable = servo::check_stability(machine, *design, *plant, *input, *steps, {job.coupled});
@@ -275,8 +278,12 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
   for (int j = 1; j <= m; ++j) fmt::format_to(std::back_inserter(ticks_csv.buffer), ",u{}", j);
   fmt::format_to(std::back_inserter(ticks_csv.buffer),
                  ",contour_error_mm,lag_ms,error_clamps,command_clamps\n");
+  const double run_s = input->time_s.empty() ? 0.0 : input->time_s.back();
+  long ticks_done = 0;
   auto summary = servo::run_servo(
       machine, *design, *plant, *input, *steps, {job.coupled}, [&](const servo::ServoTick& t) -> Status {
+        if (ticks_done++ % 4096 == 0 && run_s > 0.0)
+          report_progress(job.progress, "running the servo loops", t.time_s / run_s, t.line);
         auto& b = ticks_csv.buffer;
         fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
         for (int j = 0; j < t.drives; ++j)
@@ -307,6 +314,7 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
   // --report: the plan's report with the servo plots, one more member of the output set (written with the
   // servo files or not at all), the servo files read back from the staging folder as `pkm report` reads them.
   if (!job.report_path.empty()) {
+    report_progress(job.progress, "writing the report");
     auto staged = outputs.stage_file(job.report_path);
     if (!staged) return staged.error();
     report::ReportOptions report_options;

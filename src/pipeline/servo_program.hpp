@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "core/result.hpp"
 #include "machine/machine.hpp"
 #include "servo/loop_analysis.hpp"
@@ -23,6 +24,7 @@ struct ServoJob {
   int inertia_stride = 10;     ///< the plant's inertia is evaluated every this many servo ticks
   int bode_points = 120;
   std::string report_path;  ///< the HTML report of the run with the servo plots ("": none)
+  ProgressSink progress;    ///< told the phase, how far the run is and its program line, now and then
 };
 
 struct ServoProgramResult {

@@ -68,6 +68,7 @@ std::optional<Pose> closed_form_command(const Mechanism& mechanism,
 }  // namespace
 
 Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const StiffnessJob& job) {
+  report_progress(job.progress, "reading the program");
   auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
   auto points = redundancy::sample_program(*program, machine, job.step_mm);
@@ -104,6 +105,9 @@ Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const S
   const double rapid_mm_s = machine.motion.rapid_mm_min / 60.0;
   const auto on_point = [&](const stiffness::PointDeflection& p) -> Status {
     const redundancy::PathPoint& point = points->points[static_cast<std::size_t>(p.index)];
+    if (p.index % 1024 == 0)
+      report_progress(job.progress, "deflection along the path",
+                      static_cast<double>(p.index) / static_cast<double>(points->points.size()), point.line);
     const double speed = point.cutting && point.feed_mm_s > 0.0 ? point.feed_mm_s : rapid_mm_s;
     path_mm += point.step_mm;
     if (speed > 0.0) time_s += point.step_mm / speed;
@@ -251,6 +255,7 @@ Result<StiffnessProgramResult> stiffness_program(const Machine& machine, const S
   if (job.compliance_matrices) {
     if (Status committed = compliance_csv.commit(); !committed) return committed.error();
   }
+  if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
   if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
   if (Status committed = outputs.commit(); !committed) return committed.error();
   result.summary = std::move(summary);

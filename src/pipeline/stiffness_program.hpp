@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "core/progress.hpp"
 #include "machine/machine.hpp"
 #include "pipeline/load_program.hpp"
 #include "statics/load_model.hpp"
@@ -30,6 +31,7 @@ struct StiffnessJob {
   bool frequency_response = false;
   std::string out_directory;
   std::string report_path;  ///< the HTML report of the run ("": none)
+  ProgressSink progress;    ///< told the phase, how far the analysis is and its program line, now and then
 };
 
 struct CompensationSummary {

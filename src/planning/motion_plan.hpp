@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "core/progress.hpp"
 #include "core/result.hpp"
 #include "machine/machine.hpp"
 #include "path/path.hpp"
@@ -32,6 +33,7 @@ struct PlanOptions {
   /// ticks, about 10 GB of CSV; and 50 M samples, a few GB of planning data.
   long max_ticks = 86'400'000;
   std::size_t max_samples = 50'000'000;
+  ProgressSink progress;  ///< told how far the planning is, now and then (core/progress.hpp)
 };
 
 /// What the plan used and where it is limited; for the summary.

@@ -213,6 +213,7 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
     const path::PathPoint point = path.evaluate(sample_segment[i], samples.s[i]);
     const Pose pose{point.position_mm, point.rotation.toRotationMatrix()};
     position_ring[i % 3] = point.position_mm;
+    if (i % 4096 == 0) report_progress(settings.progress, "planning", static_cast<double>(i) / n, seg.line);
     auto ik = mechanism.inverse(pose);
     if (!ik) {
       return at_line(

@@ -30,6 +30,7 @@ struct SamplingSettings {
   double chord_tolerance_mm =
       1e-3;  ///< allowed deviation between servo periods, on the tool and on actuators
   std::size_t max_samples = 50'000'000;  ///< refuse a path that needs more (PlanOptions::max_samples)
+  ProgressSink progress;                 ///< told "planning", the fraction of samples and their line
 };
 
 struct SamplingResult {

@@ -86,6 +86,7 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   path_options.max_feed_mm_s = motion.max_feed_mm_min / 60.0;
   path_options.angular_feed_deg_s = motion.angular_feed_deg_min / 60.0;
   path_options.path_tolerance_mm = options.path_tolerance_mm.value_or(motion.path_tolerance_mm);
+  report_progress(options.progress, "building the tool path");
   auto built = path::build_path(program, frame, path_options);
   if (!built) return built.error();
   if (built->segments.empty()) {
@@ -113,9 +114,11 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   sampling.stop_hold_s = window_s;
   sampling.chord_tolerance_mm = 0.1 * std::max(path_options.path_tolerance_mm, 1e-3);
   sampling.max_samples = options.max_samples;
+  sampling.progress = options.progress;
   auto sampled = sample_path(machine, program, plan.path, sampling, plan.samples, plan.sample_segment);
   if (!sampled) return sampled.error();
 
+  report_progress(options.progress, "timing the motion");
   erode_caps(plan.samples, window_s, 0.0);
   plan_speeds(plan.samples);
   plan.timed = time_profile(plan.samples);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "core/result.hpp"
 #include "io/output_set.hpp"
 #include "machine/machine.hpp"
@@ -36,8 +37,8 @@ struct OutputOptions {
   bool stiffness = false;
   /// The process load on the tool, for the dynamics (nullptr: gravity only) and the deflection.
   const statics::LoadModel* dynamics_load = nullptr;
-  /// Called now and then with the fraction done (0…1), e.g. to draw a progress bar.
-  std::function<void(double)> progress;
+  /// Told now and then how far the writing is and at which program line (core/progress.hpp).
+  ProgressSink progress;
   /// What the interpreter noted about how it read the program (CanonicalProgram::notes): added to the
   /// summary's warnings.
   std::vector<std::string> program_notes;

@@ -51,7 +51,7 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
   ServoStream stream(plan, machine);
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
   const long total = stream.tick_count();
-  const long report_every = std::max(1L, total / 200);
+  const long report_every = std::clamp(total / 1000, 1L, 4096L);
   ServoTick tick;
   while (stream.next(tick)) {
     monitor.add(tick);
@@ -77,10 +77,11 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
       if (Status kept = observers.tick(tick, monitor); !kept) return kept.error();
     }
     if (options.progress && tick.index % report_every == 0)
-      options.progress(static_cast<double>(tick.index) / total);
+      report_progress(options.progress, "writing the outputs", static_cast<double>(tick.index) / total,
+                      tick.line);
   }
   if (stream.error()) return *stream.error();
-  if (options.progress) options.progress(1.0);
+  report_progress(options.progress, "writing the outputs", 1.0);
   RunSummary run = monitor.summary();
   if (drive_dynamics) {
     if (Status finished = drive_dynamics->finish(); !finished) return at_program_line(plan, finished.error());

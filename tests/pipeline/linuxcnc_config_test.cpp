@@ -223,6 +223,19 @@ TEST(LinuxcncConfig, HexapodIniCarriesTheMachineFile) {
   ASSERT_TRUE(again.ok()) << again.error().message;
   EXPECT_EQ(linuxcnc_entries(dir),
             (std::vector<std::string>{"machine.hal", "machine.ini", "machine.yaml", "tool.tbl"}));
+
+  // After LinuxCNC ran it, its parameter file (the INI's PARAMETER_FILE) is beside the configuration: writing
+  // the configuration again keeps it and is not refused; a file of anyone else's still is.
+  std::ofstream(dir / "pkm.var") << "5220\t1.000000\n";
+  std::ofstream(dir / "pkm.var.bak") << "5220\t1.000000\n";
+  const auto after_run = write_linuxcnc_config(machine, options);
+  ASSERT_TRUE(after_run.ok()) << after_run.error().message;
+  EXPECT_EQ(linuxcnc_entries(dir), (std::vector<std::string>{"machine.hal", "machine.ini", "machine.yaml",
+                                                             "pkm.var", "pkm.var.bak", "tool.tbl"}));
+  std::ofstream(dir / "notes.txt") << "mine\n";
+  const auto foreign = write_linuxcnc_config(machine, options);
+  ASSERT_FALSE(foreign.ok());
+  EXPECT_NE(foreign.error().message.find("notes.txt"), std::string::npos) << foreign.error().message;
 }
 
 TEST(LinuxcncConfig, TripodControlsZAB) {
