@@ -27,11 +27,13 @@ ALLOWED = [
     (re.compile(r"^make( |$)"), "the set-up and build commands: CI runs them (make test, make package)"),
     (re.compile(r"^sudo "), "installs into the system: the package test installs the package in a root of its own"),
     (re.compile(r"^cmake "), "builds and installs from source: the package test and make consumer do"),
-    (re.compile(r"^(\S+=\S+ )*linuxcnc "),
+    (re.compile(r"(^|\s)linuxcnc \S+\.ini"),
      "starts LinuxCNC: its real-time modules as root or a display (make test runs the README's headless run)"),
     (re.compile(r"^(\S+=\S+ )*dask "), "starts a Dask cluster's worker: needs the cluster"),
     (re.compile(r"^man "), "opens the pager: the package test checks that the man page is installed"),
     (re.compile(r"^grep "), "checks of the source tree's layering, not of an installed pkm"),
+    (re.compile(r"^python3 -m venv |^~/pkm-env/bin/"),
+     "pip install . from the source tree into a virtual environment: the package test does it"),
 ]
 
 

@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libnlopt-cxx-dev libboost-dev libtbb-dev
   clang-format cppcheck
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-matplotlib
+  python3-pip python3-venv python3-setuptools python3-wheel
 )
 if [ "${1:-}" = "--with-linuxcnc" ]; then packages+=(linuxcnc-uspace linuxcnc-uspace-dev); fi
 if [ "${1:-}" = "--with-browser" ]; then packages+=(chromium); fi

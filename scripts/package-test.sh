@@ -32,6 +32,14 @@ cmake --build "$root/consumer" -j "$(nproc)" > /dev/null
 "$root/consumer/pkm_plan_consumer" examples/machines/hexapod_ch5.yaml > /dev/null
 # Every command of the documentation, as written, with the installed pkm and Python module.
 /usr/bin/python3 scripts/doc-commands.py --bin "$root/usr/bin" --python-site "$site"
+# pip install . as docs/python.md says, into a virtual environment that sees Debian's numpy, built in the
+# configured build folder (a fresh one would build the library again: the same CMake build, minutes on CI).
+venv="$root/venv"
+/usr/bin/python3 -m venv --system-site-packages "$venv"
+PKM_CMAKE_BUILD_DIR="$build" "$venv/bin/pip" install --quiet --no-build-isolation --no-deps --no-index . \
+  || { echo "package-test: pip install . failed"; exit 1; }
+[ "$(cd "$root" && "$venv/bin/python" -c 'import pkm; print(pkm.__version__, pkm.__file__.startswith("'"$venv"'"))')" = "$version True" ] \
+  || { echo "package-test: the module pip installed does not import from the environment, or is not version $version"; exit 1; }
 bash -c "source '$root/usr/share/bash-completion/completions/pkm'; COMP_WORDS=(pkm interpret --fo); COMP_CWORD=2; _pkm; [ \"\${COMPREPLY[*]}\" = --format ]" \
   || { echo "package-test: the bash completion does not complete 'pkm interpret --fo'"; exit 1; }
-echo "package-test: $(basename "$deb") installs pkm $version (plans, reads CL data, man page, completion, find_package(pkm), Python module, the documentation's commands)"
+echo "package-test: $(basename "$deb") installs pkm $version (plans, reads CL data, man page, completion, find_package(pkm), Python module, the documentation's commands, pip install .)"
