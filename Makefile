@@ -3,7 +3,8 @@
 #              (servo-rate actuator motion in build/run/: actuators.csv, path.csv, summary.json, and the HTML
 #              report build/run/report.html)
 #   make test  installs what is missing, builds and runs the whole test suite
-# Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck),
+# Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck,
+# no new function over 100 lines: scripts/function-sizes.py),
 # make conformance (the G-code golden files against LinuxCNC's rs274), make browser-test (the HTML report in
 # headless Chromium), make screenshots (the same, saving docs/images/report-*.png),
 # make fuzz (the libFuzzer harnesses in fuzz/, built with clang + ASan/UBSan in build-fuzz/, FUZZ_SECONDS each),
@@ -91,6 +92,7 @@ lint: deps
 	@find src apps tests bench fuzz python linuxcnc tools -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
 	@cppcheck -j $(JOBS) --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
 		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps linuxcnc/pkmkins_bridge.cpp
+	@/usr/bin/python3 scripts/function-sizes.py --baseline scripts/function-sizes-allowed.txt src apps python/src linuxcnc > /dev/null
 	@echo "lint: clean"
 
 # The G-code conformance golden files must be what LinuxCNC's rs274 answers today (installs linuxcnc-uspace);

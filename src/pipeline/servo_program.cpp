@@ -223,6 +223,46 @@ std::string servo_bode_csv(const ServoProgramResult& r, double loop_period_s, in
   return fmt::to_string(out);
 }
 
+// servo.csv's header: per drive the following error, the force and the command, then the tool's errors.
+void append_servo_csv_header(fmt::memory_buffer& b, int drives, bool angular) {
+  const char* unit = angular ? "deg" : "mm";
+  const char* force_unit = angular ? "Nmm" : "N";
+  fmt::format_to(std::back_inserter(b), "time_s,line");
+  for (int j = 1; j <= drives; ++j) fmt::format_to(std::back_inserter(b), ",e{}_{}", j, unit);
+  for (int j = 1; j <= drives; ++j) fmt::format_to(std::back_inserter(b), ",f{}_{}", j, force_unit);
+  for (int j = 1; j <= drives; ++j) fmt::format_to(std::back_inserter(b), ",u{}", j);
+  fmt::format_to(std::back_inserter(b), ",contour_error_mm,lag_ms,error_clamps,command_clamps\n");
+}
+
+// One tick's row; `shown` turns the drives' unit into the file's (rad → deg).
+void append_servo_csv_row(fmt::memory_buffer& b, const servo::ServoTick& t, double shown) {
+  fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
+  for (int j = 0; j < t.drives; ++j)
+    fmt::format_to(std::back_inserter(b), ",{:.4e}", ((*t.setpoint)[j] - (*t.position)[j]) * shown);
+  for (int j = 0; j < t.drives; ++j) fmt::format_to(std::back_inserter(b), ",{:.4e}", (*t.force)[j]);
+  for (int j = 0; j < t.drives; ++j) fmt::format_to(std::back_inserter(b), ",{:.4e}", (*t.command)[j]);
+  // Empty where not evaluated (FK failed; the lag where the path stands).
+  b.push_back(',');
+  if (std::isfinite(t.contour_error_mm)) fmt::format_to(std::back_inserter(b), "{:.4e}", t.contour_error_mm);
+  b.push_back(',');
+  if (std::isfinite(t.lag_s)) fmt::format_to(std::back_inserter(b), "{:.4f}", t.lag_s * 1e3);
+  fmt::format_to(std::back_inserter(b), ",{},{}\n", t.clamps.error, t.clamps.command);
+}
+
+// --report: the plan's report with the servo plots, one more member of the output set (written with the
+// servo files or not at all), the servo files read back from the staging folder as `pkm report` reads them.
+Status stage_servo_report(OutputSet& outputs, const Machine& machine, const ServoJob& job) {
+  report_progress(job.progress, "writing the report");
+  auto staged = outputs.stage_file(job.report_path);
+  if (!staged) return staged.error();
+  report::ReportOptions report_options;
+  report_options.machine_file = machine.source;
+  report_options.servo_directory = outputs.staging_directory();
+  auto data = report::report_from_directory(job.plan_directory, report_options);
+  if (!data) return data.error();
+  return report::write_report_html(*staged, *data);
+}
+
 }  // namespace
 
 Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob& job) {
@@ -270,33 +310,14 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
   if (Status opened = ticks_csv.open(outputs.staged_path("servo.csv")); !opened) return opened.error();
   const bool angular = machine.mechanism->actuators_are_angles();
   const double shown = angular ? 180.0 / std::numbers::pi : 1.0;
-  const char* unit = angular ? "deg" : "mm";
-  const char* force_unit = angular ? "Nmm" : "N";
-  fmt::format_to(std::back_inserter(ticks_csv.buffer), "time_s,line");
-  for (int j = 1; j <= m; ++j) fmt::format_to(std::back_inserter(ticks_csv.buffer), ",e{}_{}", j, unit);
-  for (int j = 1; j <= m; ++j) fmt::format_to(std::back_inserter(ticks_csv.buffer), ",f{}_{}", j, force_unit);
-  for (int j = 1; j <= m; ++j) fmt::format_to(std::back_inserter(ticks_csv.buffer), ",u{}", j);
-  fmt::format_to(std::back_inserter(ticks_csv.buffer),
-                 ",contour_error_mm,lag_ms,error_clamps,command_clamps\n");
+  append_servo_csv_header(ticks_csv.buffer, m, angular);
   const double run_s = input->time_s.empty() ? 0.0 : input->time_s.back();
   long ticks_done = 0;
   auto summary = servo::run_servo(
       machine, *design, *plant, *input, *steps, {job.coupled}, [&](const servo::ServoTick& t) -> Status {
         if (ticks_done++ % 4096 == 0 && run_s > 0.0)
           report_progress(job.progress, "running the servo loops", t.time_s / run_s, t.line);
-        auto& b = ticks_csv.buffer;
-        fmt::format_to(std::back_inserter(b), "{:.6f},{}", t.time_s, t.line);
-        for (int j = 0; j < t.drives; ++j)
-          fmt::format_to(std::back_inserter(b), ",{:.4e}", ((*t.setpoint)[j] - (*t.position)[j]) * shown);
-        for (int j = 0; j < t.drives; ++j) fmt::format_to(std::back_inserter(b), ",{:.4e}", (*t.force)[j]);
-        for (int j = 0; j < t.drives; ++j) fmt::format_to(std::back_inserter(b), ",{:.4e}", (*t.command)[j]);
-        // Empty where not evaluated (FK failed; the lag where the path stands).
-        b.push_back(',');
-        if (std::isfinite(t.contour_error_mm))
-          fmt::format_to(std::back_inserter(b), "{:.4e}", t.contour_error_mm);
-        b.push_back(',');
-        if (std::isfinite(t.lag_s)) fmt::format_to(std::back_inserter(b), "{:.4f}", t.lag_s * 1e3);
-        fmt::format_to(std::back_inserter(b), ",{},{}\n", t.clamps.error, t.clamps.command);
+        append_servo_csv_row(ticks_csv.buffer, t, shown);
         return ticks_csv.flush_if_large();
       });
   if (!summary) return summary.error();
@@ -311,18 +332,8 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
           write_file_atomically(outputs.staged_path("servo_summary.json"), json_text(result.json) + "\n");
       !written)
     return written.error();
-  // --report: the plan's report with the servo plots, one more member of the output set (written with the
-  // servo files or not at all), the servo files read back from the staging folder as `pkm report` reads them.
   if (!job.report_path.empty()) {
-    report_progress(job.progress, "writing the report");
-    auto staged = outputs.stage_file(job.report_path);
-    if (!staged) return staged.error();
-    report::ReportOptions report_options;
-    report_options.machine_file = machine.source;
-    report_options.servo_directory = outputs.staging_directory();
-    auto data = report::report_from_directory(job.plan_directory, report_options);
-    if (!data) return data.error();
-    if (Status written = report::write_report_html(*staged, *data); !written) return written.error();
+    if (Status written = stage_servo_report(outputs, machine, job); !written) return written.error();
   }
   if (Status committed = outputs.commit(); !committed) return committed.error();
   return result;
