@@ -32,6 +32,142 @@ nlohmann::json stiffness_json(double value, double unit) {
   return std::isfinite(value) ? nlohmann::json(value * unit) : nlohmann::json(nullptr);
 }
 
+struct ComplianceArguments {
+  std::string machine_path;
+  std::string pose_text;
+  bool json = false;
+  ComplianceBodeArguments bode;
+  bool map = false;
+  ComplianceMapArguments map_arguments;
+};
+
+nlohmann::json compliance_json(const Machine& machine, const Pose& pose,
+                               const stiffness::ToolCompliance& compliance) {
+  const auto translation = stiffness::principal_stiffness(compliance, false);
+  const auto rotation = stiffness::principal_stiffness(compliance, true);
+  nlohmann::json matrix = nlohmann::json::array();
+  for (int r = 0; r < 6; ++r) {
+    std::vector<double> row(6);
+    for (int k = 0; k < 6; ++k) row[k] = compliance.compliance(r, k);
+    matrix.push_back(row);
+  }
+  nlohmann::json principal = nlohmann::json::array();
+  for (int i = 0; i < 3; ++i) {
+    principal.push_back({{"stiffness_N_um", stiffness_json(translation.stiffness[i], kNPerUmPerNPerMm)},
+                         {"direction", vector_of(translation.directions.col(i))}});
+  }
+  nlohmann::json turning = nlohmann::json::array();
+  for (int i = 0; i < 3; ++i) {
+    turning.push_back({{"stiffness_Nm_mrad", stiffness_json(rotation.stiffness[i], kNmPerMradPerNmmPerRad)},
+                       {"axis", vector_of(rotation.directions.col(i))}});
+  }
+  const ActuatorVector& struts = compliance.strut_stiffness_N_mm;
+  return {{"machine", machine.source},
+          {"pose", user_from_pose(*machine.mechanism, pose)},
+          {"dof", compliance.dof},
+          {"compliance", matrix},
+          {"compliance_units", "rows dx dy dz (mm), rx ry rz (rad); columns fx fy fz (N), mx my mz (N·mm)"},
+          {"translational", principal},
+          {"rotational", turning},
+          {"strut_stiffness_N_mm", std::vector<double>(struts.data(), struts.data() + struts.size())}};
+}
+
+void print_compliance(const Machine& machine, const std::string& pose_text,
+                      const stiffness::ToolCompliance& compliance) {
+  const auto translation = stiffness::principal_stiffness(compliance, false);
+  const auto rotation = stiffness::principal_stiffness(compliance, true);
+  std::cout << fmt::format("{} ({}) at {}: the struts as the springs, {} allowed motions\n", machine.name,
+                           machine.source, pose_text, compliance.dof);
+  std::cout << "  translational stiffness (N/µm) along its principal directions, the weakest first:\n";
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d d = translation.directions.col(i);
+    std::cout << fmt::format("    {:>12.3f}   [{:+.4f} {:+.4f} {:+.4f}]\n",
+                             translation.stiffness[i] * kNPerUmPerNPerMm, d.x(), d.y(), d.z());
+  }
+  std::cout << "  rotational stiffness (N·m/mrad) about its principal axes, the weakest first:\n";
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d d = rotation.directions.col(i);
+    std::cout << fmt::format("    {:>12.3f}   [{:+.4f} {:+.4f} {:+.4f}]\n",
+                             rotation.stiffness[i] * kNmPerMradPerNmmPerRad, d.x(), d.y(), d.z());
+  }
+  std::cout << "  compliance about the tool point (µm/N; rows dx dy dz, rx ry rz in µrad; columns fx fy fz, "
+               "mx my mz per N·m):\n";
+  for (int r = 0; r < 6; ++r) {
+    std::cout << "   ";
+    // mm → µm, rad → µrad; per N·mm → per N·m.
+    const double row_scale = r < 3 ? 1e3 : 1e6;
+    for (int k = 0; k < 6; ++k)
+      std::cout << fmt::format(" {:>12.5g}", compliance.compliance(r, k) * row_scale * (k < 3 ? 1.0 : 1e3));
+    std::cout << '\n';
+  }
+  std::cout << "  struts (N/µm):";
+  for (int j = 0; j < compliance.strut_stiffness_N_mm.size(); ++j)
+    std::cout << fmt::format(" {:.3f}", compliance.strut_stiffness_N_mm[j] * 1e-3);
+  std::cout << '\n';
+}
+
+// The tool's compliance at the pose, refused where the pose is out of reach or the machine has no stiffness.
+Result<stiffness::ToolCompliance> compliance_at(const Machine& machine, const Pose& pose,
+                                                const std::string& pose_text) {
+  const Mechanism& mech = *machine.mechanism;
+  auto actuators = mech.inverse(pose);
+  Status in_range = actuators ? check_actuator_range(machine, *actuators) : Status(actuators.error());
+  auto parameters = stiffness::strut_stiffness_of(machine);
+  auto compliance = !in_range     ? Result<stiffness::ToolCompliance>(in_range.error())
+                    : !parameters ? Result<stiffness::ToolCompliance>(parameters.error())
+                                  : stiffness::strut_compliance(mech, *parameters, pose);
+  if (compliance) return compliance;
+  Error e = compliance.error();
+  if (e.location.file.empty()) e.message = fmt::format("--pose {}: {}", pose_text, e.message);
+  return e;
+}
+
+// --bode: computed and written before anything is printed, so that a failure leaves no file behind.
+Result<stiffness::BodeData> write_compliance_bode(const Machine& machine, const Pose& pose,
+                                                  const ComplianceArguments& a) {
+  auto data = compliance_bode(machine, pose, a.bode);
+  if (!data) {
+    Error e = data.error();
+    if (e.location.file.empty() && e.code != ErrorCode::bad_input)
+      e.message = fmt::format("--pose {}: {}", a.pose_text, e.message);
+    return e;
+  }
+  if (Status written = stiffness::write_bode_csv(a.bode.path, *data); !written) {
+    Error e = written.error();
+    e.message = "--bode: " + e.message;
+    return e;
+  }
+  return data;
+}
+
+int run_compliance_at_pose(const ComplianceArguments& a) {
+  if (a.pose_text.empty())
+    return report_error("compliance", make_error(ErrorCode::bad_input,
+                                                 "give --pose P (one pose), or --map --out FILE (a map)"));
+  auto machine = load_machine_or_report(a.machine_path);
+  if (!machine) return report_error("compliance", machine.error());
+  auto values = parse_number_list(a.pose_text, "--pose");
+  auto pose = values ? pose_from_user(*machine->mechanism, *values, "--pose") : Result<Pose>(values.error());
+  if (!pose) return report_error("compliance", pose.error());
+  auto compliance = compliance_at(*machine, *pose, a.pose_text);
+  if (!compliance) return report_error("compliance", compliance.error());
+  std::optional<stiffness::BodeData> bode_data;
+  if (!a.bode.path.empty()) {
+    auto data = write_compliance_bode(*machine, *pose, a);
+    if (!data) return report_error("compliance", data.error());
+    bode_data = std::move(*data);
+  }
+  if (a.json) {
+    nlohmann::json out = compliance_json(*machine, *pose, *compliance);
+    if (bode_data) out["dynamic"] = compliance_bode_json(*bode_data, a.bode);
+    print_json(out);
+    return 0;
+  }
+  print_compliance(*machine, a.pose_text, *compliance);
+  if (bode_data) print_compliance_bode(*bode_data, a.bode);
+  return 0;
+}
+
 }  // namespace
 
 void add_compliance_command(CLI::App& app, int& exit_code) {
@@ -39,15 +175,11 @@ void add_compliance_command(CLI::App& app, int& exit_code) {
       "compliance",
       "the tool's compliance and principal stiffness at a pose, the struts as the springs; its dynamic "
       "compliance (--bode); the lowest stiffness over a plane of poses (--map)");
-  auto machine_path = std::make_shared<std::string>();
-  auto pose_text = std::make_shared<std::string>();
-  auto json = std::make_shared<bool>(false);
-  auto bode = std::make_shared<ComplianceBodeArguments>();
-  auto map = std::make_shared<bool>(false);
-  auto map_arguments = std::make_shared<ComplianceMapArguments>();
-  cmd->add_option("--machine", *machine_path, "machine file (YAML) with a stiffness: section")->required();
-  auto* pose_option = cmd->add_option("--pose", *pose_text, "pose, as for pkm ik (planar: x,y[,phi])");
-  cmd->add_flag("--json", *json, "print JSON");
+  auto a = std::make_shared<ComplianceArguments>();
+  ComplianceBodeArguments* bode = &a->bode;
+  cmd->add_option("--machine", a->machine_path, "machine file (YAML) with a stiffness: section")->required();
+  auto* pose_option = cmd->add_option("--pose", a->pose_text, "pose, as for pkm ik (planar: x,y[,phi])");
+  cmd->add_flag("--json", a->json, "print JSON");
   auto* bode_option = cmd->add_option(
       "--bode", bode->path,
       "with --pose: write the dynamic compliance's Bode data to this CSV (needs a dynamics: section)");
@@ -75,136 +207,22 @@ void add_compliance_command(CLI::App& app, int& exit_code) {
       ->needs(bode_option)
       ->excludes(ratio_option);
   auto* map_flag =
-      cmd->add_flag("--map", *map,
+      cmd->add_flag("--map", a->map,
                     "instead of --pose: the lowest translational stiffness over a plane grid of poses, to "
                     "--out")
           ->excludes(pose_option);
   auto* out_option =
-      cmd->add_option("--out", map_arguments->out_path, "with --map: the map's CSV file")->needs(map_flag);
+      cmd->add_option("--out", a->map_arguments.out_path, "with --map: the map's CSV file")->needs(map_flag);
   map_flag->needs(out_option);
-  add_map_grid_options(*cmd, map_arguments->grid, map_flag);
-  cmd->callback([=, &exit_code] {
-    if (*map) {
-      map_arguments->machine_path = *machine_path;
-      map_arguments->json = *json;
-      exit_code = run_compliance_map(*map_arguments);
+  add_map_grid_options(*cmd, a->map_arguments.grid, map_flag);
+  cmd->callback([a, &exit_code] {
+    if (a->map) {
+      a->map_arguments.machine_path = a->machine_path;
+      a->map_arguments.json = a->json;
+      exit_code = run_compliance_map(a->map_arguments);
       return;
     }
-    if (pose_text->empty()) {
-      exit_code = report_error(
-          "compliance",
-          make_error(ErrorCode::bad_input, "give --pose P (one pose), or --map --out FILE (a map)"));
-      return;
-    }
-    auto machine = load_machine_or_report(*machine_path);
-    if (!machine) {
-      exit_code = report_error("compliance", machine.error());
-      return;
-    }
-    const Mechanism& mech = *machine->mechanism;
-    auto values = parse_number_list(*pose_text, "--pose");
-    auto pose = values ? pose_from_user(mech, *values, "--pose") : Result<Pose>(values.error());
-    if (!pose) {
-      exit_code = report_error("compliance", pose.error());
-      return;
-    }
-    auto actuators = mech.inverse(*pose);
-    Status in_range = actuators ? check_actuator_range(*machine, *actuators) : Status(actuators.error());
-    auto parameters = stiffness::strut_stiffness_of(*machine);
-    auto compliance = !in_range     ? Result<stiffness::ToolCompliance>(in_range.error())
-                      : !parameters ? Result<stiffness::ToolCompliance>(parameters.error())
-                                    : stiffness::strut_compliance(mech, *parameters, *pose);
-    if (!compliance) {
-      Error e = compliance.error();
-      if (e.location.file.empty()) e.message = fmt::format("--pose {}: {}", *pose_text, e.message);
-      exit_code = report_error("compliance", e);
-      return;
-    }
-    std::optional<stiffness::BodeData> bode_data;
-    if (!bode->path.empty()) {
-      // Everything is computed before anything is printed or written: a failure leaves no file behind.
-      auto data = compliance_bode(*machine, *pose, *bode);
-      if (!data) {
-        Error e = data.error();
-        if (e.location.file.empty() && e.code != ErrorCode::bad_input)
-          e.message = fmt::format("--pose {}: {}", *pose_text, e.message);
-        exit_code = report_error("compliance", e);
-        return;
-      }
-      if (Status written = stiffness::write_bode_csv(bode->path, *data); !written) {
-        Error e = written.error();
-        e.message = "--bode: " + e.message;
-        exit_code = report_error("compliance", e);
-        return;
-      }
-      bode_data = std::move(*data);
-    }
-    const auto translation = stiffness::principal_stiffness(*compliance, false);
-    const auto rotation = stiffness::principal_stiffness(*compliance, true);
-    const stiffness::Matrix6& c = compliance->compliance;
-    if (*json) {
-      nlohmann::json matrix = nlohmann::json::array();
-      for (int r = 0; r < 6; ++r) {
-        std::vector<double> row(6);
-        for (int k = 0; k < 6; ++k) row[k] = c(r, k);
-        matrix.push_back(row);
-      }
-      nlohmann::json principal = nlohmann::json::array();
-      for (int i = 0; i < 3; ++i) {
-        principal.push_back({{"stiffness_N_um", stiffness_json(translation.stiffness[i], kNPerUmPerNPerMm)},
-                             {"direction", vector_of(translation.directions.col(i))}});
-      }
-      nlohmann::json turning = nlohmann::json::array();
-      for (int i = 0; i < 3; ++i) {
-        turning.push_back(
-            {{"stiffness_Nm_mrad", stiffness_json(rotation.stiffness[i], kNmPerMradPerNmmPerRad)},
-             {"axis", vector_of(rotation.directions.col(i))}});
-      }
-      nlohmann::json out = {
-          {"machine", machine->source},
-          {"pose", user_from_pose(mech, *pose)},
-          {"dof", compliance->dof},
-          {"compliance", matrix},
-          {"compliance_units", "rows dx dy dz (mm), rx ry rz (rad); columns fx fy fz (N), mx my mz (N·mm)"},
-          {"translational", principal},
-          {"rotational", turning},
-          {"strut_stiffness_N_mm", std::vector<double>(compliance->strut_stiffness_N_mm.data(),
-                                                       compliance->strut_stiffness_N_mm.data() +
-                                                           compliance->strut_stiffness_N_mm.size())}};
-      if (bode_data) out["dynamic"] = compliance_bode_json(*bode_data, *bode);
-      print_json(out);
-      return;
-    }
-    std::cout << fmt::format("{} ({}) at {}: the struts as the springs, {} allowed motions\n", machine->name,
-                             machine->source, *pose_text, compliance->dof);
-    std::cout << "  translational stiffness (N/µm) along its principal directions, the weakest first:\n";
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d d = translation.directions.col(i);
-      std::cout << fmt::format("    {:>12.3f}   [{:+.4f} {:+.4f} {:+.4f}]\n",
-                               translation.stiffness[i] * kNPerUmPerNPerMm, d.x(), d.y(), d.z());
-    }
-    std::cout << "  rotational stiffness (N·m/mrad) about its principal axes, the weakest first:\n";
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d d = rotation.directions.col(i);
-      std::cout << fmt::format("    {:>12.3f}   [{:+.4f} {:+.4f} {:+.4f}]\n",
-                               rotation.stiffness[i] * kNmPerMradPerNmmPerRad, d.x(), d.y(), d.z());
-    }
-    std::cout
-        << "  compliance about the tool point (µm/N; rows dx dy dz, rx ry rz in µrad; columns fx fy fz, "
-           "mx my mz per N·m):\n";
-    for (int r = 0; r < 6; ++r) {
-      std::cout << "   ";
-      // mm → µm, rad → µrad; per N·mm → per N·m.
-      const double row_scale = r < 3 ? 1e3 : 1e6;
-      for (int k = 0; k < 6; ++k)
-        std::cout << fmt::format(" {:>12.5g}", c(r, k) * row_scale * (k < 3 ? 1.0 : 1e3));
-      std::cout << '\n';
-    }
-    std::cout << "  struts (N/µm):";
-    for (int j = 0; j < compliance->strut_stiffness_N_mm.size(); ++j)
-      std::cout << fmt::format(" {:.3f}", compliance->strut_stiffness_N_mm[j] * 1e-3);
-    std::cout << '\n';
-    if (bode_data) print_compliance_bode(*bode_data, *bode);
+    exit_code = run_compliance_at_pose(*a);
   });
 }
 
