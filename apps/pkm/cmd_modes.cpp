@@ -31,6 +31,96 @@ std::vector<std::string> mode_coordinate_names(const TwistBasis& basis) {
   return names;
 }
 
+// What the modes at one pose print: the shapes in the basis' coordinates, the static sag and tilt.
+struct ModesAtPose {
+  dynamics::NaturalModes modes;
+  std::vector<std::string> names;
+  Eigen::Vector3d sag_mm;
+  double tilt_deg = 0.0;
+};
+
+void print_modes_json(const Machine& machine, const Pose& pose, const ModesAtPose& m) {
+  nlohmann::json shapes = nlohmann::json::array();
+  for (int i = 0; i < m.modes.count; ++i) {
+    nlohmann::json shape = nlohmann::json::object();
+    for (int k = 0; k < m.modes.count; ++k) shape[m.names[k]] = m.modes.shape(k, i);
+    shapes.push_back({{"frequency_Hz", m.modes.frequency_Hz[i]}, {"shape", shape}});
+  }
+  const auto& tension = m.modes.equilibrium.strut_force_N;
+  print_json({{"machine", machine.source},
+              {"pose", user_from_pose(*machine.mechanism, pose)},
+              {"frequencies_Hz",
+               std::vector<double>(m.modes.frequency_Hz.data(), m.modes.frequency_Hz.data() + m.modes.count)},
+              {"modes", shapes},
+              {"static_deflection_mm", {m.sag_mm.x(), m.sag_mm.y(), m.sag_mm.z()}},
+              {"static_rotation_deg", m.tilt_deg},
+              {"strut_tension_N", std::vector<double>(tension.data(), tension.data() + tension.size())},
+              {"geometric_stiffness_share", m.modes.geometric_share},
+              {"units",
+               "shapes: twist coordinates of the platform about the tool point, base frame (mm, rad), "
+               "scaled to a largest platform-joint motion of 1 mm"}});
+}
+
+void print_modes_table(const Machine& machine, const std::string& pose_text, const ModesAtPose& m) {
+  std::cout << fmt::format("{} ({}) at {}: drives clamped, about the static equilibrium under gravity\n",
+                           machine.name, machine.source, pose_text);
+  std::cout << fmt::format(
+      "  static deflection of the tool point {:.4f} µm (x {:.4f}, y {:.4f}, z {:.4f} µm), "
+      "rotation {:.3g}°\n",
+      m.sag_mm.norm() * 1e3, m.sag_mm.x() * 1e3, m.sag_mm.y() * 1e3, m.sag_mm.z() * 1e3, m.tilt_deg);
+  std::cout << fmt::format("  mode  frequency Hz  shape (largest platform-joint motion 1 mm): {}\n",
+                           fmt::join(m.names, " "));
+  for (int i = 0; i < m.modes.count; ++i) {
+    std::cout << fmt::format("  {:4d}  {:12.3f} ", i + 1, m.modes.frequency_Hz[i]);
+    for (int k = 0; k < m.modes.count; ++k) std::cout << fmt::format(" {:10.6f}", m.modes.shape(k, i));
+    std::cout << "\n";
+  }
+}
+
+// The modes at the pose the user gave, refused where the drives cannot hold it.
+Result<ModesAtPose> modes_at(const Machine& machine, const Pose& pose, const std::string& pose_text) {
+  // The drives must be able to hold the pose: their range, as every other command checks it.
+  auto actuators = machine.mechanism->inverse(pose);
+  Status in_range = actuators ? check_actuator_range(machine, *actuators) : Status(actuators.error());
+  if (!in_range) {
+    Error e = in_range.error();
+    e.message = fmt::format("--pose {}: {}", pose_text, e.message);
+    return e;
+  }
+  auto model = dynamics::make_elastic_model(machine);
+  if (!model) return model.error();
+  auto modes = dynamics::natural_modes(*model, pose);
+  if (!modes) {
+    Error e = modes.error();
+    e.message = fmt::format("--pose {}: {}", pose_text, e.message);
+    return e;
+  }
+  ModesAtPose out{std::move(*modes), mode_coordinate_names(model->basis), Eigen::Vector3d::Zero(), 0.0};
+  out.sag_mm = out.modes.equilibrium.pose.position_mm - pose.position_mm;
+  out.tilt_deg = deg_from_rad(
+      rotation_vector_from_rotation(out.modes.equilibrium.pose.rotation * pose.rotation.transpose()).norm());
+  return out;
+}
+
+int run_modes_at_pose(const std::string& machine_path, const std::string& pose_text, bool json) {
+  if (pose_text.empty())
+    return report_error(
+        "modes", make_error(ErrorCode::bad_input, "give --pose P (one pose), or --map --out FILE (a map)"));
+  auto machine = load_machine_or_report(machine_path);
+  if (!machine) return report_error("modes", machine.error());
+  auto values = parse_number_list(pose_text, "--pose");
+  if (!values) return report_error("modes", values.error());
+  auto pose = pose_from_user(*machine->mechanism, *values, "--pose");
+  if (!pose) return report_error("modes", pose.error());
+  auto modes = modes_at(*machine, *pose, pose_text);
+  if (!modes) return report_error("modes", modes.error());
+  if (json)
+    print_modes_json(*machine, *pose, *modes);
+  else
+    print_modes_table(*machine, pose_text, *modes);
+  return 0;
+}
+
 }  // namespace
 
 void add_modes_command(CLI::App& app, int& exit_code) {
@@ -78,91 +168,7 @@ void add_modes_command(CLI::App& app, int& exit_code) {
       exit_code = run_modes_map(*map_arguments);
       return;
     }
-    if (pose_text->empty()) {
-      exit_code = report_error(
-          "modes", make_error(ErrorCode::bad_input, "give --pose P (one pose), or --map --out FILE (a map)"));
-      return;
-    }
-    auto machine = load_machine_or_report(*machine_path);
-    if (!machine) {
-      exit_code = report_error("modes", machine.error());
-      return;
-    }
-    const Mechanism& mech = *machine->mechanism;
-    auto values = parse_number_list(*pose_text, "--pose");
-    if (!values) {
-      exit_code = report_error("modes", values.error());
-      return;
-    }
-    auto pose = pose_from_user(mech, *values, "--pose");
-    if (!pose) {
-      exit_code = report_error("modes", pose.error());
-      return;
-    }
-    // The drives must be able to hold the pose: their range, as every other command checks it.
-    auto actuators = mech.inverse(*pose);
-    Status in_range = actuators ? check_actuator_range(*machine, *actuators) : Status(actuators.error());
-    if (!in_range) {
-      Error e = in_range.error();
-      e.message = fmt::format("--pose {}: {}", *pose_text, e.message);
-      exit_code = report_error("modes", e);
-      return;
-    }
-    auto model = dynamics::make_elastic_model(*machine);
-    if (!model) {
-      exit_code = report_error("modes", model.error());
-      return;
-    }
-    auto modes = dynamics::natural_modes(*model, *pose);
-    if (!modes) {
-      Error e = modes.error();
-      e.message = fmt::format("--pose {}: {}", *pose_text, e.message);
-      exit_code = report_error("modes", e);
-      return;
-    }
-    const std::vector<std::string> names = mode_coordinate_names(model->basis);
-    const Eigen::Vector3d sag_mm = modes->equilibrium.pose.position_mm - pose->position_mm;
-    const double tilt_deg = deg_from_rad(
-        rotation_vector_from_rotation(modes->equilibrium.pose.rotation * pose->rotation.transpose()).norm());
-    if (*json) {
-      nlohmann::json shapes = nlohmann::json::array();
-      for (int i = 0; i < modes->count; ++i) {
-        nlohmann::json shape = nlohmann::json::object();
-        for (int k = 0; k < modes->count; ++k) shape[names[k]] = modes->shape(k, i);
-        shapes.push_back({{"frequency_Hz", modes->frequency_Hz[i]}, {"shape", shape}});
-      }
-      std::vector<double> forces(
-          modes->equilibrium.strut_force_N.data(),
-          modes->equilibrium.strut_force_N.data() + modes->equilibrium.strut_force_N.size());
-      print_json({{"machine", machine->source},
-                  {"pose", user_from_pose(mech, *pose)},
-                  {"frequencies_Hz", std::vector<double>(modes->frequency_Hz.data(),
-                                                         modes->frequency_Hz.data() + modes->count)},
-                  {"modes", shapes},
-                  {"static_deflection_mm", {sag_mm.x(), sag_mm.y(), sag_mm.z()}},
-                  {"static_rotation_deg", tilt_deg},
-                  {"strut_tension_N", forces},
-                  {"geometric_stiffness_share", modes->geometric_share},
-                  {"units",
-                   "shapes: twist coordinates of the platform about the tool point, base frame (mm, rad), "
-                   "scaled to a largest platform-joint motion of 1 mm"}});
-      exit_code = 0;
-      return;
-    }
-    std::cout << fmt::format("{} ({}) at {}: drives clamped, about the static equilibrium under gravity\n",
-                             machine->name, machine->source, *pose_text);
-    std::cout << fmt::format(
-        "  static deflection of the tool point {:.4f} µm (x {:.4f}, y {:.4f}, z {:.4f} µm), "
-        "rotation {:.3g}°\n",
-        sag_mm.norm() * 1e3, sag_mm.x() * 1e3, sag_mm.y() * 1e3, sag_mm.z() * 1e3, tilt_deg);
-    std::cout << fmt::format("  mode  frequency Hz  shape (largest platform-joint motion 1 mm): {}\n",
-                             fmt::join(names, " "));
-    for (int i = 0; i < modes->count; ++i) {
-      std::cout << fmt::format("  {:4d}  {:12.3f} ", i + 1, modes->frequency_Hz[i]);
-      for (int k = 0; k < modes->count; ++k) std::cout << fmt::format(" {:10.6f}", modes->shape(k, i));
-      std::cout << "\n";
-    }
-    exit_code = 0;
+    exit_code = run_modes_at_pose(*machine_path, *pose_text, *json);
   });
 }
 
