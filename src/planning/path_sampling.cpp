@@ -171,6 +171,90 @@ Derivatives differentiate(double s0, double s1, double s2, double f0, double f1,
   return {(h2 * d1 + h1 * d2) / (h1 + h2), 2.0 * (d2 - d1) / (h1 + h2)};
 }
 
+// Stops: the end of a segment that must come to rest (corners without blends, dwells, the program end), with
+// the time to hold there.
+void mark_stops(const path::Path& path, const std::vector<int>& sample_segment, double stop_hold_s,
+                ProfileSamples& samples) {
+  const std::size_t n = samples.size();
+  std::vector<char>& stop = samples.stop;
+  stop.assign(n, 0);
+  stop[0] = 1;
+  stop[n - 1] = 1;
+  samples.hold_s.assign(n, 0.0);
+  samples.hold_s[0] = path.initial_dwell_s;
+  for (std::size_t i = 1; i < n; ++i) {
+    const path::Segment& previous = path.segments[sample_segment[i - 1]];
+    const bool boundary = i == n - 1 || sample_segment[i] != sample_segment[i - 1];
+    if (boundary && previous.stop_after) {
+      stop[i] = 1;
+      samples.hold_s[i] += previous.dwell_after_s + stop_hold_s;
+    }
+  }
+  if (samples.hold_s[n - 1] < stop_hold_s) samples.hold_s[n - 1] = stop_hold_s;
+}
+
+// What the actuators' limits allow at a sample (path units per second, and per second²).
+struct ActuatorCaps {
+  double speed = std::numeric_limits<double>::infinity();
+  double accel = std::numeric_limits<double>::infinity();
+};
+
+struct ActuatorLimits {
+  double margin = 0.95;
+  double speed_max = 0.0;
+  double accel_max = 0.0;
+  double chord_tolerance_mm = 0.0;
+  double period_s = 0.0;
+};
+
+// The caps of the header's formulas from q' and q'' by finite differences over samples i − 1, i, i + 1.
+ActuatorCaps actuator_caps(const ActuatorVector& q0, const ActuatorVector& q1, const ActuatorVector& q2,
+                           const ProfileSamples& samples, std::size_t i, const ActuatorLimits& limits) {
+  const std::size_t n = samples.size();
+  const bool one_sided = i == 0 || samples.stop[i] || i + 1 == n;
+  ActuatorCaps caps;
+  for (int j = 0; j < q1.size(); ++j) {
+    double first = 0.0, second = 0.0;
+    if (one_sided) {
+      // One-sided slopes; at a stop the larger of the two sides governs the acceleration there.
+      if (i > 0) first = std::abs((q1[j] - q0[j]) / (samples.s[i] - samples.s[i - 1]));
+      if (i + 1 < n) first = std::max(first, std::abs((q2[j] - q1[j]) / (samples.s[i + 1] - samples.s[i])));
+    } else {
+      const Derivatives d =
+          differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], q0[j], q1[j], q2[j]);
+      first = std::abs(d.first);
+      second = std::abs(d.second);
+    }
+    if (first > 0.0) {
+      caps.speed = std::min(caps.speed, limits.margin * limits.speed_max / first);
+      caps.accel = std::min(caps.accel, (1.0 - kCurvatureShare) * limits.margin * limits.accel_max / first);
+    }
+    if (second > 0.0) {
+      caps.speed =
+          std::min(caps.speed, std::sqrt(kCurvatureShare * limits.margin * limits.accel_max / second));
+      caps.speed =
+          std::min(caps.speed, std::sqrt(8.0 * limits.chord_tolerance_mm / second) / limits.period_s);
+    }
+  }
+  return caps;
+}
+
+// The tool path's own cap at an inner sample from its curvature (by finite differences of the positions of
+// samples i − 1, i, i + 1): the normal acceleration κ·v² ≤ a_path and the chord error between servo periods.
+double curvature_cap(const std::array<Eigen::Vector3d, 3>& position_ring, const ProfileSamples& samples,
+                     std::size_t i, double path_accel_mm_s2, const ActuatorLimits& limits) {
+  Eigen::Vector3d second;
+  for (int c = 0; c < 3; ++c) {
+    second[c] = differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], position_ring[(i + 2) % 3][c],
+                              position_ring[i % 3][c], position_ring[(i + 1) % 3][c])
+                    .second;
+  }
+  const double curvature = second.norm();
+  if (!(curvature > 1e-12)) return std::numeric_limits<double>::infinity();
+  return std::min(std::sqrt(path_accel_mm_s2 / curvature),
+                  std::sqrt(8.0 * limits.chord_tolerance_mm / curvature) / limits.period_s);
+}
+
 }  // namespace
 
 Result<SamplingResult> sample_path(const Machine& machine, const program::CanonicalProgram& program,
@@ -184,24 +268,9 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
       !placed)
     return placed.error();
   const std::size_t n = samples.size();
-  const int actuators = mechanism.actuator_count();
 
-  // Stops: the end of a segment that must come to rest (corners without blends, dwells, the program end).
-  std::vector<char>& stop = samples.stop;
-  stop.assign(n, 0);
-  stop[0] = 1;
-  stop[n - 1] = 1;
-  samples.hold_s.assign(n, 0.0);
-  samples.hold_s[0] = path.initial_dwell_s;
-  for (std::size_t i = 1; i < n; ++i) {
-    const path::Segment& previous = path.segments[sample_segment[i - 1]];
-    const bool boundary = i == n - 1 || sample_segment[i] != sample_segment[i - 1];
-    if (boundary && previous.stop_after) {
-      stop[i] = 1;
-      samples.hold_s[i] += previous.dwell_after_s + settings.stop_hold_s;
-    }
-  }
-  if (samples.hold_s[n - 1] < settings.stop_hold_s) samples.hold_s[n - 1] = settings.stop_hold_s;
+  mark_stops(path, sample_segment, settings.stop_hold_s, samples);
+  const std::vector<char>& stop = samples.stop;
 
   // Inverse kinematics and the position limits at every sample, one sample ahead of the caps (which need
   // i − 1, i, i + 1): a ring of three keeps memory independent of the program's length.
@@ -252,10 +321,12 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
   if (Status s = solve(0); !s) return refuse(s.error());
 
   // Caps from the feed, the path and the actuators.
-  const double margin = settings.actuator_margin;
-  const double speed_max = machine.limits.speed.value_or(std::numeric_limits<double>::infinity());
-  const double accel_max = machine.limits.accel.value_or(std::numeric_limits<double>::infinity());
-  const double h = settings.period_s;
+  ActuatorLimits limits;
+  limits.margin = settings.actuator_margin;
+  limits.speed_max = machine.limits.speed.value_or(std::numeric_limits<double>::infinity());
+  limits.accel_max = machine.limits.accel.value_or(std::numeric_limits<double>::infinity());
+  limits.chord_tolerance_mm = settings.chord_tolerance_mm;
+  limits.period_s = settings.period_s;
   double actuator_limited_length = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (i + 1 < n) {
@@ -272,43 +343,11 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
     }
     double cap = cap_feed;
     double accel_cap = motion.path_accel_mm_s2;
-    if (!stop[i] && i > 0 && i + 1 < n) {
-      // Curvature of the tool path: normal acceleration and chord error between servo periods.
-      Eigen::Vector3d second;
-      for (int c = 0; c < 3; ++c) {
-        second[c] =
-            differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], position_ring[(i + 2) % 3][c],
-                          position_ring[i % 3][c], position_ring[(i + 1) % 3][c])
-                .second;
-      }
-      const double curvature = seg.rotation_only ? 0.0 : second.norm();
-      if (curvature > 1e-12) {
-        cap = std::min(cap, std::sqrt(motion.path_accel_mm_s2 / curvature));
-        cap = std::min(cap, std::sqrt(8.0 * settings.chord_tolerance_mm / curvature) / h);
-      }
-    }
-    double cap_actuator = std::numeric_limits<double>::infinity();
-    for (int j = 0; j < actuators; ++j) {
-      double first = 0.0, second = 0.0;
-      if (i == 0 || stop[i] || i + 1 == n) {
-        // One-sided slopes; at a stop the larger of the two sides governs the acceleration there.
-        if (i > 0) first = std::abs((q1[j] - q0[j]) / (samples.s[i] - samples.s[i - 1]));
-        if (i + 1 < n) first = std::max(first, std::abs((q2[j] - q1[j]) / (samples.s[i + 1] - samples.s[i])));
-      } else {
-        const Derivatives d =
-            differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], q0[j], q1[j], q2[j]);
-        first = std::abs(d.first);
-        second = std::abs(d.second);
-      }
-      if (first > 0.0) {
-        cap_actuator = std::min(cap_actuator, margin * speed_max / first);
-        accel_cap = std::min(accel_cap, (1.0 - kCurvatureShare) * margin * accel_max / first);
-      }
-      if (second > 0.0) {
-        cap_actuator = std::min(cap_actuator, std::sqrt(kCurvatureShare * margin * accel_max / second));
-        cap_actuator = std::min(cap_actuator, std::sqrt(8.0 * settings.chord_tolerance_mm / second) / h);
-      }
-    }
+    if (!stop[i] && i > 0 && i + 1 < n && !seg.rotation_only)
+      cap = std::min(cap, curvature_cap(position_ring, samples, i, motion.path_accel_mm_s2, limits));
+    const ActuatorCaps caps = actuator_caps(q0, q1, q2, samples, i, limits);
+    const double cap_actuator = caps.speed;
+    accel_cap = std::min(accel_cap, caps.accel);
     if (cap_actuator < cap && i + 1 < n) actuator_limited_length += samples.s[i + 1] - samples.s[i];
     cap = std::min(cap, cap_actuator);
     samples.speed_cap[i] = stop[i] ? 0.0 : cap;
