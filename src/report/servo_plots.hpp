@@ -53,6 +53,9 @@ class ServoTrace {
   nlohmann::json charts(const Machine& machine) const;
   /// Rows of the summary table (also the note on a servo run of another plan).
   nlohmann::json table_rows() const;
+  /// The report's warnings of the servo run: drives at or above the coupling ratio limit, a servo run of
+  /// another plan (not shown).
+  nlohmann::json warnings() const;
   /// The limits of the loops that acted (e_max, u_max), one entry per drive, for `limits_reached`.
   nlohmann::json limit_entries() const;
   /// The `servo` object: {"directory", "files", "summary", "nyquist_hz", "charts", "bode"}.
