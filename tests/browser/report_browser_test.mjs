@@ -71,14 +71,19 @@ mkdirSync(args.out, { recursive: true });
 
 const cases = [
   { name: 'plan-pocket', command: 'plan', program: 'examples/programs/pocket.ngc', machine: 'examples/machines/hexapod_ch5.yaml',
-    rows: 'path.csv', extra: [] },
+    rows: 'path.csv', extra: [], verdict: 'ok' },
   // A subroutine called in a loop: the calling line names where the drilling moves were written.
   { name: 'plan-bolt-circle', command: 'plan', program: 'examples/programs/bolt_circle.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], subroutines: true },
   { name: 'interpolate-ch5-line', command: 'interpolate', program: 'examples/programs/ch5_line.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier-corrected'] },
+  // The naive registers exceed ρ_max on this line: a limit exceeded, the verdict red.
+  { name: 'interpolate-ch5-line-exceeded', command: 'interpolate', program: 'examples/programs/ch5_line.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier', '--rho-max', '0.001'],
+    verdict: 'exceeded' },
+  // planar3.yaml has no actuator limits: the machine file's warnings make the verdict amber.
   { name: 'plan-planar-circle', command: 'plan', program: 'examples/programs/planar_circle.ngc',
-    machine: 'examples/machines/planar3.yaml', rows: 'path.csv', extra: [] },
+    machine: 'examples/machines/planar3.yaml', rows: 'path.csv', extra: [], verdict: 'warning' },
   { name: 'plan-circle-stiffness', command: 'plan', program: 'examples/programs/circle.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], stiffness: true },
   // pkm stiffness: the deflection under a cutting load at the program's points (time at the programmed feeds).
@@ -98,7 +103,7 @@ const cases = [
     extra: ['--grid3d', '--range-mm', '400', '--step-mm', '40'], workspace: true },
   // pkm plan, then pkm servo --report on its directory: the plan's page with the servo plots.
   { name: 'servo-ch5-line', command: 'plan', program: 'examples/programs/ch5_line.ngc',
-    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], servo: true },
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], servo: true, verdict: 'warning' },
   // pkm calibrate identify: the measured poses one second apart (too slow to see play advance), lines of the
   // measurement file.
   { name: 'calibrate-ch5-tracker', command: 'calibrate', machine: 'examples/machines/hexapod_ch5.yaml', rows: null,
@@ -407,6 +412,10 @@ try {
     await checkMaps(page, data, fail);
     await checkControls(page, data, fail);
     await checkVerdict(page, data, fail);
+    if (c.verdict) {
+      const level = await page.evaluate(() => window.pkmReport.verdict().shown.level);
+      if (level !== c.verdict) fail(`the verdict is ${level}, the case's is ${c.verdict}`);
+    }
     await checkLayout(page, fail);
     if (c.servo) checkServoWarnings(data, dir, fail);
 
