@@ -92,7 +92,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     if (!index) return index.error();
     column[k] = *index;
   }
-  column[10] = path.column("feed_mm_s");  // written since the report issue; older runs lack them
+  column[10] = path.column("feed_mm_s");  // older runs lack these two columns
   column[11] = path.column("path_error_mm");
 
   const std::string unit = actuator_unit(machine);
