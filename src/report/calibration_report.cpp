@@ -191,9 +191,7 @@ nlohmann::json calrep_table(const nlohmann::json& sm, const Machine& machine) {
     for (const auto& c : id["unidentifiable_combinations"])
       table.push_back(table_row("Not identifiable", c.value("combination", std::string())));
   }
-  if (sm.contains("warnings"))
-    for (const auto& w : sm["warnings"])
-      if (w.is_string()) table.push_back(table_row("Warning", w.get<std::string>()));
+  // The summary's warnings are the report's `warnings` (report_document), shown in the verdict, not here.
   table.push_back(table_row("Calibrated machine file", sm.value("calibrated_machine", std::string())));
   table.push_back(table_row("Machine file (drawing)", machine.source));
   return table;
@@ -240,6 +238,8 @@ Result<nlohmann::json> calibration_report(const std::string& directory, const nl
   parts.table = calrep_table(summary, *machine);
   parts.summary = summary;
   nlohmann::json report = report_document(*machine, std::move(parts), scene);
+  // The frames are the measured poses one second apart: a slide show, not a time axis.
+  report["scene"]["frames"]["axis"] = "pose";
   report["calibration"] = {{"residuals", std::move(*residual_json)},
                            {"parameters", std::move(*parameter_json)},
                            {"status", summary.value("status", std::string())}};

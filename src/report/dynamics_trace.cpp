@@ -154,16 +154,16 @@ double DynamicsTrace::peak_force() const {
 nlohmann::json DynamicsTrace::charts(const std::optional<double>& force_limit) const {
   nlohmann::json charts = nlohmann::json::array();
   if (!active_) return charts;
-  const std::vector<std::string> names = actuator_names(drives_);
+  // Named as forces.csv names the drives' forces (P1_N …) and powers (power1_W …).
   const nlohmann::json limits = plus_minus_lines(force_limit, force_unit_);
   charts.push_back(chart_json("drive_forces", "Drive forces (positive: the drive pushes)", "force",
-                              force_unit_, plots_[kTotal], names, true, limits));
+                              force_unit_, plots_[kTotal], drive_names("P", drives_), true, limits));
   charts.push_back(chart_json("drive_forces_static", "Drive forces: static part (gravity and load)", "force",
-                              force_unit_, plots_[kStatic], names, true));
+                              force_unit_, plots_[kStatic], drive_names("P", drives_, " static"), true));
   charts.push_back(chart_json("drive_forces_dynamic", "Drive forces: dynamic part (inertia)", "force",
-                              force_unit_, plots_[kDynamic], names, true));
+                              force_unit_, plots_[kDynamic], drive_names("P", drives_, " dynamic"), true));
   charts.push_back(chart_json("drive_power", "Drive power (negative: the drive brakes)", "power", "W",
-                              plots_[kPower], names_with(names, "total"), true));
+                              plots_[kPower], names_with(drive_names("power ", drives_), "total"), true));
   charts.push_back(chart_json("drive_energy", "Drive energy drawn so far", "energy", "J", plots_[kEnergy],
                               {"no recovery", "braking free", "recovery"}, true));
   if (elastic_) {

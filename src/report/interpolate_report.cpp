@@ -136,7 +136,6 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
   }
   for (auto* d : {&positions, &step_counts, &errors}) d->finish();
 
-  const std::vector<std::string> names = actuator_names(n);
   nlohmann::json step_limits = nlohmann::json::array(), error_limits = nlohmann::json::array();
   if (max_step_rate > 0.0) {
     const double per_period = std::floor(max_step_rate * period_s);
@@ -147,9 +146,10 @@ Result<nlohmann::json> interpolate_report(const Machine& machine, const RunFiles
   if (rho_max > 0.0) error_limits.push_back(limit_line(fmt::format("ρ_max {:g} mm", rho_max), rho_max));
   nlohmann::json charts = nlohmann::json::array();
   charts.push_back(chart_json("actuator_positions", "Actuator positions (drive position codes × step)",
-                              "position", unit, positions, names, false, travel_limit_lines(limits, unit)));
+                              "position", unit, positions, actuator_names(n), false,
+                              travel_limit_lines(limits, unit)));
   charts.push_back(chart_json("steps_per_period", "Steps per period (sign: direction)", "steps", "steps",
-                              step_counts, names, false, step_limits));
+                              step_counts, drive_names("drive ", n), false, step_limits));
   charts.push_back(chart_json("contour_error", "Contour error (largest in each period)", "error", "mm",
                               errors, {"contour error"}, false, error_limits));
 

@@ -92,7 +92,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     if (!index) return index.error();
     column[k] = *index;
   }
-  column[10] = path.column("feed_mm_s");  // written since the report issue; older runs lack them
+  column[10] = path.column("feed_mm_s");  // older runs lack these two columns
   column[11] = path.column("path_error_mm");
 
   const std::string unit = actuator_unit(machine);
@@ -193,14 +193,15 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   scene.set_force_scale(dynamics.peak_force(), dynamics.force_unit());
   for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
 
-  const std::vector<std::string> names = actuator_names(n);
+  // Position q, speed v and acceleration a of each drive, so that a legend tells the three plots apart.
   nlohmann::json charts = nlohmann::json::array();
-  charts.push_back(chart_json("actuator_positions", "Actuator positions", "position", unit, positions, names,
-                              true, travel_limit_lines(limits, unit)));
-  charts.push_back(chart_json("actuator_speeds", "Actuator speeds", "speed", unit + "/s", speeds, names, true,
-                              plus_minus_lines(limits.speed, unit + "/s")));
+  charts.push_back(chart_json("actuator_positions", "Actuator positions", "position", unit, positions,
+                              actuator_names(n), true, travel_limit_lines(limits, unit)));
+  charts.push_back(chart_json("actuator_speeds", "Actuator speeds", "speed", unit + "/s", speeds,
+                              drive_names("v", n), true, plus_minus_lines(limits.speed, unit + "/s")));
   charts.push_back(chart_json("actuator_accels", "Actuator accelerations", "acceleration", unit + "/s²",
-                              accels, names, true, plus_minus_lines(limits.accel, unit + "/s²")));
+                              accels, drive_names("a", n), true,
+                              plus_minus_lines(limits.accel, unit + "/s²")));
   charts.push_back(chart_json("path_speed", "Path speed and programmed feed", "speed", "mm/s", path_speed,
                               {"path speed", "programmed feed × override"}, true));
   if (column[11] >= 0) {
@@ -260,6 +261,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   parts.program_file = files.program;
   parts.table = std::move(table);
   parts.limits_reached = std::move(reached);
+  parts.warnings = servo.warnings();
   parts.summary = files.summary;
   parts.charts = std::move(charts);
   nlohmann::json report = report_document(machine, std::move(parts), scene);

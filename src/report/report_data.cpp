@@ -28,8 +28,8 @@ nlohmann::json chart_json(const std::string& id, const std::string& title, const
   if (with_path_length) x["s_mm"] = json_numbers(data.s_mm(), 9);
   nlohmann::json series = nlohmann::json::array();
   for (int k = 0; k < data.series(); ++k) {
-    series.push_back(
-        {{"name", names[static_cast<std::size_t>(k)]}, {"values", json_numbers(data.values(k))}});
+    series.push_back({{"name", series_name(names[static_cast<std::size_t>(k)], y_unit)},
+                      {"values", json_numbers(data.values(k))}});
   }
   return {{"id", id},          {"title", title},   {"y_label", y_label},         {"y_unit", y_unit},
           {"x", std::move(x)}, {"series", series}, {"limits", std::move(limits)}};
@@ -67,6 +67,22 @@ std::vector<std::string> actuator_names(int count) {
   std::vector<std::string> names;
   for (int j = 1; j <= count; ++j) names.push_back(fmt::format("q{}", j));
   return names;
+}
+
+std::vector<std::string> drive_names(const std::string& prefix, int count, const std::string& suffix) {
+  std::vector<std::string> names;
+  for (int j = 1; j <= count; ++j) names.push_back(fmt::format("{}{}{}", prefix, j, suffix));
+  return names;
+}
+
+std::string series_name(const std::string& name, const std::string& unit) {
+  return unit.empty() ? name : fmt::format("{} [{}]", name, unit);
+}
+
+nlohmann::json warning_entry(const std::string& what, int line) {
+  nlohmann::json entry = {{"what", what}};
+  if (line > 0) entry["line"] = line;
+  return entry;
 }
 
 nlohmann::json table_row(const std::string& label, const std::string& value, int line) {
@@ -139,8 +155,15 @@ nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneB
   std::set<int> lines = scene.lines();
   for (const auto& row : parts.table)
     if (row.contains("line")) lines.insert(row["line"].get<int>());
-  for (const auto& entry : parts.limits_reached)
-    if (entry.contains("line")) lines.insert(entry["line"].get<int>());
+  // The run's own warnings (machine file, program notes, identification) are warnings of the report too: the
+  // page's verdict is the worst of the limits and the warnings, so none of them may be left in the table
+  // alone.
+  if (parts.summary.is_object() && parts.summary.contains("warnings") && parts.summary["warnings"].is_array())
+    for (const auto& w : parts.summary["warnings"])
+      if (w.is_string()) parts.warnings.push_back(warning_entry(w.get<std::string>()));
+  for (const nlohmann::json* list : {&parts.limits_reached, &parts.warnings})
+    for (const auto& entry : *list)
+      if (entry.contains("line")) lines.insert(entry["line"].get<int>());
   nlohmann::json program = {{"file", parts.program_file},
                             {"lines", program_lines(parts.program_file, lines)}};
   nlohmann::json called = subroutine_places(parts.summary, lines);
@@ -153,6 +176,7 @@ nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneB
           {"program", std::move(program)},
           {"table", std::move(parts.table)},
           {"limits_reached", std::move(parts.limits_reached)},
+          {"warnings", std::move(parts.warnings)},
           {"summary", std::move(parts.summary)},
           {"charts", std::move(parts.charts)},
           {"scene", scene.json()}};

@@ -37,6 +37,7 @@ Status write_directory_report(const std::string& directory, const std::string& f
 // Pieces shared by the report builders (plan, interpolate, optimize).
 
 /// One chart of the report from a decimator: series `names`, x over time and (if `with_path_length`) over s.
+/// Each series is named by its quantity with the chart's unit (series_name): the legend then reads "P1 [N]".
 nlohmann::json chart_json(const std::string& id, const std::string& title, const std::string& y_label,
                           const std::string& y_unit, const MinMaxDecimator& data,
                           const std::vector<std::string>& names, bool with_path_length,
@@ -52,6 +53,12 @@ nlohmann::json travel_limit_lines(const ActuatorLimits& file_limits, const std::
 nlohmann::json plus_minus_lines(const std::optional<double>& limit, const std::string& unit);
 /// "q1" … "qn".
 std::vector<std::string> actuator_names(int count);
+/// `prefix`1`suffix` … `prefix`n`suffix`: one name per drive ("P1 static", "power 1").
+std::vector<std::string> drive_names(const std::string& prefix, int count, const std::string& suffix = "");
+/// "P1 [N]": a series' name with its unit; the name alone where the quantity has none.
+std::string series_name(const std::string& name, const std::string& unit);
+/// An entry of the report's `warnings`: something to look at that is no limit reached ("line" 0: none).
+nlohmann::json warning_entry(const std::string& what, int line = 0);
 /// A row of the summary table; `line` 0 means none.
 nlohmann::json table_row(const std::string& label, const std::string& value, int line = 0);
 /// The parts of a report that every kind of run fills in.
@@ -61,11 +68,13 @@ struct ReportParts {
   std::string program_file;  ///< for the source text of the lines the report refers to
   nlohmann::json table = nlohmann::json::array();
   nlohmann::json limits_reached = nlohmann::json::array();
+  /// warning_entry()s; report_document() adds the summary's own "warnings" (strings) after them.
+  nlohmann::json warnings = nlohmann::json::array();
   nlohmann::json summary = nlohmann::json::object();
   nlohmann::json charts = nlohmann::json::array();
 };
 /// The whole report object (docs/report-data.md), with the source text of every program line that the scene's
-/// frames, the table and the limits refer to.
+/// frames, the table, the limits and the warnings refer to.
 nlohmann::json report_document(const Machine& machine, ReportParts parts, SceneBuilder& scene);
 /// The source text of `lines` of a program file (missing file: empty).
 nlohmann::json program_lines(const std::string& file, const std::set<int>& lines);

@@ -111,6 +111,48 @@ int servo_report_extreme_drive(const nlohmann::json& drives, const std::vector<c
   return best;
 }
 
+// The coupling check of servo_summary.json: how many drives reach the ratio limit, the largest ratio, its
+// drive
+// (-1: none) and line, and the lines where the limit is reached.
+struct ServoCoupling {
+  double limit = 0.3;
+  int coupled = 0;
+  std::size_t drives = 0;
+  double largest = 0.0;
+  int drive = -1;
+  int line = 0;
+  std::set<int> lines;
+};
+
+ServoCoupling servo_report_coupling(const nlohmann::json& summary) {
+  ServoCoupling c;
+  const double limit = servo_report_number(summary, "coupling_ratio_limit");
+  if (std::isfinite(limit)) c.limit = limit;
+  const nlohmann::json& drives = servo_report_member(summary, "drives");
+  if (!drives.is_array()) return c;
+  c.drives = drives.size();
+  for (const auto& drive : drives) {
+    if (!(servo_report_number(drive, "max_coupling_ratio") >= c.limit)) continue;
+    ++c.coupled;
+    const nlohmann::json& lines = servo_report_member(drive, "coupled_lines");
+    if (lines.is_array())
+      for (const auto& line : lines)
+        if (line.is_number_integer()) c.lines.insert(line.get<int>());
+  }
+  c.drive = servo_report_extreme_drive(drives, {"max_coupling_ratio"}, false, c.largest);
+  if (c.drive >= 0)
+    c.line = static_cast<int>(
+        servo_report_integer(drives[static_cast<std::size_t>(c.drive)], "max_coupling_line"));
+  return c;
+}
+
+// "6 of 6 drives, up to 7.6 (drive 2); lines 10, 11"
+std::string servo_report_coupling_text(const ServoCoupling& c) {
+  return fmt::format("{} of {} drives, up to {:.3g} (drive {}){}", c.coupled, c.drives, c.largest,
+                     c.drive + 1,
+                     c.lines.empty() ? std::string() : fmt::format("; lines {}", fmt::join(c.lines, ", ")));
+}
+
 }  // namespace
 
 Result<nlohmann::json> servo_bode_json(const std::string& path, int drives) {
@@ -254,7 +296,7 @@ nlohmann::json ServoTrace::charts(const Machine& machine) const {
   }
   charts.push_back(chart_json("servo_following_error", "Following error (servo: set point − position)",
                               "following error", unit_, plots_[kServoReportFollowing],
-                              actuator_names(drives_), true, plus_minus_lines(error_max, unit_)));
+                              drive_names("e", drives_), true, plus_minus_lines(error_max, unit_)));
   charts.push_back(chart_json("servo_contour_error", "Contour error (servo: tool from the commanded path)",
                               "contour error", "mm", plots_[kServoReportContour], {"contour error"}, true));
   return charts;
@@ -301,32 +343,15 @@ nlohmann::json ServoTrace::table_rows() const {
   if (!acted) rows.push_back(table_row("Servo limits (e_max, u_max)", "never acted"));
   // The coupling check (one row): the drives at or above the limit, the largest ratio and the lines, else the
   // largest ratio.
-  const double limit = std::isfinite(servo_report_number(s, "coupling_ratio_limit"))
-                           ? servo_report_number(s, "coupling_ratio_limit")
-                           : 0.3;
-  int coupled = 0;
-  std::set<int> coupled_lines;
-  for (std::size_t j = 0; j < drives.size(); ++j) {
-    if (!(servo_report_number(drives[j], "max_coupling_ratio") >= limit)) continue;
-    ++coupled;
-    const nlohmann::json& lines = servo_report_member(drives[j], "coupled_lines");
-    if (lines.is_array())
-      for (const auto& line : lines)
-        if (line.is_number_integer()) coupled_lines.insert(line.get<int>());
-  }
-  if (const int j = servo_report_extreme_drive(drives, {"max_coupling_ratio"}, false, value); j >= 0) {
-    const int line =
-        static_cast<int>(servo_report_integer(drives[static_cast<std::size_t>(j)], "max_coupling_line"));
-    if (coupled > 0) {
-      rows.push_back(table_row(
-          fmt::format("Coupling ratio ≥ {:g}", limit),
-          fmt::format("{} of {} drives, up to {:.3g} (drive {}){}", coupled, drives.size(), value, j + 1,
-                      coupled_lines.empty() ? std::string()
-                                            : fmt::format("; lines {}", fmt::join(coupled_lines, ", "))),
-          line));
+  const ServoCoupling c = servo_report_coupling(s);
+  if (c.drive >= 0) {
+    if (c.coupled > 0) {
+      rows.push_back(
+          table_row(fmt::format("Coupling ratio ≥ {:g}", c.limit), servo_report_coupling_text(c), c.line));
     } else {
       rows.push_back(table_row("Max coupling ratio",
-                               fmt::format("{:.3g} (drive {}), below {:g}", value, j + 1, limit), line));
+                               fmt::format("{:.3g} (drive {}), below {:g}", c.largest, c.drive + 1, c.limit),
+                               c.line));
     }
   }
   std::string margins;
@@ -354,6 +379,23 @@ nlohmann::json ServoTrace::table_rows() const {
   if (const long failures = servo_report_integer(s, "fk_failures"); failures > 0)
     rows.push_back(table_row("Ticks without contour error (FK failed)", std::to_string(failures)));
   return rows;
+}
+
+nlohmann::json ServoTrace::warnings() const {
+  nlohmann::json warnings = nlohmann::json::array();
+  if (!note_.empty()) warnings.push_back(warning_entry("servo run not shown: " + note_));
+  if (!active_) return warnings;
+  // At or above the ratio the machine's inertia on a drive is no longer small against its motor's: the loops,
+  // each tuned to its own drive, are coupled through the machine (docs/servo.md). Nothing was clamped, so it
+  // is no limit reached, but the loops' figures are then less certain than they look.
+  const ServoCoupling c = servo_report_coupling(summary_);
+  if (c.coupled > 0) {
+    warnings.push_back(warning_entry(
+        fmt::format("servo: coupling ratio ≥ {:g} on {}: the drives' loops are coupled through the machine",
+                    c.limit, servo_report_coupling_text(c)),
+        c.line > 0 || c.lines.empty() ? c.line : *c.lines.begin()));
+  }
+  return warnings;
 }
 
 nlohmann::json ServoTrace::limit_entries() const {

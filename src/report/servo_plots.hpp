@@ -1,18 +1,17 @@
 #pragma once
-// The servo plots of a plan's report (issue 17: "the HTML report gains following-error and contour-error
-// plots and a Bode plot per loop"): when the servo directory (the plan's own, or where `pkm servo --out`
+// The servo plots of a plan's report: when the servo directory (the plan's own, or where `pkm servo --out`
 // wrote) holds servo_summary.json, servo.csv and servo_bode.csv (pipeline/servo_program.hpp), the report gets
 //   - two more charts over time and path length, read tick by tick in step with path.csv and decimated like
-//     every plot (as dynamics_trace.hpp does): each drive's following error and the contour error at the
-//     tool;
+//     every plot (as dynamics_trace.hpp does): each drive's following error (e1, e2, …) and the contour
+//     error at the tool;
 //   - rows of the summary table: the largest contour error with its line, the largest lag, the largest
-//   following
-//     error with its drive and line, where the loops' limits acted, the coupling check, the loops' margins;
-//     and the limits that acted among the limits reached;
+//     following error with its drive and line, where the loops' limits acted, the coupling check, the loops'
+//     margins; the limits that acted among the limits reached, and drives at the coupling ratio limit among
+//     the warnings;
 //   - a `servo` object (docs/report-data.md) with servo_summary.json and each drive's loops as Bode data
 //     (servo_bode.csv), which the page draws as a Bode plot per loop (web/src/servo.js).
 // A servo_summary.json of another run (a different number of ticks than the plan's: the plan was run again
-// since) is not shown; the table says so.
+// since) is not shown; the table and the warnings say so.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -53,6 +52,9 @@ class ServoTrace {
   nlohmann::json charts(const Machine& machine) const;
   /// Rows of the summary table (also the note on a servo run of another plan).
   nlohmann::json table_rows() const;
+  /// The report's warnings of the servo run: drives at or above the coupling ratio limit, a servo run of
+  /// another plan (not shown).
+  nlohmann::json warnings() const;
   /// The limits of the loops that acted (e_max, u_max), one entry per drive, for `limits_reached`.
   nlohmann::json limit_entries() const;
   /// The `servo` object: {"directory", "files", "summary", "nyquist_hz", "charts", "bode"}.

@@ -1,5 +1,9 @@
-// The HTML report in a real browser (issue: "see what the machine will do"). For shipped examples it runs pkm
-// with --report, opens each page in Debian's headless Chromium (playwright-core from web/), and checks:
+// The HTML report in a real browser. For shipped examples of every kind of report (plan, interpolate, optimize,
+// stiffness, workspace, servo, calibration) it runs pkm with --report, opens each page in Debian's headless
+// Chromium (playwright-core from web/), and checks:
+//   - that every page is readable (readability_checks.mjs): colour keys that match the curves, units on every
+//     axis and colour bar, maps to scale with the unreachable cells masked, controls only where they act, a
+//     verdict that is the worst of its items, no large blank areas;
 //   - no console error or warning, no page error, no network request (the page is self-contained);
 //   - pkmReport.ready comes, the 3-D canvas and every plot canvas have drawn pixels;
 //   - scrubbing (the range input, as a user drags it) moves the animation, and #current-line shows the program
@@ -26,6 +30,7 @@ import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { checkControls, checkLayout, checkMaps, checkPlots, checkServoWarnings, checkVerdict } from './readability_checks.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const require = createRequire(join(root, 'web/package.json'));
@@ -66,16 +71,25 @@ mkdirSync(args.out, { recursive: true });
 
 const cases = [
   { name: 'plan-pocket', command: 'plan', program: 'examples/programs/pocket.ngc', machine: 'examples/machines/hexapod_ch5.yaml',
-    rows: 'path.csv', extra: [] },
+    rows: 'path.csv', extra: [], verdict: 'ok' },
   // A subroutine called in a loop: the calling line names where the drilling moves were written.
   { name: 'plan-bolt-circle', command: 'plan', program: 'examples/programs/bolt_circle.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], subroutines: true },
   { name: 'interpolate-ch5-line', command: 'interpolate', program: 'examples/programs/ch5_line.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier-corrected'] },
+  // The naive registers exceed ρ_max on this line: a limit exceeded, the verdict red.
+  { name: 'interpolate-ch5-line-exceeded', command: 'interpolate', program: 'examples/programs/ch5_line.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'contour.csv', extra: ['--method', 'carrier', '--rho-max', '0.001'],
+    verdict: 'exceeded' },
+  // planar3.yaml has no actuator limits: the machine file's warnings make the verdict amber.
   { name: 'plan-planar-circle', command: 'plan', program: 'examples/programs/planar_circle.ngc',
-    machine: 'examples/machines/planar3.yaml', rows: 'path.csv', extra: [] },
+    machine: 'examples/machines/planar3.yaml', rows: 'path.csv', extra: [], verdict: 'warning' },
   { name: 'plan-circle-stiffness', command: 'plan', program: 'examples/programs/circle.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], stiffness: true },
+  // pkm stiffness: the deflection under a cutting load at the program's points (time at the programmed feeds).
+  { name: 'stiffness-ch5-circle', command: 'stiffness', program: 'examples/programs/circle.ngc',
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'points.csv', extra: ['--load', 'tangential=500'],
+    strutForces: true },
   { name: 'plan-helix-dynamics', command: 'plan', program: 'examples/programs/helix.ngc',
     machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: ['--dynamics', '--elastic'], dynamics: true },
   // optimize writes a program, not a run directory: its frames' lines are checked against the report's own data.
@@ -89,7 +103,7 @@ const cases = [
     extra: ['--grid3d', '--range-mm', '400', '--step-mm', '40'], workspace: true },
   // pkm plan, then pkm servo --report on its directory: the plan's page with the servo plots.
   { name: 'servo-ch5-line', command: 'plan', program: 'examples/programs/ch5_line.ngc',
-    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], servo: true },
+    machine: 'examples/machines/hexapod_ch5.yaml', rows: 'path.csv', extra: [], servo: true, verdict: 'warning' },
   // pkm calibrate identify: the measured poses one second apart (too slow to see play advance), lines of the
   // measurement file.
   { name: 'calibrate-ch5-tracker', command: 'calibrate', machine: 'examples/machines/hexapod_ch5.yaml', rows: null,
@@ -394,6 +408,16 @@ try {
     }));
     if (plots.length < data.charts.length) fail(`${plots.length} plot canvases for ${data.charts.length} charts`);
     plots.forEach((inked, k) => { if (inked < 50) fail(`plot ${k} has only ${inked} drawn pixels`); });
+    const described = await checkPlots(page, data, fail);
+    await checkMaps(page, data, fail);
+    await checkControls(page, data, fail);
+    await checkVerdict(page, data, fail);
+    if (c.verdict) {
+      const level = await page.evaluate(() => window.pkmReport.verdict().shown.level);
+      if (level !== c.verdict) fail(`the verdict is ${level}, the case's is ${c.verdict}`);
+    }
+    await checkLayout(page, fail);
+    if (c.servo) checkServoWarnings(data, dir, fail);
 
     const frames = data.scene.frames;
     if (c.workspace) {
@@ -401,7 +425,7 @@ try {
       if (data.charts.length || data.stiffness_map) fail('a workspace report has time plots or a stiffness map');
       if (args.screenshots) await page.screenshot({ path: join(args.screenshots, `report-${c.name}.png`), fullPage: true });
       await page.close();
-      console.log(`${c.name}: workspace map checked`);
+      console.log(`${c.name}: workspace map and ${described} plots checked`);
       continue;
     }
     if (data.workspace_map || (await page.evaluate(() => document.getElementById('workspace-map') !== null)))
@@ -426,7 +450,7 @@ try {
       await checkCalibrationPlots(page, data, dir, fail);
       if (args.screenshots) await page.screenshot({ path: join(args.screenshots, `report-${c.name}.png`), fullPage: true });
       await page.close();
-      console.log(`${c.name}: ${frames.time_s.length} poses, calibration plots checked`);
+      console.log(`${c.name}: ${frames.time_s.length} poses, ${described} plots, calibration plots checked`);
       continue;
     }
     if (data.calibration || (await page.evaluate(() => window.pkmReport.calibrationPlots() !== null)))
@@ -454,7 +478,10 @@ try {
     else if (data.program.subroutine_lines) fail('a program without subroutine calls has subroutine_lines');
 
     if (c.dynamics) await checkForceColouring(page, data, fail);
-    else if (await page.evaluate(() => document.getElementById('strut-colour') !== null || window.pkmReport.strutColoring() !== null))
+    else if (c.strutForces) {
+      // pkm stiffness: the struts' tensions colour the struts, as a plan's drive forces do.
+      if ((await page.evaluate(() => window.pkmReport.strutColoring())) !== 'limits') fail('the strut tensions cannot colour the struts');
+    } else if (await page.evaluate(() => document.getElementById('strut-colour') !== null || window.pkmReport.strutColoring() !== null))
       fail('a report without drive forces offers force colouring');
 
     if (args.screenshots) {
@@ -463,7 +490,7 @@ try {
       await page.screenshot({ path: join(args.screenshots, `report-${c.name}.png`), fullPage: true });
     }
     await page.close();
-    console.log(`${c.name}: ${frames.time_s.length} frames, ${plots.length} plots checked`);
+    console.log(`${c.name}: ${frames.time_s.length} frames, ${described} plots checked`);
   }
 } finally {
   await browser.close();

@@ -196,28 +196,30 @@ TEST(DynamicsReport, ForcePowerEnergyAndErrorPlotsKeepTheirPeaks) {
   EXPECT_LE(points, 2u * 100u + 2u);  // decimated, bounded by the buckets
   ASSERT_EQ(forces["x"]["s_mm"].size(), points);
   // The one-tick pull of drive 3 survives a bucket of 200 ticks, and so do the sine's extremes of the others.
-  EXPECT_EQ(dyn_report_min(*dyn_report_series(forces, "q3")), kDynReportSpikeN);
-  EXPECT_NEAR(dyn_report_max(*dyn_report_series(forces, "q1")), 220.0, 1e-3);
-  EXPECT_NEAR(dyn_report_min(*dyn_report_series(*dyn_report_chart(*data, "drive_forces_dynamic"), "q3")),
-              kDynReportSpikeN - dyn_report_static_N(2), 1e-9);
-  EXPECT_NEAR(dyn_report_max(*dyn_report_series(*dyn_report_chart(*data, "drive_forces_static"), "q6")),
-              dyn_report_static_N(5), 1e-9);
+  EXPECT_EQ(dyn_report_min(*dyn_report_series(forces, "P3 [N]")), kDynReportSpikeN);
+  EXPECT_NEAR(dyn_report_max(*dyn_report_series(forces, "P1 [N]")), 220.0, 1e-3);
+  EXPECT_NEAR(
+      dyn_report_min(*dyn_report_series(*dyn_report_chart(*data, "drive_forces_dynamic"), "P3 dynamic [N]")),
+      kDynReportSpikeN - dyn_report_static_N(2), 1e-9);
+  EXPECT_NEAR(
+      dyn_report_max(*dyn_report_series(*dyn_report_chart(*data, "drive_forces_static"), "P6 static [N]")),
+      dyn_report_static_N(5), 1e-9);
   // Power per drive and the total; the total's peak is the sum of the drives' at the same tick.
   const nlohmann::json& power = *dyn_report_chart(*data, "drive_power");
-  ASSERT_NE(dyn_report_series(power, "total"), nullptr);
-  EXPECT_NEAR(dyn_report_max(*dyn_report_series(power, "q6")), 3.0, 1e-4);
+  ASSERT_NE(dyn_report_series(power, "total [W]"), nullptr);
+  EXPECT_NEAR(dyn_report_max(*dyn_report_series(power, "power 6 [W]")), 3.0, 1e-4);
 
   // The cumulative energy ends at the summary's energies, in each accounting.
   const nlohmann::json& energy = *dyn_report_chart(*data, "drive_energy");
   const auto last = [&](const char* name) { return dyn_report_series(energy, name)->back().get<double>(); };
-  EXPECT_NEAR(last("no recovery"), run.energy_no_recovery_J, 1e-5 * run.energy_no_recovery_J);
-  EXPECT_NEAR(last("braking free"), run.energy_braking_free_J, 1e-5 * run.energy_braking_free_J);
-  EXPECT_NEAR(last("recovery"), run.energy_recovery_J, 1e-5 * run.energy_recovery_J);
+  EXPECT_NEAR(last("no recovery [J]"), run.energy_no_recovery_J, 1e-5 * run.energy_no_recovery_J);
+  EXPECT_NEAR(last("braking free [J]"), run.energy_braking_free_J, 1e-5 * run.energy_braking_free_J);
+  EXPECT_NEAR(last("recovery [J]"), run.energy_recovery_J, 1e-5 * run.energy_recovery_J);
   EXPECT_GT(run.energy_no_recovery_J, run.energy_braking_free_J);
   EXPECT_GT(run.energy_braking_free_J, run.energy_recovery_J);
 
   const nlohmann::json& error = *dyn_report_chart(*data, "dynamic_error");
-  EXPECT_EQ(dyn_report_max(*dyn_report_series(error, "|d|")), kDynReportErrorSpikeMm);
+  EXPECT_EQ(dyn_report_max(*dyn_report_series(error, "|d| [mm]")), kDynReportErrorSpikeMm);
 
   // Every frame carries the drive forces of its tick; the colour scale is the run's peak |force|.
   const nlohmann::json& scene = (*data)["scene"];
@@ -324,18 +326,19 @@ TEST(DynamicsReport, APlannedCircleShowsTheSummarysPeaksAndEnergy) {
   const nlohmann::json& forces = *dyn_report_chart(*data, "drive_forces");
   EXPECT_LT(forces["x"]["time_s"].size(), 4100u);
   for (int j = 0; j < 6; ++j) {
-    const nlohmann::json& values = *dyn_report_series(forces, fmt::format("q{}", j + 1));
+    const nlohmann::json& values = *dyn_report_series(forces, fmt::format("P{} [N]", j + 1));
     const double peak = std::max(dyn_report_max(values), -dyn_report_min(values));
     EXPECT_NEAR(peak, d["drives"][j]["peak_force_N"].get<double>(), 1e-3) << "drive " << j + 1;
   }
   const nlohmann::json& energy = *dyn_report_chart(*data, "drive_energy");
-  const double no_recovery = dyn_report_series(energy, "no recovery")->back().get<double>();
-  const double recovery = dyn_report_series(energy, "recovery")->back().get<double>();
+  const double no_recovery = dyn_report_series(energy, "no recovery [J]")->back().get<double>();
+  const double recovery = dyn_report_series(energy, "recovery [J]")->back().get<double>();
   EXPECT_NEAR(no_recovery, d["energy_no_recovery_J"].get<double>(),
               1e-4 * d["energy_no_recovery_J"].get<double>());
   EXPECT_NEAR(recovery, d["energy_recovery_J"].get<double>(), 1e-4 * d["energy_recovery_J"].get<double>());
   const nlohmann::json& error = *dyn_report_chart(*data, "dynamic_error");
-  EXPECT_NEAR(dyn_report_max(*dyn_report_series(error, "|d|")), d["max_dynamic_tool_error_mm"].get<double>(),
+  EXPECT_NEAR(dyn_report_max(*dyn_report_series(error, "|d| [mm]")),
+              d["max_dynamic_tool_error_mm"].get<double>(),
               1e-4 * d["max_dynamic_tool_error_mm"].get<double>());
   double peak_N = 0.0;
   for (const auto& drive : d["drives"]) peak_N = std::max(peak_N, drive["peak_force_N"].get<double>());

@@ -270,19 +270,19 @@ export function makeSampleData({ chartPoints = 4000, frames: frameCount = 600, v
   const time = pick((k) => r3(S[k].t * 1000) / 1000);
   const sx = pick((k) => r3(sPath[k]));
   const names = M.base.map((_, i) => `q${i + 1}`);
-  const qSeries = (arr, digits = 4) => names.map((nm, i) => ({ name: nm, values: pick((k) => Number(arr[k][i].toFixed(digits))) }));
-  const unit = 'mm';
+  // Series named as pkm names them: the quantity per drive (q, v, a, F) with the chart's unit.
+  const qSeries = (arr, symbol, unit, digits = 4) => names.map((nm, i) => ({ name: `${symbol}${i + 1} [${unit}]`, values: pick((k) => Number(arr[k][i].toFixed(digits))) }));
   const charts = [
-    { id: 'actuator_positions', title: 'Actuator positions', y_label: 'position', y_unit: unit, x: { time_s: time }, series: qSeries(q), limits: [{ label: `max ${M.qmax} mm`, value: M.qmax }, { label: `min ${M.qmin} mm`, value: M.qmin }] },
-    { id: 'actuator_speeds', title: 'Actuator speeds', y_label: 'speed', y_unit: 'mm/s', x: { time_s: time }, series: qSeries(qd, 3), limits: [{ label: `max ${vlim} mm/s`, value: vlim }, { label: `min -${vlim} mm/s`, value: -vlim }] },
-    { id: 'actuator_accels', title: 'Actuator accelerations', y_label: 'acceleration', y_unit: 'mm/s²', x: { time_s: time }, series: qSeries(qdd, 1), limits: [{ label: `max ${alim} mm/s²`, value: alim }, { label: `min -${alim} mm/s²`, value: -alim }] },
+    { id: 'actuator_positions', title: 'Actuator positions', y_label: 'position', y_unit: 'mm', x: { time_s: time }, series: qSeries(q, 'q', 'mm'), limits: [{ label: `max ${M.qmax} mm`, value: M.qmax }, { label: `min ${M.qmin} mm`, value: M.qmin }] },
+    { id: 'actuator_speeds', title: 'Actuator speeds', y_label: 'speed', y_unit: 'mm/s', x: { time_s: time }, series: qSeries(qd, 'v', 'mm/s', 3), limits: [{ label: `max ${vlim} mm/s`, value: vlim }, { label: `min -${vlim} mm/s`, value: -vlim }] },
+    { id: 'actuator_accels', title: 'Actuator accelerations', y_label: 'acceleration', y_unit: 'mm/s²', x: { time_s: time }, series: qSeries(qdd, 'a', 'mm/s²', 1), limits: [{ label: `max ${alim} mm/s²`, value: alim }, { label: `min -${alim} mm/s²`, value: -alim }] },
     { id: 'path_speed', title: 'Path speed', y_label: 'speed', y_unit: 'mm/s', x: { time_s: time, s_mm: sx }, series: [
-      { name: 'path speed', values: pick((k) => r3(S[k].v)) },
-      { name: 'programmed feed', values: pick((k) => r3(S[k].feed)), dash: true },
+      { name: 'path speed [mm/s]', values: pick((k) => r3(S[k].v)) },
+      { name: 'programmed feed [mm/s]', values: pick((k) => r3(S[k].feed)), dash: true },
     ] },
-    { id: 'contour_error', title: 'Contour error', y_label: 'error', y_unit: 'mm', x: { time_s: time, s_mm: sx }, series: [{ name: 'contour error', values: pick((k) => (err[k] == null ? null : Number(err[k].toPrecision(4)))) }], limits: [{ label: 'tolerance 0.01 mm', value: 0.01 }] },
-    { id: 'strut_forces', title: 'Strut forces', y_label: 'force', y_unit: 'N', x: { time_s: time }, series: names.map((nm, i) => ({ name: `F${i + 1}`, values: pick((k) => Number(forces[k][i].toFixed(2))) })) },
-    { id: 'energy', title: 'Energy', y_label: 'energy', y_unit: 'J', x: { time_s: time, s_mm: sx }, series: [{ name: 'actuator work', values: pick((k) => Number(energy[k].toFixed(4))) }] },
+    { id: 'contour_error', title: 'Contour error', y_label: 'error', y_unit: 'mm', x: { time_s: time, s_mm: sx }, series: [{ name: 'contour error [mm]', values: pick((k) => (err[k] == null ? null : Number(err[k].toPrecision(4)))) }], limits: [{ label: 'tolerance 0.01 mm', value: 0.01 }] },
+    { id: 'strut_forces', title: 'Strut forces', y_label: 'force', y_unit: 'N', x: { time_s: time }, series: qSeries(forces, 'F', 'N', 2) },
+    { id: 'energy', title: 'Energy', y_label: 'energy', y_unit: 'J', x: { time_s: time, s_mm: sx }, series: [{ name: 'actuator work [J]', values: pick((k) => Number(energy[k].toFixed(4))) }] },
   ];
   // Frames: uniformly in time.
   const T = S[n - 1].t;

@@ -7,11 +7,11 @@ import uPlot from 'uplot';
 import { h } from './dom.js';
 import { seriesColor } from './colors.js';
 import { fmtNum } from './format.js';
+import { AXIS, axisLabel, card, legendOptions } from './plot-style.js';
+import { registerPlot } from './plot-registry.js';
+import { painted } from './pixels.js';
 
 const PLOT_HEIGHT = 260;
-const FONT = '11px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
-const LABEL_FONT = '600 11px system-ui, -apple-system, "Segoe UI", Roboto, sans-serif';
-const AXIS = { stroke: '#56616b', grid: { stroke: '#e7ebee', width: 1 }, ticks: { stroke: '#cfd6dc', width: 1, size: 4 }, font: FONT, labelFont: LABEL_FONT, labelSize: 16 };
 // Below this a residual is drawn at it: a log axis has no zero, and 1 nm is below anything measured.
 const FLOOR_MM = 1e-6;
 
@@ -41,16 +41,6 @@ export function normalizeCalibration(raw) {
   return { status: String(raw.status ?? ''), residuals, parameters };
 }
 
-function card(id, title, sub, body, wide = false) {
-  return h(
-    'article',
-    // Over the measurements and the parameters: the section's whole width, not a column of time charts.
-    { class: 'chart-card', id, dataset: { chartId: id }, style: wide ? { gridColumn: '1 / -1' } : {} },
-    h('header', { class: 'chart-head' }, h('h3', null, title), h('span', { class: 'chart-sub' }, sub)),
-    body,
-  );
-}
-
 function residualChart(res, body) {
   const x = res.labels.map((_, i) => i + 1);
   const mag = (v) => (Number.isFinite(v) ? Math.max(FLOOR_MM, Math.abs(v)) : null);
@@ -59,21 +49,22 @@ function residualChart(res, body) {
     height: PLOT_HEIGHT,
     scales: { x: { time: false }, y: { distr: 3 } },
     axes: [
-      { ...AXIS, label: 'measurement', size: 30, labelGap: 0 },
-      { ...AXIS, label: '|residual| (mm)', size: 62, gap: 4, values: (u, splits) => splits.map((v) => fmtNum(v, 2)) },
+      // The residuals in residuals.csv's order: a number, no physical unit.
+      { ...AXIS, label: axisLabel('measured quantity', 'index'), size: 30, labelGap: 0 },
+      { ...AXIS, label: axisLabel('|residual|', 'mm'), size: 62, gap: 4, values: (u, splits) => splits.map((v) => fmtNum(v, 2)) },
     ],
     series: [
       { label: 'measurement', value: (u, v) => (v == null ? '—' : res.labels[v - 1] ?? String(v)) },
-      ...['before (drawing)', 'after (identified)'].map((label, i) => ({
+      ...['before (drawing) [mm]', 'after (identified) [mm]'].map((label, i) => ({
         label,
         stroke: seriesColor(i),
         width: 0,
         points: { show: true, size: 4, fill: seriesColor(i) },
-        value: (u, v) => (v == null ? '—' : `${fmtNum(v)} mm`),
+        value: (u, v) => (v == null ? '—' : fmtNum(v)),
       })),
     ],
     cursor: { drag: { x: true, y: false }, points: { size: 6 } },
-    legend: { live: true },
+    legend: legendOptions(),
   };
   return new uPlot(opts, [x, res.before.map(mag), res.after.map(mag)], body);
 }
@@ -104,12 +95,12 @@ export function createCalibrationPlots(data) {
   const cards = [];
   if (cal && cal.residuals) {
     chartBody = h('div', { class: 'chart-body', style: { minHeight: `${PLOT_HEIGHT + 26}px` } });
-    cards.push(card('chart-calibration-residuals', 'Residuals before and after', `residuals.csv · ${cal.residuals.labels.length} measured quantities · log scale`, chartBody, true));
+    cards.push(card('chart-calibration-residuals', 'Residuals before and after', `residuals.csv · ${cal.residuals.labels.length} measured quantities · log scale`, chartBody, { wide: true }));
   }
   if (cal && cal.parameters.length) {
     const identifiable = cal.parameters.filter((p) => p.identifiable).length;
     const body = h('div', { class: 'chart-body', style: { overflowX: 'auto' } }, parameterTable(cal.parameters));
-    cards.push(card('calibration-parameters', 'Parameters', `parameters.csv · ${identifiable} of ${cal.parameters.length} identifiable · ${cal.status}`, body, true));
+    cards.push(card('calibration-parameters', 'Parameters', `parameters.csv · ${identifiable} of ${cal.parameters.length} identifiable · ${cal.status}`, body, { wide: true }));
   }
   const element = cards.length
     ? h('section', { class: 'charts-section', id: 'calibration-plots' }, h('div', { class: 'section-head' }, h('h2', null, 'Calibration')), h('div', { class: 'charts' }, cards))
@@ -125,17 +116,13 @@ export function createCalibrationPlots(data) {
     start() {
       if (!chartBody) return;
       chart = residualChart(cal.residuals, chartBody);
+      registerPlot('chart-calibration-residuals', chart);
       ro.observe(chartBody);
     },
     /** For the browser test: {residuals, parameters, drawn} or null without calibration data. */
     state() {
       if (!cal) return null;
-      let drawn = false;
-      if (chart) {
-        const c = chart.ctx.canvas;
-        const px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-        for (let k = 3; k < px.length && !drawn; k += 4) drawn = px[k] !== 0;
-      }
+      const drawn = !!chart && painted(chart.ctx.canvas);
       return { residuals: cal.residuals ? cal.residuals.labels.length : 0, parameters: cal.parameters.length, drawn };
     },
   };

@@ -5,6 +5,8 @@ import uPlot from 'uplot';
 import { h } from './dom.js';
 import { seriesColor } from './colors.js';
 import { fmtNum } from './format.js';
+import { axisLabel, legendOptions } from './plot-style.js';
+import { registerPlot, unregisterPlot } from './plot-registry.js';
 
 const PLOT_HEIGHT = 230;
 const AXIS = { values: tickValues, stroke: '#56616b', grid: { stroke: '#e7ebee', width: 1 }, ticks: { stroke: '#cfd6dc', width: 1, size: 4 } };
@@ -143,186 +145,96 @@ function drawLimits(limits) {
   };
 }
 
-export function createCharts(data, { onSeekTime } = {}) {
-  const state = { xMode: 'time', zoom: null, cursorT: null };
-  const hasPath = data.charts.some((c) => c.x.s_mm);
-  const section = h('section', { id: 'charts', class: 'charts' });
-  const items = data.charts.map((def) => {
-    const count = def.series.length;
-    const sub = [def.y_label && def.y_unit ? `${def.y_label} (${def.y_unit})` : def.y_label || def.y_unit, `${count} series`]
-      .filter(Boolean)
-      .join(' · ');
-    const body = h('div', { class: 'chart-body', style: { minHeight: `${PLOT_HEIGHT + 26}px` } });
-    const card = h(
-      'article',
-      { class: 'chart-card', id: `chart-${def.id}`, dataset: { chartId: def.id } },
-      h('header', { class: 'chart-head' }, h('h3', null, def.title), h('span', { class: 'chart-sub' }, sub)),
-      body,
-    );
-    section.appendChild(card);
-    return { def, card, body, u: null, mode: 'time', cursorEl: null, toTime: (x) => x, fromTime: (t) => t };
-  });
+/** A chart's card: title, subtitle (quantity with unit, series count) and the body uPlot draws into. */
+function chartItem(def) {
+  const sub = `${axisLabel(def.y_label, def.y_unit)} · ${def.series.length} series`;
+  const body = h('div', { class: 'chart-body', style: { minHeight: `${PLOT_HEIGHT + 26}px` } });
+  const card = h(
+    'article',
+    { class: 'chart-card', id: `chart-${def.id}`, dataset: { chartId: def.id } },
+    h('header', { class: 'chart-head' }, h('h3', null, def.title), h('span', { class: 'chart-sub' }, sub)),
+    body,
+  );
+  return { def, card, body, u: null, mode: 'time', cursorEl: null, toTime: (x) => x, fromTime: (t) => t };
+}
 
-  function xRangeFor(item) {
-    const xs = item.u.data[0];
-    if (!state.zoom) return [xs[0], xs[xs.length - 1]];
-    let a = item.fromTime(state.zoom[0]);
-    let b = item.fromTime(state.zoom[1]);
-    if (!(b > a)) {
-      const eps = Math.max(Math.abs(a) * 1e-6, 1e-9);
-      a -= eps;
-      b += eps;
-    }
-    return [a, b];
-  }
-
-  function applyZoom(item) {
-    if (!item.u) return;
-    const [min, max] = xRangeFor(item);
-    item.u.setScale('x', { min, max });
-  }
-
-  function zoomTo(range) {
-    state.zoom = range && range[1] > range[0] ? range : null;
-    items.forEach(applyZoom);
-  }
-
-  function placeCursor(item) {
-    const u = item.u;
-    if (!u || !item.cursorEl) return;
-    if (state.cursorT == null) {
-      item.cursorEl.style.display = 'none';
-      return;
-    }
-    const left = u.valToPos(item.fromTime(state.cursorT), 'x');
-    const w = u.bbox.width / uPlot.pxRatio;
-    if (!(left >= 0 && left <= w)) {
-      item.cursorEl.style.display = 'none';
-      return;
-    }
-    item.cursorEl.style.display = '';
-    item.cursorEl.style.transform = `translateX(${Math.round(left)}px)`;
-  }
-
-  /** When the mouse is not over a chart, its legend shows the values at the animation's time. */
-  function showAnimLegend(item) {
-    const u = item.u;
-    if (!u || state.cursorT == null || (u.cursor.left != null && u.cursor.left >= 0)) return;
-    u.setLegend({ idx: nearestIndex(u.data[0], item.fromTime(state.cursorT)) }, false);
-  }
-
-  function build(item) {
-    if (item.u) return;
-    const { def } = item;
-    const useS = state.xMode === 's' && def.x.s_mm;
-    item.mode = useS ? 's' : 'time';
-    const t = def.x.time_s;
-    const s = def.x.s_mm;
-    item.toTime = useS ? (x) => interp(s, t, x) : (x) => x;
-    item.fromTime = useS ? (x) => interp(t, s, x) : (x) => x;
-    const xUnit = useS ? 'mm' : 's';
-    const unit = def.y_unit;
-    const yLabel = def.y_label && unit ? `${def.y_label} (${unit})` : def.y_label || unit;
-    const opts = {
-      width: Math.max(200, item.body.clientWidth),
-      height: PLOT_HEIGHT,
-      scales: { x: { time: false }, y: { range: yRange(def.limits) } },
-      axes: [
-        { ...AXIS, font: FONT, labelFont: LABEL_FONT, label: useS ? 'path length (mm)' : 'time (s)', labelSize: 16, size: 30, labelGap: 0 },
-        { ...AXIS, font: FONT, labelFont: LABEL_FONT, label: yLabel, labelSize: 16, size: axisSize, gap: 4 },
-      ],
-      series: [
-        {
-          label: useS ? 'path length' : 'time',
-          value: (u, v) => (v == null ? '—' : useS ? `${fmtNum(v, 5)} mm` : `${v.toFixed(3)} s`),
-        },
-        ...def.series.map((sr, i) => ({
-          label: sr.name,
-          stroke: seriesColor(i),
-          width: 1.25,
-          dash: sr.dash ? [6, 4] : undefined,
-          points: { show: false },
-          value: (u, v) => (v == null ? '—' : unit ? `${fmtNum(v)} ${unit}` : fmtNum(v)),
-        })),
-      ],
-      cursor: {
-        drag: { x: true, y: false, setScale: false },
-        points: { size: 6 },
-        bind: {
-          dblclick: () => (e) => {
-            if (e.button === 0) zoomTo(null);
-            return null;
-          },
+/**
+ * uPlot's options of a chart over time or, with `useS`, over path length: axes labelled with their units, each
+ * series by its name in its palette colour, drag to zoom (`on.zoomTo`), the limits, the animation's cursor.
+ */
+function chartOptions(item, useS, on) {
+  const { def } = item;
+  const unit = def.y_unit;
+  return {
+    width: Math.max(200, item.body.clientWidth),
+    height: PLOT_HEIGHT,
+    scales: { x: { time: false }, y: { range: yRange(def.limits) } },
+    axes: [
+      { ...AXIS, font: FONT, labelFont: LABEL_FONT, label: useS ? axisLabel('path length', 'mm') : axisLabel('time', 's'), labelSize: 16, size: 30, labelGap: 0 },
+      { ...AXIS, font: FONT, labelFont: LABEL_FONT, label: axisLabel(def.y_label, unit), labelSize: 16, size: axisSize, gap: 4 },
+    ],
+    series: [
+      {
+        label: useS ? 'path length' : 'time',
+        value: (u, v) => (v == null ? '—' : useS ? `${fmtNum(v, 5)} mm` : `${v.toFixed(3)} s`),
+      },
+      ...def.series.map((sr, i) => ({
+        label: sr.name,
+        stroke: seriesColor(i),
+        width: 1.25,
+        dash: sr.dash ? [6, 4] : undefined,
+        points: { show: false },
+        // A name with its unit ("P1 [N]") needs none after the value.
+        value: (u, v) => (v == null ? '—' : unit && !sr.name.includes('[') ? `${fmtNum(v)} ${unit}` : fmtNum(v)),
+      })),
+    ],
+    cursor: {
+      drag: { x: true, y: false, setScale: false },
+      points: { size: 6 },
+      bind: {
+        dblclick: () => (e) => {
+          if (e.button === 0) on.zoomTo(null);
+          return null;
         },
       },
-      legend: { live: true },
-      hooks: {
-        setSelect: [
-          (u) => {
-            const w = u.select.width;
-            if (w < 3) return;
-            const a = item.toTime(u.posToVal(u.select.left, 'x'));
-            const b = item.toTime(u.posToVal(u.select.left + w, 'x'));
-            u.setSelect({ left: 0, top: 0, width: 0, height: 0 }, false);
-            zoomTo([Math.min(a, b), Math.max(a, b)]);
-          },
-        ],
-        draw: [drawLimits(def.limits)],
-        setScale: [(u, key) => key === 'x' && placeCursor(item)],
-        setSize: [() => placeCursor(item)],
-        setCursor: [() => showAnimLegend(item)],
-      },
-    };
-    const plotData = [useS ? s : t, ...def.series.map((sr) => sr.values)];
-    item.u = new uPlot(opts, plotData, item.body);
-    item.body.style.minHeight = '';
-    item.cursorEl = h('div', { class: 'chart-cursor' });
-    item.u.over.appendChild(item.cursorEl);
-    item.u.over.addEventListener('click', () => {
-      const left = item.u.cursor.left;
-      if (onSeekTime && left != null && left >= 0) onSeekTime(item.toTime(item.u.posToVal(left, 'x')));
-    });
-    if (state.zoom) applyZoom(item);
-    placeCursor(item);
-    showAnimLegend(item);
-  }
+    },
+    legend: legendOptions(),
+    hooks: {
+      setSelect: [
+        (u) => {
+          const w = u.select.width;
+          if (w < 3) return;
+          const a = item.toTime(u.posToVal(u.select.left, 'x'));
+          const b = item.toTime(u.posToVal(u.select.left + w, 'x'));
+          u.setSelect({ left: 0, top: 0, width: 0, height: 0 }, false);
+          on.zoomTo([Math.min(a, b), Math.max(a, b)]);
+        },
+      ],
+      draw: [drawLimits(def.limits)],
+      setScale: [(u, key) => key === 'x' && on.placeCursor(item)],
+      setSize: [() => on.placeCursor(item)],
+      setCursor: [() => on.showAnimLegend(item)],
+    },
+  };
+}
 
-  function destroy(item) {
-    if (!item.u) return;
-    item.body.style.minHeight = `${item.body.offsetHeight}px`;
-    item.u.destroy();
-    item.u = null;
-    item.cursorEl = null;
-  }
+/** The x-axis switch (time | path length). */
+function xAxisToggle(onclick) {
+  return h(
+    'button',
+    { id: 'x-axis-toggle', class: 'seg-toggle', type: 'button', title: 'x axis of the charts over the path: time or path length', 'aria-pressed': 'false', onclick },
+    h('span', { class: 'seg-label' }, 'x:'),
+    h('span', { class: 'seg on', dataset: { mode: 'time' } }, 'time'),
+    h('span', { class: 'seg', dataset: { mode: 's' } }, 'path length'),
+  );
+}
 
-  // ---- building: what is on screen now, the rest when it comes near or when the page is idle
-  let io = null;
-  let idleQueued = false;
-  const idle = window.requestIdleCallback
-    ? (f) => window.requestIdleCallback(f, { timeout: 400 })
-    : (f) => setTimeout(f, 60);
-
-  function buildVisible(margin = 120) {
-    const vh = window.innerHeight || document.documentElement.clientHeight;
-    for (const item of items) {
-      if (item.u) continue;
-      const r = item.card.getBoundingClientRect();
-      if (r.bottom >= -margin && r.top <= vh + margin) build(item);
-    }
-  }
-
-  function buildRestWhenIdle() {
-    if (idleQueued) return;
-    idleQueued = true;
-    const next = () => {
-      const item = items.find((it) => !it.u);
-      if (!item) return;
-      build(item);
-      idle(next);
-    };
-    idle(next);
-  }
-
+/**
+ * Builds the charts on screen now, the others when they come near the viewport or when the page is idle, so that
+ * the page is ready before every chart exists; resizes the built ones with their card.
+ */
+function lazyBuilder(items, build) {
+  const idle = window.requestIdleCallback ? (f) => window.requestIdleCallback(f, { timeout: 400 }) : (f) => setTimeout(f, 60);
   const ro = new ResizeObserver((entries) => {
     for (const e of entries) {
       const item = items.find((it) => it.body === e.target);
@@ -331,27 +243,118 @@ export function createCharts(data, { onSeekTime } = {}) {
       if (w !== item.u.width) item.u.setSize({ width: w, height: PLOT_HEIGHT });
     }
   });
+  return function start() {
+    const vh = window.innerHeight || document.documentElement.clientHeight;
+    for (const item of items) {
+      const r = item.card.getBoundingClientRect();
+      if (!item.u && r.bottom >= -120 && r.top <= vh + 120) build(item);
+    }
+    items.forEach((it) => ro.observe(it.body));
+    if ('IntersectionObserver' in window) {
+      const io = new IntersectionObserver(
+        (entries) => {
+          for (const e of entries) {
+            if (!e.isIntersecting) continue;
+            const item = items.find((it) => it.card === e.target);
+            if (item) build(item);
+            io.unobserve(e.target);
+          }
+        },
+        { rootMargin: '300px 0px' },
+      );
+      items.forEach((it) => !it.u && io.observe(it.card));
+    }
+    const next = () => {
+      const item = items.find((it) => !it.u);
+      if (!item) return;
+      build(item);
+      idle(next);
+    };
+    idle(next);
+  };
+}
 
-  // ---- the x-axis switch (time | path length)
-  const toggle = h(
-    'button',
-    {
-      id: 'x-axis-toggle',
-      class: 'seg-toggle',
-      type: 'button',
-      title: hasPath ? 'x axis of the charts over the path: time or path length' : 'no chart has path length data',
-      disabled: !hasPath,
-      'aria-pressed': 'false',
-      onclick: () => setXMode(state.xMode === 'time' ? 's' : 'time'),
-    },
-    h('span', { class: 'seg-label' }, 'x:'),
-    h('span', { class: 'seg on', dataset: { mode: 'time' } }, 'time'),
-    h('span', { class: 'seg', dataset: { mode: 's' } }, 'path length'),
-  );
+/** Sets a built chart's x range to the zoom's time window (or to all its data), in its own x units. */
+function applyZoom(item, state) {
+  if (!item.u) return;
+  const xs = item.u.data[0];
+  let [a, b] = state.zoom ? [item.fromTime(state.zoom[0]), item.fromTime(state.zoom[1])] : [xs[0], xs[xs.length - 1]];
+  if (state.zoom && !(b > a)) {
+    const eps = Math.max(Math.abs(a) * 1e-6, 1e-9);
+    a -= eps;
+    b += eps;
+  }
+  item.u.setScale('x', { min: a, max: b });
+}
+
+/** Moves a chart's line of the animation's time (hidden when that time is off the chart). */
+function placeCursorOf(item, state) {
+  const u = item.u;
+  if (!u || !item.cursorEl) return;
+  const left = state.cursorT == null ? NaN : u.valToPos(item.fromTime(state.cursorT), 'x');
+  const shown = left >= 0 && left <= u.bbox.width / uPlot.pxRatio;
+  item.cursorEl.style.display = shown ? '' : 'none';
+  if (shown) item.cursorEl.style.transform = `translateX(${Math.round(left)}px)`;
+}
+
+/** When the mouse is not over a chart, its legend shows the values at the animation's time. */
+function showAnimLegendOf(item, state) {
+  const u = item.u;
+  if (!u || state.cursorT == null || (u.cursor.left != null && u.cursor.left >= 0)) return;
+  u.setLegend({ idx: nearestIndex(u.data[0], item.fromTime(state.cursorT)) }, false);
+}
+
+export function createCharts(data, { onSeekTime } = {}) {
+  const state = { xMode: 'time', zoom: null, cursorT: null };
+  const section = h('section', { id: 'charts', class: 'charts' });
+  const items = data.charts.map(chartItem);
+  items.forEach((item) => section.appendChild(item.card));
+
+  const zoomTo = (range) => {
+    state.zoom = range && range[1] > range[0] ? range : null;
+    items.forEach((item) => applyZoom(item, state));
+  };
+  const placeCursor = (item) => placeCursorOf(item, state);
+  const showAnimLegend = (item) => showAnimLegendOf(item, state);
+
+  function build(item) {
+    if (item.u) return;
+    const useS = state.xMode === 's' && !!item.def.x.s_mm;
+    const t = item.def.x.time_s;
+    const s = item.def.x.s_mm;
+    item.mode = useS ? 's' : 'time';
+    item.toTime = useS ? (x) => interp(s, t, x) : (x) => x;
+    item.fromTime = useS ? (x) => interp(t, s, x) : (x) => x;
+    const opts = chartOptions(item, useS, { zoomTo, placeCursor, showAnimLegend });
+    item.u = new uPlot(opts, [useS ? s : t, ...item.def.series.map((sr) => sr.values)], item.body);
+    registerPlot(item.card.id, item.u);
+    item.body.style.minHeight = '';
+    item.cursorEl = h('div', { class: 'chart-cursor' });
+    item.u.over.appendChild(item.cursorEl);
+    item.u.over.addEventListener('click', () => {
+      const left = item.u.cursor.left;
+      if (onSeekTime && left != null && left >= 0) onSeekTime(item.toTime(item.u.posToVal(left, 'x')));
+    });
+    if (state.zoom) applyZoom(item, state);
+    placeCursor(item);
+    showAnimLegend(item);
+  }
+
+  function destroy(item) {
+    if (!item.u) return;
+    item.body.style.minHeight = `${item.body.offsetHeight}px`;
+    unregisterPlot(item.card.id, item.u);
+    item.u.destroy();
+    item.u = null;
+    item.cursorEl = null;
+  }
+
+  // The switch only where some chart has path length: elsewhere it would do nothing.
+  const toggle = data.charts.some((c) => c.x.s_mm) ? xAxisToggle(() => setXMode(state.xMode === 'time' ? 's' : 'time')) : null;
 
   function setXMode(mode) {
     mode = mode === 's' ? 's' : 'time';
-    if (mode === state.xMode) return;
+    if (mode === state.xMode || !toggle) return;
     state.xMode = mode;
     toggle.setAttribute('aria-pressed', String(mode === 's'));
     toggle.querySelectorAll('.seg').forEach((el) => el.classList.toggle('on', el.dataset.mode === mode));
@@ -366,25 +369,7 @@ export function createCharts(data, { onSeekTime } = {}) {
     element: section,
     toggle,
     /** Builds the charts now on screen (call once the section is in the document). */
-    start() {
-      buildVisible();
-      items.forEach((it) => ro.observe(it.body));
-      if ('IntersectionObserver' in window) {
-        io = new IntersectionObserver(
-          (entries) => {
-            for (const e of entries) {
-              if (!e.isIntersecting) continue;
-              const item = items.find((it) => it.card === e.target);
-              if (item) build(item);
-              io.unobserve(e.target);
-            }
-          },
-          { rootMargin: '300px 0px' },
-        );
-        items.forEach((it) => !it.u && io.observe(it.card));
-      }
-      buildRestWhenIdle();
-    },
+    start: lazyBuilder(items, build),
     /** Moves the current-time line of every chart. */
     setCursorTime(t) {
       state.cursorT = Number.isFinite(t) ? t : null;

@@ -1,10 +1,13 @@
 // Colour maps: series palette, strut closeness (green-yellow-red), path error (blue-red), drive force
 // (diverging: tension blue, no force grey, compression red).
 
-/** Distinct series colours (Tableau 10, reordered so the first few differ most). */
+/**
+ * Distinct series colours (Tableau 10, reordered so the first few differ most), without its grey: grey is the
+ * page's colour for what has no value, and a grey curve reads as a reference line.
+ */
 export const SERIES_COLORS = [
   '#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#17becf',
-  '#8c564b', '#e377c2', '#7f7f7f', '#bcbd22',
+  '#8c564b', '#e377c2', '#bcbd22', '#393b79',
 ];
 
 export function seriesColor(i) {

@@ -129,6 +129,7 @@ export function normalize(raw) {
     program: { file: program.file ?? '', lines: obj(program.lines), subroutine_lines: obj(program.subroutine_lines) },
     table: arr(d.table).map(obj),
     limits_reached: arr(d.limits_reached).map(obj),
+    warnings: arr(d.warnings).map(obj),
     summary: d.summary,
     charts,
     frequency_response: normalizeResponse(d.frequency_response),
@@ -148,6 +149,8 @@ export function normalize(raw) {
       drive_force_unit: String(scene.drive_force_unit ?? 'N'),
       frames: {
         count: n,
+        // "time" (a run: the frames are moments) or "pose" (calibration: measured poses, a slide show).
+        axis: frames.axis === 'pose' ? 'pose' : 'time',
         time_s: time,
         line: perFrame(frames.line, 0).map((v) => Number(v) || 0),
         tool: perFrame(frames.tool, null),

@@ -39,10 +39,13 @@ function init() {
   const transport = createTransport(player, data, [charts.toggle]);
   const summary = renderSummary(data, { frameOf: player.frameOfLine, onLine: seekLine, onTime: seekTime });
 
+  // Without time plots no empty section (and no gap) is left where they would be; without a transport bar the
+  // x-axis switch goes to the plots' own heading.
   const chartsSection = data.charts.length
     ? h('section', { class: 'charts-section' }, h('div', { class: 'section-head' }, h('h2', null, 'Plots'),
-        h('span', { class: 'hint' }, 'drag to zoom all plots · double-click to reset · click to move the animation')), charts.element)
-    : charts.element;
+        h('span', { class: 'hint' }, 'drag to zoom all plots · double-click to reset · click to move the animation'),
+        transport.element ? null : charts.toggle), charts.element)
+    : null;
   const root = h(
     'div',
     { class: 'pkm-report' },
@@ -53,7 +56,7 @@ function init() {
   );
   document.body.appendChild(root);
 
-  const hooks = installHooks({ player, sceneView: scenePanel.view, charts, transport, scenePanel, stiffness, workspace, calibration, servo });
+  const hooks = installHooks({ data, player, sceneView: scenePanel.view, charts, transport, scenePanel, stiffness, workspace, calibration, servo });
   marks.dom = performance.now();
   const hasScene = scenePanel.start();
   marks.scene = performance.now();

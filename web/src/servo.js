@@ -8,17 +8,20 @@ import uPlot from 'uplot';
 import { h } from './dom.js';
 import { seriesColor } from './colors.js';
 import { fmtNum } from './format.js';
-import { AXIS, card, logTicks } from './stiffness.js';
+import { AXIS, axisLabel, card, legendOptions, logTicks } from './plot-style.js';
+import { registerPlot } from './plot-registry.js';
+import { painted } from './pixels.js';
 
 const PLOT_HEIGHT = 190;
 const REF_COLOR = '#7a8691';
-// Per loop: [legend, servo_bode.csv column, dashed] of the magnitude and of the phase plot.
+// Per loop: [legend, servo_bode.csv column, dashed] of the magnitude and of the phase plot; each series named
+// by the loop it is of, with its unit.
 const LOOPS = ['speed', 'position'].map((id) => ({
   id,
-  mag: [['open', `${id}_open_db`], ['open, sampled', `${id}_open_sampled_db`], ['closed', `${id}_closed_db`, true]].concat(
-    id === 'position' ? [['closed, sampled', 'position_closed_sampled_db', true]] : [],
+  mag: [['open loop [dB]', `${id}_open_db`], ['open loop, sampled [dB]', `${id}_open_sampled_db`], ['closed loop [dB]', `${id}_closed_db`, true]].concat(
+    id === 'position' ? [['closed loop, sampled [dB]', 'position_closed_sampled_db', true]] : [],
   ),
-  phase: [['open', `${id}_open_deg`], ['open, sampled', `${id}_open_sampled_deg`]],
+  phase: [['open loop [°]', `${id}_open_deg`], ['open loop, sampled [°]', `${id}_open_sampled_deg`]],
 }));
 
 /** Degrees unwrapped along the frequencies, from within (−360°, 0°]: an open loop's phase lags. */
@@ -91,7 +94,6 @@ function drawRefs(level, label, nyquist) {
 
 function bodePlot(body, loop, phase, b, nyquist) {
   const defs = phase ? loop.phase : loop.mag;
-  const unit = phase ? '°' : 'dB';
   const level = phase ? -180 : 0;
   const opts = {
     width: Math.max(200, body.clientWidth),
@@ -102,8 +104,8 @@ function bodePlot(body, loop, phase, b, nyquist) {
       y: { range: (u, min, max) => uPlot.rangeNum(Math.min(min ?? level, level), Math.max(max ?? level, level), 0.1, true) },
     },
     axes: [
-      { ...AXIS, values: logTicks, label: 'frequency (Hz)', size: 30, labelGap: 0 },
-      { ...AXIS, label: phase ? 'phase (°)' : 'magnitude (dB)', size: 50, gap: 4 },
+      { ...AXIS, values: logTicks, label: axisLabel('frequency', 'Hz'), size: 30, labelGap: 0 },
+      { ...AXIS, label: phase ? axisLabel('phase', '°') : axisLabel('magnitude', 'dB'), size: 50, gap: 4 },
     ],
     series: [
       { label: 'frequency', value: (u, v) => (v == null ? '—' : `${fmtNum(v, 4)} Hz`) },
@@ -113,11 +115,11 @@ function bodePlot(body, loop, phase, b, nyquist) {
         width: 1.25,
         dash: dashed ? [6, 4] : undefined,
         points: { show: false },
-        value: (u, v) => (v == null ? '—' : `${fmtNum(v)} ${unit}`),
+        value: (u, v) => (v == null ? '—' : fmtNum(v)),
       })),
     ],
     cursor: { drag: { x: false, y: false }, points: { size: 6 }, sync: { key: `servo-${loop.id}` } },
-    legend: { live: true },
+    legend: legendOptions(),
     hooks: { draw: [drawRefs(level, phase ? '−180°' : '0 dB', nyquist)] },
   };
   return new uPlot(opts, plotData(b, defs, phase), body);
@@ -131,20 +133,6 @@ function margins(drive, loop) {
   const c = l.continuous || {};
   const gm = s.gain_margin_db == null ? '∞' : `${fmtNum(s.gain_margin_db, 3)} dB`;
   return `sampled: PM ${fmtNum(s.phase_margin_deg, 3)}° at ${fmtNum(s.crossover_hz, 3)} Hz, GM ${gm}, overshoot ${fmtNum(s.overshoot_pct, 3)} % · continuous: PM ${fmtNum(c.phase_margin_deg, 3)}°`;
-}
-
-// The browser test asks often: the plots' canvases are copied to one kept for reading back, not read themselves.
-let scratch = null;
-function painted(c) {
-  if (!c || !c.width || !c.height) return false;
-  scratch = scratch || document.createElement('canvas');
-  scratch.width = c.width;
-  scratch.height = c.height;
-  const ctx = scratch.getContext('2d', { willReadFrequently: true });
-  ctx.drawImage(c, 0, 0);
-  const px = ctx.getImageData(0, 0, c.width, c.height).data;
-  for (let k = 3; k < px.length; k += 4) if (px[k] !== 0) return true;
-  return false;
 }
 
 export function createServoPlots(data) {
@@ -203,6 +191,7 @@ export function createServoPlots(data) {
     start() {
       for (const p of plots) {
         p.u = bodePlot(p.body, p.loop, p.phase, servo.bode[current], servo.nyquist);
+        registerPlot(`chart-servo-bode-${p.loop.id}-${p.phase ? 'phase' : 'magnitude'}`, p.u);
         ro.observe(p.body);
       }
       showMargins();

@@ -3,6 +3,7 @@
 import { h } from './dom.js';
 import { fmtTime } from './format.js';
 import { lineCalls, lineDescription } from './data.js';
+import { verdictOf } from './verdict.js';
 
 export function renderHeader(data) {
   const m = data.machine;
@@ -80,41 +81,42 @@ export function renderSummary(data, { frameOf, onLine, onTime }) {
   );
   const table = h('table', { id: 'summary-table', class: 'summary-table' }, h('tbody', null, rows));
 
-  const lim = data.limits_reached;
-  const limits = lim.length
-    ? h(
-        'div',
-        { class: 'limits', id: 'limits-reached' },
-        h('h2', null, 'Limits reached', h('span', { class: 'count' }, String(lim.length))),
-        h(
-          'ul',
-          null,
-          lim.map((l) => {
-            const sev = l.severity === 'exceeded' ? 'exceeded' : 'reached';
-            const t = Number(l.time_s);
-            return h(
-              'li',
-              { class: `limit ${sev}` },
-              h('span', { class: `badge ${sev}` }, sev),
-              h('span', { class: 'what' }, l.what ?? ''),
-              h(
-                'span',
-                { class: 'where' },
-                Number(l.line) > 0 ? lineRef(data, Number(l.line), frameOf, onLine) : null,
-                Number.isFinite(t)
-                  ? h('a', { href: '#', class: 'time-ref', title: 'show this moment', onclick: (e) => { e.preventDefault(); onTime(t); } }, `${fmtTime(t)} s`)
-                  : null,
-              ),
-            );
-          }),
-        ),
-      )
-    : h('div', { class: 'limits none', id: 'limits-reached' }, 'No limit reached.');
-
+  const verdict = renderVerdict(data, frameOf, onLine, onTime);
   const details =
     data.summary !== undefined && data.summary !== null
       ? h('details', { class: 'raw-summary' }, h('summary', null, 'summary.json'), h('pre', null, JSON.stringify(data.summary, null, 2)))
       : null;
 
-  return h('div', { class: 'summary' }, table, limits, details);
+  // The verdict first: whether anything needs a look is the first thing the page must say.
+  return h('div', { class: 'summary' }, verdict, table, details);
+}
+
+/** One limit or warning: its severity, what, and where (program line, time). */
+function verdictItem(data, item, frameOf, onLine, onTime) {
+  const t = Number(item.time_s);
+  return h(
+    'li',
+    { class: `limit ${item.severity}` },
+    h('span', { class: `badge ${item.severity}` }, item.severity),
+    h('span', { class: 'what' }, item.what ?? ''),
+    h(
+      'span',
+      { class: 'where' },
+      Number(item.line) > 0 ? lineRef(data, Number(item.line), frameOf, onLine) : null,
+      Number.isFinite(t)
+        ? h('a', { href: '#', class: 'time-ref', title: 'show this moment', onclick: (e) => { e.preventDefault(); onTime(t); } }, `${fmtTime(t)} s`)
+        : null,
+    ),
+  );
+}
+
+/** The verdict: the worst of the limits reached and the warnings, coloured by it, with each item below. */
+function renderVerdict(data, frameOf, onLine, onTime) {
+  const v = verdictOf(data);
+  return h(
+    'div',
+    { class: `limits verdict ${v.level}`, id: 'verdict', dataset: { level: v.level } },
+    h('h2', null, h('span', { class: 'verdict-text' }, v.text), v.items.length ? h('span', { class: 'count' }, String(v.items.length)) : null),
+    v.items.length ? h('ul', null, v.items.map((item) => verdictItem(data, item, frameOf, onLine, onTime))) : null,
+  );
 }

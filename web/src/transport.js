@@ -1,5 +1,7 @@
 // The animation controls (a bar that stays at the top): play/pause, scrub slider, speed, current time and
-// program line. Keyboard: space plays/pauses, arrows step, Home/End jump.
+// program line. Keyboard: space plays/pauses, arrows step, Home/End jump. Only where there is something to
+// animate (two frames or more): a map or a single pose gets no bar, since its controls would do nothing. Frames
+// that are measured poses (calibration) are counted as poses, not seconds.
 import { h, icon } from './dom.js';
 import { fmtTime } from './format.js';
 import { lineDescription } from './data.js';
@@ -10,17 +12,19 @@ const SPEEDS = [0.5, 1, 2, 5, 10];
 
 export function createTransport(player, data, extra = []) {
   const n = player.count;
-  const tEnd = n ? data.scene.frames.time_s[n - 1] : 0;
+  if (n < 2) return { element: null, showFrame() {} };
+  const poses = data.scene.frames.axis === 'pose';
+  const tEnd = data.scene.frames.time_s[n - 1];
   const playIcon = icon(PLAY);
   const playLabel = h('span', { class: 'btn-label' }, 'Play');
-  const play = h('button', { id: 'play', class: 'btn primary', type: 'button', title: 'play / pause (space)', disabled: n < 2, onclick: () => player.toggle() }, playIcon, playLabel);
+  const play = h('button', { id: 'play', class: 'btn primary', type: 'button', title: 'play / pause (space)', onclick: () => player.toggle() }, playIcon, playLabel);
   const scrub = h('input', {
-    id: 'scrub', type: 'range', min: '0', max: String(Math.max(0, n - 1)), step: '1', value: '0', disabled: n < 2,
-    'aria-label': 'animation frame',
+    id: 'scrub', type: 'range', min: '0', max: String(n - 1), step: '1', value: '0',
+    'aria-label': poses ? 'measured pose' : 'animation frame',
     oninput: () => player.setFrame(Number(scrub.value)),
   });
   const time = h('span', { id: 'current-time', class: 'num' }, '—');
-  const total = h('span', { class: 'total num' }, n ? `/ ${fmtTime(tEnd)} s` : '');
+  const total = h('span', { class: 'total num' }, poses ? `/ ${n}` : `/ ${fmtTime(tEnd)} s`);
   const speed = h(
     'select',
     { id: 'speed', title: 'playback speed', onchange: () => player.setSpeed(Number(speed.value)) },
@@ -33,7 +37,7 @@ export function createTransport(player, data, extra = []) {
     { class: 'transport', role: 'toolbar', 'aria-label': 'animation' },
     play,
     h('div', { class: 'scrub-wrap' }, scrub),
-    h('div', { class: 'time' }, time, ' s ', total),
+    poses ? h('div', { class: 'time' }, 'pose ', time, ' ', total) : h('div', { class: 'time' }, time, ' s ', total),
     speed,
     line,
     h('div', { class: 'transport-extra' }, extra),
@@ -42,7 +46,7 @@ export function createTransport(player, data, extra = []) {
   let shownLine = null;
   function showFrame(i) {
     scrub.value = String(i);
-    time.textContent = n ? fmtTime(player.time(i)) : '—';
+    time.textContent = poses ? String(i + 1) : fmtTime(player.time(i));
     const l = player.line(i);
     if (l !== shownLine) {
       shownLine = l;
