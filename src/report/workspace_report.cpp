@@ -149,8 +149,9 @@ nlohmann::json workspace_table(const Machine& machine, const nlohmann::json& sum
   table.push_back(table_row("Centre", fmt::format("{:g}", fmt::join(workspace_numbers(centre), ", "))));
   const long cells = summary.value("cells", 0L);
   const nlohmann::json status = summary.value("status", nlohmann::json::object());
-  table.push_back(table_row("Cells (ok)", fmt::format("{} ({} = {:.1f} %)", cells, status.value("ok", 0L),
-                                                      100.0 * summary.value("reachable_share", 0.0))));
+  table.push_back(
+      table_row("Cells", fmt::format("{}, of them ok {} ({:.1f} %)", cells, status.value("ok", 0L),
+                                     100.0 * summary.value("reachable_share", 0.0))));
   for (int k = 1; k < workspace::kCellStatusCount; ++k) {
     const char* word = workspace::to_string(static_cast<CellStatus>(k));
     table.push_back(table_row(fmt::format("Cells {}", word), std::to_string(status.value(word, 0L))));
