@@ -5,6 +5,7 @@
 // error, the servo rows of the table and the loops' Bode data (servo_plots.hpp).
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -60,163 +61,99 @@ void add_limit_entry(nlohmann::json& reached, const LimitPeak& peak, const std::
        {"severity", peak.ratio > 1.0 + 1e-3 ? "exceeded" : "reached"}});
 }
 
-}  // namespace
+// Each drive's position, speed and acceleration tick by tick (the latter two by differences), how close each
+// is to its limits, and the peaks of speed, acceleration and position against them.
+struct ActuatorTrack {
+  explicit ActuatorTrack(int drives)
+      : q(static_cast<std::size_t>(drives)),
+        q_prev(q.size()),
+        v(q.size()),
+        v_prev(q.size()),
+        a(q.size()),
+        closeness(q.size()) {}
 
-std::string with_unit(double value, const std::string& unit) {
-  if (!std::isfinite(value)) return "—";
-  return unit.empty() ? fmt::format("{:.6g}", value) : fmt::format("{:.6g} {}", value, unit);
-}
-
-Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files,
-                                   const ReportOptions& options) {
-  const fs::path dir(files.directory);
-  const std::string path_file = (dir / "path.csv").string();
-  const std::string actuator_file = (dir / "actuators.csv").string();
-  auto rows = expected_rows(files.summary, "ticks", path_file);
-  if (!rows) return rows.error();
-  CsvReader path, actuators;
-  if (Status opened = path.open(path_file); !opened) return opened.error();
-  if (Status opened = actuators.open(actuator_file); !opened) return opened.error();
-  const int n = machine.mechanism->actuator_count();
-  if (static_cast<int>(actuators.columns().size()) != n + 1) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("{}:1: {} actuator columns, but {} has {} actuators", actuator_file,
-                                  actuators.columns().size() - 1, machine.source, n));
-  }
-  int column[12];
-  // The pose in program coordinates: the tool point from program zero and G-code's A B C (plan_output.cpp).
-  const char* path_columns[] = {"time_s",       "line",      "s",         "x_program_mm", "y_program_mm",
-                                "z_program_mm", "a_abc_deg", "b_abc_deg", "c_abc_deg",    "path_speed_mm_s"};
-  for (int k = 0; k < 10; ++k) {
-    auto index = path.require(path_columns[k]);
-    if (!index) return index.error();
-    column[k] = *index;
-  }
-  column[10] = path.column("feed_mm_s");  // older runs lack these two columns
-  column[11] = path.column("path_error_mm");
-
-  const std::string unit = actuator_unit(machine);
-  const ActuatorLimits limits = limits_in_file_units(machine);
-  const long expected = *rows;
-  MinMaxDecimator positions(n, expected, options.chart_buckets), speeds(n, expected, options.chart_buckets),
-      accels(n, expected, options.chart_buckets), path_speed(2, expected, options.chart_buckets),
-      path_error(1, expected, options.chart_buckets);
-  const double duration = value_or_nan(files.summary, "duration_s");
-  SceneBuilder scene(machine, std::isfinite(duration) ? duration : 0.0, expected, options.frames,
-                     options.path_points);
-  DynamicsTrace dynamics;
-  if (Status opened = dynamics.open(files.directory, files.summary, n, expected, options.chart_buckets);
-      !opened)
-    return opened.error();
-  ServoTrace servo;
-  if (Status opened = servo.open(files.directory, options.servo_directory, files.summary, n, expected,
-                                 options.chart_buckets);
-      !opened)
-    return opened.error();
-
-  std::vector<double> prow, arow;
-  std::vector<double> q(static_cast<std::size_t>(n)), q_prev(q.size()), v(q.size()), v_prev(q.size()),
-      a(q.size()), closeness(q.size());
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  LimitPeak speed_peak, accel_peak, position_peak;
-  long count = 0;
-  double t_prev = 0.0, last_frame_time = -1.0;
-  Pose pose;
-  Eigen::Vector3d abc_deg = Eigen::Vector3d::Zero();
-  int line = 0;
-  double t = 0.0;
-  for (;;) {
-    auto more = next_in_step(path, prow, actuators, arow);
-    if (!more) return more.error();
-    if (!*more) break;
-    t = prow[static_cast<std::size_t>(column[0])];
-    line = static_cast<int>(prow[static_cast<std::size_t>(column[1])]);
-    const double s = prow[static_cast<std::size_t>(column[2])];
-    const double dt = t - t_prev;
-    for (int j = 0; j < n; ++j) {
-      const auto J = static_cast<std::size_t>(j);
-      q[J] = arow[J + 1];
-      v[J] = count > 0 && dt > 0.0 ? (q[J] - q_prev[J]) / dt : nan;
-      a[J] = count > 1 && dt > 0.0 ? (v[J] - v_prev[J]) / dt : nan;
-      if (limits.speed && std::isfinite(v[J]))
-        speed_peak.offer(std::abs(v[J]) / *limits.speed, std::abs(v[J]), *limits.speed, j, line, t);
-      if (limits.accel && std::isfinite(a[J]))
-        accel_peak.offer(std::abs(a[J]) / *limits.accel, std::abs(a[J]), *limits.accel, j, line, t);
+  void add(const std::vector<double>& row, double dt, long count, int line, double t,
+           const ActuatorLimits& limits) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      const int drive = static_cast<int>(j);
+      q[j] = row[j + 1];
+      v[j] = count > 0 && dt > 0.0 ? (q[j] - q_prev[j]) / dt : nan;
+      a[j] = count > 1 && dt > 0.0 ? (v[j] - v_prev[j]) / dt : nan;
+      if (limits.speed && std::isfinite(v[j]))
+        speed_peak.offer(std::abs(v[j]) / *limits.speed, std::abs(v[j]), *limits.speed, drive, line, t);
+      if (limits.accel && std::isfinite(a[j]))
+        accel_peak.offer(std::abs(a[j]) / *limits.accel, std::abs(a[j]), *limits.accel, drive, line, t);
       if (limits.min && limits.max && *limits.max > *limits.min) {
         // 1 at either end of the range, 0.99 within 1 % of the range from it.
         const double range = *limits.max - *limits.min;
-        position_peak.offer(1.0 + (q[J] - *limits.max) / range, q[J], *limits.max, j, line, t);
-        position_peak.offer(1.0 + (*limits.min - q[J]) / range, q[J], *limits.min, j, line, t);
+        position_peak.offer(1.0 + (q[j] - *limits.max) / range, q[j], *limits.max, drive, line, t);
+        position_peak.offer(1.0 + (*limits.min - q[j]) / range, q[j], *limits.min, drive, line, t);
       }
-      closeness[J] = limit_closeness(limits, q[J], v[J], a[J]);
+      closeness[j] = limit_closeness(limits, q[j], v[j], a[j]);
     }
-    positions.add(t, s, q.data());
-    speeds.add(t, s, v.data());
-    accels.add(t, s, a.data());
-    const double feed = column[10] >= 0 ? prow[static_cast<std::size_t>(column[10])] : nan;
-    const double speed_feed[2] = {prow[static_cast<std::size_t>(column[9])], feed};
-    path_speed.add(t, s, speed_feed);
-    const double error = column[11] >= 0 ? prow[static_cast<std::size_t>(column[11])] : nan;
-    path_error.add(t, s, &error);
-    if (Status read = dynamics.next(t, s); !read) return read.error();
-    if (Status read = servo.next(t, s); !read) return read.error();
-
-    pose.position_mm =
-        Eigen::Vector3d(prow[static_cast<std::size_t>(column[3])], prow[static_cast<std::size_t>(column[4])],
-                        prow[static_cast<std::size_t>(column[5])]) +
-        machine.motion.program_origin_mm;
-    abc_deg =
-        Eigen::Vector3d(prow[static_cast<std::size_t>(column[6])], prow[static_cast<std::size_t>(column[7])],
-                        prow[static_cast<std::size_t>(column[8])]);
-    // The tool is where the drives put it at every tick; between ticks it deviates by the path error.
-    scene.add_path_point(pose.position_mm, pose.position_mm, error);
-    if (scene.frame_due(t)) {
-      // The orientation only matters for the frames (a rotation per tick would cost as much as the parsing).
-      pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
-      scene.add_frame(t, line, pose, closeness);
-      if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
-      last_frame_time = t;
-    }
+  }
+  void step() {
     q_prev = q;
     v_prev = v;
-    t_prev = t;
-    ++count;
-  }
-  if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no rows", path_file));
-  if (t > last_frame_time) {  // the end of the run is a frame
-    pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
-    scene.add_frame(t, line, pose, closeness);
-    if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
-  }
-  if (Status finished = dynamics.finish(); !finished) return finished.error();
-  if (Status finished = servo.finish(); !finished) return finished.error();
-  scene.set_force_scale(dynamics.peak_force(), dynamics.force_unit());
-  for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
-
-  // Position q, speed v and acceleration a of each drive, so that a legend tells the three plots apart.
-  nlohmann::json charts = nlohmann::json::array();
-  charts.push_back(chart_json("actuator_positions", "Actuator positions", "position", unit, positions,
-                              actuator_names(n), true, travel_limit_lines(limits, unit)));
-  charts.push_back(chart_json("actuator_speeds", "Actuator speeds", "speed", unit + "/s", speeds,
-                              drive_names("v", n), true, plus_minus_lines(limits.speed, unit + "/s")));
-  charts.push_back(chart_json("actuator_accels", "Actuator accelerations", "acceleration", unit + "/s²",
-                              accels, drive_names("a", n), true,
-                              plus_minus_lines(limits.accel, unit + "/s²")));
-  charts.push_back(chart_json("path_speed", "Path speed and programmed feed", "speed", "mm/s", path_speed,
-                              {"path speed", "programmed feed × override"}, true));
-  if (column[11] >= 0) {
-    charts.push_back(chart_json("contour_error", "Path error (tool from the programmed path, mid-period)",
-                                "error", "mm", path_error, {"path error"}, true));
   }
 
-  // The force limit is in N; angular drives give N·mm, so no line is drawn for them.
-  const std::optional<double> force_limit =
-      machine.mechanism->actuators_are_angles() ? std::nullopt : machine.limits.force_N;
-  for (auto& chart : dynamics.charts(force_limit)) charts.push_back(std::move(chart));
-  for (auto& chart : servo.charts(machine)) charts.push_back(std::move(chart));
+  std::vector<double> q, q_prev, v, v_prev, a, closeness;
+  LimitPeak speed_peak, accel_peak, position_peak;
+};
 
-  const nlohmann::json& sm = files.summary;
-  const std::string u = unit;
+// The columns of path.csv the report reads, in kPathColumns' order; feed and path error are -1 when absent.
+constexpr std::size_t kFeedColumn = 10, kPathErrorColumn = 11;
+Result<std::array<int, 12>> path_csv_columns(CsvReader& path) {
+  // The pose in program coordinates: the tool point from program zero and G-code's A B C (plan_output.cpp).
+  static const char* const kPathColumns[] = {"time_s",       "line",           "s",         "x_program_mm",
+                                             "y_program_mm", "z_program_mm",   "a_abc_deg", "b_abc_deg",
+                                             "c_abc_deg",    "path_speed_mm_s"};
+  std::array<int, 12> column{};
+  for (std::size_t k = 0; k < 10; ++k) {
+    auto index = path.require(kPathColumns[k]);
+    if (!index) return index.error();
+    column[k] = *index;
+  }
+  column[kFeedColumn] = path.column("feed_mm_s");  // older runs lack these two columns
+  column[kPathErrorColumn] = path.column("path_error_mm");
+  return column;
+}
+
+// The plan's own plots, decimated: each drive's position q, speed v and acceleration a (named so that a
+// legend tells the three plots apart), the path speed with the programmed feed, and the path error.
+struct PlanCharts {
+  PlanCharts(int drives, long expected, int buckets)
+      : positions(drives, expected, buckets),
+        speeds(drives, expected, buckets),
+        accels(drives, expected, buckets),
+        path_speed(2, expected, buckets),
+        path_error(1, expected, buckets) {}
+  void finish_all() {
+    for (auto* d : {&positions, &speeds, &accels, &path_speed, &path_error}) d->finish();
+  }
+  nlohmann::json json(int n, const std::string& unit, const ActuatorLimits& limits, bool with_error) const {
+    nlohmann::json charts = nlohmann::json::array();
+    charts.push_back(chart_json("actuator_positions", "Actuator positions", "position", unit, positions,
+                                actuator_names(n), true, travel_limit_lines(limits, unit)));
+    charts.push_back(chart_json("actuator_speeds", "Actuator speeds", "speed", unit + "/s", speeds,
+                                drive_names("v", n), true, plus_minus_lines(limits.speed, unit + "/s")));
+    charts.push_back(chart_json("actuator_accels", "Actuator accelerations", "acceleration", unit + "/s²",
+                                accels, drive_names("a", n), true,
+                                plus_minus_lines(limits.accel, unit + "/s²")));
+    charts.push_back(chart_json("path_speed", "Path speed and programmed feed", "speed", "mm/s", path_speed,
+                                {"path speed", "programmed feed × override"}, true));
+    if (with_error) {
+      charts.push_back(chart_json("contour_error", "Path error (tool from the programmed path, mid-period)",
+                                  "error", "mm", path_error, {"path error"}, true));
+    }
+    return charts;
+  }
+  MinMaxDecimator positions, speeds, accels, path_speed, path_error;
+};
+
+// The summary table of a plan run, from its summary.json.
+nlohmann::json plan_table(const nlohmann::json& sm, const std::string& u) {
   nlohmann::json table = nlohmann::json::array();
   table.push_back(table_row("Duration", with_unit(value_or_nan(sm, "duration_s"), "s")));
   table.push_back(table_row(
@@ -244,14 +181,39 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   table.push_back(table_row("Time limited by the actuators",
                             fmt::format("{:.1f} %", 100.0 * value_or_nan(sm, "actuator_limited_fraction"))));
   for (auto& row : dynamics_table_rows(sm)) table.push_back(std::move(row));
+  return table;
+}
+
+}  // namespace
+
+std::string with_unit(double value, const std::string& unit) {
+  if (!std::isfinite(value)) return "—";
+  return unit.empty() ? fmt::format("{:.6g}", value) : fmt::format("{:.6g} {}", value, unit);
+}
+
+namespace {
+
+// The document of a plan run: its charts with the analyses', the table, the limits reached and the scene.
+Result<nlohmann::json> plan_document(const Machine& machine, const RunFiles& files, const std::string& unit,
+                                     nlohmann::json charts, const ActuatorTrack& track,
+                                     DynamicsTrace& dynamics, ServoTrace& servo, SceneBuilder& scene) {
+  // The force limit is in N; angular drives give N·mm, so no line is drawn for them.
+  const std::optional<double> force_limit =
+      machine.mechanism->actuators_are_angles() ? std::nullopt : machine.limits.force_N;
+  for (auto& chart : dynamics.charts(force_limit)) charts.push_back(std::move(chart));
+  for (auto& chart : servo.charts(machine)) charts.push_back(std::move(chart));
+
+  const nlohmann::json& sm = files.summary;
+  const std::string u = unit;
+  nlohmann::json table = plan_table(sm, u);
   for (auto& row : servo.table_rows()) table.push_back(std::move(row));
   table.push_back(table_row("Program", files.program));
   table.push_back(table_row("Machine file", machine.source));
 
   nlohmann::json reached = nlohmann::json::array();
-  add_limit_entry(reached, speed_peak, "speed", u + "/s");
-  add_limit_entry(reached, accel_peak, "acceleration", u + "/s²");
-  add_limit_entry(reached, position_peak, "position", u);
+  add_limit_entry(reached, track.speed_peak, "speed", u + "/s");
+  add_limit_entry(reached, track.accel_peak, "acceleration", u + "/s²");
+  add_limit_entry(reached, track.position_peak, "position", u);
   for (auto& entry : dynamics_limit_entries(sm, force_limit)) reached.push_back(std::move(entry));
   for (auto& entry : servo.limit_entries()) reached.push_back(std::move(entry));
 
@@ -271,6 +233,109 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     report["servo"] = std::move(*object);
   }
   return report;
+}
+
+}  // namespace
+
+Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files,
+                                   const ReportOptions& options) {
+  const fs::path dir(files.directory);
+  const std::string path_file = (dir / "path.csv").string();
+  const std::string actuator_file = (dir / "actuators.csv").string();
+  auto rows = expected_rows(files.summary, "ticks", path_file);
+  if (!rows) return rows.error();
+  CsvReader path, actuators;
+  if (Status opened = path.open(path_file); !opened) return opened.error();
+  if (Status opened = actuators.open(actuator_file); !opened) return opened.error();
+  const int n = machine.mechanism->actuator_count();
+  if (static_cast<int>(actuators.columns().size()) != n + 1) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}:1: {} actuator columns, but {} has {} actuators", actuator_file,
+                                  actuators.columns().size() - 1, machine.source, n));
+  }
+  auto columns = path_csv_columns(path);
+  if (!columns) return columns.error();
+  const std::array<int, 12>& column = *columns;
+
+  const std::string unit = actuator_unit(machine);
+  const ActuatorLimits limits = limits_in_file_units(machine);
+  const long expected = *rows;
+  PlanCharts plots(n, expected, options.chart_buckets);
+  const double duration = value_or_nan(files.summary, "duration_s");
+  SceneBuilder scene(machine, std::isfinite(duration) ? duration : 0.0, expected, options.frames,
+                     options.path_points);
+  DynamicsTrace dynamics;
+  if (Status opened = dynamics.open(files.directory, files.summary, n, expected, options.chart_buckets);
+      !opened)
+    return opened.error();
+  ServoTrace servo;
+  if (Status opened = servo.open(files.directory, options.servo_directory, files.summary, n, expected,
+                                 options.chart_buckets);
+      !opened)
+    return opened.error();
+
+  std::vector<double> prow, arow;
+  ActuatorTrack track(n);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  long count = 0;
+  double t_prev = 0.0, last_frame_time = -1.0;
+  Pose pose;
+  Eigen::Vector3d abc_deg = Eigen::Vector3d::Zero();
+  int line = 0;
+  double t = 0.0;
+  for (;;) {
+    auto more = next_in_step(path, prow, actuators, arow);
+    if (!more) return more.error();
+    if (!*more) break;
+    t = prow[static_cast<std::size_t>(column[0])];
+    line = static_cast<int>(prow[static_cast<std::size_t>(column[1])]);
+    const double s = prow[static_cast<std::size_t>(column[2])];
+    track.add(arow, t - t_prev, count, line, t, limits);
+    plots.positions.add(t, s, track.q.data());
+    plots.speeds.add(t, s, track.v.data());
+    plots.accels.add(t, s, track.a.data());
+    const double feed = column[kFeedColumn] >= 0 ? prow[static_cast<std::size_t>(column[kFeedColumn])] : nan;
+    const double speed_feed[2] = {prow[static_cast<std::size_t>(column[9])], feed};
+    plots.path_speed.add(t, s, speed_feed);
+    const double error =
+        column[kPathErrorColumn] >= 0 ? prow[static_cast<std::size_t>(column[kPathErrorColumn])] : nan;
+    plots.path_error.add(t, s, &error);
+    if (Status read = dynamics.next(t, s); !read) return read.error();
+    if (Status read = servo.next(t, s); !read) return read.error();
+
+    pose.position_mm =
+        Eigen::Vector3d(prow[static_cast<std::size_t>(column[3])], prow[static_cast<std::size_t>(column[4])],
+                        prow[static_cast<std::size_t>(column[5])]) +
+        machine.motion.program_origin_mm;
+    abc_deg =
+        Eigen::Vector3d(prow[static_cast<std::size_t>(column[6])], prow[static_cast<std::size_t>(column[7])],
+                        prow[static_cast<std::size_t>(column[8])]);
+    // The tool is where the drives put it at every tick; between ticks it deviates by the path error.
+    scene.add_path_point(pose.position_mm, pose.position_mm, error);
+    if (scene.frame_due(t)) {
+      // The orientation only matters for the frames (a rotation per tick would cost as much as the parsing).
+      pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
+      scene.add_frame(t, line, pose, track.closeness);
+      if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
+      last_frame_time = t;
+    }
+    track.step();
+    t_prev = t;
+    ++count;
+  }
+  if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no rows", path_file));
+  if (t > last_frame_time) {  // the end of the run is a frame
+    pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
+    scene.add_frame(t, line, pose, track.closeness);
+    if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
+  }
+  if (Status finished = dynamics.finish(); !finished) return finished.error();
+  if (Status finished = servo.finish(); !finished) return finished.error();
+  scene.set_force_scale(dynamics.peak_force(), dynamics.force_unit());
+  plots.finish_all();
+  nlohmann::json charts = plots.json(n, unit, limits, column[kPathErrorColumn] >= 0);
+
+  return plan_document(machine, files, unit, std::move(charts), track, dynamics, servo, scene);
 }
 
 }  // namespace pkm::report
