@@ -18,6 +18,61 @@ double metric_at(const std::vector<double>& values, std::size_t k) {
   return k < values.size() ? values[k] : std::numeric_limits<double>::quiet_NaN();
 }
 
+// Time at the programmed feed and path length at every point: the post-processor keeps the contour speed of
+// every block.
+void times_at_feed(const Machine& machine, const program::CanonicalProgram& program,
+                   const std::vector<redundancy::PathPoint>& points, std::vector<double>& time_s,
+                   std::vector<double>& s_mm) {
+  time_s.assign(points.size(), 0.0);
+  s_mm.assign(points.size(), 0.0);
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    const int move = points[k].move_index;
+    double feed_mm_s = machine.motion.rapid_mm_min / 60.0;
+    if (move >= 0 && move < static_cast<int>(program.moves.size()) && points[k].cutting &&
+        program.moves[static_cast<std::size_t>(move)].feed_mm_min > 0.0) {
+      feed_mm_s = std::min(program.moves[static_cast<std::size_t>(move)].feed_mm_min,
+                           machine.motion.max_feed_mm_min) /
+                  60.0;
+    }
+    s_mm[k] = s_mm[k - 1] + points[k].step_mm;
+    time_s[k] = time_s[k - 1] + points[k].step_mm / feed_mm_s;
+  }
+}
+
+// The summary table: the law, and what it changed against the free coordinates held constant.
+nlohmann::json optimize_table(const nlohmann::json& summary, const redundancy::OptimizeOptions& options,
+                              const std::string& law, const std::string& unit, long count, bool loaded) {
+  auto number = [&](const char* key) {
+    return summary.contains(key) && summary[key].is_number() ? summary[key].get<double>()
+                                                             : std::numeric_limits<double>::quiet_NaN();
+  };
+  nlohmann::json table = nlohmann::json::array();
+  table.push_back(
+      table_row("Law / free coordinates / solver",
+                fmt::format("{} / {} / {}", law, to_string(options.free),
+                            options.solver == redundancy::Solver::global ? "whole path" : "greedy")));
+  table.push_back(
+      table_row("Points / step", fmt::format("{} / {}", count, with_unit(options.step_mm, "mm"))));
+  table.push_back(
+      table_row("Σ max|ΔL| held constant → chosen",
+                fmt::format("{} → {} ({:.1f} % of the time at strut speed limits)",
+                            with_unit(number("const_sum_mm"), unit), with_unit(number("opt_sum_mm"), unit),
+                            100.0 * number("opt_sum_mm") / number("const_sum_mm"))));
+  if (loaded) {
+    table.push_back(table_row("Peak force held constant → chosen",
+                              fmt::format("{} → {}", with_unit(number("peak_force_const_N"), "N"),
+                                          with_unit(number("peak_force_opt_N"), "N"))));
+    table.push_back(table_row("Energy held constant → chosen",
+                              fmt::format("{} → {}", with_unit(number("energy_const_J"), "J"),
+                                          with_unit(number("energy_opt_J"), "J"))));
+  } else {
+    table.push_back(
+        table_row("Strut forces and energy",
+                  "no load and no masses: none (give a load file or the machine file's masses:)"));
+  }
+  return table;
+}
+
 }  // namespace
 
 Result<nlohmann::json> optimize_report(const Machine& machine, const program::CanonicalProgram& program,
@@ -36,20 +91,8 @@ Result<nlohmann::json> optimize_report(const Machine& machine, const program::Ca
   }
   const int free_count = result.free_count;
   const long count = static_cast<long>(points.size());
-  // Time at the programmed feed: the post-processor keeps the contour speed of every block.
-  std::vector<double> time_s(points.size(), 0.0), s_mm(points.size(), 0.0);
-  for (std::size_t k = 1; k < points.size(); ++k) {
-    const int move = points[k].move_index;
-    double feed_mm_s = machine.motion.rapid_mm_min / 60.0;
-    if (move >= 0 && move < static_cast<int>(program.moves.size()) && points[k].cutting &&
-        program.moves[static_cast<std::size_t>(move)].feed_mm_min > 0.0) {
-      feed_mm_s = std::min(program.moves[static_cast<std::size_t>(move)].feed_mm_min,
-                           machine.motion.max_feed_mm_min) /
-                  60.0;
-    }
-    s_mm[k] = s_mm[k - 1] + points[k].step_mm;
-    time_s[k] = time_s[k - 1] + points[k].step_mm / feed_mm_s;
-  }
+  std::vector<double> time_s, s_mm;
+  times_at_feed(machine, program, points, time_s, s_mm);
 
   const int buckets = report_options.chart_buckets;
   MinMaxDecimator angles(2 * free_count, count, buckets), increments(2, count, buckets),
@@ -112,33 +155,8 @@ Result<nlohmann::json> optimize_report(const Machine& machine, const program::Ca
                                 {"chosen", "held constant"}, true));
   }
 
-  auto number = [&](const char* key) {
-    return summary.contains(key) && summary[key].is_number() ? summary[key].get<double>() : nan;
-  };
-  nlohmann::json table = nlohmann::json::array();
-  table.push_back(
-      table_row("Law / free coordinates / solver",
-                fmt::format("{} / {} / {}", law, to_string(options.free),
-                            options.solver == redundancy::Solver::global ? "whole path" : "greedy")));
-  table.push_back(
-      table_row("Points / step", fmt::format("{} / {}", count, with_unit(options.step_mm, "mm"))));
-  table.push_back(
-      table_row("Σ max|ΔL| held constant → chosen",
-                fmt::format("{} → {} ({:.1f} % of the time at strut speed limits)",
-                            with_unit(number("const_sum_mm"), unit), with_unit(number("opt_sum_mm"), unit),
-                            100.0 * number("opt_sum_mm") / number("const_sum_mm"))));
-  if (forces.peak(0) > 0.0 || forces.peak(1) > 0.0) {
-    table.push_back(table_row("Peak force held constant → chosen",
-                              fmt::format("{} → {}", with_unit(number("peak_force_const_N"), "N"),
-                                          with_unit(number("peak_force_opt_N"), "N"))));
-    table.push_back(table_row("Energy held constant → chosen",
-                              fmt::format("{} → {}", with_unit(number("energy_const_J"), "J"),
-                                          with_unit(number("energy_opt_J"), "J"))));
-  } else {
-    table.push_back(
-        table_row("Strut forces and energy",
-                  "no load and no masses: none (give a load file or the machine file's masses:)"));
-  }
+  const bool loaded = forces.peak(0) > 0.0 || forces.peak(1) > 0.0;
+  nlohmann::json table = optimize_table(summary, options, law, unit, count, loaded);
   table.push_back(table_row("Duration at the programmed feed", with_unit(time_s.back(), "s")));
   table.push_back(table_row("Output program", output_file));
   table.push_back(table_row("Program", program.source));
