@@ -29,6 +29,41 @@ int stiffness_summary_line(const nlohmann::json& summary, const char* key) {
   return summary.contains(key) && summary[key].is_number_integer() ? summary[key].get<int>() : 0;
 }
 
+// The summary table of a stiffness run, from its summary.json.
+nlohmann::json stiffness_table(const nlohmann::json& sm, double duration_s, const RunFiles& files,
+                               const Machine& machine) {
+  nlohmann::json table = nlohmann::json::array();
+  table.push_back(table_row("Stiffness model", sm.value("model", std::string("?"))));
+  table.push_back(table_row("Points (cutting)",
+                            fmt::format("{} ({})", sm.value("points", 0L), sm.value("cutting_points", 0L))));
+  table.push_back(table_row("Time at the programmed feeds / path length",
+                            fmt::format("{} / {}", with_unit(duration_s, "s"),
+                                        with_unit(stiffness_summary_number(sm, "path_length_mm"), "mm"))));
+  table.push_back(table_row("Max deflection along the tool axis",
+                            with_unit(stiffness_summary_number(sm, "max_normal_deflection_mm"), "mm"),
+                            stiffness_summary_line(sm, "max_normal_deflection_line")));
+  table.push_back(table_row("Rms deflection along the tool axis (cutting)",
+                            with_unit(stiffness_summary_number(sm, "rms_normal_deflection_mm"), "mm")));
+  table.push_back(table_row("Max tool deflection",
+                            with_unit(stiffness_summary_number(sm, "max_deflection_mm"), "mm"),
+                            stiffness_summary_line(sm, "max_deflection_line")));
+  table.push_back(table_row(fmt::format("Max strut tension (strut {})", sm.value("max_strut_force_strut", 0)),
+                            with_unit(stiffness_summary_number(sm, "max_strut_force_N"), "N"),
+                            stiffness_summary_line(sm, "max_strut_force_line")));
+  if (sm.contains("compensation") && sm["compensation"].is_object()) {
+    const nlohmann::json& k = sm["compensation"];
+    table.push_back(table_row("Pre-compensated program", k.value("program", std::string())));
+    table.push_back(
+        table_row("Largest correction / residual",
+                  fmt::format("{} / {}", with_unit(stiffness_summary_number(k, "max_correction_mm"), "mm"),
+                              with_unit(stiffness_summary_number(k, "max_residual_mm"), "mm")),
+                  stiffness_summary_line(k, "max_correction_line")));
+  }
+  table.push_back(table_row("Program", files.program));
+  table.push_back(table_row("Machine file", machine.source));
+  return table;
+}
+
 }  // namespace
 
 Result<nlohmann::json> stiffness_report(const Machine& machine, const RunFiles& files,
@@ -103,35 +138,7 @@ Result<nlohmann::json> stiffness_report(const Machine& machine, const RunFiles& 
   for (int j = 1; j <= n; ++j) force_names.push_back(fmt::format("F{}", j));
   charts.push_back(chart_json("strut_forces", "Strut tensions", "tension", "N", forces, force_names, true));
 
-  nlohmann::json table = nlohmann::json::array();
-  table.push_back(table_row("Stiffness model", sm.value("model", std::string("?"))));
-  table.push_back(table_row("Points (cutting)",
-                            fmt::format("{} ({})", sm.value("points", 0L), sm.value("cutting_points", 0L))));
-  table.push_back(table_row("Time at the programmed feeds / path length",
-                            fmt::format("{} / {}", with_unit(duration_s, "s"),
-                                        with_unit(stiffness_summary_number(sm, "path_length_mm"), "mm"))));
-  table.push_back(table_row("Max deflection along the tool axis",
-                            with_unit(stiffness_summary_number(sm, "max_normal_deflection_mm"), "mm"),
-                            stiffness_summary_line(sm, "max_normal_deflection_line")));
-  table.push_back(table_row("Rms deflection along the tool axis (cutting)",
-                            with_unit(stiffness_summary_number(sm, "rms_normal_deflection_mm"), "mm")));
-  table.push_back(table_row("Max tool deflection",
-                            with_unit(stiffness_summary_number(sm, "max_deflection_mm"), "mm"),
-                            stiffness_summary_line(sm, "max_deflection_line")));
-  table.push_back(table_row(fmt::format("Max strut tension (strut {})", sm.value("max_strut_force_strut", 0)),
-                            with_unit(stiffness_summary_number(sm, "max_strut_force_N"), "N"),
-                            stiffness_summary_line(sm, "max_strut_force_line")));
-  if (sm.contains("compensation") && sm["compensation"].is_object()) {
-    const nlohmann::json& k = sm["compensation"];
-    table.push_back(table_row("Pre-compensated program", k.value("program", std::string())));
-    table.push_back(
-        table_row("Largest correction / residual",
-                  fmt::format("{} / {}", with_unit(stiffness_summary_number(k, "max_correction_mm"), "mm"),
-                              with_unit(stiffness_summary_number(k, "max_residual_mm"), "mm")),
-                  stiffness_summary_line(k, "max_correction_line")));
-  }
-  table.push_back(table_row("Program", files.program));
-  table.push_back(table_row("Machine file", machine.source));
+  nlohmann::json table = stiffness_table(sm, duration_s, files, machine);
 
   ReportParts parts;
   parts.kind = "stiffness";
