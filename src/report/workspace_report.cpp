@@ -249,6 +249,40 @@ Result<nlohmann::json> workspace_report_of(const std::string& directory, const n
   return report;
 }
 
+// A layer of workspace.csv the report shows, and its column.
+struct LayerColumn {
+  const workspace::LayerInfo* info;
+  int field;
+};
+
+// The map's layers: the cells' status first (what a reader needs first), then each quantity with the end of
+// its scale that is bad.
+nlohmann::json workspace_layers_json(const std::vector<double>& status,
+                                     const std::vector<std::vector<double>>& values,
+                                     const std::vector<LayerColumn>& layers,
+                                     const std::vector<ReportAxis>& axes) {
+  nlohmann::json list = nlohmann::json::array();
+  list.push_back({{"id", "status"},
+                  {"label", "status"},
+                  {"unit", ""},
+                  {"categorical", true},
+                  {"values", workspace_layer_values(status, axes, true)}});
+  for (std::size_t l = 0; l < layers.size(); ++l) {
+    // The bad end of the scale, drawn hot: weak stiffness and low frequencies, high δρ, conditions and
+    // errors.
+    const workspace::Layer layer = layers[l].info->layer;
+    const bool low_is_bad =
+        layer == workspace::Layer::lowest_stiffness || layer == workspace::Layer::lowest_frequency;
+    list.push_back({{"id", std::string(layers[l].info->column)},
+                    {"label", std::string(layers[l].info->label)},
+                    {"unit", std::string(layers[l].info->unit)},
+                    {"categorical", false},
+                    {"hot", low_is_bad ? "low" : "high"},
+                    {"values", workspace_layer_values(values[l], axes, false)}});
+  }
+  return list;
+}
+
 }  // namespace
 
 Result<nlohmann::json> workspace_map_json(const std::string& csv_path, const nlohmann::json& summary) {
@@ -273,10 +307,6 @@ Result<nlohmann::json> workspace_map_json(const std::string& csv_path, const nlo
   }
   const int status_field = index_of("status");
   if (status_field < 0) return workspace_report_error(csv_path, "no column status");
-  struct LayerColumn {
-    const workspace::LayerInfo* info;
-    int field;
-  };
   std::vector<LayerColumn> layers;
   for (const workspace::LayerInfo& info : workspace::workspace_layers())
     if (int field = index_of(info.column); field >= 0) layers.push_back({&info, field});
@@ -334,25 +364,7 @@ Result<nlohmann::json> workspace_map_json(const std::string& csv_path, const nlo
   nlohmann::json status_names = nlohmann::json::array();
   for (int k = 0; k < workspace::kCellStatusCount; ++k)
     status_names.push_back(workspace::to_string(static_cast<CellStatus>(k)));
-  nlohmann::json list = nlohmann::json::array();
-  list.push_back({{"id", "status"},
-                  {"label", "status"},
-                  {"unit", ""},
-                  {"categorical", true},
-                  {"values", workspace_layer_values(status, *axes, true)}});
-  for (std::size_t l = 0; l < layers.size(); ++l) {
-    // The bad end of the scale, drawn hot: weak stiffness and low frequencies, high δρ, conditions and
-    // errors.
-    const workspace::Layer layer = layers[l].info->layer;
-    const bool low_is_bad =
-        layer == workspace::Layer::lowest_stiffness || layer == workspace::Layer::lowest_frequency;
-    list.push_back({{"id", std::string(layers[l].info->column)},
-                    {"label", std::string(layers[l].info->label)},
-                    {"unit", std::string(layers[l].info->unit)},
-                    {"categorical", false},
-                    {"hot", low_is_bad ? "low" : "high"},
-                    {"values", workspace_layer_values(values[l], *axes, false)}});
-  }
+  nlohmann::json list = workspace_layers_json(status, values, layers, *axes);
   const bool grid3d = axes->size() == 3;
   return nlohmann::json{{"file", fs::path(csv_path).filename().string()},
                         {"x_label", (*axes)[0].column},
