@@ -102,6 +102,25 @@ Status check_home_pose(const YAML::Node& root, const YamlReader& reader, Machine
   return ok_status();
 }
 
+// `angles:`, the convention of the file's three angles; planar mechanisms have one angle and no such key.
+Result<AngleConvention> read_angle_convention(const YAML::Node& root, const YamlReader& reader, bool planar) {
+  if (planar) {
+    if (root["angles"])
+      return reader.error_at(root["angles"], "angles",
+                             "planar mechanisms have one angle, phi; remove this key");
+    return AngleConvention::abc;
+  }
+  auto angles = reader.required_string(root, "angles");
+  if (!angles) return angles.error();
+  const auto parsed = angle_convention_from_string(*angles);
+  if (!parsed) {
+    return reader.error_at(
+        root["angles"], "angles",
+        fmt::format("unknown angle convention '{}' (known: abc | krylov | euler_zxz)", *angles));
+  }
+  return *parsed;
+}
+
 }  // namespace
 
 Result<Machine> parse_machine_text(const std::string& yaml_text, const std::string& source_name) {
@@ -131,23 +150,8 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
 
   if (Status keys = check_top_level_keys(root, reader, *entry, *type_name); !keys) return keys.error();
 
-  AngleConvention convention = AngleConvention::abc;
-  if (is_planar(entry->type)) {
-    if (root["angles"]) {
-      return reader.error_at(root["angles"], "angles",
-                             "planar mechanisms have one angle, phi; remove this key");
-    }
-  } else {
-    auto angles = reader.required_string(root, "angles");
-    if (!angles) return angles.error();
-    const auto parsed = angle_convention_from_string(*angles);
-    if (!parsed) {
-      return reader.error_at(
-          root["angles"], "angles",
-          fmt::format("unknown angle convention '{}' (known: abc | krylov | euler_zxz)", *angles));
-    }
-    convention = *parsed;
-  }
+  auto convention = read_angle_convention(root, reader, is_planar(entry->type));
+  if (!convention) return convention.error();
 
   // Free texts, but texts: a list here is a mistake the report would show as "[1, 2]".
   auto name = reader.optional_label(root, "name");
@@ -171,7 +175,7 @@ Result<Machine> parse_machine_text(const std::string& yaml_text, const std::stri
   auto home = read_home_pose(root, reader, entry->home_values);
   if (!home) return home.error();
 
-  const MechanismSpec spec{root, reader, convention, tool, *home, limits->actuators};
+  const MechanismSpec spec{root, reader, *convention, tool, *home, limits->actuators};
   auto drawn = entry->build(spec);
   if (!drawn) return drawn.error();
   // The calibrated values replace the drawing's before anything checks the machine at its home.
