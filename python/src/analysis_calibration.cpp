@@ -198,11 +198,8 @@ py::dict calibrate_identify(const Machine& machine, const py::object& measuremen
   return out;
 }
 
-}  // namespace
-
-void bind_calibration(py::module_& m) {
-  constexpr const char* kPlanOptions =
-      R"doc(Plan options (the CLI's): method 'seven-pose' | 'random' | 'd-optimal'; poses (default 12; seven-pose:
+constexpr const char* kPlanOptions =
+    R"doc(Plan options (the CLI's): method 'seven-pose' | 'random' | 'd-optimal'; poses (default 12; seven-pose:
 n + 1); box_mm, box_deg: random and D-optimal poses within ± this (mm on x, y, z; deg on each angle) around
 home; strut_change_mm: seven-pose, each actuator's change from home (mm, or deg for turning actuators);
 candidates: D-optimal, random poses to choose from; held_out: random poses where the tool error is
@@ -210,6 +207,8 @@ predicted or judged; seed: of every random draw (the same seed, the same run).
 Instrument: fixture_path (the tracker's targets, CSV in the tool frame; default the triangular plate of
 plate_radius_mm about the tool point), or ballbar_centre_mm (x, y, z) in the base frame for a ballbar;
 sigma_mm: the deviation of every measured coordinate or length, mm.)doc";
+
+void bind_calibrate_plan(py::module_& m) {
   m.def(
       "calibrate_plan",
       [](const Machine& machine, const std::string& method, std::optional<int> poses, double box_mm,
@@ -242,7 +241,9 @@ deg); poses: (P, 6) [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad] in the machine's con
 measuring the plan (the parameters' units: mm, or rad); predicted_tool_error_mm (held_out,) the tool point's
 predicted error at each held-out pose (measurement noise only).)doc")
           .c_str());
+}
 
+void bind_calibrate_simulate(py::module_& m) {
   m.def(
       "calibrate_simulate",
       [](const Machine& machine, const std::string& method, std::optional<int> poses, double box_mm,
@@ -280,7 +281,13 @@ condition_number, iterations, parameter_error_max_mm, parameter_error_rms_mm, he
 held_out_rms_mm, error); with write_measurements, true_parameters: the columns of true_parameters.csv (name,
 unit, nominal, true, change).)doc")
           .c_str());
+}
 
+}  // namespace
+
+void bind_calibration(py::module_& m) {
+  bind_calibrate_plan(m);
+  bind_calibrate_simulate(m);
   m.def("calibrate_identify", &calibrate_identify, py::arg("machine"), py::arg("measurements_path"),
         py::kw_only(), py::arg("fixture_path") = py::none(), py::arg("holdout") = 0,
         py::arg("strict") = false, py::arg("calibrated_path") = py::none(),
