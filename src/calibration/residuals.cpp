@@ -64,6 +64,23 @@ Result<Pose> solve_forward(const Mechanism& mechanism, const ActuatorVector& rea
   return solution->pose;
 }
 
+// The ballbar's distances at pose i: one row each, weighted by 1/σ.
+Result<ResidualBlock> ballbar_block(const MeasuredPose& measured, int i, int first_row,
+                                    const std::string& where) {
+  ResidualBlock block;
+  block.pose = i;
+  block.form = ResidualForm::ballbar_forward;
+  block.first_row = first_row;
+  block.rows = static_cast<int>(measured.distances.size());
+  block.whitening = Eigen::MatrixXd::Zero(block.rows, block.rows);
+  for (int k = 0; k < block.rows; ++k) {
+    const double sigma = measured.distances[static_cast<std::size_t>(k)].sigma_mm;
+    if (auto ok = check_sigma(sigma, where); !ok) return ok.error();
+    block.whitening(k, k) = 1.0 / sigma;
+  }
+  return block;
+}
+
 }  // namespace
 
 ResidualModel ResidualModel::at_commanded_poses() const {
@@ -149,19 +166,10 @@ Result<ResidualModel> ResidualModel::make(const Mechanism& nominal, const Measur
       model.blocks_.push_back(std::move(block));
     }
     if (!measured.distances.empty()) {
-      ResidualBlock block;
-      block.pose = i;
-      block.form = ResidualForm::ballbar_forward;
-      block.first_row = model.rows_;
-      block.rows = static_cast<int>(measured.distances.size());
-      block.whitening = Eigen::MatrixXd::Zero(block.rows, block.rows);
-      for (int k = 0; k < block.rows; ++k) {
-        const double sigma = measured.distances[static_cast<std::size_t>(k)].sigma_mm;
-        if (auto ok = check_sigma(sigma, where); !ok) return ok.error();
-        block.whitening(k, k) = 1.0 / sigma;
-      }
-      model.rows_ += block.rows;
-      model.blocks_.push_back(std::move(block));
+      auto block = ballbar_block(measured, i, model.rows_, where);
+      if (!block) return block.error();
+      model.rows_ += block->rows;
+      model.blocks_.push_back(std::move(*block));
     }
     // Every pose gets its nominal FK: the forward forms start from it, pose_inverse blocks keep it as the
     // commanded pose (at_commanded_poses); their fitted pose is a close guess.
