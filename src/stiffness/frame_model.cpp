@@ -94,15 +94,10 @@ struct FrameModel::Impl {
   Status assemble(const Pose& pose, ToolCompliance& out);
 };
 
-FrameModel::FrameModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-FrameModel::FrameModel(FrameModel&&) noexcept = default;
-FrameModel& FrameModel::operator=(FrameModel&&) noexcept = default;
-FrameModel::~FrameModel() = default;
+namespace {
 
-Result<FrameModel> FrameModel::make(const Mechanism& mechanism, const StiffnessParameters& stiffness) {
-  auto impl = std::make_unique<Impl>();
-  impl->mechanism = &mechanism;
-  impl->stiffness = stiffness;
+// A bar for every strut, a base-joint node for every strut, and a frame that is held.
+Status check_frame_fits(const Mechanism& mechanism, const StiffnessParameters& stiffness) {
   const FrameParameters& frame = stiffness.frame;
   const int strut_count = stiffness.strut_count;
   StrutJointPoints home_ends;
@@ -117,7 +112,23 @@ Result<FrameModel> FrameModel::make(const Mechanism& mechanism, const StiffnessP
     return make_error(ErrorCode::bad_input, fmt::format("stiffness.frame: {} base-joint nodes for {} struts",
                                                         frame.strut_nodes.size(), strut_count));
   }
-  if (Status supported = check_frame_supported(frame); !supported) return supported.error();
+  return check_frame_supported(frame);
+}
+
+}  // namespace
+
+FrameModel::FrameModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+FrameModel::FrameModel(FrameModel&&) noexcept = default;
+FrameModel& FrameModel::operator=(FrameModel&&) noexcept = default;
+FrameModel::~FrameModel() = default;
+
+Result<FrameModel> FrameModel::make(const Mechanism& mechanism, const StiffnessParameters& stiffness) {
+  auto impl = std::make_unique<Impl>();
+  impl->mechanism = &mechanism;
+  impl->stiffness = stiffness;
+  const FrameParameters& frame = stiffness.frame;
+  const int strut_count = stiffness.strut_count;
+  if (Status fits = check_frame_fits(mechanism, stiffness); !fits) return fits.error();
 
   impl->frame_dofs = number_frame_dofs(frame);
   const int frame_unknowns = impl->frame_dofs.count;
