@@ -199,7 +199,7 @@ struct ActuatorCaps {
   double accel = std::numeric_limits<double>::infinity();
 };
 
-struct ActuatorLimits {
+struct DriveCapLimits {
   double margin = 0.95;
   double speed_max = 0.0;
   double accel_max = 0.0;
@@ -209,7 +209,7 @@ struct ActuatorLimits {
 
 // The caps of the header's formulas from q' and q'' by finite differences over samples i − 1, i, i + 1.
 ActuatorCaps actuator_caps(const ActuatorVector& q0, const ActuatorVector& q1, const ActuatorVector& q2,
-                           const ProfileSamples& samples, std::size_t i, const ActuatorLimits& limits) {
+                           const ProfileSamples& samples, std::size_t i, const DriveCapLimits& limits) {
   const std::size_t n = samples.size();
   const bool one_sided = i == 0 || samples.stop[i] || i + 1 == n;
   ActuatorCaps caps;
@@ -242,7 +242,7 @@ ActuatorCaps actuator_caps(const ActuatorVector& q0, const ActuatorVector& q1, c
 // The tool path's own cap at an inner sample from its curvature (by finite differences of the positions of
 // samples i − 1, i, i + 1): the normal acceleration κ·v² ≤ a_path and the chord error between servo periods.
 double curvature_cap(const std::array<Eigen::Vector3d, 3>& position_ring, const ProfileSamples& samples,
-                     std::size_t i, double path_accel_mm_s2, const ActuatorLimits& limits) {
+                     std::size_t i, double path_accel_mm_s2, const DriveCapLimits& limits) {
   Eigen::Vector3d second;
   for (int c = 0; c < 3; ++c) {
     second[c] = differentiate(samples.s[i - 1], samples.s[i], samples.s[i + 1], position_ring[(i + 2) % 3][c],
@@ -321,7 +321,7 @@ Result<SamplingResult> sample_path(const Machine& machine, const program::Canoni
   if (Status s = solve(0); !s) return refuse(s.error());
 
   // Caps from the feed, the path and the actuators.
-  ActuatorLimits limits;
+  DriveCapLimits limits;
   limits.margin = settings.actuator_margin;
   limits.speed_max = machine.limits.speed.value_or(std::numeric_limits<double>::infinity());
   limits.accel_max = machine.limits.accel.value_or(std::numeric_limits<double>::infinity());
