@@ -73,6 +73,16 @@ nlohmann::json optimize_table(const nlohmann::json& summary, const redundancy::O
   return table;
 }
 
+// Each free coordinate twice: as the law chose it and held constant.
+std::vector<std::string> free_angle_names(const redundancy::FreeCoordinates& free, int free_count) {
+  std::vector<std::string> names;
+  for (int i = 0; i < free_count; ++i) {
+    names.push_back(free.name(i) + " chosen");
+    names.push_back(free.name(i) + " held constant");
+  }
+  return names;
+}
+
 }  // namespace
 
 Result<nlohmann::json> optimize_report(const Machine& machine, const program::CanonicalProgram& program,
@@ -133,12 +143,7 @@ Result<nlohmann::json> optimize_report(const Machine& machine, const program::Ca
   }
   for (auto* d : {&angles, &increments, &forces, &energy}) d->finish();
 
-  std::vector<std::string> angle_names;
-  for (int i = 0; i < free_count; ++i) {
-    const std::string name = free->name(i);
-    angle_names.push_back(name + " chosen");
-    angle_names.push_back(name + " held constant");
-  }
+  const std::vector<std::string> angle_names = free_angle_names(*free, free_count);
   const std::string law(to_string(options.law.law));
   const std::string unit = actuator_unit(machine);
   nlohmann::json charts = nlohmann::json::array();
