@@ -182,6 +182,27 @@ void warm_up_period(const CarrierInterpolator& carrier, const DiscretenessCorrec
   }
 }
 
+// The carrier's settings: the period, the chord check, the struts' tolerance, the feed override and each
+// drive's largest increment per period (its speed limit, and the step rate less one step for the rounding).
+CarrierSettings carrier_settings_for(const Machine& machine, const InterpolateOptions& options, double step,
+                                     const InterpolateSummary& summary) {
+  CarrierSettings settings;
+  settings.period_s = options.period_s;
+  settings.chord_check = options.chord_check;
+  settings.strut_tolerance = summary.strut_tolerance;
+  settings.feed_override = options.feed_override;
+  for (int j = 0; j < summary.actuators; ++j) {
+    double allowed = 0.0;
+    if (machine.limits.speed) allowed = *machine.limits.speed * options.period_s;
+    if (options.max_step_rate_hz && step > 0.0) {
+      const double by_rate = (std::floor(*options.max_step_rate_hz * options.period_s) - 1.0) * step;
+      allowed = allowed > 0.0 ? std::min(allowed, by_rate) : by_rate;
+    }
+    settings.max_increment[j] = allowed;
+  }
+  return settings;
+}
+
 Status run_carrier(const Machine& machine, const path::Path& path, const IdealTiming& timing,
                    const InterpolateOptions& options, double step, InterpolateSummary& summary,
                    RunRecorder& recorder, const std::string& source) {
@@ -193,22 +214,7 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
   if (!laws) return laws.error();
   summary.laws = laws->report();
 
-  CarrierSettings carrier_settings;
-  carrier_settings.period_s = options.period_s;
-  carrier_settings.chord_check = options.chord_check;
-  carrier_settings.strut_tolerance = summary.strut_tolerance;
-  carrier_settings.feed_override = options.feed_override;
-  for (int j = 0; j < n; ++j) {
-    double allowed = 0.0;
-    if (machine.limits.speed) allowed = *machine.limits.speed * options.period_s;
-    if (options.max_step_rate_hz && step > 0.0) {
-      // One step of the period's allowance is kept for the rounding of the quantiser.
-      const double by_rate = (std::floor(*options.max_step_rate_hz * options.period_s) - 1.0) * step;
-      allowed = allowed > 0.0 ? std::min(allowed, by_rate) : by_rate;
-    }
-    carrier_settings.max_increment[j] = allowed;
-  }
-  CarrierInterpolator carrier(*laws, timing, carrier_settings);
+  CarrierInterpolator carrier(*laws, timing, carrier_settings_for(machine, options, step, summary));
   std::array<double, kMaxActuators> ideal_start{};
   if (Status started = carrier.start(ideal_start); !started) {
     return Error{started.error().code, fmt::format("{}: {}", source, started.error().message)};
