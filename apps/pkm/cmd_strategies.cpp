@@ -179,6 +179,7 @@ void add_strategies_command(CLI::App& app, int& exit_code) {
       return;
     }
     ProgressDisplay progress("strategies", "planning and analysing each strategy");
+    prepared->progress = progress.sink();
     auto comparison = pipeline::compare_strategies(*machine, *prepared);
     progress.finish();
     if (!comparison) {

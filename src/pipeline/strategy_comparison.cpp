@@ -148,7 +148,8 @@ struct ComparisonCaseResult {
 
 // Plans one case into staging/<name>/ (its program.cl first, if generated) and adds its surface error map.
 Result<ComparisonCaseResult> run_comparison_case(const Machine& machine, const StrategyComparisonJob& job,
-                                                 const ComparisonCase& c, const std::string& staging) {
+                                                 const ComparisonCase& c, const std::string& staging,
+                                                 const ProgressSink& progress) {
   const std::string run_directory = (fs::path(staging) / c.name).string();
   std::error_code failed;
   fs::create_directories(run_directory, failed);
@@ -166,6 +167,7 @@ Result<ComparisonCaseResult> run_comparison_case(const Machine& machine, const S
   plan.stiffness = true;
   plan.dynamics_load = job.load;
   plan.out_directory = run_directory;
+  plan.progress = progress;
   auto planned = plan_program(machine, plan);
   if (!planned) return named_plan_error(planned.error(), c.name, staging, job.out_directory);
   FedSegments fed;
@@ -229,8 +231,17 @@ Result<StrategyComparison> compare_strategies(const Machine& machine, const Stra
   if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
   std::vector<StrategyScore> scores;
   std::vector<std::vector<ErrorMapPoint>> maps;
+  std::string phase;  // "NAME (k of N): the plan's phase", reused: the plan tells it every few thousand ticks
   for (const ComparisonCase& c : *cases) {
-    auto result = run_comparison_case(machine, job, c, outputs.staging_directory());
+    const std::string label = fmt::format("{} ({} of {}): ", c.name, scores.size() + 1, cases->size());
+    ProgressSink progress;
+    if (job.progress) {
+      progress = [&](const ProgressStep& step) {
+        phase.assign(label).append(step.phase);
+        job.progress(ProgressStep{phase, step.fraction, step.line});
+      };
+    }
+    auto result = run_comparison_case(machine, job, c, outputs.staging_directory(), progress);
     if (!result) return result.error();
     scores.push_back(std::move(result->score));
     maps.push_back(std::move(result->map_sample));

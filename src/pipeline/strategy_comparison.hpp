@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "machine/machine.hpp"
 #include "path/surface_strategies.hpp"
 #include "pipeline/strategy_outputs.hpp"
@@ -30,6 +31,8 @@ struct StrategyComparisonJob {
   planning::PlanOptions plan;         ///< servo rate, override, blending tolerance
   std::string out_directory;
   std::size_t map_points_in_plot = 1500;  ///< per strategy in strategies.svg
+  /// Told each case's phases as "NAME (k of N): phase", with the plan's fraction and program line.
+  ProgressSink progress;
 };
 
 struct StrategyComparison {

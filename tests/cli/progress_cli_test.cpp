@@ -81,5 +81,17 @@ TEST(ProgressCli, TheServoRunTellsItsPhases) {
   EXPECT_NE(lines.back().find("running the servo loops"), std::string::npos) << lines.back();
 }
 
+TEST(ProgressCli, StrategiesNameEachCaseWithItsPlansPhases) {
+  const fs::path out = fs::temp_directory_path() / "pkm_progress_cli_strategies";
+  fs::remove_all(out);
+  const std::vector<std::string> lines =
+      stderr_lines("strategies --machine " + test::source_path("examples/machines/hexapod_ch5.yaml") +
+                   " --load tangential=500 --out " + out.string() + " --progress always");
+  std::string all;
+  for (const std::string& line : lines) all += line + "\n";
+  EXPECT_NE(all.find("pkm strategies: zigzag (1 of 5): "), std::string::npos) << all;
+  EXPECT_NE(all.find("(5 of 5): "), std::string::npos) << all;
+}
+
 }  // namespace
 }  // namespace pkm
