@@ -211,7 +211,53 @@ bool StepStreamReader::fail(std::uint64_t offset, const std::string& what) {
   return false;
 }
 
-Status StepStreamReader::open(const std::string& path) {
+namespace {
+
+struct HeaderProblem {
+  std::uint64_t offset;
+  std::string what;
+};
+
+// The fixed header's fields after the magic and the version: the actuators, the flags, the servo period (in
+// ns and in s, which must agree) and the step. Empty when all are sound.
+std::optional<HeaderProblem> read_fixed_fields(const std::uint8_t* fixed, std::int64_t& period_ns,
+                                               StepStreamHeader& header) {
+  const auto actuators = step_stream_get(&fixed[10], 2);
+  if (actuators < 1 || actuators > static_cast<std::uint64_t>(kMaxActuators))
+    return HeaderProblem{10, fmt::format("{} actuators (1…{})", actuators, kMaxActuators)};
+  if (const auto flags = step_stream_get(&fixed[12], 4); flags != 0)
+    return HeaderProblem{12, fmt::format("unknown flags {:#x}", flags)};
+  period_ns = static_cast<std::int64_t>(step_stream_get(&fixed[16], 8));
+  header.period_s = std::bit_cast<double>(step_stream_get(&fixed[24], 8));
+  header.step_mm = std::bit_cast<double>(step_stream_get(&fixed[32], 8));
+  if (period_ns < 1 || period_ns > 1'000'000'000'000'000)
+    return HeaderProblem{16, fmt::format("servo period {} ns", period_ns)};
+  if (!std::isfinite(header.period_s) || std::abs(header.period_s * 1e9 - static_cast<double>(period_ns)) >
+                                             0.5 + 1e-6 * static_cast<double>(period_ns))
+    return HeaderProblem{24,
+                         fmt::format("servo period {} s does not match {} ns", header.period_s, period_ns)};
+  if (!std::isfinite(header.step_mm) || header.step_mm <= 0.0)
+    return HeaderProblem{32, fmt::format("step {}", header.step_mm)};
+  header.actuators = static_cast<int>(actuators);
+  return std::nullopt;
+}
+
+// The CRC-32 of the file's bytes [0, end), read in `buffer`-sized chunks; empty on a read error (errno set).
+std::optional<std::uint32_t> stream_crc32(int descriptor, std::vector<std::uint8_t>& buffer,
+                                          std::uint64_t end) {
+  std::uint32_t crc = 0;
+  for (std::uint64_t offset = 0; offset < end;) {
+    const auto chunk = static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), end - offset));
+    if (!step_stream_pread(descriptor, buffer.data(), chunk, offset)) return std::nullopt;
+    crc = step_stream_crc32(buffer.data(), chunk, crc);
+    offset += chunk;
+  }
+  return crc;
+}
+
+}  // namespace
+
+void StepStreamReader::reset(const std::string& path) {
   close();
   path_ = path;
   header_ = StepStreamHeader{};
@@ -219,6 +265,10 @@ Status StepStreamReader::open(const std::string& path) {
   line_ = 0;
   error_.reset();
   buffer_used_ = buffer_size_ = 0;
+}
+
+Status StepStreamReader::open(const std::string& path) {
+  reset(path);
   auto io_error = [&](int error_number) {
     close();
     return make_error(ErrorCode::io, fmt::format("{}: cannot read the step stream: {}", path,
@@ -263,22 +313,9 @@ Status StepStreamReader::open(const std::string& path) {
     return make_error(ErrorCode::bad_input, fmt::format("{}: step stream version {} (this pkm reads {})",
                                                         path, version, kStepStreamVersion));
   }
-  const auto actuators = step_stream_get(&fixed[10], 2);
-  if (actuators < 1 || actuators > static_cast<std::uint64_t>(kMaxActuators))
-    return corrupt(10, fmt::format("{} actuators (1…{})", actuators, kMaxActuators));
-  if (const auto flags = step_stream_get(&fixed[12], 4); flags != 0)
-    return corrupt(12, fmt::format("unknown flags {:#x}", flags));
-  period_ns_ = static_cast<std::int64_t>(step_stream_get(&fixed[16], 8));
-  header_.period_s = std::bit_cast<double>(step_stream_get(&fixed[24], 8));
-  header_.step_mm = std::bit_cast<double>(step_stream_get(&fixed[32], 8));
-  if (period_ns_ < 1 || period_ns_ > 1'000'000'000'000'000)
-    return corrupt(16, fmt::format("servo period {} ns", period_ns_));
-  if (!std::isfinite(header_.period_s) || std::abs(header_.period_s * 1e9 - static_cast<double>(period_ns_)) >
-                                              0.5 + 1e-6 * static_cast<double>(period_ns_))
-    return corrupt(24, fmt::format("servo period {} s does not match {} ns", header_.period_s, period_ns_));
-  if (!std::isfinite(header_.step_mm) || header_.step_mm <= 0.0)
-    return corrupt(32, fmt::format("step {}", header_.step_mm));
-  header_.actuators = static_cast<int>(actuators);
+  if (auto problem = read_fixed_fields(fixed.data(), period_ns_, header_))
+    return corrupt(problem->offset, problem->what);
+  const auto actuators = static_cast<std::uint64_t>(header_.actuators);
 
   const std::uint64_t positions_end = kStepStreamFixedHeader + 8 * actuators;
   if (size < positions_end + 4)
@@ -319,16 +356,11 @@ Status StepStreamReader::open(const std::string& path) {
 
   // The checksum, so that a damaged file is refused before any of it is played.
   buffer_.resize(kStepStreamReadChunk);
-  std::uint32_t crc = 0;
-  for (std::uint64_t offset = 0; offset < data_end_;) {
-    const auto chunk = static_cast<std::size_t>(std::min<std::uint64_t>(buffer_.size(), data_end_ - offset));
-    if (!step_stream_pread(descriptor_, buffer_.data(), chunk, offset)) return io_error(errno);
-    crc = step_stream_crc32(buffer_.data(), chunk, crc);
-    offset += chunk;
-  }
-  if (crc != stored_crc)
+  const std::optional<std::uint32_t> crc = stream_crc32(descriptor_, buffer_, data_end_);
+  if (!crc) return io_error(errno);
+  if (*crc != stored_crc)
     return corrupt(data_end_ + 16, fmt::format("checksum {:08x} of bytes 0…{} differs from the stored {:08x}",
-                                               crc, data_end_ - 1, stored_crc));
+                                               *crc, data_end_ - 1, stored_crc));
   position_ = header_.start_position;
   buffer_offset_ = data_begin;
   return ok_status();

@@ -120,6 +120,8 @@ class StepStreamReader {
   bool read_varint(std::uint64_t& value, int max_bytes, const char* what);
   bool fail(std::uint64_t offset, const std::string& what);
   void close();
+  /// Closes and forgets the previous file: the reader as new, for `path`.
+  void reset(const std::string& path);
 
   std::string path_;
   StepStreamHeader header_;
