@@ -199,6 +199,33 @@ Pose step_pose(const Pose& pose, const Eigen::Matrix<double, N, 1>& step) {
 /// The words of a failure, as forward() reports it.
 Error platform_fk_error(const PlatformFkFailure& failure, const FkOptions& options);
 
+/// The Newton step −J⁻¹·r from `lu`, halved until the residual shrinks (or meets the tolerance): true with
+/// `pose`, `residual` and `norm` moved there, and `contracted_well` when the full step shrank the residual to
+/// `chord_contraction` of what it was or less; false when no fraction of the step helps.
+template <int N, class Legs>
+bool backtracking_newton_step(const Legs& legs, const ActuatorVector& target, const FixedLu<N>& lu,
+                              double tolerance_mm, double chord_contraction, Pose& pose,
+                              Eigen::Matrix<double, N, 1>& residual, double& norm, bool& contracted_well) {
+  using Vector = Eigen::Matrix<double, N, 1>;
+  constexpr int kMaxHalvings = 30;
+  const Vector full_step = lu.solve(-residual);
+  Vector trial_residual;
+  double fraction = 1.0;
+  for (int halving = 0; halving < kMaxHalvings; ++halving, fraction *= 0.5) {
+    const Pose trial = step_pose<N>(pose, Vector(fraction * full_step));
+    if (!evaluate_residual<N>(legs, trial, target, trial_residual)) continue;
+    const double trial_norm = trial_residual.norm();
+    if (trial_norm < norm || trial_norm <= tolerance_mm) {
+      contracted_well = halving == 0 && trial_norm <= chord_contraction * norm;
+      pose = trial;
+      residual = trial_residual;
+      norm = trial_norm;
+      return true;
+    }
+  }
+  return false;
+}
+
 /// Newton on the platform pose from `guess`: true with `out`, or false with `failure` (no message, no
 /// allocation: the servo loop's form).
 template <int N, class Legs>
@@ -211,7 +238,6 @@ bool solve_platform_fk_quiet(const Legs& legs, const ActuatorVector& target, con
   };
   using Vector = Eigen::Matrix<double, N, 1>;
   using Matrix = Eigen::Matrix<double, N, N>;
-  constexpr int kMaxHalvings = 30;
   // A step made with an older factorisation (chord Newton) is kept while it shrinks the residual at least
   // this much; along a path the guess is within a fraction of a millimetre, one factorisation then serves
   // every step.
@@ -288,26 +314,14 @@ bool solve_platform_fk_quiet(const Legs& legs, const ActuatorVector& target, con
       }
       if (!factorise(iteration)) return fail(PlatformFkFailure::Kind::singular_path);
     }
-    // Newton step from a fresh factorisation, with backtracking.
-    const Vector full_step = lu.solve(-residual);
-    double fraction = 1.0;
-    bool accepted = false;
-    for (int halving = 0; halving < kMaxHalvings; ++halving, fraction *= 0.5) {
-      const Pose trial = step_pose<N>(pose, Vector(fraction * full_step));
-      if (!evaluate_residual<N>(legs, trial, target, trial_residual)) continue;
-      const double trial_norm = trial_residual.norm();
-      if (trial_norm < norm || trial_norm <= options.tolerance_mm) {
-        // Keep the factorisation for chord steps only when the full step contracted well.
-        lu_is_current = false;
-        if (halving > 0 || trial_norm > kChordContraction * norm) factorised = false;
-        pose = trial;
-        residual = trial_residual;
-        norm = trial_norm;
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) break;
+    // Newton step from a fresh factorisation, with backtracking; the factorisation is kept for chord steps
+    // only when the full step contracted well.
+    bool contracted_well = false;
+    if (!backtracking_newton_step<N>(legs, target, lu, options.tolerance_mm, kChordContraction, pose,
+                                     residual, norm, contracted_well))
+      break;
+    lu_is_current = false;
+    if (!contracted_well) factorised = false;
   }
   if (workspace) workspace->reset();
   failure.residual_mm = residual.cwiseAbs().maxCoeff();
