@@ -33,9 +33,17 @@ constexpr std::array<std::string_view, 14> kLongCommands{"plan",
                                                          "calibrate simulate",
                                                          "calibrate identify"};
 
-void add_progress_flags(CLI::App& app) {
+// Terminals are redrawn in place; the first second stays quiet so that short commands print nothing.
+constexpr double kQuietStartS = 1.0;
+// Lines (--progress always) at every phase change and at most this often within a phase.
+constexpr double kLineEveryS = 5.0;
+constexpr auto kTickPeriod = std::chrono::milliseconds(250);
+
+}  // namespace
+
+void add_progress_options(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-    add_progress_flags(*sub);
+    add_progress_options(*sub);
     const std::string name = full_command_name(*sub);
     for (const std::string_view command : kLongCommands) {
       if (name != command) continue;
@@ -51,18 +59,6 @@ void add_progress_flags(CLI::App& app) {
           ->check(CLI::IsMember({"auto", "always", "never"}));
     }
   }
-}
-
-// Terminals are redrawn in place; the first second stays quiet so that short commands print nothing.
-constexpr double kQuietStartS = 1.0;
-// Lines (--progress always) at every phase change and at most this often within a phase.
-constexpr double kLineEveryS = 5.0;
-constexpr auto kTickPeriod = std::chrono::milliseconds(250);
-
-}  // namespace
-
-void add_progress_options(CLI::App& app) {
-  add_progress_flags(app);
 }
 
 std::string clock_text(double seconds) {
