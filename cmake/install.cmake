@@ -1,18 +1,22 @@
 # cmake --install: the layers an outside project can link, as pkm:: targets of the export set pkmTargets, with
 # the headers of their folders under include/pkm/ (so that #include "machine/hexapod.hpp" works) and
 # pkmConfig.cmake:
-#   pkm::kinematics  core/ machine/ kinematics/                 needs Eigen and the system's threads only
+#   pkm::kinematics  core/ kinematics/ machine/                 needs Eigen and the system's threads only
 #   pkm::io          io/ (machine files and other inputs)       + yaml-cpp, fmt, nlohmann_json
-#   pkm::motion      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/ stiffness/   + NLopt, Boost headers
-# A consumer: find_package(pkm REQUIRED [COMPONENTS kinematics io motion]) and target_link_libraries(app PRIVATE
-# pkm::motion); pkmConfig.cmake looks for the dependencies of the components asked for only (examples/consumer/,
-# docs/libraries.md). The report and the CLI's pipeline stay inside the project.
+#   pkm::motion      program/ path/ planning/ interpolation/    + NLopt
+#   pkm::analysis    statics/ dynamics/ redundancy/ stiffness/ servo/ calibration/ workspace/ analyses/
+#                                                               + NLopt, Boost headers, TBB
+# A consumer: find_package(pkm REQUIRED [COMPONENTS kinematics io motion analysis]) and
+# target_link_libraries(app PRIVATE pkm::motion); pkmConfig.cmake looks for the dependencies of the components
+# asked for only (examples/consumer/, docs/libraries.md). The formats, the report and the pipeline stay inside
+# the project.
 include(CMakePackageConfigHelpers)
 set(PKM_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/pkm)
 
-install(TARGETS pkm_kinematics pkm_io pkm_motion EXPORT pkmTargets
+install(TARGETS pkm_kinematics pkm_io pkm_motion pkm_analysis EXPORT pkmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(folder core machine kinematics io program path planning redundancy interpolation statics dynamics stiffness)
+foreach(folder core kinematics machine io program path planning interpolation statics dynamics redundancy stiffness servo
+               calibration workspace analyses)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/${folder} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pkm
           FILES_MATCHING PATTERN "*.hpp")
 endforeach()

@@ -1,12 +1,19 @@
-# The library as layered static libraries, one or more src/ folders each (docs/libraries.md). A layer may include
-# the headers of the layers below it only:
+# The library as layered static libraries, one or more src/ folders each (docs/ARCHITECTURE.md). The folders'
+# order is the order of the pkm_layer() calls below and of the folders within each: a file may include the
+# headers of its own folder and of the folders before it only (scripts/include-order.py checks it in
+# `make lint`, reading this file):
 #
-#   pkm_kinematics (pkm::kinematics)  core/ machine/ kinematics/   PUBLIC Eigen, Threads (fmt header-only, PRIVATE)
-#   pkm_io         (pkm::io)          io/                          PUBLIC kinematics, yaml-cpp, fmt, nlohmann_json
-#   pkm_motion     (pkm::motion)      program/ path/ planning/ redundancy/ interpolation/ statics/ dynamics/ stiffness/
-#                                     calibration/ workspace/ servo/ PUBLIC io; PRIVATE NLopt, Boost (headers), TBB
-#   pkm_report     (pkm::report)      report/ (+ pkm_report_assets) PUBLIC motion
-#   pkm_pipeline   (pkm::pipeline)    pipeline/                    PUBLIC report
+#   pkm_kinematics (pkm::kinematics)  core/ kinematics/ machine/       PUBLIC Eigen, Threads (fmt header-only)
+#   pkm_io         (pkm::io)          io/                              PUBLIC kinematics, yaml-cpp, fmt, json
+#   pkm_motion     (pkm::motion)      program/ path/ planning/ interpolation/: the motion core, from the part
+#                                     program to the servo ticks and drive steps; PUBLIC io; PRIVATE NLopt
+#   pkm_analysis   (pkm::analysis)    statics/ dynamics/ redundancy/ stiffness/ servo/ calibration/
+#                                     workspace/ analyses/: what the machine does along the motion, the
+#                                     run's analyses listening to its ticks; PUBLIC motion; PRIVATE NLopt,
+#                                     Boost (headers), TBB
+#   pkm_formats    (pkm::formats)     formats/: the files of each run; PUBLIC analysis
+#   pkm_report     (pkm::report)      report/ (+ pkm_report_assets)    PUBLIC formats
+#   pkm_pipeline   (pkm::pipeline)    pipeline/: the one orchestrator  PUBLIC report
 #   pkm_lib        INTERFACE: all of them (the CLI, tests, bench and fuzz link this)
 
 # PKM_UNITY_LIB compiles every layer in batches (the sanitizer build uses it to fit CI's time on 2 cores).
@@ -41,7 +48,7 @@ set(PKM_LIB_PCH <Eigen/Core> <Eigen/Geometry> <Eigen/LU> <fmt/format.h> <string>
 # The kinematics: poses, mechanisms, IK/FK/Jacobians, analyses. No file I/O; position-independent, so that a
 # shared object (a LinuxCNC real-time kinematics module) can link it. Its error messages use fmt header-only
 # and privately, so that a consumer of the installed library needs Eigen only.
-pkm_layer(pkm_kinematics kinematics core machine kinematics)
+pkm_layer(pkm_kinematics kinematics core kinematics machine)
 set_target_properties(pkm_kinematics PROPERTIES POSITION_INDEPENDENT_CODE ON)
 target_include_directories(pkm_kinematics PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/pkm>)
 target_include_directories(pkm_kinematics PRIVATE $<TARGET_PROPERTY:fmt::fmt,INTERFACE_INCLUDE_DIRECTORIES>)
@@ -59,26 +66,39 @@ target_precompile_headers(pkm_io PRIVATE ${PKM_LIB_PCH})
 set_source_files_properties(${PROJECT_SOURCE_DIR}/src/io/version.cpp PROPERTIES
   COMPILE_DEFINITIONS "PKM_VERSION=\"${PROJECT_VERSION}\"" SKIP_UNITY_BUILD_INCLUSION ON)
 
-# From part program to drive output.
-pkm_layer(pkm_motion motion program path planning redundancy interpolation interpolation/methods
-          interpolation/quantisation interpolation/contour interpolation/drive_output statics dynamics
-          stiffness calibration workspace servo)
-# Boost.Odeint, headers only and only in .cpp files (elastic_simulation.cpp): no installed header needs it.
-target_link_libraries(pkm_motion PUBLIC pkm_io PRIVATE NLopt::nlopt Boost::headers TBB::tbb)
+# The motion core: from part program to servo ticks and drive output. It knows no analysis: whatever wants
+# the ticks listens (planning/tick_observer.hpp).
+pkm_layer(pkm_motion motion program path planning interpolation interpolation/methods
+          interpolation/quantisation interpolation/contour interpolation/drive_output)
+# NLopt: the workspace excursion of a plan (planning/workspace_excursion.cpp).
+target_link_libraries(pkm_motion PUBLIC pkm_io PRIVATE NLopt::nlopt)
 target_precompile_headers(pkm_motion REUSE_FROM pkm_io)
+
+# The analyses: statics, dynamics, redundancy, stiffness, servo, calibration, workspace, and the run's
+# analyses as tick observers (analyses/).
+pkm_layer(pkm_analysis analysis statics dynamics redundancy stiffness servo calibration workspace analyses)
+# Boost.Odeint, headers only and only in .cpp files (elastic_simulation.cpp): no installed header needs it.
+target_link_libraries(pkm_analysis PUBLIC pkm_motion PRIVATE NLopt::nlopt Boost::headers TBB::tbb)
+target_precompile_headers(pkm_analysis REUSE_FROM pkm_io)
+
+# The files each run writes (CSV, JSON summaries) from the values the computations return.
+pkm_layer(pkm_formats formats formats)
+target_link_libraries(pkm_formats PUBLIC pkm_analysis)
+target_precompile_headers(pkm_formats REUSE_FROM pkm_io)
 
 # The HTML report of a run's output directory (the page itself: pkm_report_assets, cmake/report_assets.cmake).
 pkm_layer(pkm_report report report)
-target_link_libraries(pkm_report PUBLIC pkm_motion PRIVATE pkm_report_assets)
+target_link_libraries(pkm_report PUBLIC pkm_formats PRIVATE pkm_report_assets)
 target_precompile_headers(pkm_report REUSE_FROM pkm_io)
 
 # The CLI's whole runs (plan / interpolate a program, with the optional report): above the report.
 pkm_layer(pkm_pipeline pipeline pipeline)
-target_link_libraries(pkm_pipeline PUBLIC pkm_report pkm_motion)
+target_link_libraries(pkm_pipeline PUBLIC pkm_report)
 target_precompile_headers(pkm_pipeline REUSE_FROM pkm_io)
 
 add_library(pkm_lib INTERFACE)
-target_link_libraries(pkm_lib INTERFACE pkm_pipeline pkm_report pkm_motion pkm_io pkm_kinematics)
+target_link_libraries(pkm_lib INTERFACE pkm_pipeline pkm_report pkm_formats pkm_analysis pkm_motion pkm_io
+                                          pkm_kinematics)
 
 # The files with AVX2/FMA copies of their kernels (core/wide_kernels.hpp, chosen at run time) need their
 # multiply–adds contracted into fused ones, which ISO C++ mode leaves off. The baseline x86-64 target has no

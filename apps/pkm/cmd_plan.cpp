@@ -114,7 +114,7 @@ Result<pipeline::PlanJob> plan_job(const PlanArguments& a, std::optional<redunda
 }
 
 // The analyses' lines of the table: drive forces and energy, the elastic response, the tool's deflection.
-void print_plan_analyses(const planning::RunSummary& run, bool angles) {
+void print_plan_analyses(const analyses::PlanRun& run, bool angles) {
   if (run.dynamics) {
     const dynamics::RunDynamicsSummary& d = *run.dynamics;
     const std::string force_unit = angles ? "N·mm" : "N";
@@ -149,7 +149,7 @@ void print_plan_analyses(const planning::RunSummary& run, bool angles) {
 
 void print_plan_table(const pipeline::PlanProgramResult& result, const Machine& machine,
                       const PlanArguments& a, const pipeline::PlanJob& job) {
-  const planning::RunSummary& run = result.run;
+  const planning::RunSummary& run = result.run.motion;
   const bool angles = machine.mechanism->actuators_are_angles();
   const std::string unit = angles ? "deg" : "mm";
   const double scale = angles ? deg_from_rad(1.0) : 1.0;
@@ -172,10 +172,11 @@ void print_plan_table(const pipeline::PlanProgramResult& result, const Machine& 
                              a.redundancy.law, result.law->chosen().metrics.increment_sum_mm,
                              result.law->constant.increment_sum_mm, a.redundancy.free);
   }
-  print_plan_analyses(run, angles);
+  print_plan_analyses(result.run, angles);
   std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}{}{}\n", a.out_dir,
-                           run.dynamics ? ", forces.csv" : "", run.elastic ? ", response.csv" : "",
-                           run.deflection ? ", deflection.csv" : "");
+                           result.run.dynamics ? ", forces.csv" : "",
+                           result.run.elastic ? ", response.csv" : "",
+                           result.run.deflection ? ", deflection.csv" : "");
 }
 
 int run_plan(const PlanArguments& a) {

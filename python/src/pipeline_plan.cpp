@@ -1,27 +1,19 @@
 // pkm.plan: a part program planned on a machine, its servo-rate motion in memory (numpy arrays) and the same
-// summary `pkm plan` writes to summary.json. The ticks are streamed and measured as planning/plan_output.cpp
-// streams them into its CSVs (ServoStream, RunMonitor, RunDynamics), so the summaries agree exactly.
+// summary `pkm plan` writes to summary.json: the pipeline's plan (pipeline/plan_program.hpp) with the arrays
+// listening to its ticks, so the two agree exactly.
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <optional>
 
 #include "bindings.hpp"
 #include "core/rotation.hpp"
 #include "core/units.hpp"
-#include "dynamics/run_dynamics.hpp"
-#include "dynamics/run_elastic.hpp"
 #include "json_to_python.hpp"
-#include "pipeline/load_program.hpp"
 #include "pipeline/plan_program.hpp"
 #include "pipeline_bindings.hpp"
 #include "pipeline_law_options.hpp"
 #include "pipeline_support.hpp"
-#include "planning/plan_output.hpp"
-#include "planning/plan_stream.hpp"
-#include "planning/run_monitor.hpp"
-#include "planning/servo_stream.hpp"
 
 namespace pkm::python {
 
@@ -52,7 +44,7 @@ struct ElasticArrays {
 
 struct PlanRun {
   planning::MotionPlan plan;
-  planning::RunSummary run;
+  analyses::PlanRun run;
   double planning_s = 0.0;
   nlohmann::json summary, law_summary;
   int actuators = 0;
@@ -69,22 +61,44 @@ void append(std::vector<double>& out, const ActuatorVector& values, int n) {
   for (int j = 0; j < n; ++j) out.push_back(values[j]);
 }
 
-// The library's tick loop (planning::stream_plan, as `pkm plan` runs it) with every tick kept in arrays.
-Status stream_ticks(const Machine& machine, const PlanArguments& a, const statics::LoadModel& load,
-                    PlanRun& r) {
-  const Mechanism& mechanism = *machine.mechanism;
-  const int n = mechanism.actuator_count();
-  r.actuators = n;
-  planning::OutputOptions options;
-  options.override_pct = a.plan.override_pct;
-  options.evaluate_path_error = a.evaluate_path_error;
-  options.dynamics = a.dynamics;
-  options.elastic = a.dynamics && a.elastic;
-  options.dynamics_load = &load;
-  planning::PlanTickObservers observers;
+/// Every tick of the run kept in the arrays, as the CLI writes path.csv and actuators.csv.
+class ArrayListener final : public planning::TickObserver {
+ public:
+  ArrayListener(const Machine& machine, PlanRun& run)
+      : machine_(machine), r_(run), n_(machine.mechanism->actuator_count()) {
+    r_.actuators = n_;
+  }
+  Status on_tick(const planning::ServoTick& tick, const planning::RunMonitor& monitor) override {
+    r_.time_s.push_back(tick.time_s);
+    r_.line.push_back(tick.line);
+    r_.segment.push_back(tick.segment);
+    r_.s.push_back(tick.s);
+    r_.path_speed.push_back(tick.path_speed);
+    r_.feed_cap.push_back(monitor.last_feed_cap());
+    r_.path_error.push_back(monitor.last_path_error_mm());
+    append(r_.actuator_values, tick.actuators, n_);
+    const PoseVector v = vector_from_pose(machine_.mechanism->convention(), tick.pose);
+    r_.pose_machine.insert(r_.pose_machine.end(), v.data(), v.data() + 6);
+    const Eigen::Vector3d p = tick.pose.position_mm - machine_.motion.program_origin_mm;
+    r_.xyz_program.insert(r_.xyz_program.end(), p.data(), p.data() + 3);
+    const Eigen::Vector3d abc =
+        deg_from_rad(1.0) * angles_from_rotation(AngleConvention::abc, tick.pose.rotation);
+    r_.abc.insert(r_.abc.end(), abc.data(), abc.data() + 3);
+    return ok_status();
+  }
+
+ private:
+  const Machine& machine_;
+  PlanRun& r_;
+  int n_;
+};
+
+/// The analyses' ticks kept in the arrays, as forces.csv and response.csv.
+analyses::PlanAnalysisSinks array_sinks(const PlanArguments& a, int n, PlanRun& r) {
+  analyses::PlanAnalysisSinks sinks;
   if (a.dynamics) {
     r.dynamics.emplace();
-    observers.dynamics = [&d = *r.dynamics, n](const dynamics::TickDynamics& t) -> Status {
+    sinks.dynamics = [&d = *r.dynamics, n](const dynamics::TickDynamics& t) -> Status {
       d.time_s.push_back(t.time_s);
       append(d.total, t.forces.total, n);
       append(d.static_part, t.forces.static_part, n);
@@ -94,9 +108,9 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
       return ok_status();
     };
   }
-  if (options.elastic) {
+  if (a.dynamics && a.elastic) {
     r.elastic.emplace();
-    observers.elastic = [&e = *r.elastic](const dynamics::ElasticTick& t) -> Status {
+    sinks.elastic = [&e = *r.elastic](const dynamics::ElasticTick& t) -> Status {
       e.time_s.push_back(t.time_s);
       e.line.push_back(t.line);
       e.deviation_mm.insert(e.deviation_mm.end(), t.deviation_mm.data(), t.deviation_mm.data() + 3);
@@ -105,84 +119,39 @@ Status stream_ticks(const Machine& machine, const PlanArguments& a, const static
       return ok_status();
     };
   }
-  // A reserve hint: the ticks from the first to the last of the filtered motion.
-  const auto ticks =
-      static_cast<std::size_t>(std::max(0L, std::lround(r.plan.duration_s / r.plan.period_s) + 1));
-  for (auto* v : {&r.time_s, &r.s, &r.path_speed, &r.feed_cap, &r.path_error}) v->reserve(ticks);
-  r.actuator_values.reserve(ticks * static_cast<std::size_t>(n));
-  r.pose_machine.reserve(ticks * 6);
-  r.xyz_program.reserve(ticks * 3);
-  r.abc.reserve(ticks * 3);
-  observers.tick = [&r, &machine, &mechanism, n](const planning::ServoTick& tick,
-                                                 const planning::RunMonitor& monitor) -> Status {
-    r.time_s.push_back(tick.time_s);
-    r.line.push_back(tick.line);
-    r.segment.push_back(tick.segment);
-    r.s.push_back(tick.s);
-    r.path_speed.push_back(tick.path_speed);
-    r.feed_cap.push_back(monitor.last_feed_cap());
-    r.path_error.push_back(monitor.last_path_error_mm());
-    append(r.actuator_values, tick.actuators, n);
-    const PoseVector v = vector_from_pose(mechanism.convention(), tick.pose);
-    r.pose_machine.insert(r.pose_machine.end(), v.data(), v.data() + 6);
-    const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
-    r.xyz_program.insert(r.xyz_program.end(), p.data(), p.data() + 3);
-    const Eigen::Vector3d abc =
-        deg_from_rad(1.0) * angles_from_rotation(AngleConvention::abc, tick.pose.rotation);
-    r.abc.insert(r.abc.end(), abc.data(), abc.data() + 3);
-    return ok_status();
-  };
-  auto run = planning::stream_plan(r.plan, machine, options, observers);
-  if (!run) return run.error();
-  r.run = std::move(*run);
-  return ok_status();
+  return sinks;
 }
 
+// The library's plan (pipeline::plan_program, as `pkm plan` runs it), streamed once, with every tick kept in
+// arrays and, with out_dir, the CLI's files written as well.
 Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
-  std::optional<redundancy::OptimizeOptions> law;
+  pipeline::PlanJob job;
   if (a.law) {
     auto options = optimize_options(*a.law);
     if (!options) return options.error();
-    law = std::move(*options);
+    job.law = std::move(*options);
   }
   auto load = load_model(a.load);
   if (!load) return load.error();
-  auto program = pipeline::load_program_for(machine, a.program_path, a.program_options);
-  if (!program) return program.error();
+  job.program_path = a.program_path;
+  job.program_options = a.program_options;
+  job.plan = a.plan;
+  job.evaluate_path_error = a.evaluate_path_error;
+  job.dynamics = a.dynamics;
+  job.elastic = a.dynamics && a.elastic;
+  job.dynamics_load = std::move(*load);
+  job.out_directory = a.out_dir;
   PlanRun r;
-  // As pkm plan's summary: the interpreter's notes and where subroutine calls' moves were written.
-  const std::vector<std::string> notes = program->notes;
-  const nlohmann::json calls = pipeline::subroutine_lines(*program);
-  const std::string format = program->format;
-  if (law) {
-    auto optimized = redundancy::optimize_program(*program, machine, *law);
-    if (!optimized) return optimized.error();
-    r.law_summary = redundancy::optimize_summary_json(*optimized, *law);
-    *program = std::move(optimized->program);
-  }
-  const auto started = std::chrono::steady_clock::now();
-  auto plan = planning::plan_motion(machine, *program, a.plan);
-  if (!plan) return plan.error();
-  r.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  r.plan = std::move(*plan);
-  if (Status streamed = stream_ticks(machine, a, *load, r); !streamed) return streamed.error();
-  r.summary = planning::summary_json(r.plan, machine, r.run);
-  r.summary["program_format"] = format;
-  for (const std::string& note : notes) r.summary["warnings"].push_back(note);
-  if (!calls.empty()) r.summary["subroutine_lines"] = calls;
-  if (!a.out_dir.empty()) {
-    // The CLI's files as well: the plan streamed once more into the output set.
-    planning::OutputOptions output;
-    output.override_pct = a.plan.override_pct;
-    output.evaluate_path_error = a.evaluate_path_error;
-    output.dynamics = a.dynamics;
-    output.elastic = a.elastic;
-    output.dynamics_load = &*load;
-    output.program_notes = notes;
-    output.subroutine_lines = calls;
-    auto written = planning::write_plan_outputs(r.plan, machine, a.out_dir, output);
-    if (!written) return written.error();
-  }
+  ArrayListener listener(machine, r);
+  job.listener = &listener;
+  job.listener_sinks = array_sinks(a, machine.mechanism->actuator_count(), r);
+  auto planned = pipeline::plan_program(machine, job);
+  if (!planned) return planned.error();
+  r.plan = std::move(planned->plan);
+  r.run = std::move(planned->run);
+  r.planning_s = planned->planning_s;
+  r.summary = std::move(planned->summary);
+  r.law_summary = std::move(planned->law_summary);
   return r;
 }
 

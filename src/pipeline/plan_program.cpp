@@ -4,11 +4,13 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <vector>
 
+#include "formats/plan_files.hpp"
 #include "io/output_set.hpp"
 #include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
-#include "planning/plan_output.hpp"
 
 namespace pkm::pipeline {
 
@@ -35,6 +37,67 @@ nlohmann::json subroutine_lines(const program::CanonicalProgram& program) {
   return out;
 }
 
+namespace {
+
+/// Both sinks of an analysis' ticks, the files' first.
+template <class Tick>
+std::function<Status(const Tick&)> both(std::function<Status(const Tick&)> first,
+                                        std::function<Status(const Tick&)> second) {
+  if (!first) return second;
+  if (!second) return first;
+  return [first = std::move(first), second = std::move(second)](const Tick& tick) -> Status {
+    if (Status kept = first(tick); !kept) return kept;
+    return second(tick);
+  };
+}
+
+analyses::PlanAnalysisSinks both(analyses::PlanAnalysisSinks first,
+                                 const analyses::PlanAnalysisSinks& second) {
+  return {both(std::move(first.dynamics), second.dynamics), both(std::move(first.elastic), second.elastic),
+          both(std::move(first.deflection), second.deflection)};
+}
+
+/// summary.json: the run's summary with what the program's reading adds, the interpreter's notes among the
+/// warnings and where a calling line's moves were written.
+nlohmann::json summary_with_program(const planning::MotionPlan& plan, const Machine& machine,
+                                    const analyses::PlanRun& run, const std::vector<std::string>& notes,
+                                    const nlohmann::json& called) {
+  nlohmann::json summary = formats::plan_summary_json(plan, machine, run);
+  for (const std::string& note : notes) summary["warnings"].push_back(note);
+  if (!called.empty()) summary["subroutine_lines"] = called;
+  return summary;
+}
+
+/// The planned motion streamed once: to the analyses the job asks for, the output files (when the job has a
+/// folder) and the job's listener. The files are staged in `outputs`, for the caller to commit.
+Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& job,
+                                         const planning::MotionPlan& plan,
+                                         const std::vector<std::string>& notes, const nlohmann::json& called,
+                                         OutputSet& outputs) {
+  planning::StreamOptions stream{job.plan.override_pct, job.evaluate_path_error, job.progress};
+  const analyses::PlanAnalysisOptions wanted{job.dynamics, job.elastic, job.stiffness, &job.dynamics_load};
+  std::optional<formats::PlanFiles> files;
+  std::vector<planning::TickObserver*> observers;
+  analyses::PlanAnalysisSinks sinks = job.listener_sinks;
+  if (!job.out_directory.empty()) {
+    if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
+    files.emplace(machine, wanted);
+    if (Status opened = files->open(outputs); !opened) return opened.error();
+    observers.push_back(&*files);
+    sinks = both(files->analysis_sinks(), job.listener_sinks);
+  }
+  if (job.listener != nullptr) observers.push_back(job.listener);
+  auto run = analyses::stream_plan_with_analyses(plan, machine, stream, wanted, sinks, observers);
+  if (!run) return run.error();
+  if (files) {
+    const nlohmann::json summary = summary_with_program(plan, machine, *run, notes, called);
+    if (Status finished = files->finish(summary); !finished) return finished.error();
+  }
+  return run;
+}
+
+}  // namespace
+
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
   report_progress(job.progress, "reading the program");
   auto program = load_program_for(machine, job.program_path, job.program_options);
@@ -59,30 +122,19 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   if (!plan) return plan.error();
   result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-  planning::OutputOptions output;
-  output.override_pct = job.plan.override_pct;
-  output.evaluate_path_error = job.evaluate_path_error;
-  output.dynamics = job.dynamics;
-  output.elastic = job.elastic;
-  output.stiffness = job.stiffness;
-  output.dynamics_load = &job.dynamics_load;
-  output.program_notes = program->notes;
-  output.subroutine_lines = called;
-  output.progress = job.progress;
   // The CSVs, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs{"plan"};
-  if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
-  auto run = planning::write_plan_outputs(*plan, machine, outputs, output);
+  auto run = stream_planned(machine, job, *plan, program->notes, called, outputs);
   if (!run) return run.error();
-  if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
-  if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
-  if (Status committed = outputs.commit(); !committed) return committed.error();
-  result.summary = planning::summary_json(*plan, machine, *run);
+  if (!job.out_directory.empty()) {
+    if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
+    if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
+    if (Status committed = outputs.commit(); !committed) return committed.error();
+  }
+  result.summary = summary_with_program(*plan, machine, *run, program->notes, called);
   result.summary["program_format"] = format;
-  for (const std::string& note : program->notes) result.summary["warnings"].push_back(note);
-  if (!called.empty()) result.summary["subroutine_lines"] = std::move(called);
   result.program_notes = program->notes;
-  result.run = *run;
+  result.run = std::move(*run);
   result.plan = std::move(*plan);
   return result;
 }

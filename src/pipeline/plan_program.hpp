@@ -1,18 +1,20 @@
 #pragma once
-// `pkm plan` as one library call: a part program file in, its planned servo-rate motion written as an output
-// set (actuators.csv, path.csv, summary.json and, if asked, the HTML report) that replaces a previous run's
-// only when all of it succeeded. With a drive control law, the coordinates the operation leaves free are
+// `pkm plan` (and Python's pkm.plan) as one library call: a part program file in, its planned servo-rate
+// motion streamed once to the analyses asked for, to the output set (actuators.csv, path.csv, summary.json
+// and, if asked, the HTML report) that replaces a previous run's only when all of it succeeded, and to the
+// caller's own listener. With a drive control law, the coordinates the operation leaves free are
 // chosen first (redundancy/optimize_program.hpp) and the rewritten program is planned.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
+#include "analyses/plan_analyses.hpp"
 #include "core/progress.hpp"
 #include "machine/machine.hpp"
 #include "pipeline/load_program.hpp"
 #include "planning/motion_plan.hpp"
-#include "planning/run_monitor.hpp"
+#include "planning/tick_observer.hpp"
 #include "redundancy/optimize_program.hpp"
 
 namespace pkm::pipeline {
@@ -29,14 +31,17 @@ struct PlanJob {
   bool elastic = false;
   /// The tool's deflection under `dynamics_load`, the struts as springs (deflection.csv; docs/stiffness.md)
   bool stiffness = false;
-  ProgressSink progress;  ///< told the phase, how far it is and the program line, now and then
-  std::string out_directory;
-  std::string report_path;  ///< empty: no report
+  ProgressSink progress;      ///< told the phase, how far it is and the program line, now and then
+  std::string out_directory;  ///< empty: no files (the caller listens to the ticks itself)
+  std::string report_path;    ///< empty: no report
+  /// Also listening to the run, after the files: every tick, and the analyses' ticks (e.g. into arrays).
+  planning::TickObserver* listener = nullptr;
+  analyses::PlanAnalysisSinks listener_sinks;
 };
 
 struct PlanProgramResult {
   planning::MotionPlan plan;
-  planning::RunSummary run;                       ///< what the written ticks measured
+  analyses::PlanRun run;                          ///< what the streamed ticks measured
   double planning_s = 0.0;                        ///< wall time of the planning itself (not the writing)
   nlohmann::json summary;                         ///< summary.json as written
   std::optional<redundancy::OptimizeResult> law;  ///< with the law's job: what it chose

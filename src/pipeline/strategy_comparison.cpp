@@ -98,8 +98,9 @@ StrategyScore score_of(const std::string& name, const std::string& program_path,
     score.max_normal_mm = f.max_normal_mm;
     score.max_normal_line = f.max_normal_line;
     score.rms_normal_mm = f.rms_normal_mm;
-    score.cutting_time_s =
-        planned.run.rate_hz > 0 ? static_cast<double>(f.cutting_points) / planned.run.rate_hz : 0.0;
+    score.cutting_time_s = planned.run.motion.rate_hz > 0
+                               ? static_cast<double>(f.cutting_points) / planned.run.motion.rate_hz
+                               : 0.0;
   }
   return score;
 }

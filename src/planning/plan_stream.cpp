@@ -3,15 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <optional>
 
 #include "planning/run_accuracy.hpp"
 
 namespace pkm::planning {
 
-namespace {
-
-/// The program file and line of an error at a program line, for messages ("FILE:LINE: …").
 Error at_program_line(const MotionPlan& plan, const Error& error) {
   Error located = error;
   located.message = fmt::format("{}:{}: {}", plan.program_source, error.location.line, error.message);
@@ -19,35 +15,8 @@ Error at_program_line(const MotionPlan& plan, const Error& error) {
   return located;
 }
 
-}  // namespace
-
-Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, const OutputOptions& options,
-                               const PlanTickObservers& observers) {
-  const auto forward = [](const auto& observer) {
-    return [&observer](const auto& tick) -> Status { return observer ? observer(tick) : ok_status(); };
-  };
-  std::optional<dynamics::RunDynamics> drive_dynamics;
-  if (options.dynamics) {
-    if (Status given = dynamics::require_dynamics_section(machine); !given) return given.error();
-    drive_dynamics.emplace(machine, plan.period_s, forward(observers.dynamics), options.dynamics_load);
-  }
-  std::optional<dynamics::RunElastic> elastic;
-  if (options.dynamics && options.elastic) {
-    auto made = dynamics::RunElastic::make(machine, plan.period_s, forward(observers.elastic), {},
-                                           options.dynamics_load);
-    if (!made) return made.error();
-    elastic.emplace(std::move(*made));
-  }
-  std::optional<stiffness::RunDeflection> deflection;
-  if (options.stiffness) {
-    static const statics::LoadModel kNoLoad;
-    auto made = stiffness::RunDeflection::make(
-        machine, options.dynamics_load != nullptr ? *options.dynamics_load : kNoLoad,
-        forward(observers.deflection));
-    if (!made) return made.error();
-    deflection.emplace(std::move(*made));
-  }
-
+Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
+                               std::span<TickObserver* const> observers) {
   ServoStream stream(plan, machine);
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
   const long total = stream.tick_count();
@@ -57,24 +26,8 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
     monitor.add(tick);
     if (Status held = check_tick(plan, machine, tick, monitor, options.evaluate_path_error); !held)
       return held.error();
-    const bool cutting = !plan.path.segments[tick.segment].rapid;
-    if (drive_dynamics) {
-      if (Status added = drive_dynamics->add(tick.time_s, tick.line, tick.pose, cutting); !added) {
-        return at_program_line(plan, added.error());
-      }
-    }
-    if (elastic) {
-      if (Status added = elastic->add(tick.time_s, tick.line, tick.pose, tick.actuators, cutting); !added) {
-        return at_program_line(plan, added.error());
-      }
-    }
-    if (deflection) {
-      if (Status added = deflection->add(tick.time_s, tick.line, tick.pose, cutting); !added) {
-        return at_program_line(plan, added.error());
-      }
-    }
-    if (observers.tick) {
-      if (Status kept = observers.tick(tick, monitor); !kept) return kept.error();
+    for (TickObserver* observer : observers) {
+      if (Status kept = observer->on_tick(tick, monitor); !kept) return kept.error();
     }
     if (options.progress && tick.index % report_every == 0)
       report_progress(options.progress, "writing the outputs", static_cast<double>(tick.index) / total,
@@ -82,20 +35,10 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
   }
   if (stream.error()) return *stream.error();
   report_progress(options.progress, "writing the outputs", 1.0);
-  RunSummary run = monitor.summary();
-  if (drive_dynamics) {
-    if (Status finished = drive_dynamics->finish(); !finished) return at_program_line(plan, finished.error());
-    run.dynamics = drive_dynamics->summary();
+  for (TickObserver* observer : observers) {
+    if (Status finished = observer->on_finish(); !finished) return finished.error();
   }
-  if (elastic) {
-    if (Status finished = elastic->finish(); !finished) return at_program_line(plan, finished.error());
-    run.elastic = elastic->summary();
-  }
-  if (deflection) {
-    if (Status finished = deflection->finish(); !finished) return at_program_line(plan, finished.error());
-    run.deflection = deflection->summary();
-  }
-  return run;
+  return monitor.summary();
 }
 
 }  // namespace pkm::planning

@@ -1,32 +1,32 @@
 #pragma once
-// A planned run at the servo rate, tick by tick, with what the options ask to evaluate along it (the run
-// monitor's limits and path error, the drive forces, the elastic response, the tool's deflection), handed to
-// observers: the output files (plan_output.hpp) and callers that keep the ticks in memory (the Python module)
-// run the same loop.
-#include <functional>
+// A planned run at the servo rate, tick by tick: each tick measured by the run monitor (limits, path error)
+// and checked against what the plan claims (run_accuracy.hpp), then handed to the observers in order. The
+// output files, the analyses (drive forces, elastic response, deflection) and in-memory arrays listen through
+// the same interface (tick_observer.hpp).
+#include <span>
 
-#include "dynamics/run_dynamics.hpp"
-#include "dynamics/run_elastic.hpp"
+#include "core/progress.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
-#include "planning/plan_output.hpp"
 #include "planning/run_monitor.hpp"
-#include "planning/servo_stream.hpp"
-#include "stiffness/run_deflection.hpp"
+#include "planning/tick_observer.hpp"
 
 namespace pkm::planning {
 
-/// Where each tick's results go; an empty member is not called. A failing observer stops the run.
-struct PlanTickObservers {
-  /// Every tick, after the monitor measured it (its last_feed_cap() and last_path_error_mm() are the tick's).
-  std::function<Status(const ServoTick&, const RunMonitor&)> tick;
-  std::function<Status(const dynamics::TickDynamics&)> dynamics;       ///< with OutputOptions::dynamics
-  std::function<Status(const dynamics::ElasticTick&)> elastic;         ///< with OutputOptions::elastic
-  std::function<Status(const stiffness::DeflectionTick&)> deflection;  ///< with OutputOptions::stiffness
+struct StreamOptions {
+  double override_pct = 100.0;
+  /// FK of the actuators at every mid-period: the path and orientation errors (run_monitor.hpp).
+  bool evaluate_path_error = true;
+  /// Told now and then how far the stream is and at which program line (core/progress.hpp).
+  ProgressSink progress;
 };
 
-/// Streams `plan` and returns the run's summary; errors at a program line name the program file.
-Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, const OutputOptions& options,
-                               const PlanTickObservers& observers);
+/// Streams `plan` to `observers` and returns what the monitor measured. A tick that breaks a limit or the
+/// path bound, a failing inverse kinematics or a failing observer stops the run with its error.
+Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
+                               std::span<TickObserver* const> observers = {});
+
+/// `error` at a program line, as "FILE:LINE: message" with the plan's program file.
+Error at_program_line(const MotionPlan& plan, const Error& error);
 
 }  // namespace pkm::planning

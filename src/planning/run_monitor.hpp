@@ -8,12 +8,9 @@
 #include <limits>
 #include <optional>
 
-#include "dynamics/run_dynamics.hpp"
-#include "dynamics/run_elastic.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
-#include "stiffness/run_deflection.hpp"
 
 namespace pkm::planning {
 
@@ -21,13 +18,9 @@ namespace pkm::planning {
 /// motion faster than programmed.
 inline constexpr double kFeedRatioRounding = 1e-8;
 
+/// What the run monitor measured on the ticks of a run (the analyses that listened report their own:
+/// analyses/plan_analyses.hpp).
 struct RunSummary {
-  /// Drive forces, power and energy (OutputOptions::dynamics), when asked for.
-  std::optional<dynamics::RunDynamicsSummary> dynamics;
-  /// The elastic machine's response to the run (OutputOptions::elastic), when asked for.
-  std::optional<dynamics::ElasticRunSummary> elastic;
-  /// The tool's deflection under the process load (OutputOptions::stiffness), when asked for.
-  std::optional<stiffness::DeflectionSummary> deflection;
   double duration_s = 0.0;
   long ticks = 0;
   double rate_hz = 0.0;

@@ -119,7 +119,7 @@ TEST(ServoProgram, ContourErrorTendsToThePlansPathErrorAsTheCurrentLoopGetsFaste
   // At 250 Hz the plan's own error (the drives' straight lines between set points against the curved
   // actuator law, at mid-period) is 3·10⁻⁵ mm, well above the 10⁻⁶ mm the run's files are written to.
   const auto planned = servo_test_plan(slow, dir, "examples/programs/ch5_line.ngc", 250.0);
-  const double plan_error = planned.run.max_path_error_mm;
+  const double plan_error = planned.run.motion.max_path_error_mm;
   ASSERT_GT(plan_error, 2e-5);
   double previous = std::numeric_limits<double>::infinity();
   std::vector<double> errors;
@@ -239,7 +239,7 @@ TEST(ServoProgram, TheTicksFileHoldsWhatTheSummarySays) {
   }
   ASSERT_FALSE(csv.error().has_value());
   EXPECT_EQ(rows, run->summary.ticks);
-  EXPECT_EQ(rows, planned.run.ticks);
+  EXPECT_EQ(rows, planned.run.motion.ticks);
   for (int j = 0; j < 6; ++j)
     EXPECT_NEAR(largest[j], run->summary.drive[j].max_following_error, 1e-4 * largest[j] + 1e-12) << j;
   // The summary's maximum also counts the mid-periods.

@@ -1,0 +1,49 @@
+#pragma once
+// The files of a planned run: DIR/actuators.csv (time and every actuator position per servo tick),
+// DIR/path.csv (commanded tool pose per tick, program coordinates, with the source line), DIR/summary.json,
+// and for the analyses that listened DIR/forces.csv (drive forces: total, static, dynamic; drive power),
+// DIR/response.csv (the elastic machine's deviation from the commanded pose) and DIR/deflection.csv (the
+// tool's deflection under the process load). The files join an OutputSet (io/output_set.hpp): they replace
+// the previous run's only together, when the whole run succeeded, so a failed run leaves the previous run
+// complete and nothing of its own.
+#include <nlohmann/json.hpp>
+
+#include "analyses/plan_analyses.hpp"
+#include "io/buffered_file.hpp"
+#include "io/output_set.hpp"
+#include "machine/machine.hpp"
+#include "planning/motion_plan.hpp"
+#include "planning/tick_observer.hpp"
+
+namespace pkm::formats {
+
+/// Listens to the ticks of a run (actuators.csv, path.csv) and, through analysis_sinks(), to its analyses.
+class PlanFiles final : public planning::TickObserver {
+ public:
+  PlanFiles(const Machine& machine, const analyses::PlanAnalysisOptions& analyses);
+  PlanFiles(const PlanFiles&) = delete;
+  PlanFiles& operator=(const PlanFiles&) = delete;
+
+  /// Stages the files in `outputs` (which must have its directory) and writes their header rows.
+  Status open(OutputSet& outputs);
+  Status on_tick(const planning::ServoTick& tick, const planning::RunMonitor& monitor) override;
+  /// The rows of forces.csv, response.csv and deflection.csv, for the analyses the options named.
+  analyses::PlanAnalysisSinks analysis_sinks();
+  /// Writes summary.json and completes every file in the set (which the caller commits).
+  Status finish(const nlohmann::json& summary);
+
+ private:
+  void open_forces();
+  const Machine& machine_;
+  analyses::PlanAnalysisOptions analyses_;
+  int actuators_ = 0;
+  bool angular_ = false;
+  BufferedStagedFile actuators_csv_, path_csv_, summary_file_, forces_csv_, response_csv_, deflection_csv_;
+};
+
+/// summary.json of a planned run (units in the key names): the motion, the machine's limits and warnings,
+/// and a "dynamics" and a "stiffness" block for the analyses that listened.
+nlohmann::json plan_summary_json(const planning::MotionPlan& plan, const Machine& machine,
+                                 const analyses::PlanRun& run);
+
+}  // namespace pkm::formats
