@@ -10,10 +10,8 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "io/atomic_file.hpp"
 #include "number_options.hpp"
-#include "pipeline/load_program.hpp"
-#include "planning/motion_plan.hpp"
+#include "pipeline/modes_margin_job.hpp"
 #include "planning/path_sampling.hpp"
 #include "program_options.hpp"
 #include "progress_display.hpp"
@@ -83,33 +81,16 @@ int run_modes_margin(const ModesMarginArguments& a) {
   auto machine = load_machine_or_report(a.machine_path);
   if (!machine) return report_error(command, machine.error());
   ProgressDisplay progress("modes-margin", "reading the program");
-  auto program = pipeline::load_program_for(*machine, a.program_path, a.program.options());
-  if (!program) return report_error(command, program.error());
-  planning::PlanOptions plan_options;
-  plan_options.progress = progress.sink();
-  auto plan = planning::plan_motion(*machine, *program, plan_options);
-  if (!plan) return report_error(command, plan.error());
-  workspace::ProgramModesMarginOptions options;
-  options.samples = a.samples;
-  report_progress(plan_options.progress, "assembly-mode margin along the path");
-  auto result = workspace::modes_margin_along_plan(*machine, *plan, options);
+  pipeline::ModesMarginJob job{a.program_path, a.program.options(), {}, a.out_path, progress.sink()};
+  job.margin.samples = a.samples;
+  auto result = pipeline::run_modes_margin_job(*machine, job);
   progress.finish();
   if (!result) return report_error(command, result.error());
-  // Everything is computed before the file is touched: a failure above leaves a previous CSV as it was.
-  if (!a.out_path.empty()) {
-    if (Status s =
-            write_file_atomically(a.out_path, workspace::modes_margin_csv(*machine->mechanism, *result));
-        !s) {
-      return report_error(command, s.error());
-    }
-  }
   if (a.json) {
-    nlohmann::json j = workspace::modes_margin_summary_json(*machine, *result);
-    if (!a.out_path.empty()) j["out"] = a.out_path;
-    print_json(j);
+    print_json(result->summary);
     return 0;
   }
-  print_modes_margin(*machine, *result, a);
+  print_modes_margin(*machine, result->margin, a);
   return 0;
 }
 

@@ -8,17 +8,12 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "io/atomic_file.hpp"
-#include "io/output_set.hpp"
-#include "pipeline/load_program.hpp"
+#include "pipeline/optimize_job.hpp"
 #include "planning/motion_plan.hpp"
-#include "program/gcode_writer.hpp"
 #include "program/part_program.hpp"
 #include "program_options.hpp"
 #include "progress_display.hpp"
 #include "redundancy_options.hpp"
-#include "report/optimize_report.hpp"
-#include "report/report_html.hpp"
 
 namespace pkm::cli {
 
@@ -87,59 +82,22 @@ void add_optimize_command(CLI::App& app, int& exit_code) {
       exit_code = report_error("optimize", options.error());
       return;
     }
-    if (Status lines = statics::check_load_lines(options->loads, *program_path); !lines) {
-      exit_code =
-          report_error("optimize", make_error(lines.error().code, "--load: " + lines.error().message));
-      return;
-    }
     auto machine = load_machine_or_report(*machine_path);
     if (!machine) {
       exit_code = report_error("optimize", machine.error());
       return;
     }
-    auto program = pipeline::load_program_for(*machine, *program_path, program_arguments->options());
-    if (!program) {
-      exit_code = report_error("optimize", program.error());
-      return;
-    }
-    ProgressDisplay progress("optimize", "choosing the free coordinates");
-    auto result = redundancy::optimize_program(*program, *machine, *options);
+    pipeline::OptimizeJob job{
+        *program_path, program_arguments->options(), std::move(*options), *out_path, *report_file, {}};
+    ProgressDisplay progress("optimize", "reading the program");
+    job.progress = progress.sink();
+    auto result = pipeline::run_optimize_job(*machine, job);
     progress.finish();
     if (!result) {
       exit_code = report_error("optimize", result.error());
       return;
     }
-    nlohmann::json summary = redundancy::optimize_summary_json(*result, *options);
-    summary["machine"] = *machine_path;
-    program::GcodeWriteOptions write;
-    write.header_comments = {
-        fmt::format("pkm optimize: {} law ({} solver), free {} on {}", arguments->law, arguments->solver,
-                    arguments->free, machine->name),
-        fmt::format("from {}; sum of max strut increments {:.3f} mm (held constant: {:.3f} mm)",
-                    *program_path, summary["opt_sum_mm"].get<double>(),
-                    summary["const_sum_mm"].get<double>())};
-    auto text = program::write_gcode(result->program, write);
-    if (!text) {
-      exit_code = report_error("optimize", text.error());
-      return;
-    }
-    // The program and the report replace the previous ones together or not at all.
-    OutputSet outputs{"optimize"};
-    auto staged_program = outputs.stage_file(*out_path);
-    Status written = staged_program ? write_file_atomically(*staged_program, *text) : staged_program.error();
-    summary["out"] = *out_path;
-    if (written && !report_file->empty()) {
-      auto staged_report = outputs.stage_file(*report_file);
-      auto data = report::optimize_report(*machine, *program, *result, *options, summary, *out_path);
-      written = !staged_report ? Status(staged_report.error())
-                : !data        ? Status(data.error())
-                               : report::write_report_html(*staged_report, *data);
-    }
-    if (written) written = outputs.commit();
-    if (!written) {
-      exit_code = report_error("optimize", written.error());
-      return;
-    }
+    const nlohmann::json& summary = result->summary;
     if (*json) {
       print_json(summary);
       return;

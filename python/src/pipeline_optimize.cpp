@@ -6,14 +6,12 @@
 #include <limits>
 
 #include "bindings.hpp"
-#include "io/atomic_file.hpp"
 #include "json_to_python.hpp"
-#include "pipeline/load_program.hpp"
+#include "pipeline/optimize_job.hpp"
 #include "pipeline_bindings.hpp"
 #include "pipeline_law_options.hpp"
 #include "pipeline_program_arrays.hpp"
 #include "pipeline_support.hpp"
-#include "program/gcode_writer.hpp"
 
 namespace pkm::python {
 
@@ -24,32 +22,16 @@ struct OptimizeRun {
   nlohmann::json summary;
 };
 
+// The library's optimize (pipeline/optimize_job.hpp, as `pkm optimize` runs it).
 Result<OptimizeRun> run_optimize(const Machine& machine, const std::string& program_path,
                                  const pipeline::ProgramOptions& program_options,
                                  const LawArguments& arguments, const std::string& out_path) {
   auto options = optimize_options(arguments);
   if (!options) return options.error();
-  auto program = pipeline::load_program_for(machine, program_path, program_options);
-  if (!program) return program.error();
-  auto result = redundancy::optimize_program(*program, machine, *options);
-  if (!result) return result.error();
-  OptimizeRun run;
-  run.summary = redundancy::optimize_summary_json(*result, *options);
-  run.summary["machine"] = machine.source;
-  if (!out_path.empty()) {
-    program::GcodeWriteOptions write;
-    write.header_comments = {
-        fmt::format("pkm optimize: {} law ({} solver), free {} on {}", arguments.law, arguments.solver,
-                    arguments.free, machine.name),
-        fmt::format("from {}; sum of max strut increments {:.3f} mm (held constant: {:.3f} mm)", program_path,
-                    run.summary["opt_sum_mm"].get<double>(), run.summary["const_sum_mm"].get<double>())};
-    auto text = program::write_gcode(result->program, write);
-    if (!text) return text.error();
-    if (Status written = write_file_atomically(out_path, *text); !written) return written.error();
-    run.summary["out"] = out_path;
-  }
-  run.result = std::move(*result);
-  return run;
+  auto done = pipeline::run_optimize_job(
+      machine, {program_path, program_options, std::move(*options), out_path, {}, {}});
+  if (!done) return done.error();
+  return OptimizeRun{std::move(done->result), std::move(done->summary)};
 }
 
 py::dict metrics_arrays(const redundancy::TrajectoryMetrics& metrics) {
