@@ -93,6 +93,7 @@ lint: deps
 	@cppcheck -j $(JOBS) --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
 		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps linuxcnc/pkmkins_bridge.cpp
 	@/usr/bin/python3 scripts/function-sizes.py --baseline scripts/function-sizes-allowed.txt src apps python/src linuxcnc > /dev/null
+	@/usr/bin/python3 scripts/include-order.py
 	@echo "lint: clean"
 
 # The G-code conformance golden files must be what LinuxCNC's rs274 answers today (installs linuxcnc-uspace);
