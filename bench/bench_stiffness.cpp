@@ -5,7 +5,6 @@
 // lengths of the same poses through the same interface, in the same run, for the ratio.
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <vector>
 
 #include "bench_support.hpp"
@@ -23,20 +22,9 @@ void BM_StrutCompliancePerPoint(benchmark::State& state) {
     return;
   }
   DurationHistogram time(10'000);
-  using Clock = std::chrono::steady_clock;
-  std::size_t k = 0;
-  for (auto _ : state) {
-    const Clock::time_point started = Clock::now();
-    auto compliance = stiffness::strut_compliance(*machine.mechanism, *parameters, poses[k]);
-    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
-    if (!compliance) {
-      state.SkipWithError(compliance.error().message.c_str());
-      break;
-    }
-    benchmark::DoNotOptimize(compliance);
-    k = k + 1 == poses.size() ? 0 : k + 1;
-  }
-  bench::record_distribution(state, time);
+  bench::time_each_pose(state, poses, time, [&](const Pose& pose) {
+    return stiffness::strut_compliance(*machine.mechanism, *parameters, pose);
+  });
 }
 BENCHMARK(BM_StrutCompliancePerPoint)->Unit(benchmark::kMicrosecond);
 

@@ -99,4 +99,25 @@ inline void time_inverse_kinematics(benchmark::State& state, const Mechanism& me
   record_distribution(state, time);
 }
 
+/// Times `call(pose)` on `poses` in turn, every call on its own, into `time` and its counters
+/// (record_distribution); `call` returns a Result, whose error stops the benchmark.
+template <class Call>
+void time_each_pose(benchmark::State& state, const std::vector<Pose>& poses, DurationHistogram& time,
+                    Call call) {
+  using Clock = std::chrono::steady_clock;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Clock::time_point started = Clock::now();
+    auto result = call(poses[k]);
+    time.add(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started).count());
+    if (!result) {
+      state.SkipWithError(result.error().message.c_str());
+      break;
+    }
+    benchmark::DoNotOptimize(result);
+    k = k + 1 == poses.size() ? 0 : k + 1;
+  }
+  record_distribution(state, time);
+}
+
 }  // namespace pkm::bench

@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "dynamics/map_point_counts.hpp"
+
 namespace pkm::dynamics {
 namespace {
 
@@ -49,32 +51,9 @@ std::vector<FrequencyMapPoint> frequency_map(const Machine& machine, const Elast
 }
 
 FrequencyMapSummary summarise_frequency_map(const std::vector<FrequencyMapPoint>& points) {
-  FrequencyMapSummary s;
-  s.points = static_cast<int>(points.size());
-  for (int i = 0; i < s.points; ++i) {
-    const FrequencyMapPoint& p = points[i];
-    switch (p.status) {
-      case MapPointStatus::ok:
-        ++s.with_frequency;
-        if (s.lowest_index < 0 || p.lowest_frequency_Hz < points[s.lowest_index].lowest_frequency_Hz) {
-          s.lowest_index = i;
-        }
-        if (s.highest_index < 0 || p.lowest_frequency_Hz > points[s.highest_index].lowest_frequency_Hz) {
-          s.highest_index = i;
-        }
-        break;
-      case MapPointStatus::unreachable:
-        ++s.unreachable;
-        break;
-      case MapPointStatus::out_of_range:
-        ++s.out_of_range;
-        break;
-      case MapPointStatus::singular:
-        ++s.singular;
-        break;
-    }
-  }
-  return s;
+  const dynamics::MapPointCounts c =
+      dynamics::count_map_points(points, [](const FrequencyMapPoint& p) { return p.lowest_frequency_Hz; });
+  return {c.points, c.with_value, c.unreachable, c.out_of_range, c.singular, c.lowest_index, c.highest_index};
 }
 
 }  // namespace pkm::dynamics

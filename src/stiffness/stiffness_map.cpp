@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "dynamics/map_point_counts.hpp"
 #include "dynamics/pose_grid_columns.hpp"
 #include "io/output_file.hpp"
 
@@ -76,30 +77,9 @@ Result<std::vector<StiffnessMapPoint>> stiffness_map(const std::vector<Pose>& po
 }
 
 StiffnessMapSummary summarise_stiffness_map(const std::vector<StiffnessMapPoint>& points) {
-  StiffnessMapSummary s;
-  s.points = static_cast<int>(points.size());
-  for (int i = 0; i < s.points; ++i) {
-    const StiffnessMapPoint& p = points[i];
-    switch (p.status) {
-      case MapPointStatus::ok:
-        ++s.with_stiffness;
-        if (s.lowest_index < 0 || p.lowest_stiffness_N_um < points[s.lowest_index].lowest_stiffness_N_um)
-          s.lowest_index = i;
-        if (s.highest_index < 0 || p.lowest_stiffness_N_um > points[s.highest_index].lowest_stiffness_N_um)
-          s.highest_index = i;
-        break;
-      case MapPointStatus::unreachable:
-        ++s.unreachable;
-        break;
-      case MapPointStatus::out_of_range:
-        ++s.out_of_range;
-        break;
-      case MapPointStatus::singular:
-        ++s.singular;
-        break;
-    }
-  }
-  return s;
+  const dynamics::MapPointCounts c =
+      dynamics::count_map_points(points, [](const StiffnessMapPoint& p) { return p.lowest_stiffness_N_um; });
+  return {c.points, c.with_value, c.unreachable, c.out_of_range, c.singular, c.lowest_index, c.highest_index};
 }
 
 std::string stiffness_map_csv(const Mechanism& mechanism, const std::vector<Pose>& poses,
