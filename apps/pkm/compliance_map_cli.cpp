@@ -40,7 +40,7 @@ int run_compliance_map(const ComplianceMapArguments& arguments) {
     return compliance_map_error("--out", written.error());
   }
   const auto s = stiffness::summarise_stiffness_map(*points);
-  const double share = s.points > 0 ? static_cast<double>(s.with_stiffness) / s.points : 0.0;
+  const double share = s.points > 0 ? static_cast<double>(s.with_value) / s.points : 0.0;
   const auto pose_at = [&](int index) -> nlohmann::json {
     if (index < 0) return nullptr;
     return user_from_pose(mech, grid->poses[index]);
@@ -64,7 +64,7 @@ int run_compliance_map(const ComplianceMapArguments& arguments) {
                 {"step_mm", grid->grid.step_mm},
                 {"points_per_axis", static_cast<int>(grid->points_per_axis)},
                 {"points", s.points},
-                {"with_stiffness", s.with_stiffness},
+                {"with_stiffness", s.with_value},
                 {"reachable_share", share},
                 {"unreachable", s.unreachable},
                 {"out_of_range", s.out_of_range},
@@ -85,7 +85,7 @@ int run_compliance_map(const ComplianceMapArguments& arguments) {
   std::cout << fmt::format(
       "  {} points ({:.0f} × {:.0f}): {} with a value ({:.1f} %), {} unreachable, {} beyond the actuators' "
       "range, {} singular\n",
-      s.points, grid->points_per_axis, grid->points_per_axis, s.with_stiffness, 100.0 * share, s.unreachable,
+      s.points, grid->points_per_axis, grid->points_per_axis, s.with_value, 100.0 * share, s.unreachable,
       s.out_of_range, s.singular);
   if (s.lowest_index >= 0) {
     const Eigen::Vector3d& d = (*points)[s.lowest_index].direction;

@@ -56,7 +56,7 @@ int run_modes_map(const ModesMapArguments& arguments) {
       !written) {
     return modes_map_error("--out", written.error());
   }
-  const double share = s.points > 0 ? static_cast<double>(s.with_frequency) / s.points : 0.0;
+  const double share = s.points > 0 ? static_cast<double>(s.with_value) / s.points : 0.0;
   const auto at = [&](int index) -> nlohmann::json {
     if (index < 0) return nullptr;
     return user_from_pose(mech, (*poses)[index]);
@@ -74,7 +74,7 @@ int run_modes_map(const ModesMapArguments& arguments) {
                 {"step_mm", grid.step_mm},
                 {"points_per_axis", static_cast<int>(side)},
                 {"points", s.points},
-                {"with_frequency", s.with_frequency},
+                {"with_frequency", s.with_value},
                 {"reachable_share", share},
                 {"unreachable", s.unreachable},
                 {"out_of_range", s.out_of_range},
@@ -93,7 +93,7 @@ int run_modes_map(const ModesMapArguments& arguments) {
       "  {} points ({:.0f} × {:.0f}): {} with a frequency ({:.1f} %), {} unreachable, {} beyond the "
       "actuators' "
       "range, {} singular or unstable\n",
-      s.points, side, side, s.with_frequency, 100.0 * share, s.unreachable, s.out_of_range, s.singular);
+      s.points, side, side, s.with_value, 100.0 * share, s.unreachable, s.out_of_range, s.singular);
   if (s.lowest_index >= 0) {
     std::cout << fmt::format("  lowest   {:10.3f} Hz at {}\n", points[s.lowest_index].lowest_frequency_Hz,
                              map_pose_text(mech, (*poses)[s.lowest_index]));

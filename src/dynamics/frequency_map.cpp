@@ -51,9 +51,7 @@ std::vector<FrequencyMapPoint> frequency_map(const Machine& machine, const Elast
 }
 
 FrequencyMapSummary summarise_frequency_map(const std::vector<FrequencyMapPoint>& points) {
-  const dynamics::MapPointCounts c =
-      dynamics::count_map_points(points, [](const FrequencyMapPoint& p) { return p.lowest_frequency_Hz; });
-  return {c.points, c.with_value, c.unreachable, c.out_of_range, c.singular, c.lowest_index, c.highest_index};
+  return dynamics::count_map_points(points, [](const FrequencyMapPoint& p) { return p.lowest_frequency_Hz; });
 }
 
 }  // namespace pkm::dynamics

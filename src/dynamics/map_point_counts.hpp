@@ -3,9 +3,18 @@
 // points have a value, why the others have none, and where the lowest and the highest values are.
 #include <vector>
 
-#include "dynamics/frequency_map.hpp"
-
 namespace pkm::dynamics {
+
+/// Why a map point has a value (a frequency, a stiffness) or not.
+enum class MapPointStatus {
+  ok,            ///< the value is there
+  unreachable,   ///< no actuator values reach the pose
+  out_of_range,  ///< the actuators would leave the machine's range (actuator_min / actuator_max)
+  singular,      ///< singular, unstable (ω² ≤ 0) or no static equilibrium found
+};
+
+/// "ok", "unreachable", "out_of_range", "singular": the words the map's CSV uses.
+const char* to_string(MapPointStatus status);
 
 struct MapPointCounts {
   int points = 0;

@@ -77,9 +77,8 @@ Result<std::vector<StiffnessMapPoint>> stiffness_map(const std::vector<Pose>& po
 }
 
 StiffnessMapSummary summarise_stiffness_map(const std::vector<StiffnessMapPoint>& points) {
-  const dynamics::MapPointCounts c =
-      dynamics::count_map_points(points, [](const StiffnessMapPoint& p) { return p.lowest_stiffness_N_um; });
-  return {c.points, c.with_value, c.unreachable, c.out_of_range, c.singular, c.lowest_index, c.highest_index};
+  return dynamics::count_map_points(points,
+                                    [](const StiffnessMapPoint& p) { return p.lowest_stiffness_N_um; });
 }
 
 std::string stiffness_map_csv(const Mechanism& mechanism, const std::vector<Pose>& poses,

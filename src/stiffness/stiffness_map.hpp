@@ -42,15 +42,7 @@ StiffnessMapPoint lowest_translational_stiffness(const ToolCompliance& complianc
 Result<std::vector<StiffnessMapPoint>> stiffness_map(const std::vector<Pose>& poses,
                                                      const ComplianceAtPose& compliance);
 
-struct StiffnessMapSummary {
-  int points = 0;
-  int with_stiffness = 0;
-  int unreachable = 0;
-  int out_of_range = 0;
-  int singular = 0;
-  int lowest_index = -1;  ///< the weakest point (the first of equals); -1 when none has a value
-  int highest_index = -1;
-};
+using StiffnessMapSummary = dynamics::MapPointCounts;
 StiffnessMapSummary summarise_stiffness_map(const std::vector<StiffnessMapPoint>& points);
 
 /// The CSV: the pose columns of `--pose` (dynamics/pose_grid_columns.hpp), lowest_stiffness_N_um,

@@ -125,7 +125,7 @@ TEST(FrequencyMap, EachPointIsTheLowestNaturalFrequencyOrSaysWhyNot) {
 
   const auto s = dynamics::summarise_frequency_map(map);
   EXPECT_EQ(s.points, 4);
-  EXPECT_EQ(s.with_frequency, 2);
+  EXPECT_EQ(s.with_value, 2);
   EXPECT_EQ(s.out_of_range, 2);
   EXPECT_EQ(s.unreachable + s.singular, 0);
   const int low = map[0].lowest_frequency_Hz < map[1].lowest_frequency_Hz ? 0 : 1;

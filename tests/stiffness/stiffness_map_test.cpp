@@ -204,7 +204,7 @@ TEST(StiffnessMap, AnyComplianceModelPlugsInAndItsErrorsSayWhy) {
   EXPECT_EQ(broken.error().message, "not this model");
   const auto s = stiffness::summarise_stiffness_map(*map);
   EXPECT_EQ(s.points, static_cast<int>(poses.size()));
-  EXPECT_EQ(s.with_stiffness, s.points);
+  EXPECT_EQ(s.with_value, s.points);
   for (const auto& cell : *map) {
     EXPECT_GE(cell.lowest_stiffness_N_um, (*map)[s.lowest_index].lowest_stiffness_N_um);
     EXPECT_LE(cell.lowest_stiffness_N_um, (*map)[s.highest_index].lowest_stiffness_N_um);
