@@ -13,6 +13,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "compliance_cli.hpp"
+#include "formats/stiffness_csv.hpp"
 #include "io/pose_input.hpp"
 #include "number_options.hpp"
 #include "stiffness/strut_compliance.hpp"
@@ -132,7 +133,7 @@ Result<stiffness::BodeData> write_compliance_bode(const Machine& machine, const 
       e.message = fmt::format("--pose {}: {}", a.pose_text, e.message);
     return e;
   }
-  if (Status written = stiffness::write_bode_csv(a.bode.path, *data); !written) {
+  if (Status written = formats::write_bode_csv(a.bode.path, *data); !written) {
     Error e = written.error();
     e.message = "--bode: " + e.message;
     return e;

@@ -10,12 +10,12 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "formats/modes_margin_output.hpp"
 #include "number_options.hpp"
 #include "pipeline/modes_margin_job.hpp"
 #include "planning/path_sampling.hpp"
 #include "program_options.hpp"
 #include "progress_display.hpp"
-#include "workspace/modes_margin_output.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -34,20 +34,20 @@ void print_modes_margin(const Machine& machine, const workspace::ProgramModesMar
                         const ModesMarginArguments& a) {
   const Mechanism& mech = *machine.mechanism;
   const workspace::ModesMarginSummary& s = r.summary;
-  const char* unit = workspace::margin_unit(mech);
+  const char* unit = formats::margin_unit(mech);
   std::cout << fmt::format("{} on {} ({}): {} poses over {:.3f} s\n", a.program_path, machine.name,
                            machine.source, s.samples, r.duration_s);
   if (s.min_margin) {
     const workspace::ModesMarginSample& low = r.samples[*s.min_margin];
     const workspace::ModesMarginSample& high = r.samples[*s.max_margin];
     std::cout << fmt::format("  assembly-mode margin   min {:.3f} {} at line {}, t {:.3f} s, {}\n",
-                             workspace::margin_in_user_unit(mech, low.margin.margin_mm), unit, low.line,
+                             formats::margin_in_user_unit(mech, low.margin.margin_mm), unit, low.line,
                              low.time_s, planning::program_pose_text(machine, low.margin.pose));
     std::cout << fmt::format("                         nearest singular configuration {}{}\n",
                              planning::program_pose_text(machine, low.margin.singular_pose),
                              low.margin.note.empty() ? "" : " (an upper bound: " + low.margin.note + ")");
     std::cout << fmt::format("                         max {:.3f} {} at line {}, t {:.3f} s\n",
-                             workspace::margin_in_user_unit(mech, high.margin.margin_mm), unit, high.line,
+                             formats::margin_in_user_unit(mech, high.margin.margin_mm), unit, high.line,
                              high.time_s);
   }
   if (s.margins_found < s.samples) {

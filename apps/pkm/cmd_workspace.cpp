@@ -15,12 +15,12 @@
 #include "cli_common.hpp"
 #include "cmd_workspace_grid.hpp"
 #include "commands.hpp"
+#include "formats/workspace_output.hpp"
 #include "io/pose_input.hpp"
 #include "number_options.hpp"
 #include "pipeline/calibration_workspace.hpp"
 #include "pipeline/run_report.hpp"
 #include "progress_display.hpp"
-#include "workspace/workspace_output.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -77,8 +77,8 @@ void print_workspace_summary(const Machine& machine, const workspace::WorkspaceM
                              e.max, info.unit, map_pose_text(mech, cells.pose(e.min_cell)),
                              map_pose_text(mech, cells.pose(e.max_cell)));
   }
-  std::cout << fmt::format("  written {}/{}, {}{}\n", a.out_dir, workspace::kWorkspaceCsv,
-                           workspace::kWorkspaceSummaryJson,
+  std::cout << fmt::format("  written {}/{}, {}{}\n", a.out_dir, formats::kWorkspaceCsv,
+                           formats::kWorkspaceSummaryJson,
                            a.report_path.empty() ? "" : fmt::format(", report {}", a.report_path));
 }
 
@@ -104,14 +104,14 @@ int run_workspace(const WorkspaceArguments& a) {
   // Everything is computed before DIR is touched: a failure above leaves no directory behind.
   OutputSet outputs{"workspace"};
   if (Status s = outputs.use_directory(a.out_dir); !s) return report_error("workspace", s.error());
-  if (Status s = workspace::stage_workspace_files(outputs, *machine, *map, summary); !s)
+  if (Status s = formats::stage_workspace_files(outputs, *machine, *map, summary); !s)
     return report_error("workspace", s.error());
   if (Status s = pipeline::stage_run_report(outputs, a.report_path); !s) {
     return report_error("workspace", s.error());
   }
   if (Status s = outputs.commit(); !s) return report_error("workspace", s.error());
   if (a.json) {
-    nlohmann::json j = workspace::workspace_summary_json(*machine, *map, summary);
+    nlohmann::json j = formats::workspace_summary_json(*machine, *map, summary);
     j["out"] = a.out_dir;
     if (!a.report_path.empty()) j["report"] = a.report_path;
     if (calibration_layer) {

@@ -7,6 +7,7 @@
 
 #include "cli_common.hpp"
 #include "compliance_cli.hpp"
+#include "formats/stiffness_csv.hpp"
 #include "io/pose_input.hpp"
 #include "progress_display.hpp"
 #include "stiffness/stiffness_map.hpp"
@@ -35,7 +36,7 @@ int run_compliance_map(const ComplianceMapArguments& arguments) {
   auto points = stiffness::stiffness_map(grid->poses, stiffness::strut_compliance_at(*machine, *parameters));
   progress.finish();
   if (!points) return compliance_map_error("", points.error());
-  if (Status written = stiffness::write_stiffness_map_csv(arguments.out_path, mech, grid->poses, *points);
+  if (Status written = formats::write_stiffness_map_csv(arguments.out_path, mech, grid->poses, *points);
       !written) {
     return compliance_map_error("--out", written.error());
   }

@@ -5,10 +5,10 @@
 
 #include "analysis_bindings.hpp"
 #include "bindings.hpp"
+#include "formats/workspace_output.hpp"
 #include "io/output_set.hpp"
 #include "json_to_python.hpp"
 #include "pipeline_support.hpp"
-#include "workspace/workspace_output.hpp"
 
 namespace pkm::python {
 
@@ -28,10 +28,10 @@ Result<WorkspaceRun> run_workspace(const Machine& machine, const workspace::Work
   if (!out_dir.empty()) {
     OutputSet outputs{"workspace"};
     if (Status s = outputs.use_directory(out_dir); !s) return s.error();
-    if (Status s = workspace::stage_workspace_files(outputs, machine, *map, summary); !s) return s.error();
+    if (Status s = formats::stage_workspace_files(outputs, machine, *map, summary); !s) return s.error();
     if (Status s = outputs.commit(); !s) return s.error();
   }
-  nlohmann::json summary_json = workspace::workspace_summary_json(machine, *map, summary);
+  nlohmann::json summary_json = formats::workspace_summary_json(machine, *map, summary);
   return WorkspaceRun{std::move(*map), std::move(summary_json)};
 }
 
@@ -86,7 +86,7 @@ void bind_workspace(py::module_& m) {
           const auto at = cells.indices(i);
           index.insert(index.end(), at.begin(), at.begin() + cells.axis_count());
           status.emplace_back(workspace::to_string(c.status));
-          limit.push_back(workspace::limit_text(c));
+          limit.push_back(formats::limit_text(c));
           det_sign.push_back(c.determinant_sign);
           condition.push_back(c.condition_number);
           delta_rho.push_back(c.error_amplification);

@@ -10,7 +10,6 @@
 //   estimating         the estimating-function method (§4): tact by tact, every strut ±1 step, the candidate
 //                      that best follows the path; a reference/offline mode.
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -56,7 +55,7 @@ struct InterpolateOptions {
   double amplification_spacing = 1.0;      ///< path units between the δρ samples
   ProgressSink progress;                   ///< told how far the run is, now and then
   /// Called after every period with what the drives did to the tool then, and the programmed point at the
-  /// period's end (base frame): traces and reports (contour_trace.hpp).
+  /// period's end (base frame): traces and reports (formats/contour_trace.hpp).
   std::function<void(const StepPeriod&, const PeriodContour&, const Eigen::Vector3d& path_mm)> on_period;
 };
 
@@ -101,8 +100,5 @@ Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path&
 /// whole steps, as every method starts (E3). For the header of step files, written before the run.
 Result<std::array<std::int64_t, kMaxActuators>> start_positions(const Machine& machine,
                                                                 const path::Path& path, double step_mm);
-
-/// The summary as JSON; the keys carry their units.
-nlohmann::json interpolation_summary_json(const InterpolateSummary& summary, const Machine& machine);
 
 }  // namespace pkm::interpolation

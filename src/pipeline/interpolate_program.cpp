@@ -3,7 +3,8 @@
 #include <fmt/format.h>
 
 #include "core/units.hpp"
-#include "interpolation/contour/contour_trace.hpp"
+#include "formats/contour_trace.hpp"
+#include "formats/interpolation_summary.hpp"
 #include "interpolation/drive_output/step_stream.hpp"
 #include "interpolation/drive_output/steps_csv.hpp"
 #include "io/atomic_file.hpp"
@@ -78,7 +79,7 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
   OutputSet outputs{"interpolate"};
   interpolation::StepsCsvWriter csv;
   interpolation::StepStreamWriter binary;
-  interpolation::ContourTraceWriter trace;
+  formats::ContourTraceWriter trace;
   std::vector<interpolation::StepSink*> sinks;
   if (files) {
     if (Status used = outputs.use_directory(job.out_directory); !used) return used.error();
@@ -110,7 +111,7 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
 
   InterpolateProgramResult result;
   result.blocks = plan->statistics.blocks;
-  result.json = interpolation::interpolation_summary_json(*summary, machine);
+  result.json = formats::interpolation_summary_json(*summary, machine);
   result.json["program"] = program->source;
   result.json["pkm_version"] = std::string(pkm_version());
   result.json["blocks"] = plan->statistics.blocks;

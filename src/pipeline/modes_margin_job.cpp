@@ -1,8 +1,8 @@
 #include "pipeline/modes_margin_job.hpp"
 
+#include "formats/modes_margin_output.hpp"
 #include "io/atomic_file.hpp"
 #include "planning/motion_plan.hpp"
-#include "workspace/modes_margin_output.hpp"
 
 namespace pkm::pipeline {
 
@@ -18,9 +18,9 @@ Result<ModesMarginJobResult> run_modes_margin_job(const Machine& machine, const 
   auto margin = workspace::modes_margin_along_plan(machine, *plan, job.margin);
   if (!margin) return margin.error();
   ModesMarginJobResult result{std::move(*margin), {}};
-  result.summary = workspace::modes_margin_summary_json(machine, result.margin);
+  result.summary = formats::modes_margin_summary_json(machine, result.margin);
   if (!job.out_path.empty()) {
-    const std::string csv = workspace::modes_margin_csv(*machine.mechanism, result.margin);
+    const std::string csv = formats::modes_margin_csv(*machine.mechanism, result.margin);
     if (Status written = write_file_atomically(job.out_path, csv); !written) return written.error();
     result.summary["out"] = job.out_path;
   }

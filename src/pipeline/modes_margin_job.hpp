@@ -22,7 +22,7 @@ struct ModesMarginJob {
 
 struct ModesMarginJobResult {
   workspace::ProgramModesMargin margin;
-  nlohmann::json summary;  ///< workspace::modes_margin_summary_json, with "out" when the CSV was written
+  nlohmann::json summary;  ///< formats::modes_margin_summary_json, with "out" when the CSV was written
 };
 
 /// Everything is computed before the file is touched: a failure leaves a previous CSV as it was.

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "formats/optimize_summary.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_set.hpp"
 #include "program/gcode_writer.hpp"
@@ -59,7 +60,7 @@ Result<OptimizeJobResult> run_optimize_job(const Machine& machine, const Optimiz
   auto result = redundancy::optimize_program(*program, machine, job.options);
   if (!result) return result.error();
   OptimizeJobResult r{std::move(*program), std::move(*result), {}};
-  r.summary = redundancy::optimize_summary_json(r.result, job.options);
+  r.summary = formats::optimize_summary_json(r.result, job.options);
   r.summary["machine"] = machine.source;
   if (!job.out_path.empty()) {
     r.summary["out"] = job.out_path;

@@ -24,7 +24,7 @@ struct OptimizeJob {
 struct OptimizeJobResult {
   program::CanonicalProgram program;  ///< as read, before the law
   redundancy::OptimizeResult result;
-  nlohmann::json summary;  ///< redundancy::optimize_summary_json with the machine and the written program
+  nlohmann::json summary;  ///< formats::optimize_summary_json with the machine and the written program
 };
 
 /// Refuses a load whose `lines` name no line of the program (naming the option), a program that leaves no

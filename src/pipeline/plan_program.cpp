@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "formats/optimize_summary.hpp"
 #include "formats/plan_files.hpp"
 #include "io/output_set.hpp"
 #include "pipeline/load_program.hpp"
@@ -111,7 +112,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
     report_progress(job.progress, "choosing the free coordinates");
     auto optimized = redundancy::optimize_program(*program, machine, *job.law);
     if (!optimized) return optimized.error();
-    result.law_summary = redundancy::optimize_summary_json(*optimized, *job.law);
+    result.law_summary = formats::optimize_summary_json(*optimized, *job.law);
     *program = std::move(optimized->program);
     result.law = std::move(*optimized);
   }

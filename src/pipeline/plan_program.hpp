@@ -45,7 +45,7 @@ struct PlanProgramResult {
   double planning_s = 0.0;                        ///< wall time of the planning itself (not the writing)
   nlohmann::json summary;                         ///< summary.json as written
   std::optional<redundancy::OptimizeResult> law;  ///< with the law's job: what it chose
-  nlohmann::json law_summary;                     ///< its summary (redundancy::optimize_summary_json)
+  nlohmann::json law_summary;                     ///< its summary (formats::optimize_summary_json)
   std::vector<std::string> program_notes;  ///< how the interpreter read the program (no tool table …)
 };
 

@@ -8,6 +8,7 @@
 
 #include "core/rotation.hpp"
 #include "core/units.hpp"
+#include "formats/stiffness_csv.hpp"
 #include "io/buffered_file.hpp"
 #include "io/json_text.hpp"
 #include "io/output_set.hpp"
@@ -171,7 +172,7 @@ Result<nlohmann::json> stage_frequency_response(const Machine& machine,
   const redundancy::PathPoint& point = points.points[at];
   auto bode = stiffness::machine_bode(machine, Pose{point.position_mm, point.rotation}, {});
   if (!bode) return bode.error();
-  if (Status written = stiffness::write_bode_csv(outputs.staged_path(report::kBodeCsv), *bode); !written)
+  if (Status written = formats::write_bode_csv(outputs.staged_path(report::kBodeCsv), *bode); !written)
     return written.error();
   return nlohmann::json{{"file", report::kBodeCsv},
                         {"index", at},

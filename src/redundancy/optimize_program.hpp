@@ -3,7 +3,6 @@
 // tool point + axis) in, the same program with the free coordinates chosen by a law out — blocks cut into
 // equal parts of the same kind, the feed of every part the feed of its block (the contour speed is kept).
 #include <array>
-#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "machine/machine.hpp"
@@ -57,8 +56,5 @@ Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program
 program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program,
                                           const ProgramPoints& points, const Trajectory& trajectory,
                                           const FreeCoordinates& free);
-
-/// Summary with const_sum_mm, opt_sum_mm, peak_force_const_N, peak_force_opt_N, energy_const_J, energy_opt_J…
-nlohmann::json optimize_summary_json(const OptimizeResult& result, const OptimizeOptions& options);
 
 }  // namespace pkm::redundancy

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 
+#include "formats/workspace_output.hpp"
 #include "io/input_file.hpp"
 #include "io/machine_file.hpp"
 #include "io/pose_input.hpp"
@@ -15,7 +16,6 @@
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
 #include "workspace/workspace_layers.hpp"
-#include "workspace/workspace_output.hpp"
 
 namespace pkm::report {
 namespace {
@@ -212,7 +212,7 @@ void workspace_scene(const Machine& machine, const nlohmann::json& summary, Scen
 
 Result<Machine> workspace_report_machine(const std::string& directory, const nlohmann::json& summary,
                                          const ReportOptions& options) {
-  const std::string summary_path = (fs::path(directory) / workspace::kWorkspaceSummaryJson).string();
+  const std::string summary_path = (fs::path(directory) / formats::kWorkspaceSummaryJson).string();
   std::string file = options.machine_file;
   if (file.empty()) file = workspace_summary_text(summary, "machine");
   if (file.empty()) {
@@ -235,7 +235,7 @@ Result<nlohmann::json> workspace_report_of(const std::string& directory, const n
                                            const ReportOptions& options) {
   auto machine = workspace_report_machine(directory, summary, options);
   if (!machine) return machine.error();
-  auto map = workspace_map_json((fs::path(directory) / workspace::kWorkspaceCsv).string(), summary);
+  auto map = workspace_map_json((fs::path(directory) / formats::kWorkspaceCsv).string(), summary);
   if (!map) return map.error();
   SceneBuilder scene(*machine, 0.0, 16, 1, 16);
   workspace_scene(*machine, summary, scene);
@@ -383,7 +383,7 @@ Result<nlohmann::json> workspace_report(const std::string& directory, const nloh
   try {
     return workspace_report_of(directory, summary, options);
   } catch (const nlohmann::json::exception& e) {
-    return workspace_report_error((fs::path(directory) / workspace::kWorkspaceSummaryJson).string(),
+    return workspace_report_error((fs::path(directory) / formats::kWorkspaceSummaryJson).string(),
                                   fmt::format("unexpected content: {}", e.what()));
   }
 }

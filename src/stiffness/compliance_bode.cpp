@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "core/units.hpp"
-#include "io/output_file.hpp"
 
 namespace pkm::stiffness {
 namespace {
@@ -81,23 +80,6 @@ Result<BodeData> machine_bode(const Machine& machine, const Pose& pose, const Bo
   auto linear = tool_dynamics(*model, pose, request.options);
   if (!linear) return linear.error();
   return bode_data(*linear, default_bode_entries(*machine.mechanism, linear->pose), *frequencies);
-}
-
-std::string bode_csv(const BodeData& data) {
-  std::string csv = "frequency_Hz";
-  for (const BodeEntry& e : data.entries) csv += fmt::format(",{0}_magnitude_um_N,{0}_phase_deg", e.name);
-  csv += '\n';
-  for (std::size_t k = 0; k < data.frequency_Hz.size(); ++k) {
-    csv += fmt::format("{:.9g}", data.frequency_Hz[k]);
-    for (std::size_t e = 0; e < data.entries.size(); ++e)
-      csv += fmt::format(",{:.9g},{:.6f}", data.magnitude_um_N[e][k], data.phase_deg[e][k]);
-    csv += '\n';
-  }
-  return csv;
-}
-
-Status write_bode_csv(const std::string& path, const BodeData& data) {
-  return write_output_file(path, bode_csv(data));
 }
 
 }  // namespace pkm::stiffness

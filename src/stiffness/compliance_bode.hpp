@@ -54,9 +54,4 @@ struct BodeRequest {
 /// file and the key), the linear model at the pose, the default entries over the requested range.
 Result<BodeData> machine_bode(const Machine& machine, const Pose& pose, const BodeRequest& request);
 
-/// The CSV: a header `frequency_Hz,<name>_magnitude_um_N,<name>_phase_deg,…` and one row per frequency,
-/// written atomically (io/atomic_file.hpp: no half-written file, also when the write fails).
-std::string bode_csv(const BodeData& data);
-Status write_bode_csv(const std::string& path, const BodeData& data);
-
 }  // namespace pkm::stiffness

@@ -6,7 +6,6 @@
 
 #include "dynamics/map_point_counts.hpp"
 #include "dynamics/pose_grid_columns.hpp"
-#include "io/output_file.hpp"
 
 namespace pkm::stiffness {
 namespace {
@@ -79,29 +78,6 @@ Result<std::vector<StiffnessMapPoint>> stiffness_map(const std::vector<Pose>& po
 StiffnessMapSummary summarise_stiffness_map(const std::vector<StiffnessMapPoint>& points) {
   return dynamics::count_map_points(points,
                                     [](const StiffnessMapPoint& p) { return p.lowest_stiffness_N_um; });
-}
-
-std::string stiffness_map_csv(const Mechanism& mechanism, const std::vector<Pose>& poses,
-                              const std::vector<StiffnessMapPoint>& points) {
-  std::string csv = fmt::format("{},lowest_stiffness_N_um,direction_x,direction_y,direction_z,status\n",
-                                fmt::join(dynamics::grid_pose_columns(mechanism), ","));
-  for (std::size_t i = 0; i < poses.size() && i < points.size(); ++i) {
-    csv += dynamics::grid_pose_cells(mechanism, poses[i]);
-    const StiffnessMapPoint& p = points[i];
-    if (p.status == MapPointStatus::ok) {
-      csv += fmt::format("{:.9g},{:.6f},{:.6f},{:.6f}", p.lowest_stiffness_N_um, p.direction.x(),
-                         p.direction.y(), p.direction.z());
-    } else {
-      csv += ",,,";
-    }
-    csv += fmt::format(",{}\n", dynamics::to_string(p.status));
-  }
-  return csv;
-}
-
-Status write_stiffness_map_csv(const std::string& path, const Mechanism& mechanism,
-                               const std::vector<Pose>& poses, const std::vector<StiffnessMapPoint>& points) {
-  return write_output_file(path, stiffness_map_csv(mechanism, poses, points));
 }
 
 }  // namespace pkm::stiffness

@@ -45,13 +45,4 @@ Result<std::vector<StiffnessMapPoint>> stiffness_map(const std::vector<Pose>& po
 using StiffnessMapSummary = dynamics::MapPointCounts;
 StiffnessMapSummary summarise_stiffness_map(const std::vector<StiffnessMapPoint>& points);
 
-/// The CSV: the pose columns of `--pose` (dynamics/pose_grid_columns.hpp), lowest_stiffness_N_um,
-/// direction_x, direction_y, direction_z (empty where there is none) and status ("ok", "unreachable",
-/// "out_of_range", "singular"); one row per pose, the grid's order (its first axis fastest).
-std::string stiffness_map_csv(const Mechanism& mechanism, const std::vector<Pose>& poses,
-                              const std::vector<StiffnessMapPoint>& points);
-/// The same written atomically (io/atomic_file.hpp).
-Status write_stiffness_map_csv(const std::string& path, const Mechanism& mechanism,
-                               const std::vector<Pose>& poses, const std::vector<StiffnessMapPoint>& points);
-
 }  // namespace pkm::stiffness

@@ -2,6 +2,7 @@
 // the percentiles ordered. No time is asserted: the machine running the tests is not ours to time.
 #include <gtest/gtest.h>
 
+#include "formats/interpolation_summary.hpp"
 #include "interpolation/interpolation_test_support.hpp"
 
 namespace pkm {
@@ -27,7 +28,7 @@ TEST(PeriodTimeSummary, DistributionOfEveryCarrierMethodIsCompleteAndOrdered) {
     EXPECT_LE(time.p99_9_us, time.max_us) << name;
     EXPECT_LE(time.over_budget, time.count) << name;
 
-    const nlohmann::json json = interpolation::interpolation_summary_json(summary, machine);
+    const nlohmann::json json = formats::interpolation_summary_json(summary, machine);
     for (const char* key :
          {"period_time_count", "period_time_us_p50", "period_time_us_p99", "period_time_us_p99_9",
           "period_time_us_max", "period_time_us_mean", "period_time_over_10us"}) {

@@ -16,6 +16,7 @@
 
 #include "cli/cli_support.hpp"
 #include "dynamics/pose_grid.hpp"
+#include "formats/stiffness_csv.hpp"
 #include "report/report_data.hpp"
 #include "stiffness/compliance_bode.hpp"
 #include "stiffness/stiffness_map.hpp"
@@ -61,7 +62,7 @@ TEST(StiffnessPlots, TheBodeCsvComesBackAsTheFrequencyResponse) {
   ASSERT_TRUE(data.ok()) << data.error().message;
   const std::string dir = stiffness_plots_dir("bode");
   const std::string path = dir + "/" + report::kBodeCsv;
-  ASSERT_TRUE(stiffness::write_bode_csv(path, *data).ok());
+  ASSERT_TRUE(formats::write_bode_csv(path, *data).ok());
   auto json = report::frequency_response_json(path);
   ASSERT_TRUE(json.ok()) << json.error().message;
   EXPECT_EQ((*json)["file"], "bode.csv");
@@ -88,7 +89,7 @@ TEST(StiffnessPlots, TheMapCsvComesBackAsAGridOfCells) {
   const auto map = stiffness_plots_map(machine);
   const std::string dir = stiffness_plots_dir("map");
   const std::string path = dir + "/" + report::kStiffnessMapCsv;
-  ASSERT_TRUE(stiffness::write_stiffness_map_csv(path, *machine.mechanism, map.poses, map.points).ok());
+  ASSERT_TRUE(formats::write_stiffness_map_csv(path, *machine.mechanism, map.poses, map.points).ok());
   auto json = report::stiffness_map_json(path);
   ASSERT_TRUE(json.ok()) << json.error().message;
   EXPECT_EQ((*json)["x_label"], "x_mm");
@@ -113,7 +114,7 @@ TEST(StiffnessPlots, TheMapCsvComesBackAsAGridOfCells) {
   EXPECT_GT(nulls, 0);
   // Beyond the cap every k-th cell: 41 per axis kept to 21.
   const auto fine = stiffness_plots_map(machine, 20);
-  ASSERT_TRUE(stiffness::write_stiffness_map_csv(path, *machine.mechanism, fine.poses, fine.points).ok());
+  ASSERT_TRUE(formats::write_stiffness_map_csv(path, *machine.mechanism, fine.poses, fine.points).ok());
   auto capped = report::stiffness_map_json(path, 25);
   ASSERT_TRUE(capped.ok());
   EXPECT_EQ((*capped)["x"].size(), 21u);
@@ -138,13 +139,13 @@ TEST(StiffnessPlots, APlansReportHasThePlotsWhenItsDirectoryHasTheFiles) {
   const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   stiffness::BodeRequest request;
   request.points = 20;
-  ASSERT_TRUE(stiffness::write_bode_csv(dir + "/bode.csv",
-                                        *stiffness::machine_bode(machine, machine.mechanism->home(), request))
+  ASSERT_TRUE(formats::write_bode_csv(dir + "/bode.csv",
+                                      *stiffness::machine_bode(machine, machine.mechanism->home(), request))
                   .ok());
   const auto map = stiffness_plots_map(machine);
-  ASSERT_TRUE(stiffness::write_stiffness_map_csv(dir + "/stiffness_map.csv", *machine.mechanism, map.poses,
-                                                 map.points)
-                  .ok());
+  ASSERT_TRUE(
+      formats::write_stiffness_map_csv(dir + "/stiffness_map.csv", *machine.mechanism, map.poses, map.points)
+          .ok());
   auto with = report::report_from_directory(dir);
   ASSERT_TRUE(with.ok()) << with.error().message;
   ASSERT_TRUE(with->contains("frequency_response"));

@@ -27,6 +27,7 @@
 
 #include "core/units.hpp"
 #include "dynamics/dynamics_test_support.hpp"
+#include "formats/stiffness_csv.hpp"
 #include "stiffness/compliance_bode.hpp"
 
 namespace pkm {
@@ -412,7 +413,7 @@ TEST(ComplianceBode, EntriesAreTheCompliancesMagnitudesAndPhasesAndTheCsvHoldsTh
     EXPECT_NEAR(decade, 0.01, 1e-5);
     EXPECT_LT(data->phase_deg[e].back(), -179.0);
   }
-  const std::string csv = stiffness::bode_csv(*data);
+  const std::string csv = formats::bode_csv(*data);
   std::istringstream lines(csv);
   std::string header;
   std::getline(lines, header);
@@ -426,12 +427,12 @@ TEST(ComplianceBode, EntriesAreTheCompliancesMagnitudesAndPhasesAndTheCsvHoldsTh
   const auto dir = std::filesystem::temp_directory_path() / "pkm_bode_test";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "bode.csv").string();
-  ASSERT_TRUE(stiffness::write_bode_csv(path, *data).ok());
+  ASSERT_TRUE(formats::write_bode_csv(path, *data).ok());
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
   EXPECT_EQ(text.str(), csv);
-  auto refused = stiffness::write_bode_csv((dir / "missing" / "bode.csv").string(), *data);
+  auto refused = formats::write_bode_csv((dir / "missing" / "bode.csv").string(), *data);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.error().code, ErrorCode::io);
   EXPECT_FALSE(std::filesystem::exists(dir / "missing"));

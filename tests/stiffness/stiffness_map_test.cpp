@@ -21,6 +21,7 @@
 #include "core/units.hpp"
 #include "dynamics/dynamics_test_support.hpp"
 #include "dynamics/pose_grid.hpp"
+#include "formats/stiffness_csv.hpp"
 
 namespace pkm {
 namespace {
@@ -218,7 +219,7 @@ TEST(StiffnessMap, TheCsvHasAPoseAndAValueOrAReasonPerRow) {
   const auto poses = stiffness_map_grid(machine.mechanism->home(), 400, 400);  // corners beyond the range
   auto map = stiffness::stiffness_map(poses, stiffness::strut_compliance_at(machine, *springs));
   ASSERT_TRUE(map.ok());
-  std::istringstream csv(stiffness::stiffness_map_csv(*machine.mechanism, poses, *map));
+  std::istringstream csv(formats::stiffness_map_csv(*machine.mechanism, poses, *map));
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(

@@ -16,11 +16,11 @@
 #include <string>
 
 #include "core/units.hpp"
+#include "formats/modes_margin_output.hpp"
 #include "io/pose_input.hpp"
 #include "pipeline/load_program.hpp"
 #include "planning/motion_plan.hpp"
 #include "test_support.hpp"
-#include "workspace/modes_margin_output.hpp"
 #include "workspace/modes_margin_program.hpp"
 #include "workspace/other_modes.hpp"
 
@@ -290,7 +290,7 @@ TEST(ModesMargin, AlongAProgramEverySampleHasItsLineAndTheSummaryIsTheirMinimum)
   EXPECT_GE(r->summary.min_real_modes, 2);
   EXPECT_LE(r->summary.min_real_modes, r->summary.max_real_modes);
   // The CSV has a row per sample under its header.
-  const std::string csv = workspace::modes_margin_csv(*machine.mechanism, *r);
+  const std::string csv = formats::modes_margin_csv(*machine.mechanism, *r);
   EXPECT_EQ(csv.rfind("time_s,line,x_mm,", 0), 0u) << csv.substr(0, 80);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 15);
   // No samples is a parameter error.

@@ -1,7 +1,7 @@
 // The files of a workspace map and their report: workspace.csv has a row per cell with the library's values
 // and the limit that stops it, summary.json the summary's counts and extremes, and the report's heat maps
 // (report/workspace_report.hpp) hold the files' cells, thinned about the centre where the grid is fine.
-#include "workspace/workspace_output.hpp"
+#include "formats/workspace_output.hpp"
 
 #include <gtest/gtest.h>
 
@@ -33,8 +33,7 @@ std::string ws_output_directory(const Machine& m, const workspace::WorkspaceMap&
   fs::remove_all(dir);
   OutputSet outputs;
   EXPECT_TRUE(outputs.use_directory(dir.string()).ok());
-  EXPECT_TRUE(
-      workspace::stage_workspace_files(outputs, m, map, workspace::summarise_workspace_map(map)).ok());
+  EXPECT_TRUE(formats::stage_workspace_files(outputs, m, map, workspace::summarise_workspace_map(map)).ok());
   EXPECT_TRUE(outputs.commit().ok());
   return dir.string();
 }
@@ -45,7 +44,7 @@ TEST(WorkspaceOutput, CsvHasARowPerCellWithTheLibrarysValues) {
   workspace::WorkspaceMapOptions options;
   options.stiffness = true;
   const workspace::WorkspaceMap map = test::ws_map_of(m, grid, options);
-  std::stringstream csv(workspace::workspace_csv(*m.mechanism, map));
+  std::stringstream csv(formats::workspace_csv(*m.mechanism, map));
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(
@@ -59,7 +58,7 @@ TEST(WorkspaceOutput, CsvHasARowPerCellWithTheLibrarysValues) {
     const std::vector<std::string> f = ws_output_fields(line);
     ASSERT_EQ(f.size(), 15u) << line;
     EXPECT_EQ(f[6], workspace::to_string(cell.status));
-    EXPECT_EQ(f[7], workspace::limit_text(cell));
+    EXPECT_EQ(f[7], formats::limit_text(cell));
     EXPECT_EQ(std::stoi(f[8]), cell.determinant_sign);
     EXPECT_NEAR(std::stod(f[10]), cell.error_amplification, 1e-8 * cell.error_amplification) << line;
     if (cell.status == CellStatus::ok) {
@@ -80,7 +79,7 @@ TEST(WorkspaceOutput, SummaryJsonHasTheCountsAndExtremes) {
   const auto grid = workspace::plane_section(m.mechanism->home(), dynamics::GridPlane::xz, 400, 100);
   const workspace::WorkspaceMap map = test::ws_map_of(m, grid);
   const workspace::WorkspaceMapSummary s = workspace::summarise_workspace_map(map);
-  const nlohmann::json j = workspace::workspace_summary_json(m, map, s);
+  const nlohmann::json j = formats::workspace_summary_json(m, map, s);
   EXPECT_EQ(j["kind"], "workspace");
   EXPECT_EQ(j["grid"]["kind"], "section");
   EXPECT_EQ(j["grid"]["axes"][1]["column"], "z_mm");
@@ -97,7 +96,7 @@ TEST(WorkspaceOutput, SummaryJsonHasTheCountsAndExtremes) {
   workspace::WorkspaceGrid tilted{m.mechanism->home(), {{0, 100.0, 50.0}, {4, 0.2, 0.1}}};
   const workspace::WorkspaceMap tilted_map = test::ws_map_of(m, tilted);
   const nlohmann::json t =
-      workspace::workspace_summary_json(m, tilted_map, workspace::summarise_workspace_map(tilted_map));
+      formats::workspace_summary_json(m, tilted_map, workspace::summarise_workspace_map(tilted_map));
   EXPECT_EQ(t["grid"]["axes"][1]["column"], "theta_deg");
   EXPECT_NEAR(t["grid"]["axes"][1]["step"].get<double>(), 5.729578, 1e-6);
 }

@@ -9,13 +9,13 @@
 #include "io/output_set.hpp"
 #include "workspace/workspace_summary.hpp"
 
-namespace pkm::workspace {
+namespace pkm::formats {
 
 inline constexpr const char* kWorkspaceCsv = "workspace.csv";
 inline constexpr const char* kWorkspaceSummaryJson = "summary.json";
 
 /// "q3_max", "base_joint_2", "condition_number", "" for none: which limit stops a cell (1-based numbers).
-std::string limit_text(const WorkspaceCell& cell);
+std::string limit_text(const workspace::WorkspaceCell& cell);
 
 /// The CSV column of a grid axis: "x_mm", "B_deg" (the pose columns of dynamics/pose_grid_columns.hpp).
 std::string axis_column(const Mechanism& mechanism, int coordinate);
@@ -23,16 +23,16 @@ std::string axis_column(const Mechanism& mechanism, int coordinate);
 /// The CSV: the pose columns of `--pose` (x_mm … in degrees), status, limit, det_sign, condition_number,
 /// delta_rho, S_x, S_y, S_z, then the optional layers the map has (workspace_layers.hpp). Values are empty
 /// where a cell has none.
-std::string workspace_csv(const Mechanism& mechanism, const WorkspaceMap& map);
+std::string workspace_csv(const Mechanism& mechanism, const workspace::WorkspaceMap& map);
 
 /// summary.json: "kind": "workspace", the machine file, the grid (centre and axes in the units users give:
 /// mm and degrees), the cells per status and per stopping actuator, the det J signs, and per layer its
 /// extremes over the ok cells with their poses.
-nlohmann::json workspace_summary_json(const Machine& machine, const WorkspaceMap& map,
-                                      const WorkspaceMapSummary& summary);
+nlohmann::json workspace_summary_json(const Machine& machine, const workspace::WorkspaceMap& map,
+                                      const workspace::WorkspaceMapSummary& summary);
 
 /// Stages workspace.csv and summary.json into `outputs` (its directory must be in use).
-Status stage_workspace_files(OutputSet& outputs, const Machine& machine, const WorkspaceMap& map,
-                             const WorkspaceMapSummary& summary);
+Status stage_workspace_files(OutputSet& outputs, const Machine& machine, const workspace::WorkspaceMap& map,
+                             const workspace::WorkspaceMapSummary& summary);
 
-}  // namespace pkm::workspace
+}  // namespace pkm::formats

@@ -11,13 +11,14 @@
 #include "interpolation/quantisation/step_period.hpp"
 #include "io/atomic_file.hpp"
 
-namespace pkm::interpolation {
+namespace pkm::formats {
 
 class ContourTraceWriter {
  public:
   Status open(const std::string& path);
   /// One row; buffered, no allocation per period once the buffer has grown.
-  Status add(const StepPeriod& period, const PeriodContour& contour, const Eigen::Vector3d& path_mm);
+  Status add(const interpolation::StepPeriod& period, const interpolation::PeriodContour& contour,
+             const Eigen::Vector3d& path_mm);
   Status finish();
 
  private:
@@ -28,4 +29,4 @@ class ContourTraceWriter {
   bool open_ = false;
 };
 
-}  // namespace pkm::interpolation
+}  // namespace pkm::formats

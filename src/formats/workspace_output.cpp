@@ -1,4 +1,4 @@
-#include "workspace/workspace_output.hpp"
+#include "formats/workspace_output.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,9 @@
 #include "io/pose_input.hpp"
 #include "io/version.hpp"
 
-namespace pkm::workspace {
+namespace pkm::formats {
+
+using namespace workspace;  // the maps and margins these files lay out
 namespace {
 
 // The layers a map has, in the CSV's order.
@@ -151,4 +153,4 @@ Status stage_workspace_files(OutputSet& outputs, const Machine& machine, const W
                                json_text(workspace_summary_json(machine, map, summary)) + "\n");
 }
 
-}  // namespace pkm::workspace
+}  // namespace pkm::formats

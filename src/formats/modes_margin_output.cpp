@@ -1,4 +1,4 @@
-#include "workspace/modes_margin_output.hpp"
+#include "formats/modes_margin_output.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,9 @@
 #include "dynamics/pose_grid_columns.hpp"
 #include "io/pose_input.hpp"
 
-namespace pkm::workspace {
+namespace pkm::formats {
+
+using namespace workspace;  // the maps and margins these files lay out
 namespace {
 
 // Nine significant digits, empty where there is no value (as workspace.csv).
@@ -112,4 +114,4 @@ nlohmann::json modes_margin_summary_json(const Machine& machine, const ProgramMo
   return j;
 }
 
-}  // namespace pkm::workspace
+}  // namespace pkm::formats

@@ -1,10 +1,10 @@
-#include "interpolation/contour/contour_trace.hpp"
+#include "formats/contour_trace.hpp"
 
 #include <fmt/format.h>
 
 #include <iterator>
 
-namespace pkm::interpolation {
+namespace pkm::formats {
 
 namespace {
 constexpr std::size_t kContourTraceChunk = std::size_t{1} << 20;
@@ -18,8 +18,8 @@ Status ContourTraceWriter::open(const std::string& path) {
   return ok_status();
 }
 
-Status ContourTraceWriter::add(const StepPeriod& period, const PeriodContour& contour,
-                               const Eigen::Vector3d& path_mm) {
+Status ContourTraceWriter::add(const interpolation::StepPeriod& period,
+                               const interpolation::PeriodContour& contour, const Eigen::Vector3d& path_mm) {
   if (!open_) return make_error(ErrorCode::io, "contour trace written before it was opened");
   auto out = std::back_inserter(buffer_);
   fmt::format_to(out, "{},{:.6f},{},{:.4e},", period.index, period.time_s, period.line, contour.max_error_mm);
@@ -47,4 +47,4 @@ Status ContourTraceWriter::finish() {
   return file_.commit();
 }
 
-}  // namespace pkm::interpolation
+}  // namespace pkm::formats
