@@ -5,8 +5,8 @@
 #include <array>
 #include <optional>
 
+#include "io/csv_text.hpp"
 #include "io/input_file.hpp"
-#include "io/measurement_csv.hpp"
 #include "io/printable_text.hpp"
 
 namespace pkm {

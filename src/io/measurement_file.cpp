@@ -8,9 +8,9 @@
 #include <unordered_map>
 
 #include "core/units.hpp"
+#include "io/csv_text.hpp"
 #include "io/fixture_file.hpp"
 #include "io/input_file.hpp"
-#include "io/measurement_csv.hpp"
 #include "io/printable_text.hpp"
 
 namespace pkm {

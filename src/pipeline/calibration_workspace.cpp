@@ -12,8 +12,8 @@
 #include <system_error>
 
 #include "calibration/plan_jacobian.hpp"
+#include "io/csv_text.hpp"
 #include "io/input_file.hpp"
-#include "io/measurement_csv.hpp"
 #include "io/output_manifest.hpp"
 #include "io/pose_input.hpp"
 #include "pipeline/calibration_setup.hpp"

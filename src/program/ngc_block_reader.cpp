@@ -22,9 +22,9 @@
 #include <limits>
 #include <unordered_map>
 
+#include "io/text_file.hpp"
 #include "program/ngc_line_parser.hpp"
 #include "program/ngc_parameter_store.hpp"
-#include "program/text_file.hpp"
 
 namespace pkm::program::ngc {
 

@@ -1,7 +1,7 @@
 // load_part_program: picks the reader by the file's content (program_format.hpp), or as the user says.
 #include "program/part_program.hpp"
 
-#include "program/text_file.hpp"
+#include "io/text_file.hpp"
 
 namespace pkm::program {
 

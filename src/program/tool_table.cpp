@@ -4,9 +4,9 @@
 
 #include <cmath>
 
+#include "io/text_file.hpp"
+#include "io/text_lines.hpp"
 #include "program/gcode_lexer.hpp"
-#include "program/text_file.hpp"
-#include "program/text_lines.hpp"
 
 namespace pkm::program {
 

@@ -8,9 +8,9 @@
 #include <limits>
 #include <map>
 
+#include "io/csv_text.hpp"
 #include "io/input_file.hpp"
 #include "io/machine_file.hpp"
-#include "io/measurement_csv.hpp"
 #include "io/pose_input.hpp"
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"

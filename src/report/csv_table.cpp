@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "io/csv_text.hpp"
 #include "io/input_file.hpp"
 
 namespace pkm::report {
@@ -24,13 +25,8 @@ Status CsvReader::open(const std::string& path) {
   if (!std::getline(in_, text_)) return make_error(ErrorCode::bad_input, fmt::format("{}: empty file", path));
   line_ = 1;
   if (!text_.empty() && text_.back() == '\r') text_.pop_back();
-  std::string_view header(text_);
-  while (true) {
-    const auto comma = header.find(',');
-    columns_.emplace_back(header.substr(0, comma));
-    if (comma == std::string_view::npos) break;
-    header.remove_prefix(comma + 1);
-  }
+  csv_text::Fields header(text_);
+  for (std::string_view column; header.next(column);) columns_.emplace_back(column);
   return ok_status();
 }
 
@@ -54,33 +50,28 @@ bool CsvReader::next(std::vector<double>& row) {
     if (!text_.empty() && text_.back() == '\r') text_.pop_back();
   } while (text_.empty());
   row.assign(columns_.size(), std::numeric_limits<double>::quiet_NaN());
-  const char* p = text_.data();
-  const char* const end = p + text_.size();
+  csv_text::Fields fields(text_);
+  std::string_view field;
   for (std::size_t k = 0; k < columns_.size(); ++k) {
-    const char* field_end = std::find(p, end, ',');
-    if (field_end != p) {
-      double value = 0.0;
-      const auto [stop, ec] = std::from_chars(p, field_end, value);
-      if (ec != std::errc() || stop != field_end) {
-        error_ = Error{ErrorCode::bad_input,
-                       fmt::format("{}:{}: {}: '{}' is not a number", path_, line_, columns_[k],
-                                   std::string_view(p, static_cast<std::size_t>(field_end - p)))};
-        return false;
-      }
-      row[k] = value;
-    }
-    const bool last = k + 1 == columns_.size();
-    if (field_end == end && !last) {
+    if (!fields.next(field)) {
       error_ = Error{ErrorCode::bad_input,
-                     fmt::format("{}:{}: {} of {} columns", path_, line_, k + 1, columns_.size())};
+                     fmt::format("{}:{}: {} of {} columns", path_, line_, k, columns_.size())};
       return false;
     }
-    if (last && field_end != end) {
+    if (field.empty()) continue;
+    double value = 0.0;
+    const auto [stop, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
+    if (ec != std::errc() || stop != field.data() + field.size()) {
       error_ = Error{ErrorCode::bad_input,
-                     fmt::format("{}:{}: more than the header's {} columns", path_, line_, columns_.size())};
+                     fmt::format("{}:{}: {}: '{}' is not a number", path_, line_, columns_[k], field)};
       return false;
     }
-    p = field_end + 1;
+    row[k] = value;
+  }
+  if (fields.next(field)) {
+    error_ = Error{ErrorCode::bad_input,
+                   fmt::format("{}:{}: more than the header's {} columns", path_, line_, columns_.size())};
+    return false;
   }
   return true;
 }

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "formats/workspace_output.hpp"
+#include "io/csv_text.hpp"
 #include "io/input_file.hpp"
 #include "io/machine_file.hpp"
 #include "io/pose_input.hpp"
@@ -70,12 +71,8 @@ Result<std::vector<ReportAxis>> workspace_summary_axes(const nlohmann::json& sum
 
 std::vector<std::string_view> workspace_csv_fields(std::string_view line) {
   std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  for (std::size_t comma = line.find(','); comma != std::string_view::npos; comma = line.find(',', start)) {
-    fields.push_back(line.substr(start, comma - start));
-    start = comma + 1;
-  }
-  fields.push_back(line.substr(start));
+  csv_text::Fields cursor(line);
+  for (std::string_view field; cursor.next(field);) fields.push_back(field);
   return fields;
 }
 

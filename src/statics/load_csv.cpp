@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/measurement_csv.hpp"
+#include "io/csv_text.hpp"
 #include "statics/load_keys.hpp"
 #include "statics/load_model.hpp"
 

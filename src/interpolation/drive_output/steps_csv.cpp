@@ -7,8 +7,9 @@
 #include <iterator>
 #include <system_error>
 
-#include "program/text_file.hpp"
-#include "program/text_lines.hpp"
+#include "io/csv_text.hpp"
+#include "io/text_file.hpp"
+#include "io/text_lines.hpp"
 
 namespace pkm::interpolation {
 
@@ -34,13 +35,12 @@ bool steps_csv_parse(std::string_view field, T& value) {
 template <std::size_t N>
 bool steps_csv_split(std::string_view line, std::array<std::string_view, N>& fields, std::size_t& count) {
   count = 0;
-  for (;;) {
+  csv_text::Fields cursor(line);
+  for (std::string_view field; cursor.next(field);) {
     if (count == N) return false;
-    const std::size_t comma = line.find(',');
-    fields[count++] = line.substr(0, comma);
-    if (comma == std::string_view::npos) return true;
-    line.remove_prefix(comma + 1);
+    fields[count++] = field;
   }
+  return true;
 }
 
 }  // namespace
@@ -101,13 +101,13 @@ Status StepsCsvWriter::finish() {
 }
 
 Result<StepsCsv> read_steps_csv(const std::string& path) {
-  auto text = program::read_text_file(path, "the steps file");
+  auto text = read_text_file(path, "the steps file");
   if (!text) return text.error();
   return parse_steps_csv(*text, path);
 }
 
 Result<StepsCsv> parse_steps_csv(std::string_view text, const std::string& path) {
-  program::TextLines lines(text);
+  TextLines lines(text);
   std::string_view line;
   int number = 0;
   auto fail = [&](const std::string& what) {

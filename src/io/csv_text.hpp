@@ -1,13 +1,14 @@
 #pragma once
-// The pieces the CSV readers share (io/measurement_file.hpp, io/fixture_file.hpp, statics/load_csv.cpp):
-// lines with their numbers, fields with their columns, `# key: value` header lines, numbers that must be
-// finite and of a sane size, and errors that name "FILE:LINE:COLUMN: KEY: reason" with the place also as
-// ErrorLocation fields.
+// The pieces every CSV reader shares (measurement, fixture and load files, the drive steps, a run's files
+// read back for the report): lines with their numbers, fields with their columns, `# key: value` header
+// lines, numbers that must be finite and of a sane size, and errors that name "FILE:LINE:COLUMN: KEY: reason"
+// with the place also as ErrorLocation fields.
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/result.hpp"
+#include "io/text_lines.hpp"
 
 namespace pkm::csv_text {
 
@@ -15,18 +16,42 @@ namespace pkm::csv_text {
 /// typing error or a unit mix-up, and would wreck the identification's conditioning if taken.
 inline constexpr double kMaxMagnitude = 1e6;
 
-/// The text split into lines, each with its 1-based number (CR LF ends accepted).
+/// The text split into lines, each with its 1-based number (io/text_lines.hpp, with CR LF ends accepted; an
+/// empty text is one empty line, as an editor shows it).
 class Lines {
  public:
-  explicit Lines(std::string_view text) : text_(text) {}
+  explicit Lines(std::string_view text) : walker_(text), empty_(text.empty()) {}
   /// The next line (without its end), false at the end of the text.
   bool next(std::string_view& line);
   int number() const { return number_; }
 
  private:
-  std::string_view text_;
-  std::size_t at_ = 0;
+  TextLines walker_;
+  bool empty_;
   int number_ = 0;
+};
+
+/// The fields of a comma-separated row one at a time, as they stand (no quoting, no trimming), without
+/// allocating: the one splitter of the CSV readers.
+class Fields {
+ public:
+  explicit Fields(std::string_view row) : row_(row) {}
+  /// The next field, false after the last (a row has at least one field, maybe empty).
+  bool next(std::string_view& field) {
+    if (done_) return false;
+    start_ = at_;
+    const std::size_t comma = row_.find(',', at_);
+    done_ = comma == std::string_view::npos;
+    field = row_.substr(at_, done_ ? std::string_view::npos : comma - at_);
+    at_ = done_ ? row_.size() : comma + 1;
+    return true;
+  }
+  /// The 0-based offset in the row of the field returned last.
+  std::size_t offset() const { return start_; }
+
+ private:
+  std::string_view row_;
+  std::size_t at_ = 0, start_ = 0;
   bool done_ = false;
 };
 

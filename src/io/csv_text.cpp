@@ -1,4 +1,4 @@
-#include "io/measurement_csv.hpp"
+#include "io/csv_text.hpp"
 
 #include <fmt/format.h>
 
@@ -12,18 +12,14 @@
 namespace pkm::csv_text {
 
 bool Lines::next(std::string_view& line) {
-  if (done_) return false;
-  const std::size_t end = std::min(text_.find('\n', at_), text_.size());
-  line = text_.substr(at_, end - at_);
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  ++number_;
-  if (end == text_.size()) done_ = true;
-  at_ = end + 1;
-  // A final line end does not start one more (empty) line.
-  if (done_ && line.empty() && number_ > 1) {
-    --number_;
-    return false;
+  if (empty_) {
+    if (number_ > 0) return false;
+    line = {};
+    number_ = 1;
+    return true;
   }
+  if (!walker_.next(line, number_)) return false;
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   return true;
 }
 
@@ -40,17 +36,13 @@ bool is_blank(std::string_view line) {
 
 std::vector<Field> split_row(std::string_view row) {
   std::vector<Field> fields;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = row.find(',', start);
-    const std::string_view raw =
-        row.substr(start, comma == std::string_view::npos ? row.npos : comma - start);
+  Fields cursor(row);
+  for (std::string_view raw; cursor.next(raw);) {
     std::size_t lead = 0;
     while (lead < raw.size() && (raw[lead] == ' ' || raw[lead] == '\t')) ++lead;
-    fields.push_back({trim(raw), static_cast<int>(start + lead) + 1});
-    if (comma == std::string_view::npos) return fields;
-    start = comma + 1;
+    fields.push_back({trim(raw), static_cast<int>(cursor.offset() + lead) + 1});
   }
+  return fields;
 }
 
 bool directive(std::string_view line, Directive& out) {

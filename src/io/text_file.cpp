@@ -1,11 +1,11 @@
-#include "program/text_file.hpp"
+#include "io/text_file.hpp"
 
 #include "io/input_file.hpp"
 
-namespace pkm::program {
+namespace pkm {
 
 Result<std::string> read_text_file(const std::string& path, const char* what) {
   return read_text_input(path, what);
 }
 
-}  // namespace pkm::program
+}  // namespace pkm

@@ -5,9 +5,9 @@
 
 #include "core/result.hpp"
 
-namespace pkm::program {
+namespace pkm {
 
 /// The file's text; `what` names it in the error ("PATH: cannot read part program: REASON").
 Result<std::string> read_text_file(const std::string& path, const char* what);
 
-}  // namespace pkm::program
+}  // namespace pkm

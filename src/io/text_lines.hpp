@@ -1,8 +1,9 @@
 #pragma once
-// Walking a text line by line with 1-based line numbers, without copying (G-code blocks, tool-table rows).
+// Walking a text line by line with 1-based line numbers, without copying: the one line walker (G-code
+// blocks, tool-table rows, the CSV readers through io/csv_text.hpp, the steps files).
 #include <string_view>
 
-namespace pkm::program {
+namespace pkm {
 
 class TextLines {
  public:
@@ -24,4 +25,4 @@ class TextLines {
   int number_ = 0;
 };
 
-}  // namespace pkm::program
+}  // namespace pkm
