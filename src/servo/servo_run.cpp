@@ -167,11 +167,191 @@ Status check_stability(const Machine& machine, const LoopDesign& design, const S
   return ok_status();
 }
 
+namespace {
+
+// The coupling check along the run: Σ_k |A'_ik| / J_m,i per drive, its largest and the lines above the limit.
+void check_coupling(const Machine& machine, const ServoPlant& plant, const ServoRunInput& input, int drives,
+                    ServoSummary& summary) {
+  const std::size_t ticks = input.time_s.size();
+  const ActuatorVector motors = motor_inertia(machine.servo, drives);
+  for (std::size_t i = 0; i < plant.machine_inertia.size(); ++i) {
+    const DriveVector ratios = coupling_ratios(plant.machine_inertia[i], motors, drives);
+    const int line = input.line[std::min(i * static_cast<std::size_t>(plant.stride), ticks - 1)];
+    for (int j = 0; j < drives; ++j) {
+      DriveServoSummary& d = summary.drive[j];
+      if (ratios[j] > d.max_coupling_ratio) {
+        d.max_coupling_ratio = ratios[j];
+        d.max_coupling_line = line;
+      }
+      if (ratios[j] >= kCouplingRatioLimit) servo_add_line(d.coupled_lines, line);
+    }
+  }
+}
+
+// The commanded path: the ticks, and between each two the cubic through the four around them at mid-period
+// ((−p0 + 9p1 + 9p2 − p3)/16), so that the polyline's chords leave out 1/16 of a curve's sagitta v²T²/8R and
+// a perfect servo's contour error is the plan's own path error; with the commanded speed at every tick.
+struct CommandedPath {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> time_s;
+  std::vector<double> speed;  ///< per tick, by central differences
+  double fastest = 0.0;
+};
+
+CommandedPath commanded_path(const ServoRunInput& input, const AxisMask& axes) {
+  const std::size_t ticks = input.time_s.size();
+  std::vector<Eigen::Vector3d> tick_points(ticks);
+  for (std::size_t k = 0; k < ticks; ++k)
+    tick_points[k] = servo_controlled_point(input.pose[k].position_mm, axes);
+  CommandedPath path{std::vector<Eigen::Vector3d>(2 * ticks - 1), std::vector<double>(2 * ticks - 1),
+                     std::vector<double>(ticks, 0.0), 0.0};
+  for (std::size_t k = 0; k < ticks; ++k) {
+    path.points[2 * k] = tick_points[k];
+    path.time_s[2 * k] = input.time_s[k];
+    if (k + 1 == ticks) break;
+    const Eigen::Vector3d& before = tick_points[k > 0 ? k - 1 : k];
+    const Eigen::Vector3d& after = tick_points[k + 2 < ticks ? k + 2 : k + 1];
+    path.points[2 * k + 1] = (9.0 * (tick_points[k] + tick_points[k + 1]) - before - after) / 16.0;
+    path.time_s[2 * k + 1] = 0.5 * (input.time_s[k] + input.time_s[k + 1]);
+  }
+  for (std::size_t k = 1; k + 1 < ticks; ++k) {
+    path.speed[k] = (tick_points[k + 1] - tick_points[k - 1]).norm() / (2.0 * input.period_s);
+    path.fastest = std::max(path.fastest, path.speed[k]);
+  }
+  return path;
+}
+
+// How far back (in ticks) the nearest path point can be: a few times the position loop's time constant.
+std::size_t search_window(const LoopDesign& design, const ServoRunInput& input) {
+  double slowest_s = input.period_s;
+  for (int j = 0; j < design.drives; ++j) {
+    const ChannelGains& c = design.channels[j];
+    const double loop_s = c.position_gain_per_s > 0.0 ? 1.0 / c.position_gain_per_s : 0.0;
+    slowest_s = std::max(slowest_s, 4.0 * loop_s + 4.0 * c.lag_s + c.reference_filter_s);
+  }
+  return static_cast<std::size_t>(std::min(5000.0, std::ceil(slowest_s / input.period_s) + 2.0));
+}
+
+// The contour error of simulated drive positions (FK, then the nearest point of the commanded path) and its
+// statistics in the summary.
+class ContourMeasure {
+ public:
+  ContourMeasure(const Mechanism& mechanism, const ServoRunInput& input, int drives, ServoSummary& summary)
+      : mechanism_(mechanism),
+        path_(commanded_path(input, mechanism.controlled_axes())),
+        axes_(mechanism.controlled_axes()),
+        ticks_(input.time_s.size()),
+        workspace_(mechanism.make_fk_workspace()),
+        guess_(input.pose[0]),
+        actuators_(drives),
+        summary_(summary) {}
+  void set_window(std::size_t window) { window_ = window; }
+
+  // The error at time `time_s`, searching the path back from tick `k`; `lag_s` how far behind in time (NaN
+  // where FK failed or the path nearly stands still).
+  double measure(const DriveVector& position, std::size_t k, double time_s, double& lag_s) {
+    actuators_ = position.head(actuators_.size());
+    auto fk = mechanism_.forward_warm(actuators_, guess_, FkOptions{}, *workspace_);
+    if (!fk) {
+      ++summary_.fk_failures;
+      lag_s = std::numeric_limits<double>::quiet_NaN();
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    guess_ = fk->pose;
+    const std::size_t first = k > window_ ? 2 * (k - window_) : 0;
+    const std::size_t last = 2 * std::min(k + 1, ticks_ - 1);
+    const auto [distance, at_s] = servo_nearest_on_path(path_.points, path_.time_s, first, last,
+                                                        servo_controlled_point(fk->pose.position_mm, axes_));
+    // Where the path nearly stands still a tiny error (a static one under gravity, say) is a long time: the
+    // lag is given only where the commanded speed is at least a quarter of the run's fastest.
+    lag_s = path_.speed[k] >= 0.25 * path_.fastest ? time_s - at_s : std::numeric_limits<double>::quiet_NaN();
+    return distance;
+  }
+
+  void record(double error_mm, double lag_s, double time_s, int line) {
+    if (!std::isfinite(error_mm)) return;
+    squares_ += error_mm * error_mm;
+    ++count_;
+    if (error_mm > summary_.max_contour_error_mm) {
+      summary_.max_contour_error_mm = error_mm;
+      summary_.max_contour_time_s = time_s;
+      summary_.max_contour_line = line;
+    }
+    if (std::isfinite(lag_s)) summary_.max_lag_s = std::max(summary_.max_lag_s, lag_s);
+    double& worst = worst_by_line_[line];
+    worst = std::max(worst, error_mm);
+  }
+
+  // The RMS and the lines of the largest errors into the summary.
+  void finish() {
+    if (count_ > 0) summary_.rms_contour_error_mm = std::sqrt(squares_ / count_);
+    std::vector<std::pair<int, double>> lines(worst_by_line_.begin(), worst_by_line_.end());
+    std::sort(lines.begin(), lines.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    if (lines.size() > kServoWorstLines) lines.resize(kServoWorstLines);
+    summary_.worst_lines = std::move(lines);
+  }
+
+ private:
+  const Mechanism& mechanism_;
+  CommandedPath path_;
+  AxisMask axes_;
+  std::size_t ticks_;
+  std::size_t window_ = 0;
+  std::unique_ptr<FkWorkspace> workspace_;
+  Pose guess_;
+  ActuatorVector actuators_;
+  ServoSummary& summary_;
+  std::map<int, double> worst_by_line_;
+  double squares_ = 0.0;
+  long count_ = 0;
+};
+
+// One servo period of the loops from `previous` to `setpoint`: the loop steps with the reference ramped
+// between them, the limits that acted counted; returns the drives' positions at mid-period.
+DriveVector run_period(ServoSimulator& simulator, const DriveVector& previous, const DriveVector& setpoint,
+                       double period_s, int steps_per_period, ServoTick& tick, ServoSummary& summary) {
+  const DriveVector speed = (setpoint - previous) / period_s;
+  DriveVector mid = previous;
+  for (int i = 0; i < steps_per_period; ++i) {
+    const DriveVector reference =
+        previous + (static_cast<double>(i) / steps_per_period) * (setpoint - previous);
+    simulator.step(reference, speed);
+    tick.clamps.error |= simulator.clamps().error;
+    tick.clamps.command |= simulator.clamps().command;
+    for (int j = 0; j < summary.drives; ++j) {
+      if (simulator.clamps().error & (1u << j)) ++summary.drive[j].error_clamps;
+      if (simulator.clamps().command & (1u << j)) ++summary.drive[j].command_clamps;
+    }
+    if (2 * i + 1 == steps_per_period) mid = simulator.mid_position();
+    if (2 * (i + 1) == steps_per_period) mid = simulator.position();
+  }
+  return mid;
+}
+
+// The following errors, peaks and clamped lines of a tick into the summary; `squares` the sums for the RMS.
+void record_following(const ServoTick& tick, const ServoSimulator& simulator, std::vector<double>& squares,
+                      ServoSummary& summary) {
+  for (int j = 0; j < summary.drives; ++j) {
+    DriveServoSummary& d = summary.drive[j];
+    const double error = (*tick.setpoint)[j] - simulator.position()[j];
+    squares[j] += error * error;
+    if (std::abs(error) > d.max_following_error) {
+      d.max_following_error = std::abs(error);
+      d.max_following_time_s = tick.time_s;
+      d.max_following_line = tick.line;
+    }
+    d.peak_force = std::max(d.peak_force, std::abs(simulator.force()[j]));
+    d.peak_command = std::max(d.peak_command, std::abs(simulator.command()[j]));
+    if ((tick.clamps.error | tick.clamps.command) & (1u << j)) servo_add_line(d.clamp_lines, tick.line);
+  }
+}
+
+}  // namespace
+
 Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design, const ServoPlant& plant,
                                const ServoRunInput& input, int steps_per_period,
                                const ServoRunOptions& options,
                                const std::function<Status(const ServoTick&)>& on_tick) {
-  const Mechanism& mechanism = *machine.mechanism;
   const int m = design.drives;
   const std::size_t ticks = input.time_s.size();
   ServoSummary summary;
@@ -181,105 +361,20 @@ Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design,
   summary.coupled = options.coupled;
   summary.has_machine_dynamics = plant.has_machine_dynamics;
   if (ticks == 0) return summary;
-
-  // The coupling check along the run.
-  const ActuatorVector motors = motor_inertia(machine.servo, m);
-  for (std::size_t i = 0; i < plant.machine_inertia.size(); ++i) {
-    const DriveVector ratios = coupling_ratios(plant.machine_inertia[i], motors, m);
-    const int line = input.line[std::min(i * static_cast<std::size_t>(plant.stride), ticks - 1)];
-    for (int j = 0; j < m; ++j) {
-      DriveServoSummary& d = summary.drive[j];
-      if (ratios[j] > d.max_coupling_ratio) {
-        d.max_coupling_ratio = ratios[j];
-        d.max_coupling_line = line;
-      }
-      if (ratios[j] >= kCouplingRatioLimit) servo_add_line(d.coupled_lines, line);
-    }
-  }
-
-  const AxisMask axes = mechanism.controlled_axes();
-  // The commanded path: the ticks, and between each two the cubic through the four around them at
-  // mid-period ((−p0 + 9p1 + 9p2 − p3)/16), so that the polyline's chords leave out 1/16 of a curve's
-  // sagitta v²T²/8R and a perfect servo's contour error is the plan's own path error.
-  std::vector<Eigen::Vector3d> tick_points(ticks);
-  for (std::size_t k = 0; k < ticks; ++k)
-    tick_points[k] = servo_controlled_point(input.pose[k].position_mm, axes);
-  std::vector<Eigen::Vector3d> path(2 * ticks - 1);
-  std::vector<double> path_time_s(2 * ticks - 1);
-  for (std::size_t k = 0; k < ticks; ++k) {
-    path[2 * k] = tick_points[k];
-    path_time_s[2 * k] = input.time_s[k];
-    if (k + 1 == ticks) break;
-    const Eigen::Vector3d& before = tick_points[k > 0 ? k - 1 : k];
-    const Eigen::Vector3d& after = tick_points[k + 2 < ticks ? k + 2 : k + 1];
-    path[2 * k + 1] = (9.0 * (tick_points[k] + tick_points[k + 1]) - before - after) / 16.0;
-    path_time_s[2 * k + 1] = 0.5 * (input.time_s[k] + input.time_s[k + 1]);
-  }
-  std::vector<double> commanded_speed(ticks, 0.0);
-  double fastest = 0.0;
-  for (std::size_t k = 1; k + 1 < ticks; ++k) {
-    commanded_speed[k] = (tick_points[k + 1] - tick_points[k - 1]).norm() / (2.0 * input.period_s);
-    fastest = std::max(fastest, commanded_speed[k]);
-  }
-  // How far back the nearest path point can be: a few times the position loop's time constant.
-  double slowest_s = input.period_s;
-  for (int j = 0; j < m; ++j) {
-    const ChannelGains& c = design.channels[j];
-    const double loop_s = c.position_gain_per_s > 0.0 ? 1.0 / c.position_gain_per_s : 0.0;
-    slowest_s = std::max(slowest_s, 4.0 * loop_s + 4.0 * c.lag_s + c.reference_filter_s);
-  }
-  const auto window = static_cast<std::size_t>(std::min(5000.0, std::ceil(slowest_s / input.period_s) + 2.0));
+  check_coupling(machine, plant, input, m, summary);
+  ContourMeasure contour(*machine.mechanism, input, m, summary);
+  contour.set_window(search_window(design, input));
 
   ServoSimulator simulator(design, summary.loop_period_s);
-  DriveVector load = plant.load[0];
-  simulator.set_load(load);
+  simulator.set_load(plant.load[0]);
   std::size_t inertia_sample = 0;
   simulator.set_inverse_inertia(servo_inverse_inertia(plant.inertia[0], m, options.coupled));
   DriveVector start = DriveVector::Zero();
   start.head(m) = input.setpoint[0];
   simulator.reset(start);
 
-  auto fk_workspace = mechanism.make_fk_workspace();
-  Pose guess = input.pose[0];
-  ActuatorVector actuators(m);
-  std::map<int, double> worst_by_line;
-  double contour_squares = 0.0;
-  long contour_count = 0;
   std::vector<double> squares(m, 0.0);
-  // The contour error of the simulated positions at time `time_s`, searching the path back from tick `k`.
-  auto contour = [&](const DriveVector& position, std::size_t k, double time_s, double& lag_s) {
-    actuators = position.head(m);
-    auto fk = mechanism.forward_warm(actuators, guess, FkOptions{}, *fk_workspace);
-    if (!fk) {
-      ++summary.fk_failures;
-      lag_s = std::numeric_limits<double>::quiet_NaN();
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-    guess = fk->pose;
-    const std::size_t first = k > window ? 2 * (k - window) : 0;
-    const std::size_t last = 2 * std::min(k + 1, ticks - 1);
-    const auto [distance, at_s] = servo_nearest_on_path(path, path_time_s, first, last,
-                                                        servo_controlled_point(fk->pose.position_mm, axes));
-    // Where the path nearly stands still a tiny error (a static one under gravity, say) is a long time: the
-    // lag is given only where the commanded speed is at least a quarter of the run's fastest.
-    lag_s = commanded_speed[k] >= 0.25 * fastest ? time_s - at_s : std::numeric_limits<double>::quiet_NaN();
-    return distance;
-  };
-  auto record_contour = [&](double error_mm, double lag_s, double time_s, int line) {
-    if (!std::isfinite(error_mm)) return;
-    contour_squares += error_mm * error_mm;
-    ++contour_count;
-    if (error_mm > summary.max_contour_error_mm) {
-      summary.max_contour_error_mm = error_mm;
-      summary.max_contour_time_s = time_s;
-      summary.max_contour_line = line;
-    }
-    if (std::isfinite(lag_s)) summary.max_lag_s = std::max(summary.max_lag_s, lag_s);
-    double& worst = worst_by_line[line];
-    worst = std::max(worst, error_mm);
-  };
-
-  DriveVector setpoint = start, previous = start, reference, speed;
+  DriveVector setpoint = start, previous = start;
   for (std::size_t k = 0; k < ticks; ++k) {
     ServoTick tick;
     if (k > 0) {
@@ -290,22 +385,9 @@ Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design,
         inertia_sample = sample;
         simulator.set_inverse_inertia(servo_inverse_inertia(plant.inertia[sample], m, options.coupled));
       }
-      load = 0.5 * (plant.load[k - 1] + plant.load[k]);
-      simulator.set_load(load);
-      speed = (setpoint - previous) / input.period_s;
-      DriveVector mid = previous;
-      for (int i = 0; i < steps_per_period; ++i) {
-        reference = previous + (static_cast<double>(i) / steps_per_period) * (setpoint - previous);
-        simulator.step(reference, speed);
-        tick.clamps.error |= simulator.clamps().error;
-        tick.clamps.command |= simulator.clamps().command;
-        for (int j = 0; j < m; ++j) {
-          if (simulator.clamps().error & (1u << j)) ++summary.drive[j].error_clamps;
-          if (simulator.clamps().command & (1u << j)) ++summary.drive[j].command_clamps;
-        }
-        if (2 * i + 1 == steps_per_period) mid = simulator.mid_position();
-        if (2 * (i + 1) == steps_per_period) mid = simulator.position();
-      }
+      simulator.set_load(0.5 * (plant.load[k - 1] + plant.load[k]));
+      const DriveVector mid =
+          run_period(simulator, previous, setpoint, input.period_s, steps_per_period, tick, summary);
       if (!simulator.finite()) {
         return make_error(ErrorCode::not_converged,
                           fmt::format("program line {} (t = {:.4f} s): the servo loops diverged",
@@ -313,7 +395,7 @@ Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design,
       }
       double mid_lag = 0.0;
       const double mid_s = input.time_s[k] - 0.5 * input.period_s;
-      record_contour(contour(mid, k, mid_s, mid_lag), mid_lag, mid_s, input.line[k]);
+      contour.record(contour.measure(mid, k, mid_s, mid_lag), mid_lag, mid_s, input.line[k]);
     }
     tick.time_s = input.time_s[k];
     tick.line = input.line[k];
@@ -322,21 +404,9 @@ Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design,
     tick.position = &simulator.position();
     tick.force = &simulator.force();
     tick.command = &simulator.command();
-    tick.contour_error_mm = contour(simulator.position(), k, tick.time_s, tick.lag_s);
-    record_contour(tick.contour_error_mm, tick.lag_s, tick.time_s, tick.line);
-    for (int j = 0; j < m; ++j) {
-      DriveServoSummary& d = summary.drive[j];
-      const double error = setpoint[j] - simulator.position()[j];
-      squares[j] += error * error;
-      if (std::abs(error) > d.max_following_error) {
-        d.max_following_error = std::abs(error);
-        d.max_following_time_s = tick.time_s;
-        d.max_following_line = tick.line;
-      }
-      d.peak_force = std::max(d.peak_force, std::abs(simulator.force()[j]));
-      d.peak_command = std::max(d.peak_command, std::abs(simulator.command()[j]));
-      if ((tick.clamps.error | tick.clamps.command) & (1u << j)) servo_add_line(d.clamp_lines, tick.line);
-    }
+    tick.contour_error_mm = contour.measure(simulator.position(), k, tick.time_s, tick.lag_s);
+    contour.record(tick.contour_error_mm, tick.lag_s, tick.time_s, tick.line);
+    record_following(tick, simulator, squares, summary);
     if (on_tick) {
       if (Status sent = on_tick(tick); !sent) return sent.error();
     }
@@ -344,11 +414,7 @@ Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design,
   summary.ticks = static_cast<long>(ticks);
   for (int j = 0; j < m; ++j)
     summary.drive[j].rms_following_error = std::sqrt(squares[j] / static_cast<double>(ticks));
-  if (contour_count > 0) summary.rms_contour_error_mm = std::sqrt(contour_squares / contour_count);
-  std::vector<std::pair<int, double>> lines(worst_by_line.begin(), worst_by_line.end());
-  std::sort(lines.begin(), lines.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-  if (lines.size() > kServoWorstLines) lines.resize(kServoWorstLines);
-  summary.worst_lines = std::move(lines);
+  contour.finish();
   return summary;
 }
 

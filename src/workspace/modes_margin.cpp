@@ -344,6 +344,113 @@ bool margin_determinant(const Mechanism& mechanism, const Pose& pose, double& de
   return margin_det_in_form(mechanism, pose, false, mechanism.platform_size_mm(), determinant);
 }
 
+namespace {
+
+// ∂q/∂u at X0 by central differences: the preconditioner, and whether X0 is itself singular. False at the
+// edge of the reachable poses, where a neighbour has no actuator values.
+bool margin_actuator_jacobian(const Mechanism& mechanism, const MarginProblem& problem, double u_step,
+                              MarginMatrix& dq_du) {
+  const int n = static_cast<int>(dq_du.rows()), m = static_cast<int>(dq_du.cols());
+  for (int i = 0; i < m; ++i) {
+    MarginVector plus = MarginVector::Zero(m), minus = MarginVector::Zero(m);
+    plus[i] = u_step;
+    minus[i] = -u_step;
+    Pose pose_plus, pose_minus;
+    ActuatorVector q_plus(n), q_minus(n);
+    if (!problem.space.pose_at(plus, pose_plus) || !problem.space.pose_at(minus, pose_minus) ||
+        !mechanism.actuator_values(pose_plus, q_plus.data()) ||
+        !mechanism.actuator_values(pose_minus, q_minus.data()))
+      return false;
+    dq_du.col(i) = (q_plus - q_minus) / (2 * u_step);
+  }
+  return true;
+}
+
+// Rays from X0: along −∇C (where det J falls fastest per actuator change) and along ± each preconditioned
+// coordinate (near X0, one actuator moving alone). Their first singular configurations bound the margin
+// (offered to `best`); returned nearest first as (‖Δq‖, y).
+std::vector<std::pair<double, MarginVector>> margin_ray_edges(MarginProblem& problem, int m,
+                                                              double actuator_scale, double tolerance,
+                                                              const ActuatorVector& q0,
+                                                              MarginCandidate& best) {
+  std::vector<std::pair<double, MarginVector>> edges;
+  MarginVector g(m);
+  const auto f = [&](const MarginVector& at, double& value) { return problem.det_ratio(at, value); };
+  problem.gradient(MarginVector::Zero(m), 1.0, f, g.data());
+  std::vector<MarginVector> directions;
+  if (g.norm() > 0.0) directions.push_back(-g.normalized());
+  for (int i = 0; i < m; ++i) {
+    for (double sign : {1.0, -1.0}) directions.push_back(sign * MarginVector::Unit(m, i));
+  }
+  for (const MarginVector& direction : directions) {
+    MarginVector edge;
+    ActuatorVector q;
+    if (margin_ray_edge(problem, direction, actuator_scale, tolerance, edge) &&
+        problem.actuators_at(edge, q)) {
+      edges.emplace_back((q - q0).norm(), edge);
+      best.offer(problem, edge, false);
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return edges;
+}
+
+// SLSQP from `first` within the box; where it ends off the surface, or the line from X0 to its end leaves
+// X0's aspect first through det J = 0, that singular configuration of the aspect is a bound and the next
+// start.
+void margin_search_from(MarginProblem& problem, const MarginVector& first, double box, double tolerance,
+                        const ModesMarginOptions& options, MarginCandidate& best,
+                        AssemblyModeMargin& result) {
+  MarginVector start = first;
+  for (int attempt = 0;; ++attempt) {
+    MarginVector y = run_margin_slsqp(problem, start, box, options);
+    margin_polish_onto_surface(problem, y, tolerance);
+    const double exit = margin_aspect_exit(problem, y);
+    if (exit >= 1.0 && margin_on_surface(problem, y, tolerance)) {
+      best.offer(problem, y, true);
+      return;
+    }
+    MarginVector edge = exit * y;
+    margin_polish_onto_surface(problem, edge, tolerance);
+    if (!(exit < 1.0 && margin_on_surface(problem, edge, tolerance))) return;
+    best.offer(problem, edge, false);
+    if (attempt == options.max_restarts) return;
+    start = edge;
+    ++result.restarts;
+  }
+}
+
+// The best singular configuration found, as the result's margin, or the note why there is none or it is a
+// bound.
+void margin_result_from(const MarginCandidate& best, MarginProblem& problem, const Mechanism& mechanism,
+                        double actuator_scale, AssemblyModeMargin& result) {
+  result.evaluations = problem.evaluations;
+  if (!std::isfinite(best.distance)) {
+    result.note = fmt::format(
+        "no singular configuration found from this pose: no ray from it meets one within {:g} {} and no "
+        "search converged onto one ({} evaluations)",
+        kMarginRayReach * actuator_scale, mechanism.actuators_are_angles() ? "rad" : "mm",
+        problem.evaluations);
+    return;
+  }
+  if (!best.local_minimum) {
+    result.note =
+        "the search did not converge to a local minimum in this pose's aspect: the margin is the distance to "
+        "the nearest singular configuration found on a line from the pose, an upper bound";
+  }
+  ActuatorVector q;
+  Pose singular;
+  problem.pose_at(best.y, singular);
+  problem.actuators_at(best.y, q);
+  result.found = true;
+  result.singular_pose = singular;
+  result.singular_actuators = q;
+  result.margin_mm = (q - result.actuators).norm();
+  problem.det_ratio(best.y, result.det_ratio);
+}
+
+}  // namespace
+
 Result<AssemblyModeMargin> assembly_mode_margin(const Mechanism& mechanism, const Pose& pose,
                                                 const ModesMarginOptions& options) {
   if (Status valid = check_margin_options(options); !valid) return valid.error();
@@ -371,23 +478,12 @@ Result<AssemblyModeMargin> assembly_mode_margin(const Mechanism& mechanism, cons
   const double actuator_scale = mechanism.actuators_are_angles() ? 1.0 : problem.space.length_mm();
   problem.penalty = 1e6 * actuator_scale * actuator_scale;
 
-  // ∂q/∂u at X0 by central differences: the preconditioner, and whether X0 is itself singular.
-  const double u_step = options.gradient_step_fraction * problem.space.length_mm();
   MarginMatrix dq_du(n, m);
-  for (int i = 0; i < m; ++i) {
-    MarginVector plus = MarginVector::Zero(m), minus = MarginVector::Zero(m);
-    plus[i] = u_step;
-    minus[i] = -u_step;
-    Pose pose_plus, pose_minus;
-    ActuatorVector q_plus(n), q_minus(n);
-    if (!problem.space.pose_at(plus, pose_plus) || !problem.space.pose_at(minus, pose_minus) ||
-        !mechanism.actuator_values(pose_plus, q_plus.data()) ||
-        !mechanism.actuator_values(pose_minus, q_minus.data())) {
-      // At the edge of the reachable poses there is no Jacobian to precondition with: no margin, no failure.
-      result.note = "the pose is at the edge of the reachable poses: its neighbours have no actuator values";
-      return result;
-    }
-    dq_du.col(i) = (q_plus - q_minus) / (2 * u_step);
+  if (!margin_actuator_jacobian(mechanism, problem,
+                                options.gradient_step_fraction * problem.space.length_mm(), dq_du)) {
+    // At the edge of the reachable poses there is no Jacobian to precondition with: no margin, no failure.
+    result.note = "the pose is at the edge of the reachable poses: its neighbours have no actuator values";
+    return result;
   }
   const Eigen::JacobiSVD<MarginMatrix> svd(dq_du);
   const auto& sigma = svd.singularValues();
@@ -407,85 +503,20 @@ Result<AssemblyModeMargin> assembly_mode_margin(const Mechanism& mechanism, cons
   problem.precondition = dq_du.inverse();
   problem.step = options.gradient_step_fraction * actuator_scale;
 
-  // Rays from X0: along −∇C (where det J falls fastest per actuator change) and along ± each preconditioned
-  // coordinate (near X0, one actuator moving alone). Their first singular configurations bound the margin,
-  // and the nearest of them are starts for SLSQP besides X0 itself: from X0 alone its first, linearised step
-  // may overshoot across the surface into another basin.
+  // The rays' first singular configurations are starts for SLSQP besides X0 itself: from X0 alone its first,
+  // linearised step may overshoot across the surface into another basin.
   const double tolerance = options.singular_det_ratio;
   MarginCandidate best;
-  std::vector<std::pair<double, MarginVector>> edges;  // (‖Δq‖, y)
-  {
-    MarginVector g(m);
-    const auto f = [&](const MarginVector& at, double& value) { return problem.det_ratio(at, value); };
-    problem.gradient(MarginVector::Zero(m), 1.0, f, g.data());
-    std::vector<MarginVector> directions;
-    if (g.norm() > 0.0) directions.push_back(-g.normalized());
-    for (int i = 0; i < m; ++i) {
-      for (double sign : {1.0, -1.0}) directions.push_back(sign * MarginVector::Unit(m, i));
-    }
-    for (const MarginVector& direction : directions) {
-      MarginVector edge;
-      ActuatorVector q;
-      if (margin_ray_edge(problem, direction, actuator_scale, tolerance, edge) &&
-          problem.actuators_at(edge, q)) {
-        edges.emplace_back((q - *q0).norm(), edge);
-        best.offer(problem, edge, false);
-      }
-    }
-    std::sort(edges.begin(), edges.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  }
+  const auto edges = margin_ray_edges(problem, m, actuator_scale, tolerance, *q0, best);
   std::vector<MarginVector> starts = {MarginVector::Zero(m)};
   const double box =
       edges.empty() ? kMarginRayReach * actuator_scale : kMarginBoxFactor * edges[0].second.norm();
   for (std::size_t k = 0; k < edges.size() && starts.size() <= kMarginRayStarts; ++k) {
     if (edges[k].second.lpNorm<Eigen::Infinity>() <= box) starts.push_back(edges[k].second);
   }
-  for (const MarginVector& first : starts) {
-    MarginVector start = first;
-    for (int attempt = 0;; ++attempt) {
-      MarginVector y = run_margin_slsqp(problem, start, box, options);
-      margin_polish_onto_surface(problem, y, tolerance);
-      const double exit = margin_aspect_exit(problem, y);
-      if (exit >= 1.0 && margin_on_surface(problem, y, tolerance)) {
-        best.offer(problem, y, true);
-        break;
-      }
-      // The search ended off the surface, or the line from X0 to where it ended leaves X0's aspect first.
-      // Where the line leaves it through det J = 0, that is a singular configuration of the aspect: a
-      // bound, and a place to start again from.
-      MarginVector edge = exit * y;
-      margin_polish_onto_surface(problem, edge, tolerance);
-      if (!(exit < 1.0 && margin_on_surface(problem, edge, tolerance))) break;
-      best.offer(problem, edge, false);
-      if (attempt == options.max_restarts) break;
-      start = edge;
-      ++result.restarts;
-    }
-  }
-  result.evaluations = problem.evaluations;
-  if (!std::isfinite(best.distance)) {
-    result.note = fmt::format(
-        "no singular configuration found from this pose: no ray from it meets one within {:g} {} and no "
-        "search converged onto one ({} evaluations)",
-        kMarginRayReach * actuator_scale, mechanism.actuators_are_angles() ? "rad" : "mm",
-        problem.evaluations);
-    return result;
-  }
-  if (!best.local_minimum) {
-    result.note =
-        "the search did not converge to a local minimum in this pose's aspect: the margin is the distance to "
-        "the nearest singular configuration found on a line from the pose, an upper bound";
-  }
-  const MarginVector y = best.y;
-  ActuatorVector q;
-  Pose singular;
-  problem.pose_at(y, singular);
-  problem.actuators_at(y, q);
-  result.found = true;
-  result.singular_pose = singular;
-  result.singular_actuators = q;
-  result.margin_mm = (q - *q0).norm();
-  problem.det_ratio(y, result.det_ratio);
+  for (const MarginVector& first : starts)
+    margin_search_from(problem, first, box, tolerance, options, best, result);
+  margin_result_from(best, problem, mechanism, actuator_scale, result);
   return result;
 }
 
