@@ -170,97 +170,87 @@ void EstimatingInterpolator::apply(const Candidate& chosen, bool fallback, bool 
       std::max(statistics_.max_rotation_deviation_rad, tact.rotation_deviation_rad);
 }
 
-bool EstimatingInterpolator::next(Tact& tact) {
-  if (!started_ || finished_ || error_) return false;
-  const double step = settings_.step_mm;
+bool EstimatingInterpolator::evaluate(int c, ActuatorVector& actuators, Candidate& candidate) {
+  ++statistics_.candidates;
+  const StepDirections& d = directions_[c];
+  bool in_range = true;
+  for (int j = 0; j < actuators_; ++j) {
+    const std::int64_t q = steps_[j] + d[j];
+    in_range = in_range && q >= min_steps_[j] && q <= max_steps_[j];
+    actuators[j] = static_cast<double>(q) * settings_.step_mm;
+  }
+  if (!in_range) {
+    ++statistics_.out_of_range;
+    return false;
+  }
+  if (!solve(actuators, candidate.pose)) {
+    ++statistics_.fk_failures;
+    return false;
+  }
+  candidate.index = c;
+  candidate.nearest = projector_.nearest(candidate.pose.position_mm);
+  candidate.progress_mm = candidate.nearest.s - s_;
+  candidate.end_distance_mm = projector_.distance_to_end_mm(candidate.pose.position_mm);
+  return true;
+}
+
+void EstimatingInterpolator::rank(Candidate& candidate, bool end_zone, Candidates& best) {
+  const double deviation = candidate.nearest.distance_mm;
   const double deviation_limit = settings_.deviation_mm;
-  const double remaining_mm = path_.length() - s_;
-  // Typical progress per tact: the run's mean so far, at least one step (the seed's final rule).
-  const double typical_mm =
-      std::max(step, statistics_.tacts > 0 ? (s_ - s_start_) / static_cast<double>(statistics_.tacts) : 0.0);
-  const bool end_zone = remaining_mm <= typical_mm;
-  projector_.anchor(s_);
-
-  Candidate admissible;  // best candidate meeting both criteria
-  Candidate advancing;   // fallback: least deviation among those with positive progress
-  Candidate closest;     // fallback: least deviation
-  Candidate end_within;  // end zone: nearest the end point among those within δ
-  Candidate end_any;     // end zone: nearest the end point
-  Candidate candidate;
-  ActuatorVector actuators(actuators_);
-  const int count = static_cast<int>(directions_.size());
-  for (int c = 0; c < count; ++c) {
-    ++statistics_.candidates;
-    const StepDirections& d = directions_[c];
-    bool in_range = true;
-    for (int j = 0; j < actuators_; ++j) {
-      const std::int64_t q = steps_[j] + d[j];
-      in_range = in_range && q >= min_steps_[j] && q <= max_steps_[j];
-      actuators[j] = static_cast<double>(q) * step;
-    }
-    if (!in_range) {
-      ++statistics_.out_of_range;
-      continue;
-    }
-    if (!solve(actuators, candidate.pose)) {
-      ++statistics_.fk_failures;
-      continue;
-    }
-    candidate.index = c;
-    candidate.nearest = projector_.nearest(candidate.pose.position_mm);
-    candidate.progress_mm = candidate.nearest.s - s_;
-    const double deviation = candidate.nearest.distance_mm;
-    if (end_zone) {
-      candidate.end_distance_mm = projector_.distance_to_end_mm(candidate.pose.position_mm);
-      if (!end_any.found() || candidate.end_distance_mm < end_any.end_distance_mm) end_any = candidate;
-      if (deviation <= deviation_limit &&
-          (!end_within.found() || candidate.end_distance_mm < end_within.end_distance_mm)) {
-        end_within = candidate;
-      }
-      continue;
-    }
-    candidate.end_distance_mm = projector_.distance_to_end_mm(candidate.pose.position_mm);
-    const bool progresses = settings_.progress_at_least_step ? candidate.progress_mm >= min_progress_mm_
-                                                             : candidate.progress_mm > 0.0;
-    if (deviation <= deviation_limit && progresses) {
-      if (settings_.minimise_orientation) {
-        // eq. 143: the least orientation deviation from the path's, ties to the larger progress.
-        candidate.rotation_rad = rotation_deviation(candidate.pose, candidate.nearest);
-        const bool better = !admissible.found() ||
-                            candidate.rotation_rad < admissible.rotation_rad - kEstimatingAngleTie ||
-                            (candidate.rotation_rad <= admissible.rotation_rad + kEstimatingAngleTie &&
-                             candidate.progress_mm > admissible.progress_mm);
-        if (better) admissible = candidate;
-      } else {
-        // §4.4 step 4: the largest progress (fewest tacts), ties to the smaller deviation.
-        const bool better = !admissible.found() ||
-                            candidate.progress_mm > admissible.progress_mm + kEstimatingProgressTie ||
-                            (candidate.progress_mm >= admissible.progress_mm - kEstimatingProgressTie &&
-                             deviation < admissible.nearest.distance_mm);
-        if (better) admissible = candidate;
-      }
-    }
-    if (candidate.progress_mm > 0.0 && (!advancing.found() || deviation < advancing.nearest.distance_mm)) {
-      advancing = candidate;
-    }
-    if (!closest.found() || deviation < closest.nearest.distance_mm) closest = candidate;
-  }
-
   if (end_zone) {
-    const Candidate& best = end_within.found() ? end_within : end_any;
-    if (!best.found() || best.end_distance_mm >= end_distance_mm_) {
-      // No step brings the tool closer to the end point: the path is done.
-      finished_ = true;
-      statistics_.end_error_mm = end_distance_mm_;
-      return false;
+    if (!best.end_any.found() || candidate.end_distance_mm < best.end_any.end_distance_mm)
+      best.end_any = candidate;
+    if (deviation <= deviation_limit &&
+        (!best.end_within.found() || candidate.end_distance_mm < best.end_within.end_distance_mm)) {
+      best.end_within = candidate;
     }
-    apply(best, !end_within.found(), true, tact);
-    return true;
+    return;
   }
-  if (admissible.found()) {
+  Candidate& admissible = best.admissible;
+  const bool progresses = settings_.progress_at_least_step ? candidate.progress_mm >= min_progress_mm_
+                                                           : candidate.progress_mm > 0.0;
+  if (deviation <= deviation_limit && progresses) {
+    if (settings_.minimise_orientation) {
+      // eq. 143: the least orientation deviation from the path's, ties to the larger progress.
+      candidate.rotation_rad = rotation_deviation(candidate.pose, candidate.nearest);
+      const bool better = !admissible.found() ||
+                          candidate.rotation_rad < admissible.rotation_rad - kEstimatingAngleTie ||
+                          (candidate.rotation_rad <= admissible.rotation_rad + kEstimatingAngleTie &&
+                           candidate.progress_mm > admissible.progress_mm);
+      if (better) admissible = candidate;
+    } else {
+      // §4.4 step 4: the largest progress (fewest tacts), ties to the smaller deviation.
+      const bool better = !admissible.found() ||
+                          candidate.progress_mm > admissible.progress_mm + kEstimatingProgressTie ||
+                          (candidate.progress_mm >= admissible.progress_mm - kEstimatingProgressTie &&
+                           deviation < admissible.nearest.distance_mm);
+      if (better) admissible = candidate;
+    }
+  }
+  if (candidate.progress_mm > 0.0 &&
+      (!best.advancing.found() || deviation < best.advancing.nearest.distance_mm)) {
+    best.advancing = candidate;
+  }
+  if (!best.closest.found() || deviation < best.closest.nearest.distance_mm) best.closest = candidate;
+}
+
+bool EstimatingInterpolator::finish_end_zone(const Candidates& best, Tact& tact) {
+  const Candidate& nearest_end = best.end_within.found() ? best.end_within : best.end_any;
+  if (!nearest_end.found() || nearest_end.end_distance_mm >= end_distance_mm_) {
+    // No step brings the tool closer to the end point: the path is done.
+    finished_ = true;
+    statistics_.end_error_mm = end_distance_mm_;
+    return false;
+  }
+  apply(nearest_end, !best.end_within.found(), true, tact);
+  return true;
+}
+
+bool EstimatingInterpolator::take_best(const Candidates& best, Tact& tact) {
+  if (best.admissible.found()) {
     // Stall detection counts tacts that do not carry the tool beyond the farthest point already reached.
-    if (admissible.nearest.s > s_best_) {
-      s_best_ = admissible.nearest.s;
+    if (best.admissible.nearest.s > s_best_) {
+      s_best_ = best.admissible.nearest.s;
       stall_tacts_ = 0;
     } else if (++stall_tacts_ > settings_.max_stall_tacts) {
       return fail(ErrorCode::not_converged,
@@ -269,10 +259,10 @@ bool EstimatingInterpolator::next(Tact& tact) {
                               s_, stall_tacts_, settings_.max_stall_tacts),
                   s_);
     }
-    apply(admissible, false, false, tact);
+    apply(best.admissible, false, false, tact);
     return true;
   }
-  const Candidate& fallback = advancing.found() ? advancing : closest;
+  const Candidate& fallback = best.advancing.found() ? best.advancing : best.closest;
   if (!fallback.found()) {
     return fail(ErrorCode::singular,
                 fmt::format("no candidate move from s = {:.6f} mm has a forward-kinematics solution in this "
@@ -282,20 +272,40 @@ bool EstimatingInterpolator::next(Tact& tact) {
   }
   if (++stall_tacts_ > settings_.max_stall_tacts) {
     const Eigen::Vector3d& p = pose_.position_mm;
-    const std::string required = settings_.progress_at_least_step
-                                     ? fmt::format("advances along the path by at least Δ = {} mm", step)
-                                     : std::string("advances along the path");
+    const std::string required =
+        settings_.progress_at_least_step
+            ? fmt::format("advances along the path by at least Δ = {} mm", settings_.step_mm)
+            : std::string("advances along the path");
     return fail(ErrorCode::not_converged,
                 fmt::format("estimating-function interpolation stalled at s = {:.6f} mm, tool point ({:.6f}, "
                             "{:.6f}, {:.6f}) mm: no candidate within δ = {} mm {} ({} tacts in a row without "
                             "admissible progress, max_stall_tacts = {}); allow a larger deviation or use a "
                             "finer step",
-                            s_, p.x(), p.y(), p.z(), deviation_limit, required, stall_tacts_,
+                            s_, p.x(), p.y(), p.z(), settings_.deviation_mm, required, stall_tacts_,
                             settings_.max_stall_tacts),
                 s_);
   }
   apply(fallback, true, false, tact);
   return true;
+}
+
+bool EstimatingInterpolator::next(Tact& tact) {
+  if (!started_ || finished_ || error_) return false;
+  const double remaining_mm = path_.length() - s_;
+  // Typical progress per tact: the run's mean so far, at least one step (the final rule of §4.4).
+  const double typical_mm =
+      std::max(settings_.step_mm,
+               statistics_.tacts > 0 ? (s_ - s_start_) / static_cast<double>(statistics_.tacts) : 0.0);
+  const bool end_zone = remaining_mm <= typical_mm;
+  projector_.anchor(s_);
+  Candidates best;
+  Candidate candidate;
+  ActuatorVector actuators(actuators_);
+  const int count = static_cast<int>(directions_.size());
+  for (int c = 0; c < count; ++c) {
+    if (evaluate(c, actuators, candidate)) rank(candidate, end_zone, best);
+  }
+  return end_zone ? finish_end_zone(best, tact) : take_best(best, tact);
 }
 
 }  // namespace pkm::interpolation

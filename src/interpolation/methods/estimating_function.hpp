@@ -113,7 +113,20 @@ class EstimatingInterpolator {
     bool found() const { return index >= 0; }
   };
 
+  /// The best candidates of a tact by each rule.
+  struct Candidates {
+    Candidate admissible;  ///< best candidate meeting both criteria
+    Candidate advancing;   ///< fallback: least deviation among those with positive progress
+    Candidate closest;     ///< fallback: least deviation
+    Candidate end_within;  ///< end zone: nearest the end point among those within δ
+    Candidate end_any;     ///< end zone: nearest the end point
+  };
   bool solve(const ActuatorVector& actuators, Pose& pose);
+  /// Candidate `c`'s pose and where it is on the path; false (counted) out of range or without FK.
+  bool evaluate(int c, ActuatorVector& actuators, Candidate& candidate);
+  void rank(Candidate& candidate, bool end_zone, Candidates& best);
+  bool finish_end_zone(const Candidates& best, Tact& tact);
+  bool take_best(const Candidates& best, Tact& tact);
   double rotation_deviation(const Pose& pose, const EstimatingNearest& nearest) const;
   bool fail(ErrorCode code, const std::string& message, double s);
   void apply(const Candidate& chosen, bool fallback, bool end_approach, Tact& tact);

@@ -64,8 +64,15 @@ class DiscretenessCorrector {
     std::array<Eigen::Vector3d, kMaxActuators> point_per_step;  ///< ∂p/∂L_j · step
     std::array<Eigen::Vector3d, kMaxActuators> angles_per_step;
   };
+  struct PeriodGoal;  ///< the period's all-floor state and the path's points and tangents at its end and
+                      ///< middle
+  struct Choice;      ///< the best combination of extra steps so far, by each criterion
   bool linearise(PoseTracker& tracker, const std::array<double, kMaxActuators>& values, Linearisation& out);
   Status fail(const CarrierPeriod& period, const char* where) const;
+  PeriodGoal period_goal(const CarrierPeriod& period);
+  void choose_linearised(const PeriodGoal& goal, const Linearisation& end, Choice& choice) const;
+  Status choose_exact(const CarrierPeriod& period, const PeriodGoal& goal, Choice& choice);
+  void issue(const CarrierPeriod& period, const PeriodGoal& goal, unsigned chosen, StepPeriod& out);
 
   const Machine& machine_;
   const path::Path& path_;
