@@ -31,7 +31,7 @@ ALLOWED = [
      "starts LinuxCNC: its real-time modules as root or a display (make test runs the README's headless run)"),
     (re.compile(r"^(\S+=\S+ )*dask "), "starts a Dask cluster's worker: needs the cluster"),
     (re.compile(r"^man "), "opens the pager: the package test checks that the man page is installed"),
-    (re.compile(r"^grep "), "checks of the source tree's layering, not of an installed pkm"),
+    (re.compile(r"^(grep |python3 scripts/include-order\.py)"), "checks of the source tree's layering, not of an installed pkm"),
     (re.compile(r"^python3 -m venv |^~/pkm-env/bin/"),
      "pip install . from the source tree into a virtual environment: the package test does it"),
 ]

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "io/pose_input.hpp"
 #include "number_options.hpp"
+#include "pipeline/calibration_checks.hpp"
 
 namespace pkm::cli {
 
@@ -17,17 +18,16 @@ void add_calibrate_instrument_options(CLI::App& cmd, pipeline::CalibrationInstru
       "--fixture", instrument.fixture_path,
       "fixture file: the tracker's targets on the platform (CSV target,x,y,z, tool frame, mm); default: "
       "the dissertation's triangular plate");
-  // A plate of 1 m radius is larger than any platform pkm models.
   cmd.add_option("--plate-radius-mm", instrument.plate_radius_mm,
                  "radius of the default triangular plate's vertices about the tool point, mm")
       ->capture_default_str()
-      ->check(number_in({0.0, 1000.0, false, true, "mm"}));
+      ->check(number_in(number_range(pipeline::kCalibrationPlateRadiusMm)));
   cmd.add_option("--ballbar-centre", text.ballbar_centre,
                  "measure with a ballbar from the tool point to a ball at X,Y,Z (base frame, mm) instead");
   cmd.add_option("--sigma-mm", instrument.sigma_mm,
                  "standard deviation of each measured coordinate or length, mm")
       ->capture_default_str()
-      ->check(number_in({0.0, 10.0, false, true, "mm"}));
+      ->check(number_in(number_range(pipeline::kCalibrationSigmaMm)));
 }
 
 Result<pipeline::CalibrationInstrument> calibrate_instrument(pipeline::CalibrationInstrument instrument,
@@ -39,8 +39,6 @@ Result<pipeline::CalibrationInstrument> calibrate_instrument(pipeline::Calibrati
     return make_error(ErrorCode::bad_input,
                       fmt::format("--ballbar-centre: expected 3 numbers x,y,z (mm), got {}", centre->size()));
   }
-  if (!instrument.fixture_path.empty())
-    return make_error(ErrorCode::bad_input, "--ballbar-centre and --fixture: a ballbar measures no fixture");
   instrument.ballbar_centre_mm = Eigen::Vector3d((*centre)[0], (*centre)[1], (*centre)[2]);
   return instrument;
 }
@@ -51,23 +49,23 @@ void add_calibrate_plan_options(CLI::App& cmd, pipeline::CalibrationPlanSpec& sp
   spec.poses = 12;
   cmd.add_option("--poses", spec.poses, "poses to measure (seven-pose: n + 1 unless given)")
       ->capture_default_str()
-      ->check(number_in({1.0, 10000.0, true, true, "", true}));
+      ->check(number_in(number_range(pipeline::kCalibrationPoses)));
   cmd.add_option("--box-mm", spec.box_mm, "random and d-optimal poses: ± this on x, y, z around home, mm")
       ->capture_default_str()
-      ->check(number_in({0.0, 10000.0, true, true, "mm"}));
+      ->check(number_in(number_range(pipeline::kCalibrationBoxMm)));
   cmd.add_option("--box-deg", spec.box_deg, "... and ± this on each angle, deg")
       ->capture_default_str()
-      ->check(number_in({0.0, 90.0, true, true, "deg"}));
+      ->check(number_in(number_range(pipeline::kCalibrationBoxDeg)));
   cmd.add_option("--strut-change-mm", spec.strut_change_mm,
                  "seven-pose: each actuator's change from home, mm (deg for turning actuators)")
       ->capture_default_str()
-      ->check(number_in({-1000.0, 1000.0, true, true, "mm"}));
+      ->check(number_in(number_range(pipeline::kCalibrationStrutChangeMm)));
   cmd.add_option("--candidates", spec.candidates, "d-optimal: random poses to choose from")
       ->capture_default_str()
-      ->check(number_in({1.0, 100000.0, true, true, "", true}));
+      ->check(number_in(number_range(pipeline::kCalibrationCandidates)));
   cmd.add_option("--held-out", spec.held_out, "random poses where the tool error is predicted or judged")
       ->capture_default_str()
-      ->check(number_in({0.0, 100000.0, true, true, "", true}));
+      ->check(number_in(number_range(pipeline::kCalibrationHeldOut)));
   cmd.add_option("--seed", spec.seed, "seed of the random draws (the same seed gives the same run)")
       ->capture_default_str()
       ->check(number_in({0.0, 1e15, true, true, "", true}));

@@ -12,6 +12,7 @@
 #include "cli_common.hpp"
 #include "cmd_calibrate.hpp"
 #include "number_options.hpp"
+#include "pipeline/calibration_checks.hpp"
 #include "progress_display.hpp"
 
 namespace pkm::cli {
@@ -66,7 +67,7 @@ void add_calibrate_identify_command(CLI::App& calibrate, int& exit_code) {
                   "fixture file, instead of the one the measurement file names");
   cmd->add_option("--holdout", job->holdout, "poses kept aside (spread over the file) to judge the result")
       ->capture_default_str()
-      ->check(number_in({0.0, 100000.0, true, true, "", true}));
+      ->check(number_in(number_range(pipeline::kCalibrationHoldout)));
   cmd->add_flag("--strict", job->strict, "a partial identification is an error (exit 4), nothing written");
   cmd->add_option("--report", job->report_path, "also write the HTML report of the run to this file");
   cmd->add_flag("--json", *json, "print the summary as JSON");

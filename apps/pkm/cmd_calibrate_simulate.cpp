@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "cmd_calibrate.hpp"
 #include "number_options.hpp"
+#include "pipeline/calibration_checks.hpp"
 #include "progress_display.hpp"
 
 namespace pkm::cli {
@@ -31,14 +32,14 @@ void add_calibrate_simulate_command(CLI::App& calibrate, int& exit_code) {
   add_calibrate_instrument_options(*cmd, job->instrument, *text);
   cmd->add_option("--trials", job->trials, "Monte-Carlo trials")
       ->capture_default_str()
-      ->check(number_in({0.0, 100000.0, true, true, "", true}));
+      ->check(number_in(number_range(pipeline::kCalibrationTrials)));
   cmd->add_option("--joint-error-mm", job->joint_error_mm,
                   "the true joints: uniform ± this around the drawing, mm")
       ->capture_default_str()
-      ->check(number_in({0.0, 100.0, true, true, "mm"}));
+      ->check(number_in(number_range(pipeline::kCalibrationJointErrorMm)));
   cmd->add_option("--offset-error-mm", job->offset_error_mm, "the true drive offsets: uniform ± this, mm")
       ->capture_default_str()
-      ->check(number_in({0.0, 100.0, true, true, "mm"}));
+      ->check(number_in(number_range(pipeline::kCalibrationOffsetErrorMm)));
   cmd->add_option(
       "--write-measurements", job->measurements_path,
       "also write one simulated measurement file here (a machine drawn from --seed), its fixture beside "
@@ -48,12 +49,6 @@ void add_calibrate_simulate_command(CLI::App& calibrate, int& exit_code) {
       "the file of --write-measurements without noise (--sigma-mm still weighs it); the trials keep theirs");
   cmd->add_flag("--json", *json, "print the summary as JSON");
   cmd->callback([=, &exit_code] {
-    if (*noise_free && job->measurements_path.empty()) {
-      exit_code =
-          report_error("calibrate simulate",
-                       make_error(ErrorCode::bad_input, "--noise-free: only with --write-measurements"));
-      return;
-    }
     job->noise = !*noise_free;
     auto spec = calibrate_plan_spec(job->plan, *method, cmd->count("--poses") > 0);
     if (!spec) {

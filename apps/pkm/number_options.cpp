@@ -45,6 +45,10 @@ std::string describe_range(const NumberRange& range) {
   return text;
 }
 
+NumberRange number_range(const pipeline::ParameterRange& range) {
+  return {range.low, range.high, range.low_inclusive, true, std::string(range.unit), range.whole};
+}
+
 CLI::Validator number_in(NumberRange range) {
   const std::string description = describe_range(range);
   return CLI::Validator(

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "pipeline/parameter_range.hpp"
+
 namespace pkm::cli {
 
 /// The accepted interval of a numeric option and its unit for messages ("mm", "%", "" for a count).
@@ -17,6 +19,8 @@ struct NumberRange {
   bool whole = false;  ///< only whole numbers (counts)
 };
 
+/// A library parameter's range (pipeline/parameter_range.hpp) as an option's: one definition for both.
+NumberRange number_range(const pipeline::ParameterRange& range);
 /// A CLI11 validator: the option's text must be one finite number inside `range`.
 CLI::Validator number_in(NumberRange range);
 

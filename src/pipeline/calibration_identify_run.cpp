@@ -15,6 +15,7 @@
 #include "io/machine_file.hpp"
 #include "io/measurement_file.hpp"
 #include "io/output_set.hpp"
+#include "pipeline/calibration_checks.hpp"
 #include "pipeline/calibration_identify_outputs.hpp"
 #include "pipeline/calibration_run.hpp"
 #include "pipeline/calibration_setup.hpp"
@@ -78,6 +79,7 @@ Status calid_check_calibrated(const std::string& text, const std::string& path, 
 
 Result<CalibrationIdentifyResult> calibration_identify(const Machine& machine,
                                                        const CalibrationIdentifyJob& job) {
+  if (Status valid = check_calibration_identify_job(job); !valid) return valid.error();
   auto model = calibration_model(machine);
   if (!model) return model.error();
   auto layout = calibration::parameter_layout(**model);

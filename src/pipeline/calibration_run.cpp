@@ -11,11 +11,14 @@
 #include "io/json_text.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
+#include "pipeline/calibration_checks.hpp"
 #include "pipeline/calibration_setup.hpp"
 
 namespace pkm::pipeline {
 
 Result<CalibrationPlanResult> calibration_plan(const Machine& machine, const CalibrationPlanJob& job) {
+  if (Status valid = check_calibration_plan_spec(job.plan); !valid) return valid.error();
+  if (Status valid = check_calibration_instrument(job.instrument); !valid) return valid.error();
   auto prepared = calibration_prepare(machine, job.plan, job.instrument);
   if (!prepared) return prepared.error();
   const calibration::Identifiability& id = prepared->prediction.identifiability;

@@ -12,6 +12,7 @@
 #include "io/measurement_file.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
+#include "pipeline/calibration_checks.hpp"
 #include "pipeline/calibration_run.hpp"
 #include "pipeline/calibration_setup.hpp"
 
@@ -104,8 +105,7 @@ Status calsim_write_measurements(const Machine& machine, const Mechanism& model,
 
 Result<CalibrationSimulateResult> calibration_simulate(const Machine& machine,
                                                        const CalibrationSimulateJob& job) {
-  if (job.trials < 0)
-    return make_error(ErrorCode::bad_input, fmt::format("{} trials: expected 0 or more", job.trials));
+  if (Status valid = check_calibration_simulate_job(job); !valid) return valid.error();
   auto prepared = calibration_prepare(machine, job.plan, job.instrument);
   if (!prepared) return prepared.error();
 
