@@ -7,26 +7,12 @@
 #include "cli_common.hpp"
 #include "dynamics/frequency_map.hpp"
 #include "dynamics/pose_grid.hpp"
-#include "dynamics/pose_grid_columns.hpp"
+#include "formats/frequency_map_csv.hpp"
 #include "io/output_file.hpp"
 #include "io/pose_input.hpp"
 
 namespace pkm::cli {
 namespace {
-
-/// One row per grid point; the frequency is empty where the point has none, and `status` says why.
-std::string frequency_map_csv(const Mechanism& mech, const std::vector<Pose>& poses,
-                              const std::vector<dynamics::FrequencyMapPoint>& points) {
-  std::string csv =
-      fmt::format("{},lowest_frequency_Hz,status\n", fmt::join(dynamics::grid_pose_columns(mech), ","));
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    csv += dynamics::grid_pose_cells(mech, poses[i]);
-    if (points[i].status == dynamics::MapPointStatus::ok)
-      csv += fmt::format("{:.6f}", points[i].lowest_frequency_Hz);
-    csv += fmt::format(",{}\n", to_string(points[i].status));
-  }
-  return csv;
-}
 
 int modes_map_error(const std::string& prefix, const Error& error) {
   Error e = error;
@@ -52,7 +38,8 @@ int run_modes_map(const ModesMapArguments& arguments) {
   const std::vector<Pose>* poses = &map_grid->poses;
   const auto points = dynamics::frequency_map(*machine, *model, *poses);
   const auto s = dynamics::summarise_frequency_map(points);
-  if (Status written = write_output_file(arguments.out_path, frequency_map_csv(mech, *poses, points));
+  if (Status written =
+          write_output_file(arguments.out_path, formats::frequency_map_csv(mech, *poses, points));
       !written) {
     return modes_map_error("--out", written.error());
   }
