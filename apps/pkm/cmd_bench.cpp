@@ -5,7 +5,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "kinematics/kinematics_timing.hpp"
+#include "machine/kinematics_timing.hpp"
 #include "number_options.hpp"
 
 namespace pkm::cli {

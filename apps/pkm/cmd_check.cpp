@@ -10,8 +10,8 @@
 #include "core/units.hpp"
 #include "io/pose_input.hpp"
 #include "io/printable_text.hpp"
-#include "kinematics/conditioning.hpp"
-#include "kinematics/mobility.hpp"
+#include "machine/conditioning.hpp"
+#include "machine/mobility.hpp"
 #include "number_options.hpp"
 
 namespace pkm::cli {

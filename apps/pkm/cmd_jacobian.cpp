@@ -9,7 +9,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "io/pose_input.hpp"
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 #include "pose_reach.hpp"
 
 namespace pkm::cli {

@@ -7,7 +7,7 @@
 #include "array_args.hpp"
 #include "batch_bindings.hpp"
 #include "batch_support.hpp"
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 #include "row_loop.hpp"
 
 namespace pkm::python {

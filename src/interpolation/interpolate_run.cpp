@@ -8,7 +8,7 @@
 
 #include "core/units.hpp"
 #include "interpolation/quantisation/remainder_quantizer.hpp"
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 
 namespace pkm::interpolation {
 

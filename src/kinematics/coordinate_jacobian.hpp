@@ -1,7 +1,9 @@
 #pragma once
 // From the twist Jacobian (actuator rates from tool-point velocity v and base-frame angular velocity ω) to
 // the Jacobian in the user's pose coordinates (x, y, z, and angle rates of the named convention).
-#include "machine/mechanism.hpp"
+#include "core/rotation.hpp"
+#include "kinematics/actuator_vector.hpp"
+#include "kinematics/axis_mask.hpp"
 
 namespace pkm {
 

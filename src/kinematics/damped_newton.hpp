@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
-#include "machine/mechanism.hpp"
+#include "kinematics/fk_solution.hpp"
 
 namespace pkm {
 

@@ -26,7 +26,9 @@
 
 #include "core/rotation.hpp"
 #include "kinematics/fixed_lu.hpp"
-#include "machine/mechanism.hpp"
+#include "core/result.hpp"
+#include "kinematics/actuator_vector.hpp"
+#include "kinematics/fk_solution.hpp"
 
 namespace pkm {
 

@@ -175,133 +175,113 @@ double refine_point(const Legs& legs, const Eigen::Vector4cd& chart, StudyPoint&
   return last;
 }
 
-// The tracker itself, on Kernels (BaselineKernels or WideKernels): track_stewart_path runs it with the
-// kernels built for the baseline processor or, where the processor has them, for AVX2 and FMA.
-template <class Kernels>
-TrackedPath follow_path(const StewartSystem& system, const StewartParameters& from,
-                        const StewartParameters& to, const StudyPoint& start,
-                        const PathTrackOptions& options) {
-  const Legs origin = Legs::of(from), rate = Legs::of(to.minus(from));
-  const Eigen::Vector4cd& chart = system.chart();
-  TrackedPath path;
-  Vec8 x = Vec8::of(start);
-  double t = 0.0;
-  LaneLu lu;
-  Vec8 f;
-  Taylor taylor;
-  Legs p = origin;
-  Kernels::linearise(p, chart, x, nullptr, lu.matrix());
-  Kernels::factorise(lu);
-  taylor[0] = x;
-  Kernels::taylor(p, rate, lu, taylor.data());
-  // Newton's contraction per unit of first correction, θ ≈ ω·|Δx₀| (Kantorovich: ω bounds the Jacobian's
-  // relative change), measured on each step's first two corrections. The step's error target is the smaller
-  // of step_error_target and the first correction that would contract by contraction_target: near another
-  // path or a singularity ω is large and the corrector's basin small, and aiming the predictor at it there is
-  // what avoids most rejected steps (the old controller, aiming at a fixed error, had 6 per path).
-  double omega = 0.0;
-  auto target = [&]() {
-    return omega > 0 ? std::min(options.step_error_target, options.contraction_target / omega)
-                     : options.step_error_target;
-  };
-  double coefficient = Kernels::error_coefficient(taylor);
-  double h = fifth_root(target() / coefficient);
+// Newton's contraction per unit of first correction, θ ≈ ω·|Δx₀| (Kantorovich: ω bounds the Jacobian's
+// relative change), is measured on each step's first two corrections. The step's error target is the smaller
+// of step_error_target and the first correction that would contract by contraction_target: near another path
+// or a singularity ω is large and the corrector's basin small, and aiming the predictor at it there is what
+// avoids most rejected steps (the old controller, aiming at a fixed error, had 6 per path).
+double step_error_target(const PathTrackOptions& options, double omega) {
+  return omega > 0 ? std::min(options.step_error_target, options.contraction_target / omega)
+                   : options.step_error_target;
+}
+
+// The first step: sized from the start's Taylor coefficients, within the options' bounds.
+double first_step(const PathTrackOptions& options, double coefficient) {
+  double h = fifth_root(step_error_target(options, 0.0) / coefficient);
   if (!std::isfinite(h)) h = options.max_step;
-  h = std::max(std::min(h, options.max_step), std::min(options.initial_step, options.max_step));
-  const double tol = options.corrector_tolerance;
-  while (t < 1.0 && path.steps < options.max_steps) {
-    ++path.steps;
-    h = std::min({h, options.max_step, 1.0 - t});
-    Vec8 candidate = Kernels::predict(taylor, h);
-    const double t_next = (1.0 - t - h) < 1e-15 ? 1.0 : t + h;
-    p = origin.lerp_rate(rate, t_next);
-    bool converged = false;
-    double first = 0.0, previous = 0.0, theta = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      // In the column order of the last factorisation, without a pivot search, where that order still
-      // pivots well (LaneLu::factorise_in_last_order; 3–4 % of the factorisations do not).
-      Kernels::linearise_in_last_order(p, chart, candidate, &f, lu);
-      if (!Kernels::factorise_in_last_order(lu)) {
-        Kernels::linearise(p, chart, candidate, &f, lu.matrix());
-        Kernels::factorise(lu);
-      }
-      const Vec8 step = Kernels::solve(lu, f);
-      candidate -= step;
-      const double size = relative_step(step, candidate);
-      if (!std::isfinite(size)) break;
-      if (i == 0) {
-        first = size;
-        if (size > 0.05) break;  // the predictor landed too far from the path
-      } else {
-        if (i == 1) theta = size / first;
-        if (size > 0.1 * first && size > tol) break;  // not contracting: too close to another path
-      }
-      // Converged when this correction, or the error it leaves (about size·(size/previous), Deuflhard's
-      // estimate from the contraction seen, with a factor 0.5 for its roughness), is below the tolerance.
-      if (size <= tol || (i > 0 && size * size <= 0.5 * tol * previous)) {
-        converged = true;
-        break;
-      }
-      previous = size;
+  return std::max(std::min(h, options.max_step), std::min(options.initial_step, options.max_step));
+}
+
+// What the corrector saw at one step.
+struct Correction {
+  bool converged = false;
+  double first = 0.0;  ///< the first correction's size, relative to 1 + |x|
+  double theta = 0.0;  ///< the second correction's size over the first (0: no second correction)
+};
+
+// The corrector: up to three Newton iterations from the predicted `candidate` at parameters p, reusing the
+// last factorisation's column order where it still pivots well. `lu` keeps the last factorisation (the next
+// Taylor coefficients use it).
+template <class Kernels>
+Correction correct_step(const Legs& p, const Eigen::Vector4cd& chart, double tol, Vec8& candidate, LaneLu& lu) {
+  Correction c;
+  Vec8 f;
+  double previous = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    // In the column order of the last factorisation, without a pivot search, where that order still
+    // pivots well (LaneLu::factorise_in_last_order; 3–4 % of the factorisations do not).
+    Kernels::linearise_in_last_order(p, chart, candidate, &f, lu);
+    if (!Kernels::factorise_in_last_order(lu)) {
+      Kernels::linearise(p, chart, candidate, &f, lu.matrix());
+      Kernels::factorise(lu);
     }
-    if (theta > 0 && first > 1e-12) {
-      // A larger ω counts at once; a smaller one only halves the old (one easy step is no proof that the
-      // region is easy).
-      const double measured = theta / first;
-      omega = converged ? std::max(measured, 0.5 * omega) : std::max(measured, omega);
-    }
-    if (converged) {
-      // A path still growing fast near t = 1 is on its way to infinity: its remoteness grows like
-      // (1 − t)^(−k) there, with k ≈ 2 on every lost path of the 3-fold symmetric layouts (1.8–2.3 measured),
-      // while a path to a finite solution levels off. The upper bound 3 on k keeps an excursion past a nearby
-      // pole before t = 1 (a finite path passing close to infinity, whose growth rate relative to 1 − t is
-      // 5–130) from being taken for a divergence: the 2000 random geometries had 9 such paths reported at
-      // infinity before it, 1 after. Deciding it here saves the many small steps of a divergence.
-      bool diverging = false;
-      if (t_next < 1.0 && 1.0 - t_next < options.divergence_zone &&
-          candidate.norm() > options.divergence_norm) {
-        const double size_before = pose_remoteness(x), size_after = pose_remoteness(candidate);
-        const double growth = std::log(size_after / size_before),
-                     approach = std::log((1.0 - t) / (1.0 - t_next));
-        diverging =
-            size_after > options.divergence_norm && growth > 0.2 * approach && growth < 3.0 * approach;
-      }
-      x = candidate;
-      t = t_next;
-      if (diverging || x.norm() > options.infinity_norm) {
-        path.x = x.point();
-        path.end = PathEnd::at_infinity;
-        path.t = t;
-        return path;
-      }
-      if (t < 1.0) {
-        // The Taylor coefficients at the new point, with the corrector's last factorisation: of the Jacobian
-        // one correction (below the square root of the tolerance) away, which perturbs them far less than the
-        // predictor error the step aims at. One factorisation per Newton iteration is thus shared with the
-        // predictor. The next step is sized from them (a priori), at most 4 times this one.
-        taylor[0] = x;
-        Kernels::taylor(p, rate, lu, taylor.data());
-        coefficient = Kernels::error_coefficient(taylor);
-        const double next = fifth_root(target() / coefficient);
-        h = std::isfinite(next) ? std::min(next, 4.0 * h) : 2.0 * h;
-      }
+    const Vec8 step = Kernels::solve(lu, f);
+    candidate -= step;
+    const double size = relative_step(step, candidate);
+    if (!std::isfinite(size)) break;
+    if (i == 0) {
+      c.first = size;
+      if (size > 0.05) break;  // the predictor landed too far from the path
     } else {
-      ++path.rejected;
-      // Resized from the error just measured at this h (the same Taylor data, so the measured coefficient is
-      // the better one), by a factor between 0.1 and 0.7.
-      const double measured = first > 0 ? first / (h * h * h * h * h) : 0.0;
-      double next = measured > 0 ? fifth_root(target() / std::max(measured, coefficient)) : 0.5 * h;
-      if (!std::isfinite(next)) next = 0.5 * h;
-      h = std::clamp(next, 0.1 * h, 0.7 * h);
-      if (h < options.min_step) break;
+      if (i == 1) c.theta = size / c.first;
+      if (size > 0.1 * c.first && size > tol) break;  // not contracting: too close to another path
     }
+    // Converged when this correction, or the error it leaves (about size·(size/previous), Deuflhard's
+    // estimate from the contraction seen, with a factor 0.5 for its roughness), is below the tolerance.
+    if (size <= tol || (i > 0 && size * size <= 0.5 * tol * previous)) {
+      c.converged = true;
+      break;
+    }
+    previous = size;
   }
-  path.x = x.point();
-  path.t = t;
+  return c;
+}
+
+// ω after a step: a larger one counts at once; a smaller one only halves the old (one easy step is no proof
+// that the region is easy).
+double updated_contraction(double omega, const Correction& c) {
+  if (!(c.theta > 0 && c.first > 1e-12)) return omega;
+  const double measured = c.theta / c.first;
+  return c.converged ? std::max(measured, 0.5 * omega) : std::max(measured, omega);
+}
+
+// A path still growing fast near t = 1 is on its way to infinity: its remoteness grows like (1 − t)^(−k)
+// there, with k ≈ 2 on every lost path of the 3-fold symmetric layouts (1.8–2.3 measured), while a path to a
+// finite solution levels off. The upper bound 3 on k keeps an excursion past a nearby pole before t = 1 (a
+// finite path passing close to infinity, whose growth rate relative to 1 − t is 5–130) from being taken for a
+// divergence: the 2000 random geometries had 9 such paths reported at infinity before it, 1 after. Deciding it
+// here saves the many small steps of a divergence.
+bool diverging_step(const PathTrackOptions& options, const Vec8& x, const Vec8& candidate, double t,
+                    double t_next) {
+  if (!(t_next < 1.0 && 1.0 - t_next < options.divergence_zone && candidate.norm() > options.divergence_norm)) {
+    return false;
+  }
+  const double size_before = pose_remoteness(x), size_after = pose_remoteness(candidate);
+  const double growth = std::log(size_after / size_before), approach = std::log((1.0 - t) / (1.0 - t_next));
+  return size_after > options.divergence_norm && growth > 0.2 * approach && growth < 3.0 * approach;
+}
+
+// The step after a rejected one: resized from the error just measured at this h (the same Taylor data, so
+// the measured coefficient is the better one), by a factor between 0.1 and 0.7.
+double step_after_rejection(const PathTrackOptions& options, double omega, double h, double first,
+                            double coefficient) {
+  const double measured = first > 0 ? first / (h * h * h * h * h) : 0.0;
+  double next = measured > 0 ? fifth_root(step_error_target(options, omega) / std::max(measured, coefficient))
+                             : 0.5 * h;
+  if (!std::isfinite(next)) next = 0.5 * h;
+  return std::clamp(next, 0.1 * h, 0.7 * h);
+}
+
+// How a path that stopped at path.t (path.x) ends: refined at t = 1, or after a stalled approach to it (a
+// singular endpoint, or one at infinity), or a collapse of the step size.
+template <class Kernels>
+void classify_end(const StewartParameters& to, const Eigen::Vector4cd& chart, const PathTrackOptions& options,
+                  TrackedPath& path) {
+  const double t = path.t;
   if (t >= 1.0) {
     const double last = refine_point<Kernels>(Legs::of(to), chart, path.x, 3, 1e-15, path.pivot_ratio);
     path.end = std::isfinite(last) ? PathEnd::finite : PathEnd::failed;
-    return path;
+    return;
   }
   if (1.0 - t <= options.endgame_start) {
     // A stalled approach to t = 1: a singular endpoint, or one at infinity.
@@ -313,13 +293,76 @@ TrackedPath follow_path(const StewartSystem& system, const StewartParameters& fr
     } else {
       path.end = PathEnd::at_infinity;
     }
-    return path;
+    return;
   }
   // A collapse of the step size close to t = 1 on a large |x| is a divergence the growth test did not catch.
   path.end = 1.0 - t < options.divergence_zone && pose_remoteness(path.x) > options.divergence_norm &&
                      path.x.norm() > options.divergence_norm
                  ? PathEnd::at_infinity
                  : PathEnd::failed;
+}
+
+// The tracker itself, on Kernels (BaselineKernels or WideKernels): track_stewart_path runs it with the
+// kernels built for the baseline processor or, where the processor has them, for AVX2 and FMA. Each step:
+// the Padé predictor, the corrector, and the next step size (a priori from the new point's Taylor
+// coefficients after a converged step, from the measured error after a rejected one).
+template <class Kernels>
+TrackedPath follow_path(const StewartSystem& system, const StewartParameters& from,
+                        const StewartParameters& to, const StudyPoint& start,
+                        const PathTrackOptions& options) {
+  const Legs origin = Legs::of(from), rate = Legs::of(to.minus(from));
+  const Eigen::Vector4cd& chart = system.chart();
+  TrackedPath path;
+  Vec8 x = Vec8::of(start);
+  double t = 0.0;
+  LaneLu lu;
+  Taylor taylor;
+  Legs p = origin;
+  Kernels::linearise(p, chart, x, nullptr, lu.matrix());
+  Kernels::factorise(lu);
+  taylor[0] = x;
+  Kernels::taylor(p, rate, lu, taylor.data());
+  double omega = 0.0;  // Newton's contraction per unit of first correction (step_error_target)
+  double coefficient = Kernels::error_coefficient(taylor);
+  double h = first_step(options, coefficient);
+  while (t < 1.0 && path.steps < options.max_steps) {
+    ++path.steps;
+    h = std::min({h, options.max_step, 1.0 - t});
+    Vec8 candidate = Kernels::predict(taylor, h);
+    const double t_next = (1.0 - t - h) < 1e-15 ? 1.0 : t + h;
+    p = origin.lerp_rate(rate, t_next);
+    const Correction correction = correct_step<Kernels>(p, chart, options.corrector_tolerance, candidate, lu);
+    omega = updated_contraction(omega, correction);
+    if (!correction.converged) {
+      ++path.rejected;
+      h = step_after_rejection(options, omega, h, correction.first, coefficient);
+      if (h < options.min_step) break;
+      continue;
+    }
+    const bool diverging = diverging_step(options, x, candidate, t, t_next);
+    x = candidate;
+    t = t_next;
+    if (diverging || x.norm() > options.infinity_norm) {
+      path.x = x.point();
+      path.end = PathEnd::at_infinity;
+      path.t = t;
+      return path;
+    }
+    if (t < 1.0) {
+      // The Taylor coefficients at the new point, with the corrector's last factorisation: of the Jacobian
+      // one correction (below the square root of the tolerance) away, which perturbs them far less than the
+      // predictor error the step aims at. One factorisation per Newton iteration is thus shared with the
+      // predictor. The next step is sized from them (a priori), at most 4 times this one.
+      taylor[0] = x;
+      Kernels::taylor(p, rate, lu, taylor.data());
+      coefficient = Kernels::error_coefficient(taylor);
+      const double next = fifth_root(step_error_target(options, omega) / coefficient);
+      h = std::isfinite(next) ? std::min(next, 4.0 * h) : 2.0 * h;
+    }
+  }
+  path.x = x.point();
+  path.t = t;
+  classify_end<Kernels>(to, chart, options, path);
   return path;
 }
 

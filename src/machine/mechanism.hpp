@@ -1,5 +1,7 @@
 #pragma once
 // One interface for every mechanism, so that every stage of pkm works for all of them.
+// The value types it trades in (actuator vectors, FK options and solutions, axis masks, strut joints) are
+// the kinematics kernel's, in kinematics/; this header includes them, so its users need no other include.
 //
 // Pose coordinates are the six of PoseVector (x, y, z mm; three angles in the mechanism's convention, rad).
 // A mechanism controls some of them (`controlled_axes`); reduced-DOF mechanisms compute the others
@@ -14,66 +16,14 @@
 
 #include "core/pose.hpp"
 #include "core/result.hpp"
+#include "kinematics/actuator_vector.hpp"
+#include "kinematics/axis_mask.hpp"
+#include "kinematics/fk_solution.hpp"
+#include "kinematics/strut_joint_points.hpp"
 #include "machine/mechanism_structure.hpp"
 #include "machine/mechanism_type.hpp"
 
 namespace pkm {
-
-constexpr int kMaxActuators = 6;
-/// Up to six actuator coordinates; fixed capacity, never allocates.
-using ActuatorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1>;
-/// Actuator rates from controlled-coordinate rates: rows = actuators, columns = controlled coordinates.
-using JacobianMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxActuators, 6>;
-/// Platform twists per unit rate of each controlled coordinate: 6 × (controlled coordinates), rows
-/// (v mm, ω rad) per mm or rad of the coordinate (Mechanism::controlled_twists).
-using TwistBasis = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
-
-/// Which of the six pose coordinates a mechanism controls (x, y, z, angle 1, angle 2, angle 3).
-struct AxisMask {
-  std::array<bool, 6> controlled{};
-  int count() const {
-    int n = 0;
-    for (bool c : controlled) n += c ? 1 : 0;
-    return n;
-  }
-  static AxisMask all() { return {{true, true, true, true, true, true}}; }
-  static AxisMask translations() { return {{true, true, true, false, false, false}}; }
-};
-
-/// Solver limits for forward kinematics (a parameter, never a hidden constant; STYLE habit 5).
-struct FkOptions {
-  double tolerance_mm = 1e-10;  ///< max |actuator residual| at convergence (mm, or rad for angular actuators)
-  int max_iterations = 60;      ///< Newton iterations before giving up
-  double min_rcond = 1e-13;  ///< smallest/largest LU pivot of the Jacobian below which it counts as singular
-  /// Reject a solution in another assembly mode than the guess's: along a path the guess is the previous
-  /// pose, so a change of mode means the solver jumped across a singularity or onto a mirrored assembly.
-  bool require_same_branch = true;
-  /// Threads an enumeration of all assembly modes (forward_all, assembly_modes) may use: 1 the caller's
-  /// thread alone (for callers that already run many solves in parallel), 0 one per processor core.
-  int threads = 1;
-};
-
-/// One forward-kinematics solution.
-struct FkSolution {
-  Pose pose;
-  int iterations = 0;
-  double residual_mm = 0.0;  ///< max |IK(pose) − actuators|
-  int branch = 0;            ///< assembly-mode label; 0 = the home pose's mode
-};
-
-/// Where the struts' passive joints are at a pose, for joint-angle limits (machine/joint_limits.hpp).
-/// Strut j runs from its base-side joint base_mm[j] to its platform-side joint platform_mm[j] (base frame).
-struct StrutJointPoints {
-  std::array<Eigen::Vector3d, kMaxActuators> base_mm;
-  std::array<Eigen::Vector3d, kMaxActuators> platform_mm;
-  /// The platform's orientation at the (completed) pose: platform-side joints are mounted on the platform.
-  Eigen::Matrix3d platform_rotation = Eigen::Matrix3d::Identity();
-  /// Base joints on carriages that turn as they move (rotopod: round the circle) are mounted on the carriage:
-  /// mount_yaw_rad[j] is the carriage's turn about the base z axis (its angle on the circle). Otherwise the
-  /// mounts keep their orientation (fixed joints, carriages on straight guides) and mounts_turn is false.
-  std::array<double, kMaxActuators> mount_yaw_rad{};
-  bool mounts_turn = false;
-};
 
 /// A group of geometric constants of a mechanism that calibration can identify (issue 16): `rows` × `columns`
 /// numbers, row-major, e.g. the six base joints, 6 × 3 mm. `key` is also the key that carries the group in a
@@ -87,22 +37,6 @@ struct GeometryGroup {
   int rows = 0;
   std::vector<double> values;  ///< rows × column_names.size(), row-major
   int columns() const { return static_cast<int>(column_names.size()); }
-};
-
-/// What an enumeration of assembly modes saw beyond the real solutions it returns, so that a user knows what
-/// was not returned and why (Mechanism::assembly_modes). Counts are −1 where the method cannot see them.
-struct AssemblyModeReport {
-  std::string method;    ///< how the modes were found, in words
-  int real = 0;          ///< real assembly modes returned
-  int complex = -1;      ///< complex (non-real) solutions of the same equations
-  int at_infinity = -1;  ///< solutions this geometry loses to infinity (special layouts)
-  int singular = -1;     ///< solutions where two or more modes meet (or a continuum of poses)
-  int failed = 0;        ///< paths or brackets that could not be followed to the end
-};
-
-struct AssemblyModes {
-  std::vector<FkSolution> solutions;  ///< as forward_all()
-  AssemblyModeReport report;
 };
 
 class Mechanism;
@@ -245,7 +179,7 @@ class Mechanism {
   /// of Jacobians so that their determinants compare across poses. The default: the mean distance of the
   /// platform joints from the tool point at home (strut_joints), 100 mm without joints.
   virtual double platform_size_mm() const;
-  /// Links and kinematic pairs, for the mobility formula (kinematics/mobility.hpp).
+  /// Links and kinematic pairs, for the mobility formula (machine/mobility.hpp).
   virtual MechanismStructure structure() const { return {}; }
 
   /// The pose the machine starts from; FK without a guess starts here. Set once, at construction: mechanisms

@@ -1,6 +1,6 @@
 #pragma once
 // The links and kinematic pairs of a mechanism as the seeds count them (ch2 §1.2 table), for the
-// Somov–Malyshev mobility formula (kinematics/mobility.hpp). Each mechanism states its own (Mechanism::
+// Somov–Malyshev mobility formula (machine/mobility.hpp). Each mechanism states its own (Mechanism::
 // structure), so that no stage needs a table over mechanism types.
 #include <array>
 #include <string>

@@ -3,7 +3,7 @@
 #include <array>
 #include <cmath>
 
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 #include "machine/joint_limits.hpp"
 
 namespace pkm::workspace {

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "core/units.hpp"
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 #include "limits_test_support.hpp"
 #include "machine/planar3.hpp"
 #include "test_support.hpp"

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 #include "machine/joint_limits.hpp"
 #include "workspace/workspace_summary.hpp"
 #include "workspace_support.hpp"

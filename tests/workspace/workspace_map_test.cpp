@@ -1,5 +1,5 @@
 // Workspace maps of the ch5 hexapod against what the project already pins (spec ch5 §5.1, eq. 144–146;
-// kinematics/conditioning_test.cpp): the cells at C (0, 0, 500) and at the tool point at z = 700, the range
+// machine/conditioning_test.cpp): the cells at C (0, 0, 500) and at the tool point at z = 700, the range
 // of δρ over |x|, |y| ≤ 200 mm, every cell equal to jacobian_measures at its pose, the mechanism's
 // symmetries, and the map the same bit for bit on one thread or several.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 #include "workspace/workspace_summary.hpp"
 #include "workspace_support.hpp"
 

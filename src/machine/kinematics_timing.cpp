@@ -1,4 +1,4 @@
-#include "kinematics/kinematics_timing.hpp"
+#include "machine/kinematics_timing.hpp"
 
 #include <array>
 #include <chrono>

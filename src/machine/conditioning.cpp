@@ -1,4 +1,4 @@
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 
 #include <Eigen/LU>
 #include <Eigen/SVD>

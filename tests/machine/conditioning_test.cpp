@@ -1,5 +1,5 @@
 // Error amplification δρ (spec ch5 §5.1, eq. 144–146) against the extract's own checks on the ch5 hexapod.
-#include "kinematics/conditioning.hpp"
+#include "machine/conditioning.hpp"
 
 #include <gtest/gtest.h>
 

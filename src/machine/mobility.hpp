@@ -7,7 +7,7 @@
 #include <array>
 #include <string>
 
-#include "machine/mechanism.hpp"  // MechanismStructure (machine/mechanism_structure.hpp)
+#include "machine/mechanism.hpp"
 
 namespace pkm {
 

@@ -1,4 +1,4 @@
-#include "kinematics/mobility.hpp"
+#include "machine/mobility.hpp"
 
 namespace pkm {
 

@@ -1,5 +1,5 @@
 // The Somov–Malyshev examples of dissertation §1.2 (spec ch2 §1.2 table, N1) and the structures pkm assigns.
-#include "kinematics/mobility.hpp"
+#include "machine/mobility.hpp"
 
 #include <gtest/gtest.h>
 
