@@ -157,8 +157,10 @@ int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
 
 int Hexapod::strut_state(const Pose& pose, StrutJointPoints& ends, double* actuators,
                          JacobianMatrix& twist_rows) const noexcept {
-  // All six struts at once: each quantity a row of six values (the quantities actuator_values() and
-  // twist_jacobian() compute, to rounding; tests/machine/twist_jacobian_test.cpp).
+  // All six struts at once: each quantity a row of six values. The lengths by the same operations, in the
+  // same order, as actuator_values() (kinematics/strut_lengths.cpp), so the same bits: the dynamics take a
+  // strut's force from its length against the rest length actuator_values() gave; the twist rows as
+  // twist_jacobian() makes them strut by strut, to rounding (tests/machine/twist_jacobian_test.cpp).
   using Lanes = Eigen::Array<double, 1, 6>;
   const Eigen::Matrix3d& r = pose.rotation;
   const Lanes px = layout_.platform_mm.row(0).array(), py = layout_.platform_mm.row(1).array(),
@@ -168,8 +170,12 @@ int Hexapod::strut_state(const Pose& pose, StrutJointPoints& ends, double* actua
   const Lanes arm_z = r(2, 0) * px + r(2, 1) * py + r(2, 2) * pz;
   const Lanes joint_x = arm_x + pose.position_mm.x(), joint_y = arm_y + pose.position_mm.y(),
               joint_z = arm_z + pose.position_mm.z();
-  const Lanes dx = joint_x - layout_.base_mm.row(0).array(), dy = joint_y - layout_.base_mm.row(1).array(),
-              dz = joint_z - layout_.base_mm.row(2).array();
+  const Lanes ox = pose.position_mm.x() - layout_.base_mm.row(0).array(),
+              oy = pose.position_mm.y() - layout_.base_mm.row(1).array(),
+              oz = pose.position_mm.z() - layout_.base_mm.row(2).array();
+  const Lanes dx = (r(0, 0) * px + r(0, 1) * py) + (r(0, 2) * pz + ox);
+  const Lanes dy = (r(1, 0) * px + r(1, 1) * py) + (r(1, 2) * pz + oy);
+  const Lanes dz = (r(2, 0) * px + r(2, 1) * py) + (r(2, 2) * pz + oz);
   const Lanes length = (dx * dx + dy * dy + dz * dz).sqrt();
   if (!(length > 0.0).all()) return -1;  // as actuator_values()
   const Lanes ux = dx / length, uy = dy / length, uz = dz / length;
