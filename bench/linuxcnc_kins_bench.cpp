@@ -7,14 +7,22 @@
 // the inverse kinematics of both modules must agree along it to 1e-6 mm and their forward kinematics must
 // return its poses (pkmkins to 1e-8, genhexkins to 1e-6), or the program stops with an error.
 //
-// Then two measurements:
+// Beside the modules, pkm's hot IK through its Mechanism interface in this process, from the same EmcPose:
+// degrees → radians, pose_from_vector (the angles → matrix conversion) and Mechanism::actuator_values on the
+// machine file's mechanism, what pkmkins' kinematicsInverse does inside without the module's joint
+// bookkeeping. It must agree with genhexkins to 1e-6 mm along the path too.
+//
+// Then three measurements:
 //   - a table printed first: every call timed on its own (steady_clock) over the whole path 5 times, the
 //   modules
 //     alternating per pass, with the mean, p99.9 and worst case of inverse, forward and of both together, the
 //     work of one servo period (LinuxCNC's motion controller calls inverse for the command and forward for
 //     the feedback every period in coordinated mode); a servo thread has to budget for the tail, not the
 //     mean;
-//   - Google Benchmarks, one call per iteration, cycling along the path.
+//   - the hot IK side by side: genhexkins' kinematicsInverse and Mechanism::actuator_values over the whole
+//     path in blocks, alternating, each block timed as a whole (no clock reading per call), with the ratio;
+//   - Google Benchmarks, one call per iteration, cycling along the path (BM_Inverse/pkm_actuator_values is
+//     the interface's).
 #include <benchmark/benchmark.h>
 #include <dlfcn.h>
 #include <yaml-cpp/yaml.h>
@@ -34,6 +42,11 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/pose.hpp"
+#include "core/units.hpp"
+#include "io/machine_file.hpp"
+#include "machine/mechanism.hpp"
 
 #ifndef PKM_KINS_MODULE
 #error \
@@ -288,6 +301,23 @@ KinsModule load_genhexkins() {
   return m;
 }
 
+// The machine file's mechanism in this process, for its hot IK through the interface.
+std::unique_ptr<pkm::Machine> load_interface_machine() {
+  auto loaded = pkm::load_machine_file(machine_file().string());
+  if (!loaded) throw std::runtime_error("machine file: " + loaded.error().message);
+  return std::make_unique<pkm::Machine>(std::move(loaded.value()));
+}
+
+// An EmcPose's joints through Mechanism::actuator_values: the six coordinates (angles in degrees, LinuxCNC's
+// A, B, C: the abc convention, as pkmkins reads them) to a pose, angles → matrix included, then the hot IK.
+inline bool interface_inverse(const pkm::Mechanism& mechanism, const EmcPose& world, double* joints) {
+  const pkm::PoseVector v =
+      (pkm::PoseVector() << world.tran.x, world.tran.y, world.tran.z, pkm::rad_from_deg(world.a),
+       pkm::rad_from_deg(world.b), pkm::rad_from_deg(world.c))
+          .finished();
+  return mechanism.actuator_values(pkm::pose_from_vector(pkm::AngleConvention::abc, v), joints);
+}
+
 void unload(KinsModule& m) {
   if (m.handle == nullptr) return;
   reinterpret_cast<void (*)()>(symbol(m.handle, m.name, "rtapi_app_exit"))();
@@ -338,7 +368,8 @@ double max_pose_difference(const EmcPose& p, const EmcPose& q) {
 
 // Both modules along the whole path, once: inverse kinematics agreeing, forward kinematics returning the
 // poses. Also the first walk of each module along the path and its joints for the forward calls.
-void verify(KinsModule& pkmkins, KinsModule& genhexkins, const std::vector<EmcPose>& path) {
+void verify(KinsModule& pkmkins, KinsModule& genhexkins, const pkm::Mechanism& mechanism,
+            const std::vector<EmcPose>& path) {
   constexpr double kInverseAgreementMm = 1e-6;
   const KinsFlags iflags = 0, fflags = 0;
   KinsFlags out_flags = 0;
@@ -360,6 +391,22 @@ void verify(KinsModule& pkmkins, KinsModule& genhexkins, const std::vector<EmcPo
   }
   std::printf("inverse kinematics, pkmkins vs genhexkins: max |joint difference| %.3g mm over %zu samples\n",
               worst_inverse, kSamples);
+  double worst_interface = 0.0;
+  for (std::size_t k = 0; k < kSamples; ++k) {
+    Joints joints{};
+    if (!interface_inverse(mechanism, path[k], joints.data())) {
+      fail("Mechanism::actuator_values failed at sample " + std::to_string(k));
+    }
+    for (int j = 0; j < kJoints; ++j) {
+      worst_interface = std::max(worst_interface, std::abs(joints[j] - genhexkins.joints[k][j]));
+    }
+  }
+  if (!(worst_interface <= kInverseAgreementMm)) {
+    fail("Mechanism::actuator_values and genhexkins disagree by " + std::to_string(worst_interface) + " mm");
+  }
+  std::printf(
+      "inverse kinematics, Mechanism::actuator_values vs genhexkins: max |joint difference| %.3g mm\n",
+      worst_interface);
 
   for (KinsModule* m : {&pkmkins, &genhexkins}) {
     const double tolerance = m == &pkmkins ? 1e-8 : 1e-6;
@@ -506,6 +553,64 @@ void print_table(KinsModule& pkmkins, KinsModule& genhexkins, const std::vector<
 }
 
 // ---------------------------------------------------------------------------------------------------------------
+// The hot IK side by side: genhexkins' kinematicsInverse and Mechanism::actuator_values, each over the whole
+// path as one timed block, the two alternating block by block (a noisy stretch of a shared machine hits both
+// alike). The per-call time of a block is its time over the samples; the medians of the blocks are compared.
+constexpr int kHotBlocks = 21;
+
+double median_of(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2),
+                   values.end());
+  return values[values.size() / 2];
+}
+
+double genhexkins_block_ns(const KinsModule& genhexkins, const std::vector<EmcPose>& path) {
+  const KinsFlags iflags = 0;
+  KinsFlags out_flags = 0;
+  double joints[kJoints];
+  const Clock::time_point start = Clock::now();
+  for (const EmcPose& world : path) {
+    if (genhexkins.inverse(&world, joints, &iflags, &out_flags) != 0) fail("genhexkins: inverse failed");
+    benchmark::DoNotOptimize(joints);
+  }
+  return static_cast<double>(ns_between(start, Clock::now())) / static_cast<double>(path.size());
+}
+
+double interface_block_ns(const pkm::Mechanism& mechanism, const std::vector<EmcPose>& path) {
+  double joints[kJoints];
+  const Clock::time_point start = Clock::now();
+  for (const EmcPose& world : path) {
+    if (!interface_inverse(mechanism, world, joints)) fail("Mechanism::actuator_values failed");
+    benchmark::DoNotOptimize(joints);
+  }
+  return static_cast<double>(ns_between(start, Clock::now())) / static_cast<double>(path.size());
+}
+
+void print_hot_inverse(const KinsModule& genhexkins, const pkm::Mechanism& mechanism,
+                       const std::vector<EmcPose>& path) {
+  std::vector<double> genhex_ns, interface_ns;
+  for (int block = 0; block < kHotBlocks; ++block) {
+    if (block % 2 == 0) {
+      genhex_ns.push_back(genhexkins_block_ns(genhexkins, path));
+      interface_ns.push_back(interface_block_ns(mechanism, path));
+    } else {
+      interface_ns.push_back(interface_block_ns(mechanism, path));
+      genhex_ns.push_back(genhexkins_block_ns(genhexkins, path));
+    }
+  }
+  const double g = median_of(genhex_ns), p = median_of(interface_ns);
+  std::printf(
+      "hot IK side by side, %d blocks x %zu samples each, alternating; per call, median (fastest) of the "
+      "blocks:\n",
+      kHotBlocks, kSamples);
+  std::printf("  genhexkins kinematicsInverse       %7.1f ns (%.1f)\n", g,
+              *std::min_element(genhex_ns.begin(), genhex_ns.end()));
+  std::printf("  Mechanism::actuator_values (pkm)   %7.1f ns (%.1f)\n", p,
+              *std::min_element(interface_ns.begin(), interface_ns.end()));
+  std::printf("  genhexkins / pkm                   %7.2f x\n\n", g / p);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
 // Google Benchmarks: one call per iteration along the path.
 void BM_Inverse(benchmark::State& state, KinsModule* m, const std::vector<EmcPose>* path) {
   const KinsFlags iflags = 0;
@@ -515,6 +620,20 @@ void BM_Inverse(benchmark::State& state, KinsModule* m, const std::vector<EmcPos
   for (auto _ : state) {
     if (m->inverse(&(*path)[k], joints, &iflags, &fflags) != 0) {
       state.SkipWithError("inverse kinematics failed");
+      break;
+    }
+    benchmark::DoNotOptimize(joints);
+    k = k + 1 == kSamples ? 0 : k + 1;
+  }
+}
+
+void BM_InterfaceInverse(benchmark::State& state, const pkm::Mechanism* mechanism,
+                         const std::vector<EmcPose>* path) {
+  double joints[kJoints];
+  std::size_t k = 0;
+  for (auto _ : state) {
+    if (!interface_inverse(*mechanism, (*path)[k], joints)) {
+      state.SkipWithError("Mechanism::actuator_values failed");
       break;
     }
     benchmark::DoNotOptimize(joints);
@@ -543,14 +662,20 @@ int main(int argc, char** argv) {
   try {
     genhexkins = load_genhexkins();
     pkmkins = load_pkmkins();
+    const std::unique_ptr<pkm::Machine> machine = load_interface_machine();
+    const pkm::Mechanism& mechanism = *machine->mechanism;
     const std::vector<EmcPose> path = servo_path();
     start_forward(pkmkins, path.front());
     start_forward(genhexkins, path.front());
-    verify(pkmkins, genhexkins, path);
+    verify(pkmkins, genhexkins, mechanism, path);
     print_table(pkmkins, genhexkins, path);
+    print_hot_inverse(genhexkins, mechanism, path);
 
     for (KinsModule* m : {&pkmkins, &genhexkins}) {
       benchmark::RegisterBenchmark((std::string("BM_Inverse/") + m->name).c_str(), BM_Inverse, m, &path);
+    }
+    benchmark::RegisterBenchmark("BM_Inverse/pkm_actuator_values", BM_InterfaceInverse, &mechanism, &path);
+    for (KinsModule* m : {&pkmkins, &genhexkins}) {
       benchmark::RegisterBenchmark((std::string("BM_Forward/") + m->name).c_str(), BM_Forward, m);
     }
     benchmark::RunSpecifiedBenchmarks();

@@ -3,10 +3,8 @@
 namespace pkm {
 
 Pose pose_from_vector(AngleConvention convention, const PoseVector& c) {
-  Pose pose;
-  pose.position_mm = c.head<3>();
-  pose.rotation = rotation_from_angles(convention, c.tail<3>());
-  return pose;
+  // Built in place, not default-made and overwritten: this is on the IK hot path.
+  return Pose{c.head<3>(), rotation_from_angles(convention, c.tail<3>())};
 }
 
 PoseVector vector_from_pose(AngleConvention convention, const Pose& pose) {

@@ -1,7 +1,10 @@
 #include "core/rotation.hpp"
 
 #include <cmath>
+#include <cstring>
 
+#include "core/rotation_kernels.hpp"
+#include "core/sincos3.hpp"
 #include "core/units.hpp"
 
 namespace pkm {
@@ -81,12 +84,18 @@ Eigen::Matrix3d rot_z(double a) {
   return r;
 }
 
-Eigen::Matrix3d rotation_from_angles(AngleConvention convention, const Eigen::Vector3d& angles_rad) {
-  // Closed forms (one sincos per angle; this is on the IK hot path). The tests check them against the
-  // products of elementary rotations that define the conventions.
-  const double s1 = std::sin(angles_rad[0]), c1 = std::cos(angles_rad[0]);
-  const double s2 = std::sin(angles_rad[1]), c2 = std::cos(angles_rad[1]);
-  const double s3 = std::sin(angles_rad[2]), c3 = std::cos(angles_rad[2]);
+namespace {
+
+// The closed forms of the conventions from the angles' sines and cosines. The tests check them against the
+// products of elementary rotations that define the conventions.
+inline Eigen::Matrix3d rotation_from_sines(AngleConvention convention, const double* sines,
+                                           const double* cosines) {
+#if defined(__clang__)
+#pragma clang fp contract(off)  // no fused multiply–add, even where the target has it: the same bits
+#endif
+  const double s1 = sines[0], c1 = cosines[0];
+  const double s2 = sines[1], c2 = cosines[1];
+  const double s3 = sines[2], c3 = cosines[2];
   Eigen::Matrix3d r;
   switch (convention) {
     case AngleConvention::abc:  // Rz(C)Ry(B)Rx(A), (A, B, C) = angles; eq. 12
@@ -106,6 +115,70 @@ Eigen::Matrix3d rotation_from_angles(AngleConvention convention, const Eigen::Ve
       return r;
   }
   return Eigen::Matrix3d::Identity();
+}
+
+#if PKM_HAS_WIDE_KERNELS
+// abc's matrix from the sine and cosine lanes (s1 s2 s3 ·), (c1 c2 c3 ·), each column's first two entries as
+// one pair: with v = (c3, s3), column 1 = c2·v, column 2 = s1s2·v + c1·(−s3, c3), column 3 = c1s2·v +
+// s1·(s3, −c3). Entry by entry the same products and sums as rotation_from_sines (a − b is a + (−b)), so the
+// same bits.
+[[gnu::target("avx2")]] inline void abc_rotation_from_lanes(const sincos3_detail::Quad& s,
+                                                            const sincos3_detail::Quad& c,
+                                                            Eigen::Matrix3d& r) {
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#endif
+  using Pair = sincos3_detail::Pair;
+  const double s1 = s[0], s2 = s[1], s3 = s[2], c1 = c[0], c2 = c[1], c3 = c[2];
+  const Pair v = {c3, s3}, w = {-s3, c3}, u = {s3, -c3};
+  const Pair column0 = c2 * v;
+  const Pair column1 = (s1 * s2) * v + c1 * w;
+  const Pair column2 = (c1 * s2) * v + s1 * u;
+  double* d = r.data();  // column-major
+  std::memcpy(d, &column0, sizeof column0);
+  d[2] = -s2;
+  std::memcpy(d + 3, &column1, sizeof column1);
+  d[5] = s1 * c2;
+  std::memcpy(d + 6, &column2, sizeof column2);
+  d[8] = c1 * c2;
+}
+
+// The AVX2 copy: the three angles' sines and cosines in one vector, abc's matrix from the lanes (no fused
+// multiply–add: the same bits as the baseline).
+[[gnu::target("avx2"), gnu::flatten]] Eigen::Matrix3d rotation_from_angles_avx2(
+    AngleConvention convention, const Eigen::Vector3d& angles_rad) {
+  sincos3_detail::Quad s, c;
+  if (!sincos3_avx2_lanes(angles_rad.data(), s, c))
+    return rotation_from_angles_baseline(convention, angles_rad);
+  if (convention == AngleConvention::abc) {
+    Eigen::Matrix3d r;
+    abc_rotation_from_lanes(s, c, r);
+    return r;
+  }
+  const double sines[3] = {s[0], s[1], s[2]}, cosines[3] = {c[0], c[1], c[2]};
+  return rotation_from_sines(convention, sines, cosines);
+}
+
+// Decided once, when the library is loaded.
+const bool rotation_kernels_wide = wide_kernels_available();
+#endif
+
+}  // namespace
+
+// Out of line (also where the AVX2 copy falls back to it): that copy stays a lean leaf function.
+[[gnu::noinline]] Eigen::Matrix3d rotation_from_angles_baseline(AngleConvention convention,
+                                                                const Eigen::Vector3d& angles_rad) {
+  double sines[3], cosines[3];
+  sincos3_baseline(angles_rad.data(), sines, cosines);
+  return rotation_from_sines(convention, sines, cosines);
+}
+
+Eigen::Matrix3d rotation_from_angles(AngleConvention convention, const Eigen::Vector3d& angles_rad) {
+  // The sines and cosines of the three angles in one pass (core/sincos3.hpp): this is on the IK hot path.
+#if PKM_HAS_WIDE_KERNELS
+  if (rotation_kernels_wide) return rotation_from_angles_avx2(convention, angles_rad);
+#endif
+  return rotation_from_angles_baseline(convention, angles_rad);
 }
 
 Eigen::Matrix3d rotation_from_elementary_product(AngleConvention convention,

@@ -11,7 +11,10 @@ std::atomic<int> baseline_only_scopes{0};
 
 bool wide_kernels_available() {
 #if PKM_HAS_WIDE_KERNELS
-  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  // __builtin_cpu_init: the answer may be asked for while the program's constructors run (kernels that
+  // decide once, at load).
+  static const bool available =
+      (__builtin_cpu_init(), __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"));
   return available;
 #else
   return false;

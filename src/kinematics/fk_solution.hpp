@@ -1,6 +1,6 @@
 #pragma once
-// Forward kinematics' values: the solver's limits, one solution, and what an enumeration of all assembly modes
-// saw.
+// Forward kinematics' values: the solver's limits, one solution, and what an enumeration of all assembly
+// modes saw.
 #include <string>
 #include <vector>
 

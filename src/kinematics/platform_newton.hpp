@@ -24,10 +24,10 @@
 #include <cmath>
 #include <string>
 
-#include "core/rotation.hpp"
-#include "kinematics/fixed_lu.hpp"
 #include "core/result.hpp"
+#include "core/rotation.hpp"
 #include "kinematics/actuator_vector.hpp"
+#include "kinematics/fixed_lu.hpp"
 #include "kinematics/fk_solution.hpp"
 
 namespace pkm {

@@ -203,7 +203,8 @@ struct Correction {
 // last factorisation's column order where it still pivots well. `lu` keeps the last factorisation (the next
 // Taylor coefficients use it).
 template <class Kernels>
-Correction correct_step(const Legs& p, const Eigen::Vector4cd& chart, double tol, Vec8& candidate, LaneLu& lu) {
+Correction correct_step(const Legs& p, const Eigen::Vector4cd& chart, double tol, Vec8& candidate,
+                        LaneLu& lu) {
   Correction c;
   Vec8 f;
   double previous = 0.0;
@@ -249,11 +250,12 @@ double updated_contraction(double omega, const Correction& c) {
 // there, with k ≈ 2 on every lost path of the 3-fold symmetric layouts (1.8–2.3 measured), while a path to a
 // finite solution levels off. The upper bound 3 on k keeps an excursion past a nearby pole before t = 1 (a
 // finite path passing close to infinity, whose growth rate relative to 1 − t is 5–130) from being taken for a
-// divergence: the 2000 random geometries had 9 such paths reported at infinity before it, 1 after. Deciding it
-// here saves the many small steps of a divergence.
+// divergence: the 2000 random geometries had 9 such paths reported at infinity before it, 1 after. Deciding
+// it here saves the many small steps of a divergence.
 bool diverging_step(const PathTrackOptions& options, const Vec8& x, const Vec8& candidate, double t,
                     double t_next) {
-  if (!(t_next < 1.0 && 1.0 - t_next < options.divergence_zone && candidate.norm() > options.divergence_norm)) {
+  if (!(t_next < 1.0 && 1.0 - t_next < options.divergence_zone &&
+        candidate.norm() > options.divergence_norm)) {
     return false;
   }
   const double size_before = pose_remoteness(x), size_after = pose_remoteness(candidate);

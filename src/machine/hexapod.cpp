@@ -15,8 +15,8 @@ Hexapod::Hexapod(const HexapodGeometry& geometry, AngleConvention convention, co
       base_plane_(geometry.base_joints_mm, geometry.platform_joints_mm, home) {
   home_ = home;
   for (int j = 0; j < 6; ++j) {
-    platform_rows_.col(j) = geometry_.platform_joints_mm[j];
-    base_rows_.col(j) = geometry_.base_joints_mm[j];
+    layout_.platform_mm.col(j) = geometry_.platform_joints_mm[j];
+    layout_.base_mm.col(j) = geometry_.base_joints_mm[j];
   }
   home_determinant_ = twist_jacobian(home_).determinant();
   home_mode_ = assembly_mode(home_);
@@ -142,11 +142,7 @@ std::unique_ptr<FkWorkspace> Hexapod::make_fk_workspace() const {
 }
 
 bool Hexapod::actuator_values(const Pose& pose, double* out) const noexcept {
-  strut_lengths(pose, out);
-  for (int j = 0; j < 6; ++j) {
-    if (!(out[j] > 0.0)) return false;
-  }
-  return true;
+  return six_strut_lengths(layout_, pose, out);  // false for a zero (or NaN) length, as inverse()
 }
 
 int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
@@ -161,19 +157,25 @@ int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
 
 int Hexapod::strut_state(const Pose& pose, StrutJointPoints& ends, double* actuators,
                          JacobianMatrix& twist_rows) const noexcept {
-  // All six struts at once: each quantity a row of six values (the same operations, in the same order, as
-  // actuator_values() and twist_jacobian() make strut by strut; tests/machine/twist_jacobian_test.cpp).
+  // All six struts at once: each quantity a row of six values. The lengths by the same operations, in the
+  // same order, as actuator_values() (kinematics/strut_lengths.cpp), so the same bits: the dynamics take a
+  // strut's force from its length against the rest length actuator_values() gave; the twist rows as
+  // twist_jacobian() makes them strut by strut, to rounding (tests/machine/twist_jacobian_test.cpp).
   using Lanes = Eigen::Array<double, 1, 6>;
   const Eigen::Matrix3d& r = pose.rotation;
-  const Lanes px = platform_rows_.row(0).array(), py = platform_rows_.row(1).array(),
-              pz = platform_rows_.row(2).array();
+  const Lanes px = layout_.platform_mm.row(0).array(), py = layout_.platform_mm.row(1).array(),
+              pz = layout_.platform_mm.row(2).array();
   const Lanes arm_x = r(0, 0) * px + r(0, 1) * py + r(0, 2) * pz;  // R b_j: the joint from the tool point
   const Lanes arm_y = r(1, 0) * px + r(1, 1) * py + r(1, 2) * pz;
   const Lanes arm_z = r(2, 0) * px + r(2, 1) * py + r(2, 2) * pz;
   const Lanes joint_x = arm_x + pose.position_mm.x(), joint_y = arm_y + pose.position_mm.y(),
               joint_z = arm_z + pose.position_mm.z();
-  const Lanes dx = joint_x - base_rows_.row(0).array(), dy = joint_y - base_rows_.row(1).array(),
-              dz = joint_z - base_rows_.row(2).array();
+  const Lanes ox = pose.position_mm.x() - layout_.base_mm.row(0).array(),
+              oy = pose.position_mm.y() - layout_.base_mm.row(1).array(),
+              oz = pose.position_mm.z() - layout_.base_mm.row(2).array();
+  const Lanes dx = (r(0, 0) * px + r(0, 1) * py) + (r(0, 2) * pz + ox);
+  const Lanes dy = (r(1, 0) * px + r(1, 1) * py) + (r(1, 2) * pz + oy);
+  const Lanes dz = (r(2, 0) * px + r(2, 1) * py) + (r(2, 2) * pz + oz);
   const Lanes length = (dx * dx + dy * dy + dz * dz).sqrt();
   if (!(length > 0.0).all()) return -1;  // as actuator_values()
   const Lanes ux = dx / length, uy = dy / length, uz = dz / length;

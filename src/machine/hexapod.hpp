@@ -6,6 +6,7 @@
 #include <array>
 
 #include "kinematics/platform_newton.hpp"
+#include "kinematics/strut_lengths.hpp"
 #include "machine/base_plane.hpp"
 #include "machine/mechanism.hpp"
 
@@ -84,13 +85,9 @@ class Hexapod final : public Mechanism {
                      PlatformFkWorkspace<6>& workspace, FkSolution& out, PlatformFkFailure& failure,
                      bool& other_mode) const;
 
-  /// Hot path: strut lengths of a pose, no checks, no allocation.
+  /// Hot path: strut lengths of a pose, no checks, no allocation (all six at once: kinematics/strut_lengths).
   void strut_lengths(const Pose& pose, double* lengths_mm) const noexcept {
-    for (int j = 0; j < 6; ++j) {
-      lengths_mm[j] =
-          (pose.rotation * geometry_.platform_joints_mm[j] + pose.position_mm - geometry_.base_joints_mm[j])
-              .norm();
-    }
+    six_strut_lengths(layout_, pose, lengths_mm);
   }
   /// Twist Jacobian (columns v, ω about the tool point), rows = unit strut vectors (Plücker lines).
   Eigen::Matrix<double, 6, 6> twist_jacobian(const Pose& pose) const noexcept;
@@ -119,9 +116,9 @@ class Hexapod final : public Mechanism {
   int assembly_mode(const Pose& pose, double jacobian_determinant) const;
 
   HexapodGeometry geometry_;
-  /// The joints by coordinate, row k holding component k of the six (strut_state works on all six struts at
-  /// once, two per instruction).
-  Eigen::Matrix<double, 3, 6, Eigen::RowMajor> platform_rows_, base_rows_;
+  /// The joints by coordinate, row k holding component k of the six (strut_lengths and strut_state work on
+  /// all six struts at once, several per instruction).
+  SixStrutLayout layout_;
   AngleConvention convention_;
   BasePlane base_plane_;
   int home_mode_ = 0;

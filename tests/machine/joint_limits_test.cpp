@@ -9,8 +9,8 @@
 #include <random>
 
 #include "core/units.hpp"
-#include "machine/conditioning.hpp"
 #include "limits_test_support.hpp"
+#include "machine/conditioning.hpp"
 #include "machine/planar3.hpp"
 #include "test_support.hpp"
 
