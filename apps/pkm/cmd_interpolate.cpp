@@ -1,7 +1,7 @@
 // pkm interpolate PROGRAM --machine M.yaml --period-ms H --step-mm D
 //   --method exact|carrier|carrier-corrected|estimating [--rho-max MM] --out DIR [--json]:
 // plans the part program (as pkm plan), then turns the planned motion into whole drive steps per servo period
-// (spec ch5): DIR/steps.csv and DIR/steps.bin (per period and actuator: signed steps and position code),
+// (Smirnov 2019): DIR/steps.csv and DIR/steps.bin (per period and actuator: signed steps and position code),
 // DIR/contour.csv (per period: the contour error and where the tool is) and DIR/summary.json with the contour
 // error the drives would produce; --report FILE adds the HTML report. Nothing is left in DIR if the run
 // fails.

@@ -1,5 +1,5 @@
 // pkm modes-margin PROGRAM --machine M.yaml [--samples N] [--out FILE.csv] [--json]:
-// the assembly-mode margin along a planned program (issue 20; src/workspace/modes_margin.hpp): at poses
+// the assembly-mode margin along a planned program (src/workspace/modes_margin.hpp): at poses
 // evenly spaced in time along the run `pkm plan` would make, the smallest actuator change that brings the
 // machine onto a singular configuration where its assembly mode can meet another one, and the real assembly
 // modes of the pose's actuator values with the nearest other one. Prints the smallest margin with its program

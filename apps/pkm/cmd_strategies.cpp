@@ -1,6 +1,6 @@
 // pkm strategies --machine M.yaml --load SPEC --out DIR [--surface ellipsoid:A,B,C] [--centre X,Y,Z]
 //   [--depth-mm D] [--step-over-mm S] [--spacing-mm P] [--feed F] [--program FILE ...] [--rate HZ] [--json]:
-// the seed's five machining strategies over an ellipsoid cap, and any given programs, planned with the tool's
+// the five strategies of Rusanov et al. over an ellipsoid cap and any given programs, planned with the tool's
 // deflection under the load and ranked by the error along the surface normal (pipeline/strategy_comparison,
 // docs/strategies.md). Prints the ranking; writes the table, the plot and every run into DIR.
 #include <fmt/format.h>

@@ -3,7 +3,7 @@
 //   [--threads N] --out DIR [--report FILE.html] [--json]:
 // the workspace map (src/workspace/, docs/workspace.md): per cell of a section or a 3-D grid whether the
 // machine can stand there or which limit stops it, sign of det J, condition number, δρ and S_x, S_y, S_z
-// (spec ch5 eq. 144–146), and on request the lowest stiffness, the lowest natural frequency and the tool
+// (Smirnov 2019, eq. 144–146), and on request the lowest stiffness, the lowest natural frequency and the tool
 // error predicted after measuring a calibration plan (pipeline/calibration_workspace.hpp). Writes
 // DIR/workspace.csv and DIR/summary.json as one output set, with the HTML report as one more member; prints
 // the summary.

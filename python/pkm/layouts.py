@@ -105,15 +105,15 @@ def hexapod(base_radius_mm: float, platform_radius_mm: float, *, base_separation
     φ_k = pair_angle_deg + 120°·k:
 
       - platform joints 2k and 2k+1 at φ_k ∓ platform_separation_deg/2 on the circle of `platform_radius_mm`
-        (0: the pair's joints merge, a 6-3 hexapod, the seeds' "pairwise merged"; δ of spec ch3 V7);
+        (0: the pair's joints merge, a 6-3 hexapod, Smirnov 2019's "pairwise merged"; δ of its Table 2);
       - base joints 2k and 2k+1 at φ_k ∓ (60° − base_separation_deg/2) on the circle of `base_radius_mm`, so that
         `base_separation_deg` is the angle between the neighbouring base joints of adjacent pairs (2k+1 and 2k+2):
-        60 puts the base joints every 60° (the seeds' machines), 0 merges them (a 3-3 layout at both 0).
+        60 puts the base joints every 60° (Smirnov 2019's machines), 0 merges them (a 3-3 layout at both 0).
 
     The platform frame's origin is the centre of the platform-joint circle; the joints lie in its z = 0 plane, and
     `height_mm` is that plane's height above the base-joint plane at home. `tool_mm` is the tool point in the
     platform frame: a distance along the platform's z axis or [x, y, z]. `home` defaults to the level pose with the
-    platform at `height_mm`. Angles are `angles` (abc, krylov or euler_zxz: the seeds' machines use krylov).
+    platform at `height_mm`. Angles are `angles` (abc, krylov or euler_zxz: Smirnov 2019's machines use krylov).
 
     `limits` and `motion` become those sections; any other keyword (dynamics=..., drives=..., description=...)
     is copied in as a top-level section. Defaults give the chapter-3 hexapod's shape:

@@ -1,4 +1,4 @@
-// pkm.interpolate: a part program planned and turned into whole drive steps per servo period (spec ch5), as
+// pkm.interpolate: a part program planned and turned into whole drive steps per period (Smirnov 2019), as
 // `pkm interpolate` runs it (pipeline/interpolate_program.cpp), the periods kept in memory as numpy arrays.
 #include <fmt/format.h>
 

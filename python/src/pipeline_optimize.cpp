@@ -1,4 +1,4 @@
-// pkm.optimize: the post-processor of ch3 §3.6 (redundancy/optimize_program.hpp), as `pkm optimize` runs it:
+// pkm.optimize: Smirnov's post-processor, §3.6 (redundancy/optimize_program.hpp), as `pkm optimize` runs it:
 // the free coordinates chosen by a drive control law at every point, the metrics against holding them
 // constant, and the rewritten program.
 #include <fmt/format.h>

@@ -1,5 +1,5 @@
 #pragma once
-// The numbers calibration identifies, as one vector (issue 16; spec ch5 §9.2): a mechanism's geometry groups
+// The numbers calibration identifies, as one vector (Smirnov 2019, §5.2.4): a mechanism's geometry groups
 // (Mechanism::geometry_parameters, e.g. the hexapod's base joints A1..A6 and platform joints B1..B6, plus the
 // drive offsets dL1..dL6 of machine/actuator_offsets.hpp: 18 + 18 + 6 = 42, the dissertation's 36 joint
 // coordinates and 6 initial strut lengths) flattened in group order, row-major, with a name per scalar.

@@ -1,5 +1,5 @@
 #pragma once
-// What a measurement plan can identify (spec ch5 §9.2; the dissertation's 7 × 7 systems per strut are exactly
+// What a measurement plan can identify (Smirnov 2019, §5.2.4; its 7 × 7 systems per strut are exactly
 // determined and say nothing of their conditioning): the SVD J = U·Σ·Vᵀ of the weighted (unit-variance),
 // column-scaled identification Jacobian (parameter_jacobian.hpp). Right singular vectors whose singular
 // value is below a relative threshold are combinations of parameters the data cannot see; the

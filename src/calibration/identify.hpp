@@ -1,6 +1,6 @@
 #pragma once
-// Identification of a mechanism's geometry from measurements (issue 16; spec ch5 §9.2, eqs. 173–176, case
-// E18): Levenberg–Marquardt (Eigen's unsupported LevenbergMarquardt module, MINPACK's lmder) from the drawing
+// Identification of a mechanism's geometry from measurements (Smirnov 2019, §5.2.4, eqs. 173–176):
+// Levenberg–Marquardt (Eigen's unsupported LevenbergMarquardt module, MINPACK's lmder) from the drawing
 // values, on the weighted residuals of residuals.hpp. Honest about what the plan can see: the SVD of the
 // weighted, column-scaled Jacobian at the start picks the identifiable directions (identifiability.hpp), the
 // solver moves only along them (truncated SVD; the rest stays at the drawing), and a plan that cannot

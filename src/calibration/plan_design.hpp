@@ -1,5 +1,5 @@
 #pragma once
-// Which poses to measure (issue 16; spec ch5 §9.2):
+// Which poses to measure (Smirnov 2019, §5.2.4):
 //  - seven_pose_plan: the dissertation's experiment. From home, strut 1 is changed by ΔL, then strut 2
 //    additionally, … up to strut n (cumulative), the poses by forward kinematics: n + 1 poses, for the
 //    hexapod seven, which split into six 7 × 7 systems, one per strut. Exactly determined, so nothing checks

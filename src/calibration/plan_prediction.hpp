@@ -1,5 +1,5 @@
 #pragma once
-// What a plan will deliver, predicted before measuring (issue 16): the covariance of the identified
+// What a plan will deliver, predicted before measuring: the covariance of the identified
 // parameters for a measurement σ (identifiability.hpp: (JᵀJ)⁺ of the plan's weighted Jacobian at the drawing,
 // plan_jacobian.hpp) and the tool point's resulting error at held-out poses, sqrt(trace(G·Σ·Gᵀ)) per pose
 // with G = ∂ tool point / ∂θ (tool_sensitivity.hpp). This is the error from measurement noise alone: what the

@@ -1,5 +1,5 @@
 #pragma once
-// The platform's pose from targets fixed to it (spec ch5 §9.2, eqs. 173–174, generalised): targets known in
+// The platform's pose from targets fixed to it (Smirnov 2019, eqs. 173–174, generalised): targets known in
 // the tool frame t_k and measured in the base frame s_k satisfy s_k = R·t_k + p + noise. The dissertation
 // takes p as the centroid of the triangle's vertices (173) and solves (174) for the angles; with any number
 // ≥ 3 of targets anywhere on the platform the least-squares pose is the weighted Kabsch/Horn fit: the

@@ -1,5 +1,5 @@
 #pragma once
-// The residuals of an identification (spec ch5 §9.2, eq. 175 generalised to least squares), one block per
+// The residuals of an identification (Smirnov 2019, eq. 175 generalised to least squares), one block per
 // measured pose, each weighted so that its entries have unit variance:
 //  - pose_inverse: a pose with ≥ 3 targets (not collinear) on a mechanism that controls all six coordinates.
 //    The pose is fitted from the targets once (pose_fit.hpp, eqs. 173–174) and the residual is IK_θ(pose) −

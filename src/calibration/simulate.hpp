@@ -1,5 +1,5 @@
 #pragma once
-// The calibration simulated end to end (issue 16; spec ch5 §9.2, case E18: vertices measured to 0.01 mm gave
+// The calibration simulated end to end (Smirnov 2019, §5.2.4: vertices measured to 0.01 mm gave
 // the joints to 0.03 mm): a true machine is drawn around the drawing, measured along a plan with noise
 // (synthetic_measurements.hpp), identified (identify.hpp), and judged by its parameter errors and by the
 // tool-point error at held-out poses: |FK_true(L) − FK_identified(L)| with L = IK_nominal(P), what

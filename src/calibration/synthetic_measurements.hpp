@@ -1,5 +1,5 @@
 #pragma once
-// Measurements made by simulation (issue 16): what a tracker, a CMM or a ballbar would record on a machine
+// Measurements made by simulation: what a tracker, a CMM or a ballbar would record on a machine
 // whose true geometry differs from its drawing. The controller commands each planned pose P with the NOMINAL
 // model (readings = IK_nominal(P)); the real machine then stands at FK_true(readings); the instrument sees
 // that pose's targets (or the ballbar's length) with Gaussian noise. Plan design (plan_design.hpp) uses the
@@ -23,7 +23,7 @@ struct MeasurementSetup {
   double sigma_mm = 0.01;  ///< standard deviation of each measured coordinate or length
 };
 
-/// The dissertation's fixture (spec ch5 §9.2, Fig. 186): a thin equilateral triangle whose vertices S1..S3
+/// The dissertation's fixture (Smirnov 2019, Fig. 186): a thin equilateral triangle whose vertices S1..S3
 /// lie on a circle of `radius_mm` about the tool point in the tool frame's xy plane (at 90°, 210°, 330°).
 std::vector<FixtureTarget> triangular_plate(double radius_mm = 100.0);
 

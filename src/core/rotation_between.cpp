@@ -8,7 +8,7 @@ Eigen::Matrix3d rodrigues_matrix(const Eigen::Vector3d& v, double angle_rad) {
   const double c = std::cos(angle_rad), s = std::sin(angle_rad), t = 1.0 - c;
   Eigen::Matrix3d r;
   r(0, 0) = c + v.x() * v.x() * t;
-  r(0, 1) = v.x() * v.y() * t - v.z() * s;  // the corrected entry (1,2) of the extract
+  r(0, 1) = v.x() * v.y() * t - v.z() * s;  // the corrected entry (1,2) (printed: v_z² sin φ)
   r(0, 2) = v.x() * v.z() * t + v.y() * s;
   r(1, 0) = v.y() * v.x() * t + v.z() * s;
   r(1, 1) = c + v.y() * v.y() * t;

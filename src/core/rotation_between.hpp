@@ -1,11 +1,11 @@
 #pragma once
-// The "Simple Matrix Scenario" rotation of spec glide_stiffness.md §3: the smallest rotation that turns the
+// The "Simple Matrix Scenario" rotation of Rusanov et al.: the smallest rotation that turns the
 // previous tool normal n_old onto the new one n_new, as the Rodrigues matrix written out entry by entry, with
-// the extract's ERRATA applied:
+// the printed errors corrected:
 //  - entry (1,2) is v_x v_y (1 − cos φ) − v_z sin φ (printed: v_z² sin φ, which is not even orthogonal);
 //  - the axis is v = n_old × n_new / |n_old × n_new| (printed: n_p × n_old, about which a turn by +φ takes
 //    n_old the other way, away from n_p, onto n_p's mirror image about n_old), cos φ = n_old · n_new.
-// The spin about the tool axis this leaves to drift along a path is a redundant coordinate (ch3).
+// The spin about the tool axis this leaves to drift along a path is a redundant coordinate (Smirnov 2019).
 #include <Eigen/Core>
 
 namespace pkm {

@@ -1,14 +1,14 @@
 #pragma once
-// The drive models of spec ch4 §3.6: how a drive turns its command u_j into the force P_j it gives.
+// The drive models of Smirnov 2019, §4.2: how a drive turns its command u_j into the force P_j it gives.
 //   ideal                  P = u
-//   static characteristic  P = u − k_v q̇        (the force falls with the speed; the seed gives no form)
+//   static characteristic  P = u − k_v q̇        (the force falls with the speed; Smirnov gives no form)
 //   first-order lag        τ Ṗ + P = u          (P becomes a state of the integration)
 // The parameters are the machine file's `dynamics.drive` (machine/dynamics_parameters.hpp).
 #include "machine/dynamics_parameters.hpp"
 
 namespace pkm::dynamics {
 
-/// The drive's force for its command, speed and, under a lag, its force state (spec ch4 §3.6): the force
+/// The drive's force for its command, speed and, under a lag, its force state (Smirnov 2019, §4.2): the force
 /// itself for ideal and static drives, the force's rate Ṗ = (u − P)/τ for the lag.
 struct DriveResponse {
   ActuatorVector force_N;

@@ -1,5 +1,5 @@
 #pragma once
-// Static equilibrium of the elastic machine (spec ch4 §6.8: "the equilibrium of (141) with q̈ = q̇ = 0"): with
+// Static equilibrium of the elastic machine (Smirnov 2019, (141) with q̈ = q̇ = 0): with
 // the drives held at q, the platform settles where the elastic elements carry gravity (and a load),
 //   G(pose) = applied(pose) − J_B(pose)ᵀ c (a(pose) − q) · 10³ = 0,
 // a few millimetres' thousandths from the rigid pose FK(q) for the shipped machines (the static sag).

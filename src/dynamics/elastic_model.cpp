@@ -84,7 +84,7 @@ double damping_force_N(const StrutDynamics& strut, double rate_mm_s, const Elast
     case StrutDamping::viscous:
       return beta * rate_mm_s;
     case StrutDamping::quadratic:
-      // β ẋ |ẋ| (spec ch4 §4.5): C¹ at ẋ = 0, so it needs no smoothing (§6.8).
+      // β ẋ |ẋ| (Smirnov 2019, §4.2): C¹ at ẋ = 0, so it needs no smoothing.
       return beta * rate_mm_s * std::abs(rate_mm_s);
     case StrutDamping::coulomb:
       return beta * std::tanh(rate_mm_s / options.coulomb_smoothing_mm_s);

@@ -1,21 +1,21 @@
 #pragma once
-// The elastic-dissipative machine (spec ch4 §4 model P2 for the planar biped, §6 model S2 for the hexapod),
+// The elastic-dissipative machine (Smirnov 2019, §4.2 for the planar biped, §4.5 model S2 for the hexapod),
 // for every mechanism whose platform moves freely in a twist basis (platform_twist_basis): the drives hold
-// the actuator coordinates q_j(t) (kinematic excitation, §4.4 / §6.7), and an elastic element in series with
+// the actuator coordinates q_j(t) (kinematic excitation, §4.2 / §4.5), and an elastic element in series with
 // each strut carries the axial force
 //   F_j = c_j (a_j − q_j) + D_j(ȧ_j − q̇_j),    a_j = the actuator value of the platform's actual pose,
-// with a_j = |B_j − A_j| for struts whose actuators are their lengths (the seed's δl = L* − q, eqs.
-// (137)-(139) and §4.3) and D the element's friction: viscous β·ẋ, quadratic β·ẋ·|ẋ| (the seed's "true
-// friction", §4.5, §6.5, with the sign that dissipates: errata 9), Coulomb β·tanh(ẋ/v_ε) (sign() smoothed
+// with a_j = |B_j − A_j| for struts whose actuators are their lengths (Smirnov's δl = L* − q, eqs.
+// (137)-(139) and §4.2) and D the element's friction: viscous β·ẋ, quadratic β·ẋ·|ẋ| (Smirnov's "true
+// friction", §4.2, §4.5, signed to dissipate, corrected), Coulomb β·tanh(ẋ/v_ε) (sign() smoothed
 // over v_ε). F > 0 stretches the element and pulls the platform joint towards the base: with the rigid terms
 // of equations_of_motion.hpp and J_B the drive Jacobian in the basis,
 //   M(pose) c̈ = applied(pose) − bias(pose, ċ) − J_Bᵀ F · 10³          (kg·mm/s², F in N)
 // which is Lagrange's (109) with Π = ½ Σ c_j (a_j − q_j)², ∂Π/∂c = J_Bᵀ c (a − q), and the friction's
-// generalised force −J_Bᵀ D (errata 9, 17: signs from the Lagrangian, not from the printed (141)).
+// generalised force −J_Bᵀ D (signs from the Lagrangian, corrected from the printed (141)).
 //
 // The platform's coordinates are its pose (tool point and rotation matrix, integrated as a rotation,
 // elastic_simulation.hpp) and the rates ċ of the basis coordinates (twist t = B ċ), so no small-angle
-// assumption enters (the seed's 10° limit of (138) is lifted). The moving bodies are those of
+// assumption enters (Smirnov's 10° limit of (138) is lifted). The moving bodies are those of
 // body_motion.hpp: each strut's parts move with its joints A_j and B_j (docs/dynamics_elastic.md says what
 // this lumps relative to S2's twelve coordinates). Units: mm, kg, s; forces leave in N, energies in J.
 #include <Eigen/Core>

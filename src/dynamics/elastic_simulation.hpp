@@ -1,6 +1,6 @@
 #pragma once
-// Time integration of the elastic machine (elastic_model.hpp) under kinematic excitation (spec ch4 §4.4,
-// §6.7): the drives' positions q(t) and rates q̇(t) are given, the platform's pose and twist coordinates are
+// Time integration of the elastic machine (elastic_model.hpp) under kinematic excitation (Smirnov 2019,
+// §4.5): the drives' positions q(t) and rates q̇(t) are given, the platform's pose and twist coordinates are
 // integrated by platform_integrator.hpp, whose rate time scale τ defaults here to 1/ω of the fastest
 // vibration at the start, so a rate error counts as much as the position error it makes within a radian of
 // that vibration.
@@ -19,7 +19,7 @@ class DriveMotion {
   virtual void setpoint(double time_s, DriveSetpoint& out) const = 0;
 };
 
-/// Drives that hold their positions (free vibration, spec ch4 §8.5 test 3).
+/// Drives that hold their positions (free vibration).
 class HeldDrives final : public DriveMotion {
  public:
   explicit HeldDrives(const ActuatorVector& position_mm)

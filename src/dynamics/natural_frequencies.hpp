@@ -1,6 +1,6 @@
 #pragma once
-// Natural frequencies and mode shapes of the elastic machine at a pose (spec ch4 §6.8: "linearize about
-// equilibrium: K = ∂²Π/∂q² (platform block, with q_1..q_6 clamped) and M, then solve det(K − ω²M) = 0").
+// Natural frequencies and mode shapes of the elastic machine at a pose (beyond Smirnov 2019, §4.5: linearise
+// about equilibrium: K = ∂²Π/∂q² (platform block, with q_1..q_6 clamped) and M, then solve det(K − ω²M) = 0).
 // The drives are clamped at the commanded pose's actuator values, the platform sags to its static equilibrium
 // under gravity (elastic_equilibrium.hpp), and about that equilibrium
 //   M δ̈ + K δ = 0,   K = J_Bᵀ diag(c) J_B + K_geo,

@@ -1,8 +1,8 @@
 #pragma once
 // Time integration of a free platform (free_platform.hpp): its pose and basis-coordinate rates, plus up to
 // six auxiliary states of the model driving it (the drives' forces under a first-order lag). Boost.Odeint's
-// Dormand–Prince 5(4) with step-size control by a PI controller (pi_step_adjuster.hpp; the seed names no
-// integrator, no step and no tolerance: errata 21, so both tolerances are parameters here).
+// Dormand–Prince 5(4) with step-size control by a PI controller (pi_step_adjuster.hpp; Smirnov 2019 names no
+// integrator, no step and no tolerance, so both tolerances are parameters here).
 //
 // The rotation is integrated as a rotation: a unit quaternion with q̇ = ½ (0, ω) ⊗ q, the quaternion form of
 // Ṙ = [ω]× R, never Euler angles (no small-angle assumption, no angle singularity). So that one absolute and

@@ -1,6 +1,6 @@
 #pragma once
-// Rigid-body inverse dynamics of any mechanism through the Mechanism interface (spec ch4 §5.10, the exact
-// formulation; issue 14): the drive forces that move the platform with a given twist and twist rate against
+// Rigid-body inverse dynamics of any mechanism through the Mechanism interface (exact, where Smirnov
+// 2019, §4.3 linearises): the drive forces that move the platform with a given twist and twist rate against
 // gravity and an external load.
 //
 // Bodies: the platform with its payload; per strut a lower part turning about the base joint A_j and an upper
@@ -14,7 +14,7 @@
 // bodies' rates of momentum less gravity and the external load:
 //   J_cᵀ P = Σ_bodies (m a_c − m g)·v_c,k + (I α + ω × I ω)·ω_k − w_ext·t_k,   k = 1…m,
 // with J_c = Mechanism::twist_jacobian · T_c. Splitting the right-hand side gives P = P_static + P_dynamic
-// (spec ch4 §5.9): the static part (gravity and load) is what statics gives for the same bodies at rest.
+// (Smirnov 2019, §4.4): the static part (gravity and load) is what statics gives for the same bodies at rest.
 //
 // Units: mm, kg, s inside; forces leave in N (angular actuators: N·mm), energies in J.
 #include "core/pose.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Forward dynamics of the rigid machine (spec ch4 §2, §3.6): the drives push the struts with forces P_j(t)
+// Forward dynamics of the rigid machine (Smirnov 2019, §4.2): the drives push the struts with forces P_j(t)
 // and the platform, a free platform of free_platform.hpp, moves as
 //   M(pose) c̈ = applied(pose) − bias(pose, ċ) + J_Bᵀ P · 10³          (kg·mm/s², P in N)
 // (equations_of_motion.hpp with the drives' forces; the inverse problem is rigid_dynamics.hpp). The drive

@@ -1,5 +1,5 @@
 #pragma once
-// The elastic machine along a planned run (spec ch4 §6.7–6.8: "trajectory modelling", the dynamic error of
+// The elastic machine along a planned run (Smirnov 2019, §4.5: trajectory modelling, the dynamic error of
 // the tool Δr_P = r_P^elastic(t) − r_P^FK(q(t))): the servo ticks' actuator positions are the drives'
 // excitation q(t), the platform's response is integrated (elastic_simulation.hpp) and compared at every tick
 // with the commanded pose, which is FK(q) of that tick. Between ticks q(t) is the cubic Hermite curve through

@@ -39,7 +39,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 Status check_interpolate_options(const InterpolateOptions& options, bool has_sinks) {
-  // The seeds' carrier frequencies are 100 Hz … 10 kHz (§2, E20); their simulations also ran h = 20 ms (E13).
+  // Smirnov 2019's carrier frequencies are 100 Hz … 10 kHz (§5.1); its simulations ran h = 20 ms (§5.2.3).
   if (!(options.period_s >= 1e-4 - 1e-12 && options.period_s <= 2e-2 + 1e-12)) {
     return make_error(
         ErrorCode::bad_input,
@@ -72,7 +72,7 @@ Status check_interpolate_options(const InterpolateOptions& options, bool has_sin
   return ok_status();
 }
 
-// δρ_max of eq. 146 along this path: the error amplification at samples of the path (the seeds take the
+// δρ_max of eq. 146 along this path: the error amplification at samples of the path (Smirnov 2019 takes the
 // maximum over a working space; the path's own maximum is the tighter, sufficient bound for this run).
 Result<std::pair<double, int>> path_error_amplification(const Machine& machine, const path::Path& path,
                                                         double spacing, const std::string& source) {
@@ -164,7 +164,7 @@ std::array<double, kMaxActuators> values_of(const std::array<std::int64_t, kMaxA
 }
 
 // One period computed on copies of the interpolator and the quantiser and thrown away, before the timed loop.
-// The first period otherwise paid for first touches (issue 12: 13–23 µs instead of 4 on the ch5 line): code
+// The first period otherwise paid for first touches (13–23 µs instead of 4 on the ch5 line): code
 // pages faulted in, the dynamic linker binding libm's functions on their first call, cold caches over the
 // strut laws and the path. The copies leave the run's own state, statistics and FK history untouched.
 void warm_up_period(const CarrierInterpolator& carrier, const DiscretenessCorrector* corrector,

@@ -1,13 +1,13 @@
 #pragma once
-// A whole interpolation run (spec ch5): the path and its ideal timing in, whole drive steps per servo period
+// A whole interpolation run (Smirnov 2019, ch. 5): path and ideal timing in, whole drive steps per period
 // out (to any number of StepSinks: CSV, binary stream, the real-time player), with the contour error of the
 // tool measured as the drives would produce it. Methods:
-//   exact              strut values by inverse kinematics at every period end, remainder registers (§5.4);
-//   carrier            the seeds' carrier-frequency method: fitted strut laws (§5.2), chord check (§5.3),
-//                      remainder registers (§5.4);
+//   exact              strut values by IK at every period end, remainder registers (eq. 156–158);
+//   carrier            the carrier-frequency method (§5.2.2): fitted strut laws, chord check (eqs. 152–153),
+//                      remainder registers (eq. 156–158);
 //   carrier-corrected  as carrier, with the floor/ceil choice of every actuator that keeps the tool nearest
-//                      the path (§8, the discreteness correction);
-//   estimating         the estimating-function method (§4): tact by tact, every strut ±1 step, the candidate
+//                      the path (§5.2.5, the discreteness correction);
+//   estimating         estimating functions (§5.2.1): tact by tact, every strut ±1 step, the candidate
 //                      that best follows the path; a reference/offline mode.
 #include <functional>
 #include <optional>
@@ -72,7 +72,7 @@ struct InterpolateSummary {
   LawReport laws;
   CorrectorStatistics corrector;
   EstimatingStatistics estimating;
-  double max_remainder_steps = 0.0;  ///< remainder registers (§5.4 methods), in steps
+  double max_remainder_steps = 0.0;  ///< remainder registers (eqs. 156–158 methods), in steps
   int max_steps_per_period = 0;
   int max_steps_line = 0;
   double fk_solves_per_period = 0.0;  ///< of the method itself (the error measurement not counted)
@@ -97,7 +97,7 @@ Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path&
                                        const std::vector<StepSink*>& sinks, const std::string& source);
 
 /// The drives' positions before the first period, in steps: the path start's actuator values truncated to
-/// whole steps, as every method starts (E3). For the header of step files, written before the run.
+/// whole steps, as every method starts (§5.2.5). For the header of step files, written before the run.
 Result<std::array<std::int64_t, kMaxActuators>> start_positions(const Machine& machine,
                                                                 const path::Path& path, double step_mm);
 

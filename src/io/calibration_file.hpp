@@ -1,5 +1,5 @@
 #pragma once
-// The `calibration:` section of a machine file (issue 16; docs/machine-file.md, "Calibration"): the values a
+// The `calibration:` section of a machine file (docs/machine-file.md, "Calibration"): the values a
 // calibration identified, which replace the drawing's. Its keys are the group keys of the built mechanism
 // (Mechanism::geometry_parameters: `base_joints`, `platform_joints_from_tool`, …), `actuator_offsets` (the
 // drives' zero offsets, machine/actuator_offsets.hpp) and a free-text `note`. A calibrated machine file is

@@ -1,4 +1,4 @@
-// The `drives:` section: what the step or servo drives of the actuators can do (ch5 §5: the drive resolution
+// The `drives:` section: what the actuators' step/servo drives can do (Smirnov, §5.2.2: the drive resolution
 // Δ and the servo period h). Every key is optional; `pkm interpolate` takes its defaults from here.
 #include <fmt/format.h>
 
@@ -32,7 +32,7 @@ Result<DriveSettings> read_drive_settings(const YAML::Node& root, const YamlRead
     if (!(*v > 0.0)) return reader.error_at(value, key, fmt::format("must be positive, got {}", *v));
     *f.value = *v;
   }
-  // The interpolator's carrier period range (ch5 §5: 100 Hz … 10 kHz).
+  // The interpolator's carrier period range (Smirnov 2019, §5.1: 100 Hz … 10 kHz).
   if (drives.period_ms && (*drives.period_ms < 0.1 || *drives.period_ms > 20.0)) {
     return reader.error_at(node["period_ms"], "drives.period_ms",
                            fmt::format("{} ms is outside 0.1…20 ms", *drives.period_ms));

@@ -1,6 +1,6 @@
 // The `dynamics:` section: mass, centre of mass and inertia of the platform, the payload and the two parts of
-// every strut, the struts' elastic elements and their friction, and the drive model (spec ch4 §3.6, §4.3,
-// §5.1, §6.4). Inertias are written in kg·m², as the seed gives them, and kept in kg·mm² (× 10⁶).
+// every strut, the struts' elastic elements and their friction, and the drive model (Smirnov 2019, §4.2,
+// §4.3, §4.5). Inertias are written in kg·m², as Smirnov gives them, and kept in kg·mm² (× 10⁶).
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
@@ -222,7 +222,7 @@ bool has_carriages(MechanismType type) {
   return type == MechanismType::glide || type == MechanismType::rotopod;
 }
 
-// `stiffness_N_mm` and `damping` (spec ch4 §4.3, §6.4); neither given: a rigid strut.
+// `stiffness_N_mm` and `damping` (Smirnov 2019, §4.2, §4.5); neither given: a rigid strut.
 Status read_elastic_element(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                             StrutDynamics& strut) {
   auto stiffness = number_if_given(reader, node, "stiffness_N_mm", path);
@@ -235,7 +235,7 @@ Status read_elastic_element(const YamlReader& reader, const YAML::Node& node, co
   strut.stiffness_N_mm = stiffness->value_or(0.0);
   if (!node["damping"]) return ok_status();
   if (auto damping = read_damping(reader, node, path, strut); !damping) return damping;
-  // The seed's friction is that of the elastic element (spec ch4 §4.5): without one it has nothing to act on.
+  // Smirnov's friction is that of the elastic element (§4.2): without one it has nothing to act on.
   if (strut.damping != StrutDamping::none && strut.stiffness_N_mm == 0.0) {
     return reader.error_at(
         key_itself(node, "damping"), key_path(path, "damping"),
@@ -321,7 +321,7 @@ Status read_struts(const YamlReader& reader, const YAML::Node& section, const Me
   return ok_status();
 }
 
-// `drive:` {model: ideal | lag | static} with the one parameter its model has (spec ch4 §3.6).
+// `drive:` {model: ideal | lag | static} with the one parameter its model has (Smirnov 2019, §4.2).
 Status read_drive(const YamlReader& reader, const YAML::Node& section, DynamicsParameters& out) {
   const char* path = "dynamics.drive";
   if (auto keys = check_mapping(reader, section, "drive", path, {"model", "tau_s", "speed_gain_N_s_mm"});

@@ -1,5 +1,5 @@
 #pragma once
-// The fixture file of a calibration (issue 16, docs/calibration.md): the targets fixed to the platform whose
+// The fixture file of a calibration (docs/calibration.md): the targets fixed to the platform whose
 // positions a tracker or CMM measures, in the tool frame (origin at the tool point, platform axes), mm:
 //
 //   # units: mm

@@ -1,5 +1,5 @@
 #pragma once
-// Calibration measurement files (issue 16, docs/calibration.md): CSV with its units, frame and kind in `#
+// Calibration measurement files (docs/calibration.md): CSV with its units, frame and kind in `#
 // key: value` lines before the column row. A laser tracker or CMM file (kind tracker) gives, per pose, the
 // drive readings and the measured base-frame position of targets of the fixture (io/fixture_file.hpp):
 //

@@ -1,5 +1,5 @@
 #pragma once
-// What a calibration is identified from (issue 16; spec ch5 §9.2): the drives' readings at a number of poses,
+// What a calibration is identified from (Smirnov 2019, §5.2.4): the drives' readings at a number of poses,
 // and at each pose what was measured of the platform — positions of targets fixed to it (a laser tracker, a
 // CMM touching the vertices of the dissertation's triangular plate), or the length of a ballbar between the
 // tool point and a ball fixed to the table. Read from CSV by io/measurement_file.hpp; made by simulation in

@@ -63,7 +63,7 @@ Status read_optional(const YamlReader& reader, const YAML::Node& node, const std
 }
 
 // The joints at one strut's ends: translational compliance at each end, rotational compliance (K_u, K_θ of
-// spec glide_stiffness.md §4), all ≥ 0 (0: a rigid joint).
+// Rusanov et al.), all ≥ 0 (0: a rigid joint).
 Result<JointCompliance> read_joint_compliance(const YamlReader& reader, const YAML::Node& node,
                                               const std::string& path) {
   if (!node.IsMap()) return reader.error_at(node, path, "expected a mapping (base_compliance_mm_N: …)");

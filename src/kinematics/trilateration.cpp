@@ -80,7 +80,7 @@ SphereIntersection intersect_three_spheres(const std::array<Eigen::Vector3d, 3>&
 QuaternionTrilateration quaternion_trilateration(const std::array<Eigen::Vector3d, 3>& a,
                                                  const std::array<double, 3>& l, double level_tolerance_mm) {
   QuaternionTrilateration out;
-  // The algorithm needs XOY parallel to the joint plane (ch2 §4.12, "Frame").
+  // The algorithm needs XOY parallel to the joint plane (Smirnov 2019, §2.3.3).
   if (std::abs(a[0].z() - a[1].z()) > level_tolerance_mm ||
       std::abs(a[2].z() - a[1].z()) > level_tolerance_mm) {
     out.status = TrilaterationStatus::centres_not_level;
@@ -127,7 +127,7 @@ QuaternionTrilateration quaternion_trilateration(const std::array<Eigen::Vector3
                                  (2.0 * lambda0_sq - 1.0) * l[1] + a[1].z());
     return q;
   };
-  // '+' gives z_B − z_A = +√(1 − 4(λ01² + λ02²))·L2 > 0: B above the joint plane (ch2 §4.12, erratum 11).
+  // '+' gives z_B − z_A = +√(1 − 4(λ01² + λ02²))·L2 > 0: B above the joint plane (§2.3.3; sign corrected).
   // The '−' root from Vieta (product of the roots = λ01² + λ02²): 1 − √(1 − 4s) would cancel for small s.
   const double plus_sq = 0.5 * (1.0 + root);
   out.plus = make_root(plus_sq);

@@ -1,12 +1,12 @@
 #pragma once
-// Three-sphere intersection ("three hinged rods meeting at one point", ch2 §4.6(a), §4.12): the point B with
+// Three-sphere intersection ("three hinged rods meeting at one point", Smirnov §2.3.3): the point B with
 // |B − A_j| = L_j for three centres A_j. Two forms:
 //   * classical, in any frame: subtracting the sphere equations gives two linear equations, which leave a
 //   line
 //     normal to the centre plane; the first sphere then gives a quadratic along that line (§4.6(a)
 //     recommendation);
 //   * the dissertation's quaternion form (56)–(59), for centres in one horizontal plane (z_A1 = z_A2 = z_A3),
-//     keeping the intermediate values a11…b2, λ01, λ02, λ0 so they can be checked against ch2 §6.1(b).
+//     keeping the intermediate values a11…b2, λ01, λ02, λ0 so they can be checked.
 // Both give two mirror-image points, one on each side of the centre plane. Fixed-size results, no allocation.
 #include <Eigen/Core>
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-// Drive zero offsets (issue 16; spec ch5 §9.2): a drive's reading is its actuator's geometric value less a
+// Drive zero offsets (Smirnov 2019, §5.2.4): a drive's reading is its actuator's geometric value less a
 // constant, because the drive's zero was set at some length (or carriage position, or angle) that was not
 // measured exactly. With d_j the offset of drive j,
 //   reading q_j = g_j(pose) − d_j,   i.e.   g_j = q_j + d_j,

@@ -1,7 +1,7 @@
 #pragma once
 // The assembly-mode label of a platform on six legs: which side of the base-joint plane its joints are on,
 // and the sign of det J (a sign change means the pose lies across a singularity). The dissertation removes
-// the ambiguity of L-coordinates by "all platform joints above the plane of the base joints" (ch2 §4.4).
+// the ambiguity of L-coordinates by "all platform joints above the plane of the base joints" (§2.2.2).
 #include <Eigen/Core>
 #include <array>
 

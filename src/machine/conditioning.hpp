@@ -1,6 +1,6 @@
 #pragma once
 // Singularity and accuracy measures of a pose: det J, condition number, and the error amplification δρ
-// of dissertation §5.2.2 (spec ch5 §5.1, eq. 144–146): with equal actuator errors ΔL,
+// of Smirnov 2019, §5.2.2 (eq. 144–146): with equal actuator errors ΔL,
 //   S_x = Σ_j |∂x/∂L_j|,  S_y, S_z likewise,   δρ = ρ/ΔL = sqrt(S_x² + S_y² + S_z²),
 // where ∂x/∂L_j are entries of the inverse Jacobian (forward-kinematics sensitivities).
 #include "machine/machine.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // What the machine file's `dynamics:` section says about the moving parts' inertia, the struts' elasticity
-// and the drives (docs/machine-file.md, docs/dynamics.md; spec ch4). Units inside pkm: mm, kg, s, so forces
-// come out in kg·mm/s² = 10⁻³ N and inertias are kg·mm² (the file gives kg·m², as the seed does: × 10⁶).
+// and the drives (docs/machine-file.md, docs/dynamics.md). Units inside pkm: mm, kg, s, so forces
+// come out in kg·mm/s² = 10⁻³ N and inertias are kg·mm² (the file gives kg·m², as Smirnov 2019 does: × 10⁶).
 #include <Eigen/Core>
 #include <array>
 
@@ -19,7 +19,7 @@ struct BodyInertia {
   Eigen::Matrix3d inertia_kg_mm2 = Eigen::Matrix3d::Zero();
 };
 
-/// One part of a strut, a body on the strut axis, axisymmetric about it (spec ch4 §5.1: the lower part is the
+/// One part of a strut, a body on the strut axis, axisymmetric about it (Smirnov, §4.3: the lower part is the
 /// cylinder at the base joint A, the upper part the rod at the platform joint B; constant-length struts of
 /// glide machines and planar links are a lower part alone).
 struct StrutPart {
@@ -28,15 +28,15 @@ struct StrutPart {
   /// towards B, the upper part's from B towards A, mm.
   double com_mm = 0.0;
   /// About the centre of mass, perpendicular to the strut axis, kg·mm². The spin of a strut about its own
-  /// axis is not modelled (spec ch4 §5.10: only the perpendicular part of the strut's angular velocity), so
+  /// axis is not modelled (Smirnov, §4.3: only the perpendicular part of the strut's angular velocity), so
   /// the axial moment of inertia is not needed.
   double transverse_inertia_kg_mm2 = 0.0;
 };
 
-/// The friction of a strut's elastic element (spec ch4 §4.3, §6.4): the seed's is quadratic in the rate.
+/// The friction of a strut's elastic element (Smirnov 2019, §4.2, §4.5): there quadratic in the rate.
 enum class StrutDamping { none, viscous, quadratic, coulomb };
 
-/// The drive model (spec ch4 §3.6): ideal (the force is the command), a static characteristic (the force
+/// The drive model (Smirnov 2019, §4.2): ideal (the force is the command), a static characteristic (the force
 /// falls linearly with the speed from the command: P = u − k_v·q̇), or a first-order lag τ·Ṗ + P = u.
 enum class DriveModel { ideal, static_characteristic, first_order_lag };
 

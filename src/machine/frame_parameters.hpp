@@ -1,12 +1,12 @@
 #pragma once
-// The machine frame of the `stiffness:` section (issue 15; spec glide_stiffness.md §4,
+// The machine frame of the `stiffness:` section (Rusanov et al.'s FE model,
 // docs/stiffness_frame.md): beams between nodes that carry the struts' base joints, the platform being a
 // rigid master node of the finite-element model. Empty when the base is rigid.
 //
-// A beam's own axes (the spec's cantilever frame): z along the beam from its first node to its second, x and
+// A beam's own axes (Rusanov's cantilever frame): z along the beam from its first node to its second, x and
 // y the section's principal axes, x the part of `section_x` square to z, y = z × x. second_moment_x_mm4 (J_x)
 // resists bending in the y-z plane (deflection along y), second_moment_y_mm4 (J_y) bending in the x-z plane
-// (deflection along x): second moments of area (∫ y² dA, ∫ x² dA), not the static moments (ERRATUM).
+// (deflection along x): second moments of area (∫ y² dA, ∫ x² dA), not the printed static moments.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -27,7 +27,7 @@ struct BeamSection {
   double area_mm2 = 0.0;              ///< F
   double second_moment_x_mm4 = 0.0;   ///< J_x about the section's x axis
   double second_moment_y_mm4 = 0.0;   ///< J_y about the section's y axis
-  double torsion_constant_mm4 = 0.0;  ///< J_t (the spec's J_r; the polar moment only for round sections)
+  double torsion_constant_mm4 = 0.0;  ///< J_t (Rusanov's J_r; the polar moment only for round sections)
 };
 
 struct FrameBeam {

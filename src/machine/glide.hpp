@@ -1,6 +1,6 @@
 #pragma once
-// Glide machines: constant-length struts whose lower ends ride carriages on straight guides (ch2 §1.2, §4.10;
-// glide_stiffness.md §3). Six guides (hexaglide) move a 6-DOF platform; three guides whose carriages each
+// Glide machines: constant-length struts whose lower ends ride carriages on straight guides (Smirnov §1.2,
+// §2.2.8; Rusanov et al.). Six guides (hexaglide) move a 6-DOF platform; three guides whose carriages each
 // carry a parallelogram pair of struts (triglide, e.g. the pyramidal SFVPK-4) move a platform that only
 // translates.
 //
@@ -8,7 +8,7 @@
 // With the platform joint B_j = p + R·b'_j, the constant strut length l_j gives the sphere–line intersection
 //   |B_j − P_j − s_j·e_j|² = l_j²   ⇒   s_j = e_j·w_j + σ_j·√(l_j² − |w_j − (e_j·w_j)·e_j|²),   w_j = B_j −
 //   P_j,
-// σ_j = ±1 the branch: +1 is the root further along e_j (glide_stiffness.md §3: the branch stays fixed, so
+// σ_j = ±1 the branch: +1 is the root further along e_j (Rusanov et al.: the branch stays fixed, so
 // the carriage moves continuously). Implicit differentiation of the constraint gives ∂s_j/∂B_j = (B_j −
 // C_j)/((B_j − C_j)·e_j), infinite when the strut is perpendicular to its guide (the two roots merge: an
 // inverse singularity).

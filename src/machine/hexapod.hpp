@@ -1,6 +1,6 @@
 #pragma once
 // Hexapod 6-UPS (Gough–Stewart platform), 6-6 or 6-3 layout, with the tool point as pose origin.
-//   L_j = | p + R·b'_j − A_j |                      (dissertation eq. 20/22, correct form; ch2 §4.5)
+//   L_j = | p + R·b'_j − A_j |                      (Smirnov 2019, eq. 20/22, correct form; §2.2.3)
 // A_j: base (universal) joint centres in the base frame; b'_j: platform (spherical) joint centres in the tool
 // frame (platform frame shifted to the tool point). Pairwise-merged platform joints (6-3) are equal b'_j.
 #include <array>

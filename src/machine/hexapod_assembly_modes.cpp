@@ -1,7 +1,7 @@
 // All assembly modes of a hexapod.
 //
 // Merged joints (6-3: platform joints pairwise merged; 3-6: base joints merged, solved for the inverse
-// motion) use the dissertation's restructuring idea (ch2 §4.6(d)): nine unknowns reduce to one. Each merged
+// motion) use the dissertation's restructuring idea (§2.2.4): nine unknowns reduce to one. Each merged
 // platform point P_k lies on the circle where the spheres of its two struts meet; fixing the angle θ of P_0
 // on its circle fixes P_1 and P_2 up to two branches each (rigid distances |P_0P_1|, |P_0P_2|), and the
 // remaining distance |P_1P_2| gives one scalar equation in θ. Scanning θ on each of the four branch pairs and

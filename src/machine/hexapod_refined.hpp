@@ -1,27 +1,27 @@
 #pragma once
-// Hexapod 6-UPS with real (non-ideal) cardan joints at the base: the refined model of ch2 §4.7 (eqs. 27–28).
+// Hexapod 6-UPS with real (non-ideal) cardan joints at the base: Smirnov 2019, §2.2.5 (eqs. 27–28).
 //
 // A real cardan joint has two revolute axes that are skew, not quite perpendicular, and whose "centre" is not
-// on the strut axis. Following the spec's RECOMMENDATION (each joint matrix = a constant calibrated axis × a
+// on the strut axis. In a calibratable form (each joint matrix = a constant calibrated axis × a
 // rotation about it by the joint angle), the platform-joint centre of leg j is, in the base frame,
 //
 //   B_j = R0_j + R1_j + Rot(a1_j, g1)·( R2_j + Rot(a2_j, g2)·( R3_j + L_j·u_j ) )          (eq. 27 + R0, eq.
 //   28)
 //
 //   R0  ideal joint centre A_j (`base_joints`)              a1  first revolute axis, base frame (nominal y)
-//   R1  point on the first axis, from A_j (spec's R')        a2  second axis, yoke frame (nominal x)
-//   R2  point on the second axis, from that (spec's R'')     u   strut direction, second-joint frame (nominal
-//   z) R3  point A* of the strut axis, from that (spec's R*)    g1, g2  joint angles (unknown), L = |B − A*|
+//   R1  point on the first axis, from A_j (eq. 28 R')        a2  second axis, yoke frame (nominal x)
+//   R2  point on the second axis, from that (eq. 28 R'')     u   strut direction, second-joint frame (nominal
+//   z) R3  point A* of the strut axis, from that (eq. 28 R*)    g1, g2  joint angles (unknown), L = |B − A*|
 //   strut length
 //
 // Rot(a, g) turns about the unit axis a by g. The yoke frame and the second-joint frame coincide with the
 // base frame's orientation when g1 = g2 = 0, so every constant is given in base-frame directions of the
-// zero-angle joint. The constant alignment matrices of the spec's A' and A'' are absorbed into a1, a2, u (a
-// rotation about a calibrated axis is the alignment·Rot·alignmentᵀ of the spec, and the trailing alignmentᵀ
+// zero-angle joint. The constant alignment matrices of eq. 28's A' and A'' are absorbed into a1, a2, u (a
+// rotation about a calibrated axis is the alignment·Rot·alignmentᵀ of eq. 28, and the trailing alignmentᵀ
 // is a constant change of frame for R2, R3, u). With zero offsets, |B − A| = L for any unit axes, so the
 // defaults give exactly the ideal hexapod (eq. 20/22).
 //
-// IK: per leg, 3 equations in (g1, g2, L): Newton from the ideal-joint solution (ch2 §4.7 [DERIVED]). FK:
+// IK: per leg, 3 equations in (g1, g2, L): Newton from the ideal-joint solution (pkm's own). FK:
 // Newton on the pose with ∂L/∂B from implicit differentiation of the leg map
 // (kinematics/platform_newton.hpp); the 12 joint angles are eliminated leg by leg, so the 18-unknown system
 // of eq. 28 becomes the usual 6-unknown one.
@@ -36,10 +36,10 @@ namespace pkm {
 /// Calibration constants of one real cardan joint (all directions are normalised by the constructor).
 struct CardanJoint {
   Eigen::Vector3d axis1 = Eigen::Vector3d::UnitY();           ///< a1, base frame
-  Eigen::Vector3d offset1_mm = Eigen::Vector3d::Zero();       ///< R1 = spec's R', base frame
+  Eigen::Vector3d offset1_mm = Eigen::Vector3d::Zero();       ///< R1 = eq. 28's R', base frame
   Eigen::Vector3d axis2 = Eigen::Vector3d::UnitX();           ///< a2, yoke frame
-  Eigen::Vector3d offset2_mm = Eigen::Vector3d::Zero();       ///< R2 = spec's R'', yoke frame
-  Eigen::Vector3d strut_offset_mm = Eigen::Vector3d::Zero();  ///< R3 = spec's R*, second-joint frame
+  Eigen::Vector3d offset2_mm = Eigen::Vector3d::Zero();       ///< R2 = eq. 28's R'', yoke frame
+  Eigen::Vector3d strut_offset_mm = Eigen::Vector3d::Zero();  ///< R3 = eq. 28's R*, second-joint frame
   Eigen::Vector3d strut_axis = Eigen::Vector3d::UnitZ();      ///< u, second-joint frame
 };
 

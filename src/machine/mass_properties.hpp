@@ -1,7 +1,7 @@
 #pragma once
-// What the machine file's `masses:` section says about the moving parts' weight (docs/machine-file.md). The
-// seed's chapter-3 statics include the platform's weight as an external load but give no masses (spec ch3
-// §2.7, erratum 20); chapter 4 uses a 60 kg platform and 15 + 10 kg struts.
+// What the machine file's `masses:` section says about the moving parts' weight (docs/machine-file.md).
+// Smirnov 2019's chapter-3 statics include the platform's weight as an external load but give no masses
+// (chapter 4 says so); chapter 4 uses a 60 kg platform and 15 + 10 kg struts.
 #include <Eigen/Core>
 
 namespace pkm {
@@ -15,7 +15,7 @@ struct MassProperties {
   /// Each strut's (leg's) moving part; statics carries half its weight at the platform-side joint and half at
   /// the base (an approximation: the mass is taken as centred between the joints).
   double strut_kg = 0.0;
-  /// Gravitational acceleration in the base frame, mm/s² (the seed never says which way +z points).
+  /// Gravitational acceleration in the base frame, mm/s² (Smirnov 2019 never says which way +z points).
   Eigen::Vector3d gravity_mm_s2 = Eigen::Vector3d(0.0, 0.0, -9810.0);
   int line = 0;  ///< line of `masses:` (0 = section not given)
   int platform_kg_line = 0;

@@ -25,7 +25,7 @@
 
 namespace pkm {
 
-/// A group of geometric constants of a mechanism that calibration can identify (issue 16): `rows` × `columns`
+/// A group of geometric constants of a mechanism that calibration can identify: `rows` × `columns`
 /// numbers, row-major, e.g. the six base joints, 6 × 3 mm. `key` is also the key that carries the group in a
 /// machine file's `calibration:` section (io/calibration_file.cpp), so a calibrated machine file is the
 /// drawing plus the identified groups.
@@ -173,7 +173,7 @@ class Mechanism {
   virtual bool is_planar() const { return false; }
   /// True where every actuator is the distance between a base-fixed point and a platform-fixed point, with
   /// the whole pose free: then along a straight line or flat arc at constant orientation the actuator laws
-  /// are the closed √(quadratic) and √(Fourier) models of spec ch5 §5.2 (interpolation/methods/strut_laws).
+  /// are the closed √(quadratic) and √(Fourier) models of Smirnov 2019 (interpolation/methods/strut_laws).
   virtual bool has_distance_actuators() const { return false; }
   /// The length that turns a platform rotation (rad) into a joint displacement (mm): scales the angle columns
   /// of Jacobians so that their determinants compare across poses. The default: the mean distance of the

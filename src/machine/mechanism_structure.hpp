@@ -1,5 +1,5 @@
 #pragma once
-// The links and kinematic pairs of a mechanism as the seeds count them (ch2 §1.2 table), for the
+// The links and kinematic pairs of a mechanism as Smirnov 2019 counts them (§1.2 table), for the
 // Somov–Malyshev mobility formula (machine/mobility.hpp). Each mechanism states its own (Mechanism::
 // structure), so that no stage needs a table over mechanism types.
 #include <array>

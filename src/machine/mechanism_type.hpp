@@ -4,16 +4,16 @@
 
 namespace pkm {
 
-/// Every mechanism of the seed documents (dissertation ch. 2; glide paper).
+/// Every mechanism of the publications (Smirnov 2019, ch. 2; Rusanov et al.).
 enum class MechanismType {
-  planar2,          ///< two struts to one point in a plane (ch2 §2.1.1)
-  planar3,          ///< planar 3-RPR platform (ch2 §2.1.2)
-  hexapod,          ///< 6-UPS, 6-6 or 6-3 (ch2 §2.2.3)
-  hexapod_refined,  ///< 6-UPS with real cardan joints (ch2 §2.2.5)
-  tripod,           ///< spatial 3-RPS (ch2 §2.2.6, §2.3.4)
-  tricept,          ///< three struts plus a passive central leg (ch2 §2.2.7)
-  glide,    ///< constant-length struts on straight guides: hexaglide (6) or triglide (3) (ch2 §2.2.8)
-  rotopod,  ///< constant-length struts on carriages moving on one circle (ch2 §2.2.8)
+  planar2,          ///< two struts to one point in a plane (§2.1.1)
+  planar3,          ///< planar 3-RPR platform (§2.1.2)
+  hexapod,          ///< 6-UPS, 6-6 or 6-3 (§2.2.3)
+  hexapod_refined,  ///< 6-UPS with real cardan joints (§2.2.5)
+  tripod,           ///< spatial 3-RPS (§2.2.6, §2.3.4)
+  tricept,          ///< three struts plus a passive central leg (§2.2.7)
+  glide,    ///< constant-length struts on straight guides: hexaglide (6) or triglide (3) (Smirnov §2.2.8)
+  rotopod,  ///< constant-length struts on carriages moving on one circle (Smirnov 2019, §2.2.8)
 };
 
 std::string_view to_string(MechanismType type);

@@ -16,7 +16,7 @@ int planar_mobility(int links, int one_dof_pairs, int two_dof_pairs);
 /// H of the structure (planar or spatial formula), idle freedoms not yet subtracted.
 int mobility(const MechanismStructure& structure);
 
-/// The structure of a loaded mechanism, as the seeds count it (ch2 §1.2 table): Mechanism::structure.
+/// The structure of a loaded mechanism, as Smirnov 2019 counts it (§1.2 table): Mechanism::structure.
 MechanismStructure structure_of(const Mechanism& mechanism);
 
 }  // namespace pkm

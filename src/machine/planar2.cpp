@@ -91,7 +91,7 @@ Result<JacobianMatrix> Planar2::jacobian(const Pose& pose) const {
           ErrorCode::singular,
           fmt::format("strut {} has zero length (B on A{}): its direction is undefined", i + 1, i + 1));
     }
-    // Eq. (4) with the sign corrected (ch2 erratum 1): dL_j/dB = (B − A_j)/L_j.
+    // Eq. (4) with the sign corrected (printed with the opposite sign): dL_j/dB = (B − A_j)/L_j.
     j.row(i) = strut.transpose() / length_mm;
   }
   return j;

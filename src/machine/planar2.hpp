@@ -1,10 +1,10 @@
 #pragma once
 // Planar 2-DOF mechanism: two struts of variable length from base joints A_1, A_2 to one output joint B
-// (dissertation §2.1.1, Fig. 22; spec ch2 §4.1).
+// (Smirnov 2019, §2.1.1, Fig. 22).
 //   L_j = |B − A_j|                                           (eq. 3)
-//   dL_j/dt = [(x_B − x_Aj)·dx_B/dt + (y_B − y_Aj)·dy_B/dt] / L_j   (eq. 4, sign corrected: ch2 erratum 1)
+//   dL_j/dt = [(x_B − x_Aj)·dx_B/dt + (y_B − y_Aj)·dy_B/dt] / L_j   (eq. 4, printed sign corrected)
 // The pose is B itself: PoseVector (x, y, 0, 0, 0, 0); there is no platform, so no angle and no tool point.
-// Forward kinematics is the circle–circle intersection (the spec's recommended form of eq. 5/6, with the k_1
+// Forward kinematics is the circle–circle intersection (a stable form of eq. 5/6, with the k_1
 // erratum irrelevant); its two solutions are mirror images about line A_1A_2, and the assembly mode is the
 // side of that line (the source picks "B above A_1A_2").
 #include <Eigen/Core>

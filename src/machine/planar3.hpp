@@ -1,10 +1,10 @@
 #pragma once
-// Planar 3-DOF platform, 3-RPR (dissertation §2.1.2, Fig. 23 and §3.2–3.3; spec ch2 §4.2, ch3 §2.2).
+// Planar 3-DOF platform, 3-RPR (Smirnov 2019, §2.1.2, Fig. 23 and §3.2–3.3).
 //   B_j = R(φ)·b'_j + C,   L_j = |B_j − A_j|                      (eq. 8 = eq. 79)
 //   ∂L_j/∂(x_C, y_C, φ) = (u_jᵀ, (R b'_j) × u_j),  u_j = (B_j − A_j)/L_j   (eq. 80)
 // A_j: base joints in the base frame; b'_j: platform joints in the tool frame (platform frame shifted to the
 // tool point, so C is the tool point). The pose is PoseVector (x, y, 0, 0, 0, φ) in the abc convention:
-// R = Rz(φ). The assembly mode is the sign of det J (ch3 §4: a mechanism cannot pass a singular position, so
+// R = Rz(φ). The assembly mode is the sign of det J (§3.3: a mechanism cannot pass a singular position, so
 // the sign of the Jacobian determinant separates the modes it can reach from a start pose).
 #include <Eigen/Core>
 #include <array>

@@ -12,7 +12,7 @@
 namespace pkm {
 namespace {
 
-// The §4.10 [DERIVED] closed form about the nearest point of the circle.
+// The closed form (pkm's own) about the nearest point of the circle.
 struct CircleReach {
   double nearest_rad;  ///< φ_near
   double cosine;       ///< cos(φ − φ_near); |cosine| > 1: unreachable

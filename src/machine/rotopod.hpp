@@ -1,15 +1,15 @@
 #pragma once
-// Rotopod: six constant-length struts whose lower joints ride carriages on one circle (ch2 §1.2, §4.10, Fig.
-// 15/44).
+// Rotopod: six constant-length struts whose lower joints ride carriages on one circle (Smirnov 2019,
+// §1.2, §2.2.8, Fig. 15/44).
 //
 // Carriage j sits at A_j(φ_j) = (x_O + R·cos φ_j, y_O + R·sin φ_j, z_j): φ_j measured from the circle's
-// diameter parallel to OX, z_j a constant (§4.10). The strut keeps |A_j(φ_j) − B_j| = L_j with B_j = p +
-// R_p·b'_j, the corrected model of §4.10 [ERRATUM]. The closed-form IK of §4.10 [DERIVED], written about the
+// diameter parallel to OX, z_j a constant (§2.2.8). The strut keeps |A_j(φ_j) − B_j| = L_j with B_j = p +
+// R_p·b'_j, the model of §2.2.8, (39) corrected as (21). The closed-form IK (pkm's own), written about the
 // point of the circle nearest B_j:
 //   cos(φ_j − φ_near,j) = (R² + ρ_j² + Δz_j² − L_j²) / (2·R·ρ_j),   φ_near,j = atan2(y_B − y_O, x_B − x_O),
 //   ρ_j = |(x_B, y_B) − (x_O, y_O)|,   Δz_j = z_j − z_B,
 // has 0, 1 or 2 solutions; branch σ_j = +1 takes φ_near + arccos(…) (the carriage counter-clockwise, seen
-// from +z, of the nearest point), −1 the other (σ = +1 is the spec's "−" sign of atan2(d_y, d_x) ±
+// from +z, of the nearest point), −1 the other (σ = +1 is the "−" sign of atan2(d_y, d_x) ±
 // arccos(rhs/|d|)). Implicit differentiation of |A(φ) − B|² = L² gives ∂φ/∂B = (A − B)/((A − B)·A'(φ)), A' =
 // R·(−sin φ, cos φ, 0), infinite when the strut is perpendicular to the carriage's path (the two roots
 // merge).

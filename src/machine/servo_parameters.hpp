@@ -1,6 +1,6 @@
 #pragma once
 // What the machine file's `servo:` section says about the drives' control loops (docs/machine-file.md,
-// docs/servo.md; spec textbook_motion_control.md §2.7): per drive the current loop as the equivalent
+// docs/servo.md; motion-control textbook, §2.7): per drive the current loop as the equivalent
 // first-order lag k_μ/(T_μ p + 1) of eq. (2.49)'s derivation, the base speed and force of the per-unit form
 // (T0 = w_base/F_base · a), the motor's inertia and its transmission to the actuator coordinate, the clamps
 // of the Fig. 2.31 algorithm (e_max on the position error, u_max on the force command), and how the speed and
@@ -15,7 +15,7 @@
 
 namespace pkm {
 
-/// How the speed and position loops are tuned (spec §2.7.3).
+/// How the speed and position loops are tuned (motion-control textbook, §2.7.3).
 enum class ServoTuning {
   /// Speed loop P with gain T0/(2 k_μ T_μ) (closed: 1/(2T_μ²p² + 2T_μp + 1), 2nd-order Butterworth), position
   /// loop P with gain 1/(4 T_μ) (closed: 1/(8T_μ³p³ + 8T_μ²p² + 4T_μp + 1), 3rd-order Butterworth).

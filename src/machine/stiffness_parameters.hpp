@@ -1,6 +1,6 @@
 #pragma once
 // What the machine file's `stiffness:` section says about the elastic parts that carry a cutting load
-// (docs/machine-file.md, docs/stiffness.md; spec glide_stiffness.md, ch3 V7): the struts (an axial stiffness
+// (docs/machine-file.md, docs/stiffness.md; Rusanov et al.): the struts (an axial stiffness
 // c_j, or a modulus and a section whose stiffness E·A/L follows the strut's length), the joints at their
 // ends, the carriage drives and guides of glide machines, and an optional frame of beams.
 #include <array>
@@ -20,8 +20,8 @@ struct StrutStiffness {
   }
 };
 
-/// The compliance of the joints at a strut's two ends (spec glide_stiffness.md §4, "Joint": Δ − u = K_u·Q,
-/// φ − θ = K_θ·M, with the ERRATUM applied: the displacement follows the force Q, not the moment). A
+/// The compliance of the joints at a strut's two ends (Rusanov et al., "Joint": Δ − u = K_u·Q,
+/// φ − θ = K_θ·M; printed K_u·M, corrected: the displacement follows the force Q, not the moment). A
 /// spherical or cardan joint passes no moment about its free axes, so along a pin-jointed strut only the
 /// translational compliance along the strut's line acts: the strut's own spring in series with u_jᵀ K_u u_j
 /// at each end. Isotropic here (K_u = compliance · I); 0 is a rigid ("frozen") joint.
@@ -34,14 +34,14 @@ struct JointCompliance {
 /// Glide machines: the carriage of strut j is held along its guide by its drive (stiffness k_d along the
 /// guide direction e_j) and across it by the guide (compliance C_g, isotropic here). A strut force f along
 /// the strut's unit line n moves the carriage by (n·e) f / k_d along e and by C_g f across, so the strut's
-/// end gives way by f ((n·e)² / k_d + nᵀ C_g n) along its line: in series with the strut (issue 15's 1/k_a +
+/// end gives way by f ((n·e)² / k_d + nᵀ C_g n) along its line: in series with the strut (1/k_a +
 /// (n·e)²/k_d + nᵀ C_g n).
 struct CarriageCompliance {
   double drive_stiffness_N_mm = 0.0;  ///< k_d; 0: a rigid drive
   double guide_mm_N = 0.0;            ///< C_g; 0: a rigid guide
 };
 
-/// Which elastic parts a compliance counts (the issue's models, from the simplest to the full one).
+/// Which elastic parts a compliance counts (the models, from the simplest to the full one).
 enum class StiffnessModel {
   struts,         ///< the struts only: K = Gᵀ diag(k) G
   struts_joints,  ///< with the joints, and with the carriage drives and guides of glide machines

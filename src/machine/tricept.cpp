@@ -49,7 +49,7 @@ bool Tricept::axis_of(const Eigen::Vector3d& p, TriceptAxis& axis) const noexcep
   if (!(d > 0.0) || !(r.z() > 0.0)) return false;  // |α| < 90°: the axis points to the +z side of O
   axis.rho_mm = d - geometry_.tool_offset_mm;
   if (!(axis.rho_mm > 0.0)) return false;
-  // (34), (35) with atan2 for the quadrants (ch2 §4.9 recommendation); r has the direction of C − O.
+  // (34), (35) with atan2 for the quadrants (Smirnov 2019, §2.2.7); r has the direction of C − O.
   axis.alpha_rad = std::atan2(-r.y(), r.z());
   axis.beta_rad = std::atan2(r.x(), std::hypot(r.y(), r.z()));
   axis.center_mm = geometry_.center_joint_mm + (axis.rho_mm / d) * r;

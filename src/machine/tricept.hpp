@@ -1,5 +1,5 @@
 #pragma once
-// Tricept (ch2 §4.9): three telescopic struts from universal joints A_j on the base to spherical joints B_j
+// Tricept (§2.2.7): three telescopic struts from universal joints A_j on the base to spherical joints B_j
 // on the manipulator flange, plus a passive central leg that slides through a cardan joint at the fixed point
 // O. The cardan allows rotations α about x and β about the once-rotated y, never about the manipulator's own
 // axis:

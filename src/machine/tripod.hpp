@@ -1,5 +1,5 @@
 #pragma once
-// Spatial tripod 3-RPS (ch2 §4.8, §4.13): three struts of variable length L_j, each on a revolute joint A_j
+// Spatial tripod 3-RPS (§2.2.6, §2.3.4): three struts of variable length L_j, each on a revolute joint A_j
 // of the base with a horizontal axis a_j (eq. 31) and a spherical joint B_j on the platform.
 //   L_j = |B_j − A_j|,  B_j = p + R·b'_j                                   (29), (32)
 //   a_j · (B_j − A_j) = 0   (strut j stays in the plane through A_j perpendicular to a_j)   (31)
@@ -9,7 +9,7 @@
 // about z: abc → (z, A, B), krylov → (z, ϑ, γ). In both conventions R = Rz(φ)·T(tilts) with φ = C (abc) or
 // φ = −ψ (krylov); euler_zxz has no such split and is rejected. x, y and φ are dependent (complete_pose).
 //
-// Forward kinematics uses the joint-angle parametrisation recommended in ch2 §4.13:
+// Forward kinematics uses the joint-angle parametrisation of Smirnov 2019, §2.3.4:
 //   B_j(t_j) = A_j + L_j·(cos t_j·e_z + sin t_j·w_j),  w_j = a_j × e_z,
 // (t_j = rotation of strut j about a_j away from vertical), and solves the three rigid distances |B_i − B_k|.
 #include <array>
@@ -74,7 +74,7 @@ class Tripod final : public Mechanism {
   /// Plane-constraint residuals a_j·(B_j − A_j) of a pose, mm (zero for a complete pose).
   Eigen::Vector3d plane_residuals_mm(const Pose& pose) const noexcept;
 
-  // Joint-angle form used by forward kinematics (ch2 §4.13 recommendation).
+  // Joint-angle form used by forward kinematics (§2.3.4).
   Eigen::Vector3d joint_at(int j, double length_mm, double angle_rad) const noexcept;
   double joint_angle_of(int j, const Eigen::Vector3d& point_mm) const noexcept;
   /// The rigid-body pose through three platform-joint positions (Eigen::umeyama on the three points).

@@ -1,4 +1,4 @@
-// Forward kinematics of the 3-RPS tripod in the joint-angle form recommended by ch2 §4.13. Every joint angle
+// Forward kinematics of the 3-RPS tripod in the joint-angle form of Smirnov 2019, §2.3.4. Every joint angle
 // t_j keeps B_j on its strut's circle, so (29) and (31) hold exactly and only the three rigid distances (30)
 // remain: three equations in (t_1, t_2, t_3), solved by damped Newton from the guess's joint angles. The pose
 // then follows from the three joint points (Eigen::umeyama, exact for a rigid triangle).
@@ -38,7 +38,7 @@ Pose Tripod::pose_from_joints(const std::array<Eigen::Vector3d, 3>& joints_mm) c
 
 void Tripod::distance_equations(const Eigen::Vector3d& l, const Eigen::Vector3d& t, Eigen::Vector3d& f,
                                 Eigen::Matrix3d& df_dt) const noexcept {
-  // f_k = |B_i − B_k|² − d_ik² with B_j(t_j) from the joint-angle form (ch2 §4.13); pairs k = (1,2), (2,3),
+  // f_k = |B_i − B_k|² − d_ik² with B_j(t_j) from the joint-angle form (§2.3.4); pairs k = (1,2), (2,3),
   // (3,1).
   std::array<Eigen::Vector3d, 3> b, db;
   for (int j = 0; j < 3; ++j) {

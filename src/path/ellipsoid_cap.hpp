@@ -1,5 +1,5 @@
 #pragma once
-// The surface the machining strategies are compared on (seed 002, Fig. 9: "an ellipsoid region"): the top of
+// The surface the machining strategies are compared on (Rusanov et al., Fig. 9): the top of
 // an ellipsoid with semi-axes a, b, c along x, y, z, cut off by a horizontal plane `depth_mm` below its top.
 // The cut is a plane of constant height, so the cap's outline seen from above is an ellipse with semi-axes
 // a·sin θ, b·sin θ (cos θ = 1 − depth/c), the parallels are smaller ellipses like it, and every point of the

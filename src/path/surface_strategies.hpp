@@ -1,5 +1,5 @@
 #pragma once
-// The seed's five machining strategies over a surface (seed 002, Fig. 9 a–e; docs/strategies.md), generated
+// Rusanov et al.'s five machining strategies over a surface (Fig. 9 a–e; docs/strategies.md), generated
 // on an ellipsoid cap (ellipsoid_cap.hpp) as tool-tip points with the surface normal as the tool axis:
 //
 //   zigzag        parallel lines along x, alternate directions, joined along the rim ("arbitrary" direction);

@@ -1,5 +1,5 @@
 #pragma once
-// `pkm calibrate plan | simulate | identify` as library calls (issue 16, docs/calibration.md): a typed job
+// `pkm calibrate plan | simulate | identify` as library calls (docs/calibration.md): a typed job
 // in, an output set written (replacing a previous run's only when all of it succeeded), a typed result out.
 // The identified parameters are the mechanism's geometry groups plus the drive offsets (src/calibration/,
 // machine/actuator_offsets.hpp).

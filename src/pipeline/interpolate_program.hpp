@@ -1,6 +1,6 @@
 #pragma once
 // `pkm interpolate` as one library call: a part program file in, planned at the servo period and turned into
-// whole drive steps per period (spec ch5), written as an output set: steps.csv and steps.bin (the drives'
+// whole drive steps per period (Smirnov 2019), written as an output set: steps.csv and steps.bin (the drives'
 // stream), contour.csv (per period: the contour error and where the tool is), summary.json and, if asked,
 // the HTML report. The set replaces a previous run's only when all of it succeeded.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// `pkm servo PLAN_DIR` as one library call (issue 17; docs/servo.md): reads a planned run back
+// `pkm servo PLAN_DIR` as one library call (docs/servo.md): reads a planned run back
 // (actuators.csv: the set points; path.csv: the commanded tool poses and their program lines), designs each
 // drive's loops from the machine file's `servo:` section, refuses unstable loops, simulates all drives on the
 // coupled plant, and writes servo.csv (per tick: following error, force and command per drive, contour error

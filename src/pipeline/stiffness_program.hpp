@@ -1,5 +1,5 @@
 #pragma once
-// `pkm stiffness` as one library call (issue 15): a part program's tool deflection under a cutting load at
+// `pkm stiffness` as one library call: a part program's tool deflection under a cutting load at
 // every path point, the machine's stiffness model from its file (or one asked for), and, if asked, the
 // pre-compensated program whose deflected tool follows the nominal path. Written as an output set
 // (points.csv, summary.json, optionally compliance.csv and the program) that replaces a previous run's only

@@ -1,5 +1,5 @@
 #pragma once
-// `pkm strategies` as one library call (seed 002 §1 and Fig. 9; docs/strategies.md): the five machining
+// `pkm strategies` as one library call (Rusanov et al., Fig. 9; docs/strategies.md): the five machining
 // strategies over an ellipsoid cap (path/surface_strategies.hpp) and any given part programs, each planned on
 // the machine with the tool's deflection under the cutting load (pkm plan --stiffness), scored by the error
 // it leaves along the surface normal, and ranked by kStrategyCriterion.

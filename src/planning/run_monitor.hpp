@@ -3,7 +3,7 @@
 // actuator speeds and accelerations by finite differences at the servo rate, the path speed against the
 // programmed feed, direction reversals of each actuator, and the path error: the distance of
 // FK(actuators) from the programmed path, evaluated at mid-period, where the drives' straight-line motion
-// between two setpoints deviates most from the curved actuator law (spec ch5 §5.3, E13).
+// between two setpoints deviates most from the curved actuator law (Smirnov 2019, §5.2.2–5.2.3).
 #include <array>
 #include <limits>
 #include <optional>

@@ -6,7 +6,7 @@
 // planning samples) passes through a moving average over the last N ticks,
 //   s_f[k] = (1/N) Σ_{m=0}^{N−1} s[k − m],   T = N·h = 2·a_max / j_max,
 // the classic FIR acceleration/deceleration of CNC interpolators, applied here to the path parameter before
-// the coordinate transform (textbook §2.1.3, [DERIVED]) so the tool never leaves the path. The filtered speed
+// the coordinate transform (beyond textbook §2.1.3) so the tool never leaves the path. The filtered speed
 // is an average of speeds (≤ the largest), its acceleration (v[k] − v[k−N])/T is within a_max, and its jerk
 // within 2·a_max/T = j_max: an S-curve. At stops the profile rests for T, so the filtered motion arrives at
 // rest.

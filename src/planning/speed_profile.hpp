@@ -4,7 +4,7 @@
 // Each sample carries a speed cap V_i (feed, actuator speeds, curvature) and a tangential acceleration cap
 // A_i (path and actuator accelerations). A forward pass (accelerate as hard as allowed) and a backward pass
 // (brake in time for every later cap) give the fastest profile with v_i ≤ V_i and |v²_{i+1} − v²_i| ≤ 2 A Δs
-// between samples: constant acceleration on each interval, the textbook's S̈ = const law (spec textbook §2.6),
+// between samples: constant acceleration on each interval, the textbook's S̈ = const law (textbook §2.6),
 // with the braking point found from the remaining path by the correct kinematic formula.
 //
 // Jerk is limited afterwards by a moving-average filter of length T on the path parameter (servo_stream.hpp),

@@ -1,7 +1,7 @@
 #pragma once
-// Redundant output coordinates (spec ch3 §0, §3.0): the pose coordinates an operation leaves free.
+// Redundant output coordinates (Smirnov 2019, ch. 3): the pose coordinates an operation leaves free.
 //
-//  - planar machines (planar3): the platform angle φ (C in G-code), ch3 §3.4;
+//  - planar machines (planar3): the platform angle φ (C in G-code), Smirnov 2019, §3.4;
 //  - `spin` on six-axis machines: the turn s about the tool axis, R = R_axis · Rot(a', s), where R_axis is
 //  the
 //    shortest swing of the home rotation that puts the tool axis a' (platform frame) where the program wants

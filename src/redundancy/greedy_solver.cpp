@@ -93,7 +93,7 @@ FreeValues solve_step_1d(const StepContext& step, const FreeValues& hold, const 
 }
 
 // Three free coordinates: Nelder–Mead on the step cost (it is a max or a sum of absolute values, so not
-// smooth), restarted from its own result so that a collapsed simplex cannot stop it early (ch3 §3.4).
+// smooth), restarted from its own result so that a collapsed simplex cannot stop it early.
 struct SimplexData {
   const StepContext* step;
   Node node;

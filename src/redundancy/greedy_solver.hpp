@@ -1,11 +1,11 @@
 #pragma once
-// The seeds' scheme (ch3 §3.0, §3.6): walk the path and, at every step k → k+1, choose the free coordinates
+// Smirnov 2019's scheme (§3.6): walk the path and, at every step k → k+1, choose the free coordinates
 // at k+1 that minimise the law's cost of that step, with k fixed.
 //
 //  - one free coordinate: a grid over the bounds, then golden-section refinement round the best grid value;
-//  - three: Nelder–Mead (NLopt) from the previous values, restarted from its own result (ch3 §3.4 recommends
-//    it for the non-smooth max and sum). It reaches the extract's per-step optimum (V7: 138.8 mm merged, 38.1
-//    mm at δ = 50°), which the seeds' unnamed optimiser stopped 4–8 % short of. (SQP on the epigraph form min
+//  - three: Nelder–Mead (NLopt) from the previous values, restarted from its own result (derivative-free,
+//    for the non-smooth max and sum). It reaches the per-step optimum (Table 2's cases: 138.8 mm merged, 38.1
+//    mm at δ = 50°), which Smirnov's unnamed optimiser stopped 4–8 % short of. (SQP on the epigraph form min
 //    t s.t. ±e_j(q) ≤ t was tried: with finite-difference gradients it stops at the first kink, 143.9 mm.)
 // Holding the previous values is always a candidate, so the law is never worse than holding on a step.
 #include "core/result.hpp"

@@ -138,7 +138,7 @@ bool LawEvaluator::evaluate(const PathPoint& point, const statics::Wrench& load,
   } else if (need_forces_) {
     statics::Wrench wrench = load;
     if (machine_.masses.has_mass()) {
-      // The weight of the moving parts is a load like the cut (ch3 §2.7).
+      // The weight of the moving parts is a load like the cut (Smirnov 2019, ch. 3).
       StrutJointPoints struts;
       const int strut_count = machine_.mechanism->strut_joints(pose, struts);
       const statics::Wrench weight = statics::gravity_wrench(
@@ -173,7 +173,7 @@ ActuatorVector LawEvaluator::step_forces(const Node& from, const Node& to) const
 }
 
 double LawEvaluator::step_energy_Nmm(const Node& from, const Node& to) const noexcept {
-  // Forces at the end of the step: the law chooses the end pose with the loads known there (ch3 §2.6).
+  // Forces at the end of the step: the law chooses the end pose with the loads known there (Smirnov, §3.4.3).
   const ActuatorVector forces = step_forces(from, to);
   const int n = static_cast<int>(to.lengths.size());
   double total = 0.0;

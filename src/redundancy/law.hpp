@@ -1,5 +1,5 @@
 #pragma once
-// The three drive control laws of ch3 §3 and what one path point costs under them.
+// The three drive control laws of Smirnov 2019, ch. 3, and what one path point costs under them.
 //
 //  increment (72)/(89)/(90): per step, max_j |ΔL_j| → min  (strut speed limited: step time ∝ the largest
 //  change) force     (75)/(92):      per point, max_j |P_j| → min  (lower peak drive loads) energy
@@ -21,21 +21,21 @@ enum class Law { increment, force, energy };
 std::optional<Law> law_from_string(std::string_view name);
 std::string_view to_string(Law law);
 
-/// How a step's drive energy is counted (spec ch3 §2.6).
+/// How a step's drive energy is counted (Smirnov 2019, §3.4.3).
 enum class EnergyAccounting {
-  no_recovery,   ///< Σ|ΔL·P|: a braking drive still draws |ΔL·P| (the seeds, (86))
+  no_recovery,   ///< Σ|ΔL·P|: a braking drive still draws |ΔL·P| (Smirnov 2019, (86))
   braking_free,  ///< Σ max(0, ΔL·P): braking costs nothing but returns nothing
   recovery,      ///< |Σ ΔL·P|: braking drives feed the others (equals the required work)
 };
 std::optional<EnergyAccounting> energy_accounting_from_string(std::string_view name);
 std::string_view to_string(EnergyAccounting accounting);
 
-/// Which forces the laws see (spec ch4 §4.4, §7.2): the statics of ch3 (the load and the weights, (91)), or
+/// Which forces the laws see (Smirnov 2019, §4.4): the statics of ch. 3 (the load and the weights, (91)), or
 /// the rigid inverse dynamics at the programmed feed (src/dynamics/rigid_dynamics.hpp: every body's weight
 /// and inertia; the machine file's dynamics: section). Under the dynamic model a step's forces are those of
 /// the platform moving from the step's start pose to its end pose at the feed (the twist of the step over
 /// its time, without acceleration: the step alone does not know the next one), so the energy law weighs the
-/// velocity terms the faster feeds bring (the seed's Table 3).
+/// velocity terms the faster feeds bring (Smirnov 2019, Table 3).
 enum class ForceModel { statics, dynamics };
 std::optional<ForceModel> force_model_from_string(std::string_view name);
 std::string_view to_string(ForceModel model);
@@ -44,12 +44,12 @@ struct LawOptions {
   Law law = Law::increment;
   EnergyAccounting energy = EnergyAccounting::no_recovery;
   ForceModel forces = ForceModel::statics;
-  /// Drive force limit |P_j| ≤ this (N); candidates above it are not admissible (ch3 §3.3 recommendation).
+  /// Drive force limit |P_j| ≤ this (N); candidates above it are not admissible (energy law: Fig. 112).
   std::optional<double> force_limit_N;
-  /// Keep-out margin round singular positions (ch3 §4), as a share of the start pose's normalised Jacobian
+  /// Keep-out margin round singularities (Smirnov, §3.3), as a share of the start pose's normalised Jacobian
   /// determinant (angle columns scaled by a characteristic length of the platform, divided by the product of
   /// the row norms: 1 for orthogonal struts, 0 at a singularity). Candidates below it are not admissible, nor
-  /// those of the other sign (the seeds test only the sign). Relative, because well-built machines differ
+  /// those of the other sign (Smirnov 2019 tests only the sign). Relative, because well-built machines differ
   /// by an order of magnitude in the absolute value (planar tripod ≈ 0.1, ch3 hexapods ≈ 0.3).
   double singularity_margin = 0.1;
 };
@@ -75,7 +75,7 @@ class LawEvaluator {
   const Machine& machine() const { return machine_; }
   bool computes_forces() const { return need_forces_; }
   /// Sign of the Jacobian determinant at the start: candidates must keep it (no crossing a singular
-  /// position, ch3 §4).
+  /// position, Smirnov 2019, §3.3).
   /// Fixes the branch and the keep-out threshold from the start pose; false when the start is singular.
   bool set_start(const Pose& start);
 

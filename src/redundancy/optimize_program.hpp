@@ -1,5 +1,5 @@
 #pragma once
-// The post-processor of ch3 §3.6: a part program whose operation leaves coordinates free (X Y Z only, or CL
+// Smirnov's post-processor (§3.6): a part program whose operation leaves coordinates free (X Y Z only, or CL
 // tool point + axis) in, the same program with the free coordinates chosen by a law out — blocks cut into
 // equal parts of the same kind, the feed of every part the feed of its block (the contour speed is kept).
 #include <array>

@@ -1,7 +1,7 @@
 #pragma once
 // The points at which the redundancy laws choose the free coordinates: every motion block of the program cut
 // into equal parts of the same kind (lines into lines, arcs into arcs of the same radius), no longer than the
-// step (ch3 §3.6 step 3: "split the block into N equal parts"; the seeds' circle uses 1° steps).
+// step (Smirnov 2019, §3.6 step 3: split the block into N equal parts; Smirnov 2010's circle uses 1° steps).
 //
 // Moves before the first feed move (the rapids that bring the tool to the part) are kept as programmed: the
 // optimisation starts where they end, with the free coordinates the program has there (`G0 X40 Y0 C15` starts

@@ -17,7 +17,7 @@ struct Trajectory {
   std::vector<Node> nodes;         ///< evaluated at `values`
 };
 
-/// The free coordinates held at their start values (the seeds' baseline, ch3 §3.0). Nodes that cannot be
+/// The free coordinates held at their start values (Smirnov 2019 baseline). Nodes that cannot be
 /// reached are left invalid; the metrics say so.
 Trajectory constant_trajectory(const Problem& problem);
 

@@ -1,5 +1,5 @@
 #pragma once
-// What a choice of free coordinates does to the machine (ch3 (83), (86), (87)): the sum of the largest strut
+// What a choice of free coordinates does to the machine (eqs. (83), (86), (87)): the sum of the largest strut
 // increments (∝ machining time when strut speed is the limit), the peak actuator force, the drive energy and
 // the work the loads require.
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// A whole-path optimum the seeds do not have: dynamic programming over the free coordinates of all points at
+// A whole-path optimum Smirnov does not have: dynamic programming over the free coordinates of all points at
 // once, minimising the law's total (Σ_k max_j |ΔL_jk| for the increment law, which is exactly the machining
 // time metric (83); Σ energy; Σ peak force) instead of each step greedily.
 //
@@ -10,7 +10,7 @@
 // never worse than greedy.
 //
 // An optional rate limit bounds how fast the free coordinates may change per mm of path, so that the
-// optimum stays smooth enough for the machine (the seeds have none).
+// optimum stays smooth enough for the machine (Smirnov 2019 has none).
 #include <optional>
 
 #include "core/result.hpp"

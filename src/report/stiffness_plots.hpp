@@ -1,6 +1,6 @@
 #pragma once
-// The stiffness plots of a run's report (issue 15: "Bode plots of the tool compliance in the report", "maps:
-// stiffness over the workspace … in CSV and the HTML report"): when the run's directory holds `bode.csv`
+// The stiffness plots of a run's report (Bode plots of the tool compliance, maps
+// of stiffness over the workspace): when the run's directory holds `bode.csv`
 // (stiffness/compliance_bode.hpp) or `stiffness_map.csv` (stiffness/stiffness_map.hpp), the report data gets
 // a `frequency_response` or a `stiffness_map` object (docs/report-data.md) that the page draws as a Bode plot
 // and a colour map. Read back from the files, as every other part of the report is.

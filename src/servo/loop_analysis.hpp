@@ -2,8 +2,8 @@
 // Each drive's speed and position loops analysed on their own (the drive's own inertia, no coupling):
 // step responses, stability margins and frequency responses, for the continuous loops of the design and
 // for the loops as sampled at the drive's loop period (zero-order hold on the force command, regulators
-// acting on the sampled speed and position; loop_design.hpp, servo_simulator.hpp). Spec
-// textbook_motion_control.md §2.7.3: the technical optimum gives a speed loop with 4.3 % overshoot (e^−π)
+// acting on the sampled speed and position; loop_design.hpp, servo_simulator.hpp). The
+// motion-control textbook, §2.7.3: the technical optimum gives a speed loop with 4.3 % overshoot (e^−π)
 // and a phase margin of 65.5°, and a position loop (3rd-order Butterworth) with 8.15 % overshoot, 2 %
 // settling at 13.3 T_μ, phase margin 60.5° and gain margin 12.04 dB; its ramp following error is 4 T_μ v.
 #include <complex>

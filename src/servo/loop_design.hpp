@@ -1,11 +1,11 @@
 #pragma once
-// The gains of each drive's cascade from the machine file's `servo:` section (spec textbook_motion_control.md
-// §2.7.3, eq. 2.48–2.49 with the extract's ERRATA applied). Inner loop: the current loop as the equivalent
+// The gains of each drive's cascade from the machine file's `servo:` section (motion-control textbook,
+// §2.7.3, eq. 2.48–2.49, its printed errors corrected). Inner loop: the current loop as the equivalent
 // lag k_μ/(T_μ p + 1), giving the force F = k_μ F_base u for the command u (per unit). Plant of one drive:
 // the inertia a it moves, F = a ẇ (T0 = a w_base/F_base in per-unit form, W0 = 1/(T0 p)).
 //   technical optimum: speed regulator T0/(2 k_μ T_μ) (P), so that the closed speed loop is
 //     1/(2T_μ²p² + 2T_μp + 1) (2nd-order Butterworth, ω0 = 1/(√2 T_μ)); position regulator 1/(4T_μ) (P,
-//     [DERIVED] in the extract), so that the closed position loop is 1/(8T_μ³p³ + 8T_μ²p² + 4T_μp + 1)
+//     not written out in the textbook), so that the closed position loop is 1/(8T_μ³p³ + 8T_μ²p² + 4T_μp + 1)
 //     (3rd-order Butterworth, ω0 = 1/(2T_μ)).
 //   symmetric optimum: the same speed gain with an integral of time 4 T_μ (PI) and the speed reference
 //     filtered by 1/(4T_μ p + 1); position gain 1/(8 T_μ) around it.

@@ -1,5 +1,5 @@
 #pragma once
-// What the drives move along a run (spec textbook_motion_control.md §2.7.1): the inertia matrix in actuator
+// What the drives move along a run (motion-control textbook, §2.7.1): the inertia matrix in actuator
 // coordinates, A = A'(q) + diag(J_m,i), and the load d each drive carries besides the inertia.
 //   A'(q): the machine's own inertia (the dynamics: section's bodies), from the rigid-body inverse dynamics
 //     at rest: column k is the drive forces for a unit acceleration of actuator k alone (eq. 2.44's kinetic

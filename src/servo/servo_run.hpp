@@ -1,5 +1,5 @@
 #pragma once
-// A planned run through the drives' servo loops (issue 17; docs/servo.md): every drive's cascade
+// A planned run through the drives' servo loops (docs/servo.md): every drive's cascade
 // (servo_simulator.hpp) follows the run's set points, interpolated linearly within each servo period as a
 // drive in cyclic synchronous position mode does, on the plant of servo_plant.hpp. Per drive it measures the
 // following error (set point − position at each servo tick), the force and the command and where the
@@ -16,7 +16,7 @@ namespace pkm::servo {
 
 struct ServoRunOptions {
   /// The plant's inertia matrix in full (true), or only its diagonal: every drive an independent channel
-  /// (the model the coupling check of §2.7.1 justifies where the ratios are < 0.3).
+  /// (the model the coupling check of textbook §2.7.1 justifies where the ratios are < 0.3).
   bool coupled = true;
 };
 
@@ -68,7 +68,7 @@ struct ServoSummary {
   long fk_failures = 0;
 };
 
-/// The coupling ratio above which the drives cannot be treated as independent channels (§2.7.1).
+/// The coupling ratio above which the drives cannot be treated as independent channels (textbook §2.7.1).
 constexpr double kCouplingRatioLimit = 0.3;
 
 /// The drives' loop period for a run at the servo period `period_s`: `servo.loop_period_ms`, or the servo

@@ -1,5 +1,5 @@
 #pragma once
-// All drives' cascades in discrete time (spec textbook_motion_control.md §2.7.4, Fig. 2.31): every loop
+// All drives' cascades in discrete time (motion-control textbook, §2.7.4, Fig. 2.31): every loop
 // period h each drive samples its position q and speed w, limits the position error to e_max, forms the
 // speed reference k_p e (+ the set point's speed fed forward), filters it (symmetric optimum), and its
 // speed regulator gives the force command K_w (e_w + ∫e_w/T_i), limited to u_max; the command is held over

@@ -1,5 +1,5 @@
 // The generic statics solve for every mechanism: generalised forces in the controlled coordinates, then the
-// transposed Jacobian (seed (73)/(91) written as J_cᵀ P = −Q).
+// transposed Jacobian (Smirnov 2019, (73)/(91) written as J_cᵀ P = −Q).
 #include "statics/actuator_forces.hpp"
 
 #include <fmt/format.h>

@@ -1,8 +1,8 @@
 #pragma once
 // Quasi-static actuator forces: what the drives must exert to hold the platform against a load, with no
-// friction and no inertia (seed (73) planar, (91) hexapod; spec ch3 §2.3, §2.5, §2.7).
+// friction and no inertia (Smirnov 2019, (73) planar, §3.3; (91) hexapod, §3.5.2).
 //
-// Sign (seed (73)/(84)): P_j > 0 means actuator j pushes the platform (strut in compression); it then does
+// Sign ((73)/(84)): P_j > 0 means actuator j pushes the platform (strut in compression); it then does
 // positive work when it lengthens. By virtual work,  Σ_j P_j dL_j = −(F · dp + M · dθ).
 // Units: N for linear actuators, N·mm for angular ones (rotopod carriages on a circle).
 #include "machine/mechanism.hpp"

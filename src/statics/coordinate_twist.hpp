@@ -2,7 +2,7 @@
 // How the platform moves when one controlled coordinate changes: the matrix T_c whose column i is the twist
 // (tool-point velocity v, base-frame angular velocity ω) per unit rate of controlled coordinate i. It turns a
 // wrench into generalised forces, Q = T_cᵀ w, so that the virtual work of the load is Q · dq (the principle
-// behind the seed's statics (73)/(91): only motions the mechanism allows do work).
+// behind Smirnov 2019's statics (73)/(91): only motions the mechanism allows do work).
 #include <Eigen/Core>
 
 #include "machine/mechanism.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// The weight of the moving parts as a load on the platform (spec ch3 §2.7: the seed's chapter-3 statics
+// The weight of the moving parts as a load on the platform (Smirnov 2019: its chapter-3 statics
 // count the platform's weight among the external loads; chapter 4 adds the struts).
 #include "machine/machine.hpp"
 #include "statics/wrench.hpp"

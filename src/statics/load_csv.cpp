@@ -1,4 +1,4 @@
-// A per-line load file in CSV (issue 15: "a per-line force file"): the cutting load of each program line, as
+// A per-line load file in CSV: the cutting load of each program line, as
 // a CAM system's force prediction or a measurement gives it. The header names the columns:
 //   line, then any of fx_N fy_N fz_N mx_Nmm my_Nmm mz_Nmm (a constant force and moment on the tool, base
 //   frame) and tangential_N normal_N axial_N (split along the travel, as the --load keys)

@@ -54,7 +54,7 @@ Wrench cutting_wrench(const CuttingLoad& load, const LoadPoint& point) {
   if (!point.cutting || !(speed > 0.0)) return w;
   const Eigen::Vector3d t = point.tangent / speed;
   const Eigen::Vector3d a = point.tool_axis.normalized();
-  const Eigen::Vector3d tangential = -load.tangential_N * t;  // the seed's P_τ, against the feed (§2.1)
+  const Eigen::Vector3d tangential = -load.tangential_N * t;  // Smirnov's P_τ, against the feed (§3.1)
   w.force_N += tangential + load.axial_N * a;
   const Eigen::Vector3d side = a.cross(t);
   const double side_norm = side.norm();
@@ -62,7 +62,7 @@ Wrench cutting_wrench(const CuttingLoad& load, const LoadPoint& point) {
   if (!(side_norm > 1e-12)) return w;
   const Eigen::Vector3d n = side / side_norm;
   w.force_N += load.normal_N * n;
-  // V4: the tangential force acts at the cutter edge, R_Ф from the tool point on the contact side.
+  // §3.4.2: the tangential force acts at the cutter edge, R_Ф from the tool point on the contact side.
   const Eigen::Vector3d contact = load.cutter_radius_mm * load.contact_side * n;
   w.moment_Nmm += contact.cross(tangential);
   return w;

@@ -1,6 +1,6 @@
 #pragma once
-// Process loads along a path: a cutting force split along the direction of travel (the seed's P_τ and P_n,
-// spec ch3 §2.1 and V4), an axial force, the moment of the tangential force at the cutter edge, and a
+// Process loads along a path: a cutting force split along the direction of travel (Smirnov's P_τ and P_n,
+// §3.1 and §3.4.2), an axial force, the moment of the tangential force at the cutter edge, and a
 // constant extra load; per program line ranges. The CLI's --load and load files (docs/statics.md) build a
 // LoadModel.
 #include <Eigen/Core>
@@ -33,7 +33,7 @@ LoadPoint travel_load_point(const Pose& pose, const Eigen::Vector3d& velocity_mm
 /// With t the tangent, a the tool axis and n = unit(a × t) (to the left of travel seen from the spindle):
 ///   F = −tangential_N t + normal_N n + axial_N a + force_N,
 ///   M = (cutter_radius_mm · c) × (−tangential_N t) + moment_Nmm,  c = contact_side · n,
-/// i.e. the tangential force acts at the cutter edge (seed V4: M = P_τ R_Ф), normal and axial forces through
+/// i.e. the tangential force acts at the cutter edge (§3.4.2: M = P_τ R_Ф), normal and axial forces through
 /// the tool point. When t is parallel to a (a plunge) n is undefined: the normal force and the moment of the
 /// tangential force are left out.
 struct CuttingLoad {

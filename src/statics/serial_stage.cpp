@@ -18,7 +18,7 @@ SerialStageEnergy serial_stage_step_energy(double tangential_N, double normal_N,
   const double dy = step_mm * std::sin(feed_angle_rad);
   const double f = friction_coefficient;
   SerialStageEnergy e;
-  // (68): a braking drive still consumes |dA| (no regeneration, spec ch3 §2.1).
+  // (68): a braking drive still consumes |dA| (no regeneration, Smirnov 2019, §3.1).
   e.useful_Nmm = std::abs(p.x_N * dx) + std::abs(p.y_N * dy);
   // Friction (Fig. 61): the Y drive's transverse load is P_X; the X drive's is P_Y plus the Y drive's
   // friction.

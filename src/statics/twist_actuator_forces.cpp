@@ -1,4 +1,4 @@
-// Statics on the hot path for six-actuator, six-coordinate mechanisms (seed (91) about the tool point):
+// Statics on the hot path for six-actuator, six-coordinate mechanisms (Smirnov (91) about the tool point):
 // fixed-size, no allocation. Any mechanism with a square twist Jacobian takes it; the hexapod was its first.
 #include <cmath>
 

@@ -1,8 +1,8 @@
 #pragma once
 // A wrench acting on the platform: the resultant force and its moment about one point, both in the base
-// frame. Statics (seed (73), (91)) balances it against the strut forces; pkm takes the moment about the tool
-// point (the pose origin) rather than the seed's base origin O, so that a load written at the tool does not
-// change when the machine moves (spec ch3 §2.3: either point is valid if used consistently).
+// frame. Statics (Smirnov (73), (91)) balances it with the strut forces; pkm takes the moment about the tool
+// point (the pose origin) rather than Smirnov's base origin O, so that a load written at the tool does not
+// change when the machine moves (either point is valid if used consistently).
 #include <Eigen/Core>
 
 namespace pkm::statics {

@@ -1,11 +1,11 @@
 #pragma once
-// The 3-D Euler–Bernoulli beam of the frame model (spec glide_stiffness.md §4 "Cantilever", "Beam", "Global
-// frame"; docs/stiffness_frame.md). A beam's own axes are the spec's cantilever frame: z along the beam, x
+// The 3-D Euler–Bernoulli beam of the frame model (Rusanov et al.: "Cantilever", "Beam", "Global
+// frame"; docs/stiffness_frame.md). A beam's own axes are their cantilever frame: z along the beam, x
 // and y the section's principal axes (machine/frame_parameters.hpp). Every displacement is a twist (u mm, φ
 // rad) and every load a wrench (Q N, M N·mm), rotations and moments as right-handed vectors.
 //
 // The cantilever, clamped at s = 0 and loaded at its free end s = L, with the sign couplings derived once
-// from the elastic line (ERRATA: entry (1,1) is L³/(3EJ_y), and the printed signs of the couplings do not
+// from the elastic line (corrected: entry (1,1) is L³/(3EJ_y), and the printed signs of the couplings do not
 // make a symmetric matrix). The moment at a section is M(s) = M + (L − s) e_z × Q; the curvature κ =
 // (M_x/EJ_x, M_y/EJ_y, M_z/GJ_t) turns the section, φ(s) = ∫₀ˢ κ; the centre line follows du/ds = φ × e_z +
 // e_z Q_z/EF:
@@ -35,7 +35,7 @@ Matrix6 cantilever_stiffness(const BeamSection& section, double length_mm);
 Matrix6 rigid_transfer(const Eigen::Vector3d& offset_mm);
 
 /// The 12 × 12 stiffness of a beam of `length_mm` in its own axes, nodes 0 (s = 0) and 1 (s = L), each with
-/// (u_x, u_y, u_z, φ_x, φ_y, φ_z). From the spec's "Beam" relation: node 1 moves relative to node 0's rigid
+/// (u_x, u_y, u_z, φ_x, φ_y, φ_z). From Rusanov's "Beam" relation: node 1 moves relative to node 0's rigid
 /// motion, q₁ − H q₀ = C [Q₁; M₁] (H = rigid_transfer(L e_z)), and node 0 takes the reaction −Hᵀ [Q₁; M₁]:
 ///   K = [Hᵀ K₁₁ H   −Hᵀ K₁₁;   −K₁₁ H   K₁₁],   K₁₁ = C⁻¹ = cantilever_stiffness.
 Matrix12 beam_stiffness_local(const BeamSection& section, double length_mm);
@@ -45,7 +45,7 @@ Matrix12 beam_stiffness_local(const BeamSection& section, double length_mm);
 /// parallel to the axis (the frame reader refuses it).
 Eigen::Matrix3d beam_axes(const Eigen::Vector3d& axis, const Eigen::Vector3d& section_x);
 
-/// The beam from `from_mm` to `to_mm` in the base frame (spec "Global frame": Γᵀ K Γ, Γ = diag(γ, γ, γ, γ)).
+/// The beam from `from_mm` to `to_mm` in the base frame ("Global frame": Γᵀ K Γ, Γ = diag(γ, γ, γ, γ)).
 Matrix12 beam_stiffness_global(const BeamSection& section, const Eigen::Vector3d& from_mm,
                                const Eigen::Vector3d& to_mm, const Eigen::Vector3d& section_x);
 

@@ -1,7 +1,7 @@
 #pragma once
 // Bode data of the tool's dynamic compliance (dynamic_compliance.hpp): magnitude (µm/N) and phase (deg) of
-// chosen entries of W(iω) over a log-spaced frequency range, and its CSV file (issue 15: "Bode plots of the
-// tool compliance in the report"; seed 002's "Tools App", spec glide_stiffness.md §1). An entry is the
+// chosen entries of W(iω) over a log-spaced frequency range, and its CSV file (for the Bode plots of
+// the tool compliance in the report; Rusanov et al.'s "Tools App"). An entry is the
 // displacement along a unit direction r per unit force along a unit direction l: rᵀ W_dd l, W_dd the
 // translational block. Direct entries (r = l) have a phase in [−180°, 0°]: the displacement lags the force,
 // by 90° at a lightly damped resonance and towards 180° above it.

@@ -1,7 +1,7 @@
 #pragma once
-// The tool's dynamic compliance (issue 15; seed 002's "Tools App": "describe the technological system by
-// its dynamic compliance function, the displacement response to a given force excitation", spec
-// glide_stiffness.md §1 and §6): the elastic machine of the dynamics issue (docs/dynamics_elastic.md),
+// The tool's dynamic compliance (Rusanov et al.'s "Tools App": the technological system described by
+// its dynamic compliance function, the displacement response to a given force excitation; see
+// docs/dynamic_compliance.md): the elastic machine of the elastic dynamics (docs/dynamics_elastic.md),
 // linearised at a pose with its drives clamped, gives
 //   M δ̈ + C δ̇ + K δ = Bᵀ w(t),         W(iω) = B (K − ω²M + iωC)⁻¹ Bᵀ
 // in the basis coordinates δ of the platform (twist d = B δ about the tool point, base frame, B the
@@ -10,8 +10,8 @@
 // m (N·mm), so W(0) = K⁻¹ mapped is the static compliance (equal to the strut-only one when the springs are
 // the same and the gravity preload is left out).
 //
-// M and K are natural_frequencies.hpp's (spec ch4 §6.8: K = ∂²Π/∂q², M the mass matrix, det(K − ω²M) = 0).
-// The seed gives no damping for the machine (ch4 §6.7: "no … damping values are reported"), and the
+// M and K are natural_frequencies.hpp's (K = ∂²Π/∂q², M the mass matrix, det(K − ω²M) = 0).
+// Smirnov 2019 gives no damping for the machine (§4.5 reports no damping values), and the
 // struts' friction of the elastic model is nonlinear (quadratic, Coulomb), so the damping here is an
 // assumption, stated with every result: a modal damping ratio ζ for every mode (C = M Φ diag(2ζω_i) Φᵀ M,
 // Φ the M-normalised modes), or Rayleigh damping C = αM + βK (whose ratio is ζ_i = α/(2ω_i) + βω_i/2).

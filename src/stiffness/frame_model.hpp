@@ -1,6 +1,6 @@
 #pragma once
-// The tool's compliance with the machine frame elastic too (issue 15's full model; spec glide_stiffness.md
-// §4, docs/stiffness_frame.md): a finite-element model of
+// The tool's compliance with the machine frame elastic too (the full model; Rusanov et al.'s
+// FE model, docs/stiffness_frame.md): a finite-element model of
 //  - the frame's beams (beam_element.hpp; six DOF per free node, fixed nodes removed),
 //  - the platform as a rigid master node at the tool point (the twist (d mm, θ rad) about it; for a
 //    reduced-DOF mechanism only the twists T q it allows, as strut_compliance does: its passive constraints

@@ -1,11 +1,11 @@
 #pragma once
-// NC pre-compensation (issue 15; seed 002's "correction of the NC program" from the predicted deflections):
+// NC pre-compensation (Rusanov et al.'s "correction of the NC program" from the predicted deflections):
 // the commanded pose x_cmd whose deflected pose under the cutting load is the nominal one,
 //   x_cmd ⊕ δ(x_cmd) = x_nom,
 // ⊕ applying a small twist δ = (d mm, θ rad) about the tool point: position + d, rotation exp(θ̂)·R. The fixed
 // point x_cmd ← x_nom ⊖ δ(x_cmd), started at x_nom, is exact after one step where δ does not depend on the
 // pose and otherwise contracts by about |δ|/L per step (L the struts' length: 10⁻⁵ for µm deflections of
-// metre struts). For the strut-only model of a machine whose actuators are its struts' lengths the seed's
+// metre struts). For the strut-only model of a machine whose actuators are its struts' lengths the
 // closed form L_cmd = IK(x_nom) − T/c (the tension T at the nominal pose stretches each strut by T/c, so it
 // is commanded that much shorter) gives the start, x_cmd = FK(L_cmd); the fixed point then removes the
 // remaining second-order part. The residual |x_cmd ⊕ δ(x_cmd) − x_nom| is reported either way.

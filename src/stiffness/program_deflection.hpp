@@ -1,5 +1,5 @@
 #pragma once
-// The tool's deflection at every point of a part program (issue 15's "outputs per path point"; seed 002's
+// The tool's deflection at every point of a part program (the outputs per path point; Rusanov et al.'s
 // Tools Response: the deflection of the tool at each CL point under the cutting force): quasi-static, so the
 // program's geometry is enough, no feed planning. The points are redundancy::sample_program's (each move cut
 // into parts no longer than a step, so a CL file's GOTOs are its points), the pose the program's own (its

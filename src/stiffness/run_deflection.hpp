@@ -1,10 +1,10 @@
 #pragma once
-// The tool's deflection under the process load along a planned run (issue 15: "how far will this program's
-// surface be off"): at every servo tick the compliance of the commanded pose (compliance_model.hpp, the
+// The tool's deflection under the process load along a planned run (how far this program's
+// surface will be off): at every servo tick the compliance of the commanded pose (compliance_model.hpp, the
 // machine file's stiffness model) times the cutting load there (statics/load_model.hpp, its direction of
 // travel from the ticks' central differences, as the dynamics take it) gives the tool point's displacement
 // and the platform's turn. The surface error is the displacement along the surface normal, taken as the tool
-// axis (the seed's setting: a ball-end mill with its axis on the surface normal). One tick behind the stream:
+// axis (Rusanov's setting: a ball-end mill with its axis on the surface normal). One tick behind the stream:
 // tick k is evaluated when tick k + 1 arrives. Quasi-static: no inertia, the drives hold their positions, the
 // frame's nodes and the struts' ends moving with it statically.
 #include <array>

@@ -1,6 +1,6 @@
 #pragma once
-// A map of the tool's static stiffness over the workspace (issue 15, "Maps: stiffness over the workspace
-// (lowest stiffness direction and value per grid cell) in CSV and the HTML report"): at each pose of a grid
+// A map of the tool's static stiffness over the workspace (the lowest stiffness
+// direction and value per grid cell, in CSV and the HTML report): at each pose of a grid
 // (dynamics/pose_grid.hpp) the weakest principal translational stiffness (principal_stiffness of the
 // compliance: the inverse of the translational block's largest eigenvalue) and its direction, or the reason
 // there is none (out of reach, beyond the drives' range, singular). The compliance comes from any model

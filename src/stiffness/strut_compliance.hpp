@@ -1,5 +1,5 @@
 #pragma once
-// The tool's compliance when the struts are the only elastic parts (issue 15's strut-only model): each strut
+// The tool's compliance when the struts are the only elastic parts (the strut-only model): each strut
 // a spring of axial stiffness c_j along its line, the drives and every other part rigid. A small platform
 // displacement δ = (d, θ) about the tool point stretches strut j by g_jᵀ δ, g_j = (u_j, a_j × u_j) its
 // Plücker line about the tool point (u_j the unit direction A_j → B_j, a_j = B_j − p), so the stiffness in
@@ -13,7 +13,7 @@
 // its line at its ends: the joints' translational K_u, and for a strut on a carriage its drive and its guide,
 //   1/c_j,eff = 1/c_j + K_u,base + K_u,platform + (n·a)²/k_d + C_g (1 − (n·â)²),
 // n the strut's unit line, a = ∂A_j/∂q_j how the carriage moves with its drive (Mechanism::base_joint_motion:
-// the guide direction e for a straight guide, so the drive term is the issue's (n·e)²/k_d; for a drive of
+// the guide direction e for a straight guide, so the drive term is (n·e)²/k_d; for a drive of
 // angle the lever arm too) and the guide giving way across â only (its nᵀ C_g n with C_g = C_g (I − â âᵀ)).
 // Units: mm, rad, N; compliance blocks mm/N, mm/(N·mm) = 1/N, rad/N, rad/(N·mm).
 #include <Eigen/Core>

@@ -1,7 +1,7 @@
 #pragma once
-// What a load does to the tool through a compliance (issue 15's outputs per path point): the tool point's
+// What a load does to the tool through a compliance (the outputs per path point): the tool point's
 // displacement and the platform's turn δ = C w, the part of the displacement along the tool axis (the surface
-// error where the axis is the surface normal: the seed's ball-end mill), the struts' tensions c_j g_jᵀ δ, and
+// error where the axis is the surface normal: Rusanov's ball-end mill), the struts' tensions c_j g_jᵀ δ, and
 // the statistics a program's or a run's points add up to (largest and rms normal error with their lines).
 #include <Eigen/Core>
 

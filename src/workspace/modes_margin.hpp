@@ -1,5 +1,5 @@
 #pragma once
-// The assembly-mode margin of a pose (issue 20): how far the actuators may move from where they are before
+// The assembly-mode margin of a pose: how far the actuators may move from where they are before
 // the machine, following them in its current assembly mode, meets a configuration where that mode can meet
 // another one.
 //

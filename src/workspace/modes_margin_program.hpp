@@ -1,5 +1,5 @@
 #pragma once
-// The assembly-mode margin along a planned program (issue 20, `pkm modes-margin`): the planned motion is
+// The assembly-mode margin along a planned program (`pkm modes-margin`): the planned motion is
 // sampled evenly in time, at the servo ticks nearest to k·T/(samples + 1) for k = 0 … samples + 1 (the start,
 // `samples` poses between and the end; fewer where the run has fewer ticks), each with the program line it
 // comes from; at every sample the margin (modes_margin.hpp) and the other assembly modes (other_modes.hpp)

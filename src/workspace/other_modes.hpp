@@ -1,5 +1,5 @@
 #pragma once
-// The other assembly modes of a pose's actuator values (issue 20): how many real assembly modes the actuator
+// The other assembly modes of a pose's actuator values: how many real assembly modes the actuator
 // values q0 = IK(X0) have, and how far the nearest other one is from X0, by Mechanism::forward_all. Where the
 // mechanism cannot enumerate its modes (forward_all answers "unsupported": 6-6 hexapods, glides, the rotopod,
 // the tricept), the counts and distances stay empty with the mechanism's reason; that is no failure.

@@ -2,7 +2,7 @@
 // One cell of a workspace map: whether the machine may stand at the pose, and if not which limit stops it
 // (the checks the planner makes at every sample, planning/path_sampling.cpp, in its order), and the pose's
 // Jacobian measures (machine/conditioning.hpp): the sign of det J, the condition number and the error
-// amplification of spec ch5 §5.1,
+// amplification of Smirnov 2019, §5.2.2,
 //   S_x = Σ_j |∂x/∂L_j|, S_y, S_z (eq. 144),   δρ = ρ/ΔL = sqrt(S_x² + S_y² + S_z²) (eq. 145),
 // the factor by which equal actuator errors ΔL reach the tool point, whose largest value over the working
 // space bounds the actuator error allowed (eq. 146: ΔL ≤ ρ_MAX/δρ_MAX).

@@ -1,6 +1,6 @@
 #pragma once
-// The cells of a workspace map (issue 16, "workspace maps: grid sections (planes, as the dissertation's
-// Figs. 158–162 and 180–182) or 3-D grids"): two or three of the six pose coordinates stepped about a centre
+// The cells of a workspace map (grid sections: planes, as Smirnov 2019,
+// Figs. 158–162 and 180–182; or 3-D grids): two or three of the six pose coordinates stepped about a centre
 // pose, the others kept at the centre's. A section of the translations is the pose grid of `pkm modes --map`
 // and `pkm compliance --map` (dynamics/pose_grid.hpp): the centre is a cell, offsets are whole multiples of
 // the step (not sums of steps), so the cells do not drift by rounding and the maps agree cell by cell.

@@ -10,7 +10,7 @@ namespace pkm::workspace {
 
 enum class Layer {
   condition_number,     ///< σ_max/σ_min of J (mm and rad)
-  error_amplification,  ///< δρ (spec ch5 eq. 145)
+  error_amplification,  ///< δρ (Smirnov 2019, eq. 145)
   sensitivity_x,        ///< S_x (eq. 144)
   sensitivity_y,        ///< S_y
   sensitivity_z,        ///< S_z

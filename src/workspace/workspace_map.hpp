@@ -1,5 +1,5 @@
 #pragma once
-// A workspace map (issue 16; docs/workspace.md): every cell of a grid (workspace_grid.hpp) evaluated in
+// A workspace map (docs/workspace.md): every cell of a grid (workspace_grid.hpp) evaluated in
 // parallel on all cores (oneTBB): its status, which limit stops it, and its Jacobian measures
 // (workspace_cell.hpp), and, where asked for, the lowest stiffness, the lowest natural frequency and the
 // predicted error after calibration. Cells are independent and each is computed by the same code whichever

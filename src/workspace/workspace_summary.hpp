@@ -1,8 +1,8 @@
 #pragma once
 // What a workspace map says in a few numbers: how many cells each status has (and which actuators stop the
 // machine how often: a glide's working zone is bounded by its carriages' travel), and each layer's extremes
-// over the cells where the machine can stand (status ok), with the cells they are at. δρ_MAX of spec ch5
-// eq. 146 is the error amplification's maximum here.
+// over the cells where the machine can stand (status ok), with the cells they are at. δρ_MAX of Smirnov
+// 2019, eq. 146 is the error amplification's maximum here.
 #include <array>
 
 #include "workspace/workspace_layers.hpp"

@@ -1,6 +1,6 @@
 #pragma once
-// Contour error (spec ch5 §10, E3): the perpendicular distance of the tool from the programmed path, not the
-// lag along it. The seeds' start-point value 4.9166e-4 mm is sqrt(Δy² + Δz²) on an X-directed line: the
+// Contour error (Smirnov 2019, ρ): the perpendicular distance of the tool from the programmed path, not the
+// lag along it. The published start-point value 4.9166e-4 mm is sqrt(Δy² + Δz²) on an X-directed line: the
 // distance to the nearest path point, which is what this measures, for any path (lines, arcs, blends).
 //
 // The nearest point is found by Newton steps on the path parameter from a guess (the ideal point of the
@@ -30,7 +30,7 @@ class ContourGauge {
   ContourDeviation measure(const Pose& pose, double s_guess, int& hint) const noexcept;
   /// The tangent-line distance of a point at `offset_mm` (already masked) from a path point: its part
   /// perpendicular to the unit `tangent` there (the cheap form for many candidates near one path point,
-  /// ch5 §8). The path ends `behind` before and `ahead` after the point (path units): a point beyond an end
+  /// §5.2.5). The path ends `behind` before and `ahead` after the point (path units): a point beyond an end
   /// is that much farther from the path. Inline: the corrector calls it 128 times a period.
   static double line_distance(const Eigen::Vector3d& offset_mm, const Eigen::Vector3d& tangent, double behind,
                               double ahead) noexcept {

@@ -1,8 +1,8 @@
 #pragma once
-// What the drives actually do to the tool (spec ch5 §10): FK of the actual actuator positions, at every
+// What the drives actually do to the tool (Smirnov 2019, ρ): FK of the actual actuator positions, at every
 // period's end and at `samples_inside` evenly spaced instants inside it (the drives move linearly through a
 // period; a stepper spreads its n_j steps evenly over h), and the perpendicular distance of the tool from
-// the programmed path there (contour_gauge.hpp). The seeds evaluated five points per period because the
+// the programmed path there (contour_gauge.hpp). The publication evaluated five points per period because the
 // worst error is at mid-period (Fig. 197, eq. 153).
 #include <array>
 #include <cmath>

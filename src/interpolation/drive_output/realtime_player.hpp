@@ -1,6 +1,6 @@
 #pragma once
 // Releasing drive steps at the servo rate, as a controller's real-time loop would hand them to the drives
-// (spec ch5 §2: with code control each period's increment is sent at the start of the period; §5.5: the
+// (Smirnov 2019, §5.1: with code control a period's increment is sent at the period's start; §5.2.2: the
 // values for period i must be ready before it starts). The player sleeps to absolute CLOCK_MONOTONIC
 // deadlines t0 + k·h with clock_nanosleep(TIMER_ABSTIME), so that a late wake-up delays one period and never
 // shifts the ones after it, hands period k to a sink as soon as it wakes, and measures its own lateness

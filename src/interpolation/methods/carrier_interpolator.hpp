@@ -1,5 +1,5 @@
 #pragma once
-// Interpolation at a constant carrier frequency (spec ch5 §5.2.2, the pipeline of §5.6). Every real period
+// Interpolation at a constant carrier frequency (Smirnov 2019, §5.2.2, and its pipeline). Every real period
 // h the interpolator advances the ideal time τ and gives each actuator's ideal value at the period's end from
 // the strut laws L_j(s(τ)); the drives then run at constant speed through the period (linear in the
 // actuator values, the chords of Fig. 157), and quantisation (step_quantizer.hpp) turns the increments into
@@ -11,13 +11,13 @@
 //       ΔL_max = L(s_mid) − (L(s_0) + L(s_1))/2 ≤ ΔL_allowed = 0.9·ρ_max/δρ_max,
 //     measured at the geometric middle s_mid = (s_0 + s_1)/2 of the period's path piece: the drives' chord
 //     departs from the law in actuator space, so only the geometry of L(s) matters, not how fast s advances
-//     (with the seeds' constant nominal speed the two middles coincide). Where it fails, the path piece is
+//     (with Smirnov's constant nominal speed the two middles coincide). Where it fails, the path piece is
 //     shortened: the chord error grows with the square of its length, so Δτ·sqrt(ΔL_allowed/ΔL_max) meets it
 //     (eq. 159, t̃* = sqrt(4·ΔL_allowed/|T2|)), checked again until it holds: the contour speed drops, real
 //     time runs ahead of ideal time (eq. 160);
 //  3. drive limits: no actuator moves more than its speed limit allows in h, nor more steps than its drive's
 //     step rate (one step kept for rounding), at any override;
-//  4. the last period ends exactly at the end of the path (§5.5).
+//  4. the last period ends exactly at the end of the path (§5.2.2).
 #include <array>
 #include <optional>
 

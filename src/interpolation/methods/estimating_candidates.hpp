@@ -1,8 +1,8 @@
 #pragma once
-// Candidate moves of one tact of the estimating-function method (spec ch5 §4.2, Table 5): every actuator
+// Candidate moves of one tact of the estimating-function method (Smirnov 2019, Table 5): every actuator
 // steps by −1, 0 or +1 drive step, and a candidate set fixes which of these combinations are examined.
-//   all_six     every actuator moves: 2^n candidates (64 for a hexapod), the seed's final recommendation
-//               (§4.4 step 1): the 728-candidate search never needed fewer tacts (Table 5/6);
+//   all_six     every actuator moves: 2^n candidates (64 for a hexapod), Smirnov's final recommendation
+//               (§5.2.1, step 1): the 728-candidate search never needed fewer tacts (Table 5/6);
 //   exactly_k   exactly k actuators move: C(n, k)·2^k (12/60/160/240/192/64 for n = 6);
 //   one_to_all  any non-empty subset moves: 3^n − 1 (728 for n = 6).
 #include <array>

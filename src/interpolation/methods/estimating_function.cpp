@@ -61,7 +61,7 @@ Status EstimatingInterpolator::start() {
   }
   directions_ = std::move(directions.value());
   // Progress is measured on the path parameter, which counts degrees where only the orientation moves: the
-  // method's criteria (§4.3) are about the tool point's position, so such moves have no progress to make.
+  // method's criteria (§5.2.1) are about the tool point's position, so such moves have no progress to make.
   for (const path::Segment& segment : path_.segments) {
     if (segment.rotation_only) {
       error_ = make_error(ErrorCode::unsupported,
@@ -71,10 +71,10 @@ Status EstimatingInterpolator::start() {
       return *error_;
     }
   }
-  // The final rule (§4.4 step 3) is progress ≥ Δ; the first one (Fig. 147) only forbids moving back.
+  // The final rule (§5.2.1, step 3) is progress ≥ Δ; the first one (Fig. 147) only forbids moving back.
   min_progress_mm_ = settings_.progress_at_least_step ? step : 0.0;
 
-  // Start: the start pose's actuator values, truncated to whole steps (the seeds' E3).
+  // Start: the start pose's actuator values, truncated to whole steps (Smirnov 2019, §5.2.5).
   Pose start_pose;
   start_pose.position_mm = path_.start.position_mm;
   start_pose.rotation = path_.start.rotation.toRotationMatrix();
@@ -219,7 +219,7 @@ void EstimatingInterpolator::rank(Candidate& candidate, bool end_zone, Candidate
                            candidate.progress_mm > admissible.progress_mm);
       if (better) admissible = candidate;
     } else {
-      // §4.4 step 4: the largest progress (fewest tacts), ties to the smaller deviation.
+      // §5.2.1, step 4: the largest progress (fewest tacts), ties to the smaller deviation.
       const bool better = !admissible.found() ||
                           candidate.progress_mm > admissible.progress_mm + kEstimatingProgressTie ||
                           (candidate.progress_mm >= admissible.progress_mm - kEstimatingProgressTie &&
@@ -292,7 +292,7 @@ bool EstimatingInterpolator::take_best(const Candidates& best, Tact& tact) {
 bool EstimatingInterpolator::next(Tact& tact) {
   if (!started_ || finished_ || error_) return false;
   const double remaining_mm = path_.length() - s_;
-  // Typical progress per tact: the run's mean so far, at least one step (the final rule of §4.4).
+  // Typical progress per tact: the run's mean so far, at least one step (the final rule of §5.2.1).
   const double typical_mm =
       std::max(settings_.step_mm,
                statistics_.tacts > 0 ? (s_ - s_start_) / static_cast<double>(statistics_.tacts) : 0.0);

@@ -1,22 +1,22 @@
 #pragma once
-// The estimating-function interpolation method for a PKM (spec ch5 §4; the seed's §5.2.1), as a reference
+// The estimating-function interpolation method for a PKM (Smirnov 2019, §5.2.1), as a reference
 // and offline interpolator: the drives hold whole steps q_j (actuator value q_j·Δ), and every tact moves
 // some of them by one step, chosen by examining candidate moves with forward kinematics.
 //
-// Per tact (the seed's final 5-step procedure, §4.4):
+// Per tact (the publication's final 5-step procedure, §5.2.1):
 //  1. candidates: every actuator −1/0/+1 step as the candidate set allows (estimating_candidates.hpp); FK of
 //     each, warm-started from the current pose (a hexapod reuses one factorisation for all of them);
-//  2. deviation criterion (§4.3, Fig. 148/155): the controlled point's distance from the path ≤ δ_allowed;
-//  3. progress criterion (§4.3, Fig. 147/156): the increase of the nearest path point's parameter s is ≥ Δ
+//  2. deviation criterion (§5.2.1, Fig. 148/155): the controlled point's distance from the path ≤ δ_allowed;
+//  3. progress criterion (§5.2.1, Fig. 147/156): the increase of the nearest path point's parameter s is ≥ Δ
 //     (the final rule) or > 0 (the first one);
 //  4. selection: the largest progress (fewest tacts), or with `minimise_orientation` the least angle between
 //     the platform's and the path's orientation (eq. 143, as a rotation angle), ties to the larger progress;
 //  5. every actuator steps in its candidate's direction; the candidate's pose is the next tact's start.
-// The seed measures against the straight line O_H → O_K; here the line is the whole program's path, with
+// Smirnov 2019 measures against the straight line O_H → O_K; here the line is the whole program's path, with
 // deviation and progress taken at the nearest path point (estimating_projection.hpp), so arcs and blends
-// work the same way ("can be built in the same way", §4.3).
+// work the same way ("can be built in the same way", §5.2.1).
 //
-// What the seed leaves open (spec §4.4, §14 item 20), decided here:
+// What the publication leaves open (§5.2.1), decided here:
 //  - fallback: greedy selection can dead-end (no candidate within δ makes progress; δ = 0.006 mm on the test
 //    hexapod after about 10 tacts). Then the candidate with positive progress and the least deviation is
 //    taken, or, if none progresses, the one with the least deviation; such tacts are counted. After
@@ -25,10 +25,10 @@
 //  - end: once the remaining path is shorter than the typical progress per tact, the candidate nearest the
 //    path's end point is taken, and the run ends when even that one would not come closer; the end error is
 //    the distance from the end point;
-//  - start: the start pose's actuator values are truncated to whole steps (toward zero, as the seeds' E3
-//    case), so the start already deviates (4.9166e-4 mm on the ch5 line at Δ = 0.001 mm).
+//  - start: the start pose's actuator values are truncated to whole steps (toward zero, as in the
+//    §5.2.5 example), so the start already deviates (4.9166e-4 mm on the ch5 line at Δ = 0.001 mm).
 //
-// Cost (§4.5, case E7): one FK per candidate, 64 per tact for all_six; the seed does not recommend the method
+// Cost (§5.2.1): one FK per candidate, 64 per tact for all_six; the publication does not recommend the method
 // for real-time control, hence its use here as a reference (bench/bench_estimating.cpp measures a tact).
 #include <array>
 #include <cstdint>
@@ -53,7 +53,7 @@ struct EstimatingSettings {
   bool progress_at_least_step = true;  ///< progress ≥ Δ (true) or > 0 (false)
   bool minimise_orientation = false;   ///< eq. 143 secondary criterion
   /// Tacts in a row without admissible progress (fallbacks) before the run stops with an error; 0: stop at
-  /// the first dead end (the seed's bare greedy rule).
+  /// the first dead end (the publication's bare greedy rule).
   int max_stall_tacts = 1000;
   FkOptions fk;  ///< forward kinematics of every candidate
 };

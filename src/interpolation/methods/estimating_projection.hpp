@@ -1,7 +1,7 @@
 #pragma once
-// The nearest path point of a candidate position, for the estimating-function method (spec ch5 §4.3).
-// The seed measures a candidate against the straight line O_H → O_K: its perpendicular deviation δ (the
-// determinant form of §4.3 is |(r − O_H) × (O_K − O_H)|/|O_K − O_H|) and its displacement along the line.
+// The nearest path point of a candidate position, for the estimating-function method (Smirnov 2019, §5.2.1).
+// Smirnov 2019 measures a candidate against the straight line O_H → O_K: its perpendicular deviation δ (the
+// determinant form of §5.2.1 is |(r − O_H) × (O_K − O_H)|/|O_K − O_H|) and its displacement along the line.
 // For a whole program's path the same two numbers come from the nearest path point P(s*): the deviation is
 // |p − P(s*)| and the progress is the increase of s* (mm of path). s* is found locally, by Newton steps on
 // |P(s) − p|² from the current tact's path point: candidates lie a few drive steps away, so the search

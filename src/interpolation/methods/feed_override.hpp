@@ -1,13 +1,13 @@
 #pragma once
-// Operator feed override during execution (spec ch5 §6.1–6.3). The override K_V = V_set / V_nom (eq. 161)
+// Operator feed override during execution (Smirnov 2019, §5.2.2). The override K_V = V_set / V_nom (eq. 161)
 // scales the advance of ideal time per real period: Δτ = K_V·h, which is exact for strut laws parametrised
-// by the nominal motion (the extract's note on eq. 162–164; the per-strut root finding of eq. 164 only
+// by the nominal motion (a consistent reading of eq. 162–164; the per-strut root finding of eq. 164 only
 // approximates it and fails near velocity reversals).
 //
 // Timing: a change made during period i cannot affect period i+1, whose strut speeds were computed during
 // period i; it takes effect from period i+2 (Fig. 170). The transition follows an acceleration-limited law
 // from the time origin t_0 = t_H^<i+1> (eq. 165): period i+1 keeps the old value, period i+k uses the law at
-// t_0 + (k−1)·h. The law is linear (constant acceleration, eq. 167, as in the seeds' three controllers) or an
+// t_0 + (k−1)·h. The law is linear (constant acceleration, eq. 167, as in Smirnov's three controllers) or an
 // S-curve (smoothstep: zero acceleration at both ends, bounded jerk).
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The interpolator's ideal time τ (spec ch5 §5.2, §5.6): the argument of the strut laws, parametrised at the
+// The interpolator's ideal time τ (Smirnov 2019, §5.2.2): the argument of the strut laws, parametrised at the
 // nominal speed. Here the nominal motion is the planned one (planning/): s(τ) is the path parameter the plan
 // reaches at time τ, with its acceleration, deceleration and S-curve, and within every actuator limit. The
 // interpolator advances τ by K_V·h per real period (operator override, eq. 161), less where the chord check
@@ -19,7 +19,7 @@ class IdealTiming {
  public:
   /// s at every tick of the planned motion (the servo stream of the plan, at the plan's period).
   static Result<IdealTiming> from_plan(const planning::MotionPlan& plan, const Machine& machine);
-  /// Constant speed from the first instant to the end, no acceleration (the seeds' E13 set-up).
+  /// Constant speed from the first instant to the end, no acceleration (the set-up of Smirnov 2019, §5.2.3).
   static IdealTiming constant_speed(double length, double speed_per_s);
 
   double duration_s() const { return duration_s_; }  ///< τ_Tr: the ideal time of the whole path

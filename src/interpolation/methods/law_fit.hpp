@@ -1,6 +1,6 @@
 #pragma once
 // Least-squares fitting of the strut-law models of strut_law_piece.hpp to inverse-kinematics samples
-// (spec ch5 §5.2, Fig. 167): the coefficients come from the samples, not from the mechanism's geometry, so
+// (Smirnov 2019, Fig. 167): the coefficients come from the samples, not from the mechanism's geometry, so
 // the same code serves every mechanism, and a model that does not suit a mechanism or a segment shows up as
 // a large fit error (strut_laws.cpp checks it against IK away from the fit nodes).
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-// One piece of the analytic strut laws L_j(s) (spec ch5 §5.2): a model, its coefficients for every actuator
+// One piece of the analytic strut laws L_j(s) (Smirnov 2019): a model, its coefficients for every actuator
 // and the local variable it is written in. Every fitted model is written in the normalised variable
 //   u = (s − s_mid)·u_per_s ∈ [−1, 1]
 // of its piece, so that the coefficients stay of one size whatever the piece's place and length on the path

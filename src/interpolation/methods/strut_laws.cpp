@@ -91,7 +91,7 @@ class StrutLawBuilder {
     return ok_status();
   }
 
-  /// The closed models of §5.2 suit only strut machines (L = |C + R·b' − A|) on lines and flat arcs at
+  /// The closed models of §5.2.2 suit only strut machines (L = |C + R·b' − A|) on lines and flat arcs at
   /// constant orientation; everything else gets the polynomial.
   LawModel model_for(const path::Segment& segment) const {
     if (!closed_models_ || segment.is_blend() || segment.rotation_only || !(segment.length > 0.0))

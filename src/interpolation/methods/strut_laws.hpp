@@ -1,5 +1,5 @@
 #pragma once
-// Analytic strut laws L_j(s) along a planned tool path (spec ch5 §5.2, Method B): every actuator's value as a
+// Analytic strut laws L_j(s) along a planned tool path (Smirnov 2019, §5.2.2): every actuator's value as a
 // cheap closed function of the path parameter s (mm of tool travel; degrees along moves that only rotate),
 // so that an interpolator running at the carrier frequency composes it with its own timing law s(τ) and
 // never solves inverse kinematics in its period. The laws are fitted per path segment to inverse-kinematics
@@ -13,7 +13,7 @@
 // The fit error is then measured against exact IK at check points inside the piece (not the fit nodes).
 // A closed model that misses the tolerance falls back to the polynomial; a polynomial that misses it is
 // split in halves, recursively, down to a minimum piece length, where a remaining error is kept and reported
-// (LawReport), not refused. The tolerance defaults to 10 % of the strut budget of eq. 155 (ch5 §5.1, E8).
+// (LawReport), not refused. The tolerance defaults to 10 % of the strut budget of eq. 155 (§5.2.2).
 #include <array>
 #include <span>
 #include <string>
@@ -31,7 +31,7 @@ namespace pkm::interpolation {
 
 struct LawFitSettings {
   double tolerance = 9e-6;  ///< largest |fitted − IK| actuator value (mm; rad for angular actuators): 10 % of
-                            ///< ΔL_allowed = 0.9·ρ_max/δρ_max for ρ_max = 1 µm, δρ_max = 10 (ch5 §5.1, E8)
+                            ///< ΔL_allowed = 0.9·ρ_max/δρ_max for ρ_max = 1 µm, δρ_max = 10 (§5.2.2)
   int polynomial_degree = 6;  ///< eq. 151
   int check_points = 32;      ///< per piece, where the fit error is measured against IK (not the fit nodes)
   double min_piece_length = 1e-3;  ///< path units; pieces are not split below this
@@ -50,7 +50,7 @@ class StrutLaws {
  public:
   /// No fit: every evaluation solves IK (the reference). Pieces = path segments.
   static Result<StrutLaws> exact(const Machine& machine, const path::Path& path, const std::string& source);
-  /// Fitted per path segment (§5.2). Errors (IK failing at a sample) name `source`:line of the segment.
+  /// Fitted per path segment (§5.2.2). Errors (IK failing at a sample) name `source`:line of the segment.
   static Result<StrutLaws> fit(const Machine& machine, const path::Path& path, const LawFitSettings& settings,
                                const std::string& source);
 

@@ -17,7 +17,7 @@ namespace {
 
 // The inverse of the actuator Jacobian, J⁻¹ = ∂(coordinates)/∂(actuators). A six-actuator machine takes the
 // fixed-size LU of the FK solver: Eigen's dynamic-size PartialPivLU and its solve against the identity went
-// through blocked matrix kernels and cost a third of the whole period (issue 12, profiled with callgrind:
+// through blocked matrix kernels and cost a third of the whole period (profiled with callgrind:
 // 28 000 of 42 000 instructions). Singular J gives non-finite values either way.
 void actuator_sensitivity(const JacobianMatrix& jacobian, JacobianMatrix& sensitivity) {
   if (jacobian.rows() == 6 && jacobian.cols() == 6) {
@@ -77,7 +77,7 @@ bool DiscretenessCorrector::linearise(PoseTracker& tracker, const std::array<dou
   auto jacobian = machine_.mechanism->jacobian(pose);
   ++statistics_.jacobians;
   if (!jacobian || jacobian->rows() != count_ || jacobian->cols() != coordinates_) return false;
-  // ∂(coordinates)/∂(actuators): the FK sensitivities of §5.1 (eq. 144) and §8.3.
+  // ∂(coordinates)/∂(actuators): the FK sensitivities of §5.2.2 (eq. 144) and §5.2.5.
   JacobianMatrix sensitivity(coordinates_, count_);
   actuator_sensitivity(*jacobian, sensitivity);
   out.point_mm = pose.position_mm;

@@ -1,20 +1,20 @@
 #pragma once
-// Reducing the errors of drive discreteness (spec ch5 §8, §5.2.5): per period, every actuator may end on the
+// Reducing the errors of drive discreteness (Smirnov 2019, §5.2.5): per period, every actuator may end on the
 // whole step just below or just above its ideal value; of the 2^n combinations the one whose tool point lies
 // nearest the programmed path is issued. Targets are absolute (the law's value minus the actual integer
-// position), so the start positions' quantisation error is absorbed in the first period (E15).
+// position), so the start positions' quantisation error is absorbed in the first period (Fig. 193).
 //
 //  - The error is the perpendicular (contour) distance from the path, not the 3-D distance to the ideal
 //  point:
-//    that one lets the tool lag along the path and roughly doubles the contour error (§10, E3).
+//    that one lets the tool lag along the path and roughly doubles the contour error (eq. 145, §5.2.5).
 //  - Checked at the period's end and at its middle (eq. 177: the drives move linearly through the period, so
 //    the tool passes L_prev + ΔL*/2 half way); combinations whose middle exceeds ρ_max are dropped while any
 //    other remains (else the one with the smallest larger error of the two is taken and counted).
-//  - Linearised (§8.3): FK only for the all-floor state at the end, the other combinations from the FK
+//  - Linearised (§5.2.5): FK only for the all-floor state at the end, the other combinations from the FK
 //    sensitivities ∂Y/∂L (the inverse Jacobian) there: 1 FK solve and 1 Jacobian per period instead of
-//    2·2^n FK solves (the seeds' "7 + 7" counts 6 FK solves per Jacobian; ours is analytic). The middle
+//    2·2^n FK solves (Smirnov's "7 + 7" counts 6 FK solves per Jacobian; ours is analytic). The middle
 //    point is the midpoint of the issued state's point and the end's, with half the end's sensitivities:
-//    a period's motion is short enough that FK is linear over it to far below a step (issue 12).
+//    a period's motion is short enough that FK is linear over it to far below a step.
 //    `linearise = false` solves FK for every combination (the reference).
 //  - Optional secondary criterion (eq. 143): among the combinations within a share of ρ_max at both points,
 //    the least (ψ − ψ_req)² + (ϑ − ϑ_req)² + (γ − γ_req)², in the machine's angle convention. The share
@@ -50,7 +50,7 @@ class DiscretenessCorrector {
  public:
   DiscretenessCorrector(const Machine& machine, const path::Path& path, const ContourGauge& gauge,
                         const CorrectorSettings& settings);
-  /// Start positions: the ideal start truncated to whole steps (as the seeds' E3), FK there.
+  /// Start positions: the ideal start truncated to whole steps (as Smirnov 2019, §5.2.5), FK there.
   Status start(const std::array<double, kMaxActuators>& ideal_start);
   /// Chooses the period's steps; fills `out.steps` and `out.position`. No allocation.
   Status quantize(const CarrierPeriod& period, StepPeriod& out);

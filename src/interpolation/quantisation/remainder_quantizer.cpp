@@ -25,7 +25,7 @@ void RemainderQuantizer::quantize(const CarrierPeriod& period, StepPeriod& out) 
   out.time_s = period.time_s;
   for (int j = 0; j < count_; ++j) {
     remainder_[j] += period.target[j] - period.start[j];  // eq. 156: the ideal increment of this period
-    // The last period ends the path (§5.5): the register is emptied to the nearest whole step.
+    // The last period ends the path (§5.2.2): the register is emptied to the nearest whole step.
     const double whole = period.last ? std::round(remainder_[j] / step_) : std::trunc(remainder_[j] / step_);
     remainder_[j] -= whole * step_;  // eq. 157/158
     const auto steps = static_cast<std::int32_t>(whole);

@@ -1,6 +1,6 @@
 #pragma once
-// The interpolator's output: whole drive steps per servo period (spec ch5 §2 "constant carrier frequency",
-// §5.4). Each period gives every actuator a signed step count — under pulse control that many pulses spread
+// The interpolator's output: whole steps per servo period (Smirnov 2019, §5.1 "constant carrier frequency",
+// §5.2.2). Each period gives every actuator a signed step count — under pulse control that many pulses spread
 // over the period, the sign selecting the direction; under code control the increment of the position code —
 // and the resulting integer position code. Sinks (steps_csv.hpp, step_stream.hpp, realtime_player.hpp) take
 // the periods one at a time so that a run of any length needs no memory per period.
