@@ -145,7 +145,7 @@ void print_interpolation_table(const interpolation::InterpolateSummary& s, const
 
 void add_interpolate_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
-      "interpolate", "turn a part program into whole drive steps per servo period (ch5 interpolation)");
+      "interpolate", "turn a part program into whole drive steps per servo period (Smirnov 2019 ch. 5)");
   auto args = std::make_shared<InterpolateArguments>();
   cmd->add_option("program", args->program,
                   "part program: G-code, or CL data (told apart by content; --format)")

@@ -27,15 +27,16 @@ void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, b
       "cutting load: key=value list (tangential, normal, axial, cutter_radius, contact, force, "
       "moment) or @FILE.yaml (docs/statics.md)");
   command
-      .add_option("--solver", arguments.solver, "greedy (the seeds' per-step scheme) | global (whole path)")
+      .add_option("--solver", arguments.solver,
+                  "greedy (step by step along the path, Smirnov 2019 ch. 3) | global (whole path)")
       ->capture_default_str();
   command
       .add_option("--energy-accounting", arguments.energy_accounting,
-                  "energy law: no-recovery (seeds) | braking-free | recovery")
+                  "energy law: no-recovery (Smirnov 2019 ch. 3) | braking-free | recovery")
       ->capture_default_str();
   command
       .add_option("--force-model", arguments.force_model,
-                  "forces the laws see: statics (ch3: load and weights) | dynamics (the rigid dynamics "
+                  "forces the laws see: statics (load and weights) | dynamics (the rigid dynamics "
                   "at the programmed feed; needs the machine's dynamics: section)")
       ->capture_default_str();
   command

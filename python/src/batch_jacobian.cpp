@@ -160,9 +160,10 @@ check_limits: a pose whose actuator values leave actuator_min/actuator_max count
 
 Returns shape (N, n, m) (or (n, m)): rows are the n actuators (mm, or rad for angular actuators), columns the
 m controlled coordinates (controlled_names) per mm or per rad of the angles, as `pkm jacobian` prints it.)");
-  cls.def("conditioning", &conditioning, py::arg("poses"), py::kw_only(), py::arg("errors") = "nan",
-          py::arg("check_limits") = true,
-          R"(Singularity and accuracy measures at each pose (spec ch5 §5.1, eq. 144–146), as `pkm jacobian`.
+  cls.def(
+      "conditioning", &conditioning, py::arg("poses"), py::kw_only(), py::arg("errors") = "nan",
+      py::arg("check_limits") = true,
+      R"(Singularity and accuracy measures at each pose (Smirnov 2019, §5.1, eq. 144–146), as `pkm jacobian`.
 
 poses: shape (N, 6) or (6,), as for jacobian.
 errors: "nan" (default): unreachable or singular poses give NaN; "raise": the first such row raises.
