@@ -68,6 +68,32 @@ class ArrayListener final : public planning::TickObserver {
       : machine_(machine), r_(run), n_(machine.mechanism->actuator_count()) {
     r_.actuators = n_;
   }
+  // The arrays are as long as the run: one allocation each, not the doubling of push_back (whose peak is
+  // twice the final size).
+  Status on_start(long tick_count) override {
+    const auto ticks = static_cast<std::size_t>(tick_count);
+    for (auto* column : {&r_.time_s, &r_.s, &r_.path_speed, &r_.feed_cap, &r_.path_error})
+      column->reserve(ticks);
+    r_.line.reserve(ticks);
+    r_.segment.reserve(ticks);
+    r_.actuator_values.reserve(ticks * static_cast<std::size_t>(n_));
+    r_.pose_machine.reserve(ticks * 6);
+    r_.xyz_program.reserve(ticks * 3);
+    r_.abc.reserve(ticks * 3);
+    if (r_.dynamics) {
+      for (auto* column : {&r_.dynamics->total, &r_.dynamics->static_part, &r_.dynamics->dynamic_part,
+                           &r_.dynamics->power_W, &r_.dynamics->command})
+        column->reserve(ticks * static_cast<std::size_t>(n_));
+      r_.dynamics->time_s.reserve(ticks);
+    }
+    if (r_.elastic) {
+      for (auto* column : {&r_.elastic->time_s, &r_.elastic->rotation_deg, &r_.elastic->tool_error_mm})
+        column->reserve(ticks);
+      r_.elastic->line.reserve(ticks);
+      r_.elastic->deviation_mm.reserve(ticks * 3);
+    }
+    return ok_status();
+  }
   Status on_tick(const planning::ServoTick& tick, const planning::RunMonitor& monitor) override {
     r_.time_s.push_back(tick.time_s);
     r_.line.push_back(tick.line);

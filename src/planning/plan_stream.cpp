@@ -21,6 +21,9 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
   const long total = stream.tick_count();
   const long report_every = std::clamp(total / 1000, 1L, 4096L);
+  for (TickObserver* observer : observers) {
+    if (Status started = observer->on_start(total); !started) return started.error();
+  }
   ServoTick tick;
   while (stream.next(tick)) {
     monitor.add(tick);

@@ -14,6 +14,9 @@ namespace pkm::planning {
 class TickObserver {
  public:
   virtual ~TickObserver() = default;
+  /// Once, before the first tick, with the number of ticks the run will stream (for listeners that keep
+  /// every tick: one allocation up front instead of growing as they come). An error stops the run.
+  virtual Status on_start(long /*tick_count*/) { return ok_status(); }
   /// Every tick in order, after the run monitor measured it (its last_…() values are the tick's). An error
   /// stops the run.
   virtual Status on_tick(const ServoTick& tick, const RunMonitor& monitor) = 0;
