@@ -140,8 +140,9 @@ class Mechanism {
   /// lengths follow from the points): strut_joints(), and for mechanisms without swinging passive joints (the
   /// planar pin joints) their base and platform pins in z = 0. Same return values as strut_joints().
   virtual int strut_ends(const Pose& pose, StrutJointPoints& out) const { return strut_joints(pose, out); }
-  /// strut_ends(), actuator_values() and twist_jacobian() at one pose in one call: what the time-domain
-  /// dynamics ask at every right-hand side (~17 000 times per simulated second). Returns strut_ends()'s
+  /// The struts' kinematics at one pose in one pass: strut_ends(), actuator_values() and twist_jacobian()
+  /// (Pinocchio's forward kinematics with the joint Jacobians). One call because the time-domain dynamics
+  /// ask all three at every right-hand side (~17 000 times per simulated second). Returns strut_ends()'s
   /// count, or −1 when any of the three fails. The default makes the three calls; a mechanism whose three
   /// share their work (the struts' directions) overrides it. Never allocates for a reachable pose.
   virtual int strut_state(const Pose& pose, StrutJointPoints& ends, double* actuators,
