@@ -13,10 +13,9 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "compliance_cli.hpp"
-#include "formats/stiffness_csv.hpp"
 #include "io/pose_input.hpp"
 #include "number_options.hpp"
-#include "stiffness/strut_compliance.hpp"
+#include "pipeline/compliance_job.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -107,40 +106,6 @@ void print_compliance(const Machine& machine, const std::string& pose_text,
   std::cout << '\n';
 }
 
-// The tool's compliance at the pose, refused where the pose is out of reach or the machine has no stiffness.
-Result<stiffness::ToolCompliance> compliance_at(const Machine& machine, const Pose& pose,
-                                                const std::string& pose_text) {
-  const Mechanism& mech = *machine.mechanism;
-  auto actuators = mech.inverse(pose);
-  Status in_range = actuators ? check_actuator_range(machine, *actuators) : Status(actuators.error());
-  auto parameters = stiffness::strut_stiffness_of(machine);
-  auto compliance = !in_range     ? Result<stiffness::ToolCompliance>(in_range.error())
-                    : !parameters ? Result<stiffness::ToolCompliance>(parameters.error())
-                                  : stiffness::strut_compliance(mech, *parameters, pose);
-  if (compliance) return compliance;
-  Error e = compliance.error();
-  if (e.location.file.empty()) e.message = fmt::format("--pose {}: {}", pose_text, e.message);
-  return e;
-}
-
-// --bode: computed and written before anything is printed, so that a failure leaves no file behind.
-Result<stiffness::BodeData> write_compliance_bode(const Machine& machine, const Pose& pose,
-                                                  const ComplianceArguments& a) {
-  auto data = compliance_bode(machine, pose, a.bode);
-  if (!data) {
-    Error e = data.error();
-    if (e.location.file.empty() && e.code != ErrorCode::bad_input)
-      e.message = fmt::format("--pose {}: {}", a.pose_text, e.message);
-    return e;
-  }
-  if (Status written = formats::write_bode_csv(a.bode.path, *data); !written) {
-    Error e = written.error();
-    e.message = "--bode: " + e.message;
-    return e;
-  }
-  return data;
-}
-
 int run_compliance_at_pose(const ComplianceArguments& a) {
   if (a.pose_text.empty())
     return report_error("compliance", make_error(ErrorCode::bad_input,
@@ -150,22 +115,22 @@ int run_compliance_at_pose(const ComplianceArguments& a) {
   auto values = parse_number_list(a.pose_text, "--pose");
   auto pose = values ? pose_from_user(*machine->mechanism, *values, "--pose") : Result<Pose>(values.error());
   if (!pose) return report_error("compliance", pose.error());
-  auto compliance = compliance_at(*machine, *pose, a.pose_text);
-  if (!compliance) return report_error("compliance", compliance.error());
-  std::optional<stiffness::BodeData> bode_data;
+  pipeline::ComplianceJob job{*pose, "--pose " + a.pose_text, std::nullopt, a.bode.path, "--bode"};
   if (!a.bode.path.empty()) {
-    auto data = write_compliance_bode(*machine, *pose, a);
-    if (!data) return report_error("compliance", data.error());
-    bode_data = std::move(*data);
+    auto request = compliance_bode_request(a.bode);
+    if (!request) return report_error("compliance", request.error());
+    job.bode = *request;
   }
+  auto result = pipeline::run_compliance_job(*machine, job);
+  if (!result) return report_error("compliance", result.error());
   if (a.json) {
-    nlohmann::json out = compliance_json(*machine, *pose, *compliance);
-    if (bode_data) out["dynamic"] = compliance_bode_json(*bode_data, a.bode);
+    nlohmann::json out = compliance_json(*machine, *pose, result->compliance);
+    if (result->bode) out["dynamic"] = compliance_bode_json(*result->bode, a.bode);
     print_json(out);
     return 0;
   }
-  print_compliance(*machine, a.pose_text, *compliance);
-  if (bode_data) print_compliance_bode(*bode_data, a.bode);
+  print_compliance(*machine, a.pose_text, result->compliance);
+  if (result->bode) print_compliance_bode(*result->bode, a.bode);
   return 0;
 }
 

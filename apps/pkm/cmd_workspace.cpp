@@ -5,8 +5,8 @@
 // machine can stand there or which limit stops it, sign of det J, condition number, δρ and S_x, S_y, S_z
 // (Smirnov 2019, eq. 144–146), and on request the lowest stiffness, the lowest natural frequency and the tool
 // error predicted after measuring a calibration plan (pipeline/calibration_workspace.hpp). Writes
-// DIR/workspace.csv and DIR/summary.json as one output set, with the HTML report as one more member; prints
-// the summary.
+// DIR/workspace.csv and DIR/summary.json as one output set, with the HTML report as one more member
+// (pipeline/workspace_job.hpp); prints the summary.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -16,10 +16,8 @@
 #include "cmd_workspace_grid.hpp"
 #include "commands.hpp"
 #include "formats/workspace_output.hpp"
-#include "io/pose_input.hpp"
 #include "number_options.hpp"
-#include "pipeline/calibration_workspace.hpp"
-#include "pipeline/run_report.hpp"
+#include "pipeline/workspace_job.hpp"
 #include "progress_display.hpp"
 
 namespace pkm::cli {
@@ -82,50 +80,42 @@ void print_workspace_summary(const Machine& machine, const workspace::WorkspaceM
                            a.report_path.empty() ? "" : fmt::format(", report {}", a.report_path));
 }
 
+void print_workspace_json(const pipeline::WorkspaceJobResult& r, const WorkspaceArguments& a) {
+  nlohmann::json j = r.summary_json;
+  j["out"] = a.out_dir;
+  if (!a.report_path.empty()) j["report"] = a.report_path;
+  if (r.calibration) {
+    const calibration::Identifiability& id = r.calibration->prediction->identifiability();
+    j["calibration_plan"] = {{"directory", r.calibration->plan.directory},
+                             {"poses", r.calibration->plan.poses.size()},
+                             {"sigma_mm", r.calibration->plan.instrument.sigma_mm},
+                             {"rank", id.rank},
+                             {"parameters", id.parameters}};
+  }
+  print_json(j);
+}
+
 int run_workspace(const WorkspaceArguments& a) {
   auto machine = load_machine_or_report(a.machine_path);
   if (!machine) return report_error("workspace", machine.error());
   auto grid = workspace_grid_from(*machine->mechanism, a.grid);
   if (!grid) return report_error("workspace", grid.error());
-  workspace::WorkspaceMapOptions options = a.options;
-  std::optional<pipeline::CalibrationWorkspaceLayer> calibration_layer;
-  if (!a.calibration_plan.empty()) {
-    auto layer = pipeline::calibration_workspace_layer(*machine, a.calibration_plan);
-    if (!layer) return report_error("workspace", layer.error());
-    for (const std::string& warning : layer->plan.warnings) std::cerr << "warning: " << warning << "\n";
-    options.calibrated_error = layer->error_at_pose;
-    calibration_layer = std::move(*layer);
-  }
   ProgressDisplay progress("workspace", "mapping the grid");
-  auto map = workspace::workspace_map(*machine, *grid, options);
+  pipeline::WorkspaceJob job{*grid,
+                             a.options,
+                             a.calibration_plan,
+                             a.out_dir,
+                             a.report_path,
+                             progress.sink(),
+                             [](std::string_view warning) { std::cerr << "warning: " << warning << "\n"; }};
+  auto result = pipeline::run_workspace_job(*machine, job);
   progress.finish();
-  if (!map) return report_error("workspace", map.error());
-  const workspace::WorkspaceMapSummary summary = workspace::summarise_workspace_map(*map);
-  // Everything is computed before DIR is touched: a failure above leaves no directory behind.
-  OutputSet outputs{"workspace"};
-  if (Status s = outputs.use_directory(a.out_dir); !s) return report_error("workspace", s.error());
-  if (Status s = formats::stage_workspace_files(outputs, *machine, *map, summary); !s)
-    return report_error("workspace", s.error());
-  if (Status s = pipeline::stage_run_report(outputs, a.report_path); !s) {
-    return report_error("workspace", s.error());
-  }
-  if (Status s = outputs.commit(); !s) return report_error("workspace", s.error());
+  if (!result) return report_error("workspace", result.error());
   if (a.json) {
-    nlohmann::json j = formats::workspace_summary_json(*machine, *map, summary);
-    j["out"] = a.out_dir;
-    if (!a.report_path.empty()) j["report"] = a.report_path;
-    if (calibration_layer) {
-      const calibration::Identifiability& id = calibration_layer->prediction->identifiability();
-      j["calibration_plan"] = {{"directory", calibration_layer->plan.directory},
-                               {"poses", calibration_layer->plan.poses.size()},
-                               {"sigma_mm", calibration_layer->plan.instrument.sigma_mm},
-                               {"rank", id.rank},
-                               {"parameters", id.parameters}};
-    }
-    print_json(j);
+    print_workspace_json(*result, a);
     return 0;
   }
-  print_workspace_summary(*machine, *map, summary, a, calibration_layer);
+  print_workspace_summary(*machine, result->map, result->summary, a, result->calibration);
   return 0;
 }
 

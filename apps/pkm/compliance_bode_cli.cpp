@@ -1,6 +1,7 @@
 // pkm compliance --bode FILE: the tool's dynamic compliance over a log-spaced frequency range
 // (src/stiffness/compliance_bode.hpp, docs/dynamic_compliance.md), with the natural frequencies and the
-// damping assumed; the CSV is written by the caller once everything else has succeeded.
+// damping assumed (pipeline/compliance_job.hpp computes and writes them; here the flags are read and the
+// results printed).
 #include <fmt/format.h>
 
 #include <iostream>
@@ -49,8 +50,7 @@ std::vector<double> compliance_bode_vector(const dynamics::CoordinateVector& v) 
 
 }  // namespace
 
-Result<stiffness::BodeData> compliance_bode(const Machine& machine, const Pose& pose,
-                                            const ComplianceBodeArguments& arguments) {
+Result<stiffness::BodeRequest> compliance_bode_request(const ComplianceBodeArguments& arguments) {
   if (!(arguments.f_max_Hz > arguments.f_min_Hz)) {
     return make_error(ErrorCode::bad_input, fmt::format("--f-max-hz {:g} must be above --f-min-hz {:g}",
                                                         arguments.f_max_Hz, arguments.f_min_Hz));
@@ -62,7 +62,7 @@ Result<stiffness::BodeData> compliance_bode(const Machine& machine, const Pose& 
   request.f_max_Hz = arguments.f_max_Hz;
   request.points = arguments.points;
   request.options.damping = *damping;
-  return stiffness::machine_bode(machine, pose, request);
+  return request;
 }
 
 nlohmann::json compliance_bode_json(const stiffness::BodeData& data,

@@ -1,8 +1,8 @@
 #pragma once
 // pkm compliance's parts beyond the static compliance at a pose (cmd_compliance.cpp): the dynamic
 // compliance's Bode data (--bode, compliance_bode_cli.cpp) and the stiffness map (--map,
-// compliance_map_cli.cpp). The library does the work (src/stiffness/compliance_bode.hpp, stiffness_map.hpp);
-// these read flags and print.
+// compliance_map_cli.cpp). The library does the work (pipeline/compliance_job.hpp,
+// pipeline/compliance_map_job.hpp); these read flags and print.
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -20,10 +20,9 @@ struct ComplianceBodeArguments {
   std::string rayleigh_text;  ///< "α,β" (1/s, s): Rayleigh damping instead of the modal ratio
 };
 
-/// The Bode data of `machine` at `pose` from the flags, or the error (naming the flag, or the machine file
-/// and its `dynamics:` key). Nothing is written.
-Result<stiffness::BodeData> compliance_bode(const Machine& machine, const Pose& pose,
-                                            const ComplianceBodeArguments& arguments);
+/// The Bode request of the flags, or the error naming the flag: --f-max-hz not above --f-min-hz, a
+/// --rayleigh that is not α,β or no damping.
+Result<stiffness::BodeRequest> compliance_bode_request(const ComplianceBodeArguments& arguments);
 /// The JSON block of a Bode run: the file, the range, the damping assumed, the natural frequencies, each
 /// entry's peak.
 nlohmann::json compliance_bode_json(const stiffness::BodeData& data,

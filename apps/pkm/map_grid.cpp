@@ -17,7 +17,7 @@ Error map_grid_error(const std::string& flag, const Error& error) {
 }  // namespace
 
 void add_map_grid_options(CLI::App& command, MapGridArguments& arguments, CLI::Option* map_flag) {
-  // Kept as text: map_grid_poses reads it against the mechanism, as --pose is read.
+  // Kept as text: map_plane_grid reads it against the mechanism, as --pose is read.
   command
       .add_option("--centre,--center", arguments.centre_text,
                   "with --map: the grid's centre pose, as --pose (default: the machine's home)")
@@ -39,15 +39,15 @@ void add_map_grid_options(CLI::App& command, MapGridArguments& arguments, CLI::O
       ->needs(map_flag);
 }
 
-Result<MapGrid> map_grid_poses(const Mechanism& mechanism, const MapGridArguments& arguments) {
-  MapGrid out;
-  out.grid.centre = mechanism.home();
+Result<dynamics::PlaneGrid> map_plane_grid(const Mechanism& mechanism, const MapGridArguments& arguments) {
+  dynamics::PlaneGrid grid;
+  grid.centre = mechanism.home();
   if (!arguments.centre_text.empty()) {
     auto values = parse_number_list(arguments.centre_text, "--centre");
     if (!values) return values.error();
     auto centre = pose_from_user(mechanism, *values, "--centre");
     if (!centre) return centre.error();
-    out.grid.centre = *centre;
+    grid.centre = *centre;
   }
   auto plane = dynamics::grid_plane_from_string(arguments.plane);
   if (!plane) return map_grid_error("--plane", plane.error());
@@ -55,22 +55,18 @@ Result<MapGrid> map_grid_poses(const Mechanism& mechanism, const MapGridArgument
     return map_grid_error("--plane " + arguments.plane,
                           make_error(ErrorCode::bad_input, "a planar machine moves in the xy plane only"));
   }
-  out.grid.plane = *plane;
-  out.grid.half_range_mm = arguments.half_range_mm;
-  out.grid.step_mm = arguments.step_mm;
-  const double side = dynamics::grid_points_per_axis(out.grid.half_range_mm, out.grid.step_mm);
+  grid.plane = *plane;
+  grid.half_range_mm = arguments.half_range_mm;
+  grid.step_mm = arguments.step_mm;
+  const double side = dynamics::grid_points_per_axis(grid.half_range_mm, grid.step_mm);
   if (side * side > kMaxMapGridPoints) {
     return make_error(
         ErrorCode::bad_input,
         fmt::format("--step-mm {:g} with --range-mm {:g} gives {:.0f} × {:.0f} = {:.3g} grid "
                     "points, more than {:.0f}; take a larger --step-mm or a smaller --range-mm",
-                    out.grid.step_mm, out.grid.half_range_mm, side, side, side * side, kMaxMapGridPoints));
+                    grid.step_mm, grid.half_range_mm, side, side, side * side, kMaxMapGridPoints));
   }
-  out.points_per_axis = side;
-  auto poses = dynamics::plane_grid_poses(out.grid, kMaxMapGridPoints);
-  if (!poses) return poses.error();
-  out.poses = std::move(*poses);
-  return out;
+  return grid;
 }
 
 std::string map_pose_text(const Mechanism& mechanism, const Pose& pose) {

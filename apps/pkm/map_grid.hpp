@@ -4,17 +4,15 @@
 // inputs (dynamics/pose_grid.hpp builds the grid).
 #include <CLI/CLI.hpp>
 #include <string>
-#include <vector>
 
 #include "dynamics/pose_grid.hpp"
 #include "machine/mechanism.hpp"
+#include "pipeline/plane_map_grid.hpp"
 
 namespace pkm::cli {
 
-/// The most grid points a map may have: ~30 µs each on the ch5 hexapod (and ~80 bytes of CSV), so the cap
-/// is about half a minute and 80 MB; more is almost always a mistyped step. The message names --step-mm and
-/// --range-mm.
-inline constexpr double kMaxMapGridPoints = 1'000'000;
+/// The most grid points a map may have (the library's cap); the message names --step-mm and --range-mm.
+inline constexpr double kMaxMapGridPoints = pipeline::kMaxMapGridPoints;
 
 struct MapGridArguments {
   std::string centre_text;  ///< empty: the machine's home
@@ -26,15 +24,10 @@ struct MapGridArguments {
 /// Adds --centre (--center), --range-mm, --step-mm and --plane to `command`, each needing `map_flag`.
 void add_map_grid_options(CLI::App& command, MapGridArguments& arguments, CLI::Option* map_flag);
 
-struct MapGrid {
-  dynamics::PlaneGrid grid;
-  double points_per_axis = 0.0;
-  std::vector<Pose> poses;
-};
-
-/// The grid of `arguments` for `mechanism`. Errors (bad_input) name the flag: a centre that is no pose, a
-/// plane a planar machine cannot move in, more than kMaxMapGridPoints points.
-Result<MapGrid> map_grid_poses(const Mechanism& mechanism, const MapGridArguments& arguments);
+/// The grid of `arguments` for `mechanism`, checked before the job takes it so that the messages (bad_input)
+/// name the flag: a centre that is no pose, a plane a planar machine cannot move in, more than
+/// kMaxMapGridPoints points.
+Result<dynamics::PlaneGrid> map_plane_grid(const Mechanism& mechanism, const MapGridArguments& arguments);
 
 /// "x, y, z, a1, a2, a3" of a pose, as --pose takes it.
 std::string map_pose_text(const Mechanism& mechanism, const Pose& pose);

@@ -1,9 +1,10 @@
 // pkm.compliance: the tool's compliance at a pose with the struts as the springs, as `pkm compliance --pose`
-// (stiffness/strut_compliance.hpp): the 6 × 6 matrix about the tool point and the principal stiffness.
+// (pipeline/compliance_job.hpp, the same job): the 6 × 6 matrix about the tool point and the principal
+// stiffness.
 #include "analysis_bindings.hpp"
 #include "bindings.hpp"
+#include "pipeline/compliance_job.hpp"
 #include "pipeline_support.hpp"
-#include "stiffness/strut_compliance.hpp"
 
 namespace pkm::python {
 
@@ -11,15 +12,6 @@ namespace {
 
 // N/mm → N/µm and N·mm/rad → N·m/mrad, the units `pkm compliance` prints.
 constexpr double kNPerUmPerNPerMm = 1e-3, kNmPerMradPerNmmPerRad = 1e-6;
-
-Result<stiffness::ToolCompliance> run_compliance(const Machine& machine, const Pose& pose) {
-  auto actuators = machine.mechanism->inverse(pose);
-  if (!actuators) return actuators.error();
-  if (Status in_range = check_actuator_range(machine, *actuators); !in_range) return in_range.error();
-  auto parameters = stiffness::strut_stiffness_of(machine);
-  if (!parameters) return parameters.error();
-  return stiffness::strut_compliance(*machine.mechanism, *parameters, pose);
-}
 
 }  // namespace
 
@@ -29,7 +21,11 @@ void bind_compliance(py::module_& m) {
       [](const Machine& machine, const py::object& pose_value) {
         const Mechanism& mechanism = *machine.mechanism;
         const Pose pose = pose_from_python(mechanism, pose_value, "pose");
-        const stiffness::ToolCompliance c = unwrap_released([&] { return run_compliance(machine, pose); });
+        pipeline::ComplianceJob job;
+        job.pose = pose;
+        const pipeline::ComplianceJobResult r =
+            unwrap_released([&] { return pipeline::run_compliance_job(machine, job); });
+        const stiffness::ToolCompliance& c = r.compliance;
         const auto translation = stiffness::principal_stiffness(c, false);
         const auto rotation = stiffness::principal_stiffness(c, true);
         const auto n = static_cast<int>(c.strut_stiffness_N_mm.size());

@@ -1,47 +1,13 @@
 // pkm.modes: the natural frequencies and mode shapes of the elastic struts at a pose, as `pkm modes --pose`
-// (dynamics/natural_frequencies.hpp): the drives clamped, about the static equilibrium under gravity.
-#include <fmt/format.h>
-
-#include <array>
-
+// (pipeline/modes_job.hpp, the same job): the drives clamped, about the static equilibrium under gravity.
 #include "analysis_bindings.hpp"
 #include "bindings.hpp"
-#include "core/units.hpp"
-#include "dynamics/natural_frequencies.hpp"
+#include "pipeline/modes_job.hpp"
 #include "pipeline_support.hpp"
 
 namespace pkm::python {
 
 namespace {
-
-struct ModesRun {
-  dynamics::NaturalModes modes;
-  std::vector<std::string> coordinates;
-};
-
-/// The twist component each basis coordinate moves (tool point mm, rotation rad), as `pkm modes` names them.
-std::vector<std::string> coordinate_names(const TwistBasis& basis) {
-  static const std::array<const char*, 6> kNames = {"x_mm", "y_mm", "z_mm", "rx_rad", "ry_rad", "rz_rad"};
-  std::vector<std::string> names;
-  for (int k = 0; k < basis.cols(); ++k) {
-    int row = 0;
-    basis.col(k).cwiseAbs().maxCoeff(&row);
-    names.emplace_back(kNames[static_cast<std::size_t>(row)]);
-  }
-  return names;
-}
-
-Result<ModesRun> run_modes(const Machine& machine, const Pose& pose) {
-  // The drives must be able to hold the pose: their range, as `pkm modes` checks it.
-  auto actuators = machine.mechanism->inverse(pose);
-  if (!actuators) return actuators.error();
-  if (Status in_range = check_actuator_range(machine, *actuators); !in_range) return in_range.error();
-  auto model = dynamics::make_elastic_model(machine);
-  if (!model) return model.error();
-  auto modes = dynamics::natural_modes(*model, pose);
-  if (!modes) return modes.error();
-  return ModesRun{std::move(*modes), coordinate_names(model->basis)};
-}
 
 template <class Vector>
 py::array_t<double> numpy_vector(const Vector& v, int count) {
@@ -56,12 +22,10 @@ void bind_modes(py::module_& m) {
       [](const Machine& machine, const py::object& pose_value) {
         const Mechanism& mechanism = *machine.mechanism;
         const Pose pose = pose_from_python(mechanism, pose_value, "pose");
-        ModesRun r = unwrap_released([&] { return run_modes(machine, pose); });
+        const pipeline::ModesJobResult r = unwrap_released([&] {
+          return pipeline::run_modes_job(machine, {pose, {}});
+        });
         const dynamics::NaturalModes& modes = r.modes;
-        const Eigen::Vector3d sag_mm = modes.equilibrium.pose.position_mm - pose.position_mm;
-        const double tilt_deg = deg_from_rad(
-            rotation_vector_from_rotation(modes.equilibrium.pose.rotation * pose.rotation.transpose())
-                .norm());
         py::dict out;
         out["pose"] = numpy_pose(mechanism, pose);
         out["frequencies_Hz"] = numpy_vector(modes.frequency_Hz, modes.count);
@@ -69,8 +33,8 @@ void bind_modes(py::module_& m) {
         out["coordinates"] = py::cast(r.coordinates);
         out["mass"] = numpy_matrix(modes.mass);
         out["stiffness"] = numpy_matrix(modes.stiffness);
-        out["static_deflection_mm"] = numpy_vector(sag_mm, 3);
-        out["static_rotation_deg"] = tilt_deg;
+        out["static_deflection_mm"] = numpy_vector(r.static_deflection_mm, 3);
+        out["static_rotation_deg"] = r.static_rotation_deg;
         out["equilibrium_pose"] = numpy_pose(mechanism, modes.equilibrium.pose);
         out["strut_tension_N"] = numpy_vector(modes.equilibrium.strut_force_N,
                                               static_cast<int>(modes.equilibrium.strut_force_N.size()));

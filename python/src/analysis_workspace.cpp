@@ -1,39 +1,19 @@
 // pkm.workspace: a workspace map over a plane section or a 3-D grid of poses, as `pkm workspace`
-// (src/workspace/): per cell whether the machine can stand there or which limit stops it, the sign of det J,
-// the condition number, δρ and S_x, S_y, S_z, and on request the lowest stiffness and natural frequency.
+// (pipeline/workspace_job.hpp, the same job): per cell whether the machine can stand there or which limit
+// stops it, the sign of det J, the condition number, δρ and S_x, S_y, S_z, and on request the lowest
+// stiffness and natural frequency.
 #include <fmt/format.h>
 
 #include "analysis_bindings.hpp"
 #include "bindings.hpp"
 #include "formats/workspace_output.hpp"
-#include "io/output_set.hpp"
 #include "json_to_python.hpp"
+#include "pipeline/workspace_job.hpp"
 #include "pipeline_support.hpp"
 
 namespace pkm::python {
 
 namespace {
-
-struct WorkspaceRun {
-  workspace::WorkspaceMap map;
-  nlohmann::json summary;
-};
-
-Result<WorkspaceRun> run_workspace(const Machine& machine, const workspace::WorkspaceGrid& grid,
-                                   const workspace::WorkspaceMapOptions& options,
-                                   const std::string& out_dir) {
-  auto map = workspace::workspace_map(machine, grid, options);
-  if (!map) return map.error();
-  const workspace::WorkspaceMapSummary summary = workspace::summarise_workspace_map(*map);
-  if (!out_dir.empty()) {
-    OutputSet outputs{"workspace"};
-    if (Status s = outputs.use_directory(out_dir); !s) return s.error();
-    if (Status s = formats::stage_workspace_files(outputs, machine, *map, summary); !s) return s.error();
-    if (Status s = outputs.commit(); !s) return s.error();
-  }
-  nlohmann::json summary_json = formats::workspace_summary_json(machine, *map, summary);
-  return WorkspaceRun{std::move(*map), std::move(summary_json)};
-}
 
 workspace::WorkspaceGrid grid_of(const std::string& plane, const Pose& centre, double range_mm,
                                  double step_mm, const py::object& axes) {
@@ -64,14 +44,14 @@ void bind_workspace(py::module_& m) {
         const Mechanism& mechanism = *machine.mechanism;
         const Pose centre =
             centre_value.is_none() ? mechanism.home() : pose_from_python(mechanism, centre_value, "centre");
-        const workspace::WorkspaceGrid grid = grid_of(plane, centre, range_mm, step_mm, axes);
-        workspace::WorkspaceMapOptions options;
-        options.stiffness = stiffness;
-        options.frequencies = frequencies;
-        options.threads = threads;
-        const std::string out_directory = optional_path(out_dir);
-        WorkspaceRun r =
-            unwrap_released([&] { return run_workspace(machine, grid, options, out_directory); });
+        pipeline::WorkspaceJob job;
+        job.grid = grid_of(plane, centre, range_mm, step_mm, axes);
+        job.options.stiffness = stiffness;
+        job.options.frequencies = frequencies;
+        job.options.threads = threads;
+        job.out_directory = optional_path(out_dir);
+        const pipeline::WorkspaceJobResult r =
+            unwrap_released([&] { return pipeline::run_workspace_job(machine, job); });
         const workspace::WorkspaceMap& map = r.map;
         const workspace::GridCells cells(map.grid, mechanism.convention());
         const auto count = static_cast<py::ssize_t>(map.cells.size());
@@ -97,7 +77,7 @@ void bind_workspace(py::module_& m) {
         std::vector<int> coordinates;
         for (const workspace::GridAxis& axis : map.grid.axes) coordinates.push_back(axis.coordinate);
         py::dict out;
-        out["summary"] = python_from_json(r.summary);
+        out["summary"] = python_from_json(r.summary_json);
         out["points_per_axis"] = py::cast(map.points_per_axis);
         out["axes"] = py::cast(coordinates);
         out["pose"] = numpy_from(std::move(pose), {count, 6});
