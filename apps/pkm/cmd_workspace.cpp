@@ -125,7 +125,7 @@ void add_workspace_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "workspace",
       "workspace map over a section or a 3-D grid: reachable or which limit stops it, det J sign, condition "
-      "number, error amplification δρ and S_x, S_y, S_z (spec ch5 eq. 144–146), optional stiffness, "
+      "number, error amplification δρ and S_x, S_y, S_z (Smirnov 2019, eq. 144–146), optional stiffness, "
       "natural frequency and predicted error after calibration");
   auto a = std::make_shared<WorkspaceArguments>();
   MapGridArguments& section = a->grid.section;
