@@ -306,7 +306,7 @@ TEST(NoAllocation, StaticsHexapodStrutForces) {
   EXPECT_EQ(g_allocations.load() - before, 0);
 }
 
-// The strut-only compliance per path point (issue 15's bench goal: ≤ 1 µs on the hexapod).
+// The strut-only compliance per path point (its bench goal: ≤ 1 µs on the hexapod).
 TEST(NoAllocation, StrutComplianceOfEveryPoseAlongAPath) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   auto parameters = stiffness::strut_stiffness_of(m);
@@ -324,8 +324,8 @@ TEST(NoAllocation, StrutComplianceOfEveryPoseAlongAPath) {
   EXPECT_GT(trace, 0.0);
 }
 
-// The real-time part of the interpolation (spec ch5 §5.6): per period the carrier step (strut laws, chord
-// check) and the quantisation, naive or corrected (two FK solves, two Jacobians, 64 combinations).
+// The real-time part of the interpolation (Smirnov 2019, §5.2.2): per period the carrier step (strut laws,
+// chord check) and the quantisation, naive or corrected (two FK solves, two Jacobians, 64 combinations).
 TEST(NoAllocation, InterpolationPeriods) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   const auto program = test::gcode_for(m, "G0 X-50 Y0 Z0\nG1 X50 F3000\nG2 X50 Y0 I-20 J0 A3\nM2\n");
@@ -374,7 +374,7 @@ class NoAllocationCountingSink : public interpolation::StepSink {
 
 // The whole loop of interpolate() between one period's hand-over and the next (the carrier step, the
 // quantisation, the period-time histogram, the contour monitor, the sinks), after a warm-up of a few periods:
-// a servo loop must not allocate (issue 12: allocation was one of the causes looked for in the worst period).
+// a servo loop must not allocate (allocation is one of the causes to rule out in the worst period).
 TEST(NoAllocation, InterpolateRunPeriodsAfterWarmUp) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   const auto program = test::gcode_for(m, "G0 X-50 Y0 Z0\nG1 X50 F3000\nG2 X50 Y0 I-20 J0 A3\nM2\n");

@@ -50,7 +50,7 @@ inline Machine machine_from_example(const std::string& relative_path) {
   return std::move(machine.value());
 }
 
-/// The ch5 test hexapod's geometry (spec ch5 §1.3) without its `type:` line, tool frame 150 mm above the
+/// The ch5 test hexapod's geometry (Smirnov 2019, §5.2) without its `type:` line, tool frame 150 mm above the
 /// platform-joint plane, home at z = 700 mm; and the whole machine file of the ideal hexapod.
 inline const char* kCh5HexapodGeometry = R"(angles: krylov
 base_joints:

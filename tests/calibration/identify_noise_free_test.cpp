@@ -1,4 +1,4 @@
-// Noise-free identification recovers every parameter (issue 16): the 42 of the hexapod with drive offsets
+// Noise-free identification recovers every parameter: the 42 of the hexapod with drive offsets
 // from random plans, on random true geometries.
 #include <gtest/gtest.h>
 

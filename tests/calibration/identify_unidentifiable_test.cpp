@@ -1,4 +1,4 @@
-// Plans that cannot identify every parameter are reported as such, never as converged (issue 16).
+// Plans that cannot identify every parameter are reported as such, never as converged.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -1,4 +1,4 @@
-// Measurement plans (issue 16; spec ch5 §9.2): the dissertation's seven poses, random and D-optimal plans,
+// Measurement plans (Smirnov 2019, §5.2.4): the dissertation's seven poses, random and D-optimal plans,
 // and what each predicts.
 #include "calibration/plan_design.hpp"
 

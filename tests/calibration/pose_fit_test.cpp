@@ -1,4 +1,4 @@
-// The pose from targets (spec ch5 §9.2, eqs. 173–174 generalised to a weighted Kabsch fit).
+// The pose from targets (Smirnov 2019, §5.2.4, eqs. 173–174 generalised to a weighted Kabsch fit).
 #include "calibration/pose_fit.hpp"
 
 #include <gtest/gtest.h>

@@ -87,7 +87,7 @@ std::string ik_actuators(const std::string& machine, const std::string& pose) {
 }
 
 TEST(Cli, FkAllOnASixSixHexapodListsEveryModeWithWhatTheHomotopySaw) {
-  // hexapod_ch3_delta30.yaml: platform joints 30° apart, a 6-6 layout (issue 20). The home pose's lengths.
+  // hexapod_ch3_delta30.yaml: platform joints 30° apart, a 6-6 layout. The home pose's lengths.
   const std::string actuators = ik_actuators("hexapod_ch3_delta30.yaml", "0,0,700,0,0,0");
   ASSERT_FALSE(actuators.empty());
   const CliRun r = cli_run("fk --machine " + example("hexapod_ch3_delta30.yaml") + " --actuators " +
@@ -212,7 +212,7 @@ TEST(Cli, JacobianGivesErrorAmplificationAndInverse) {
   const CliRun r = cli_run("jacobian --machine " + example(kCh5) + " --pose 0,0,700,0,0,0 --json");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(j["error_amplification"].get<double>(), 4.76, 0.005);  // spec ch5 §5.1
+  EXPECT_NEAR(j["error_amplification"].get<double>(), 4.76, 0.005);  // Smirnov 2019, §5.2.2
   // J · J⁻¹ = I
   for (int row = 0; row < 6; ++row) {
     for (int col = 0; col < 6; ++col) {

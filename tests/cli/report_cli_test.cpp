@@ -213,7 +213,7 @@ TEST(ReportCli, InterpolateReportShowsTheContourErrorAgainstTheTolerance) {
     if (v.is_number()) worst = std::max(worst, v.get<double>());
   EXPECT_NEAR(worst, summary["max_contour_error_mm"].get<double>(),
               1e-3 * summary["max_contour_error_mm"].get<double>());
-  // The naive registers exceed ρ_max on this line (E14): the report says so, with the line.
+  // The naive registers exceed ρ_max on this line (Smirnov 2019, §5.2.5): the report says so, with the line.
   ASSERT_GT(summary["max_contour_error_mm"].get<double>(), 0.001);
   ASSERT_EQ(data["limits_reached"].size(), 1u);
   EXPECT_EQ(data["limits_reached"][0]["severity"], "exceeded");

@@ -1,9 +1,9 @@
-// pkm servo and the report (issue 17: "the HTML report gains following-error and contour-error plots and a
-// Bode plot per loop"): after `pkm servo` the plan's report has the following error per drive and the contour
-// error over time with servo.csv's ticks, each drive's loops from servo_bode.csv, and the table rows of
-// servo_summary.json; `pkm servo --report` writes that page (also with --out elsewhere), and a build without
-// the report page refuses it with exit 2 and writes nothing; servo files of an earlier plan go with its
-// output set when the folder is planned again.
+// pkm servo and the report (following-error and contour-error plots and a Bode plot per loop): after `pkm
+// servo` the plan's report has the following error per drive and the contour error over time with servo.csv's
+// ticks, each drive's loops from servo_bode.csv, and the table rows of servo_summary.json; `pkm servo
+// --report` writes that page (also with --out elsewhere), and a build without the report page refuses it with
+// exit 2 and writes nothing; servo files of an earlier plan go with its output set when the folder is planned
+// again.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -65,7 +65,7 @@ TEST(WorkspaceCli, WritesTheMapAndItsSummaryWithARowPerCell) {
   EXPECT_EQ(rows[40][0], "0.000000");
   EXPECT_EQ(rows[40][2], "700.000000");
   EXPECT_EQ(rows[40][6], "ok");
-  EXPECT_NEAR(std::stod(rows[40][10]), 4.76, 0.005);  // spec ch5 §5.1: δρ of the tool point at z = 700
+  EXPECT_NEAR(std::stod(rows[40][10]), 4.76, 0.005);  // Smirnov 2019, §5.2.2: δρ of the tool point at z = 700
   // The summary counts the file's statuses, and the top row is beyond actuator_max.
   std::map<std::string, long> counted;
   for (const auto& row : rows) {

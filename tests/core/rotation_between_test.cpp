@@ -1,4 +1,4 @@
-// The Simple Matrix Scenario's Rodrigues rotation with the ERRATA of spec glide_stiffness.md §3 applied
+// The Simple Matrix Scenario's Rodrigues rotation of Rusanov et al. with the printed errors corrected
 // (src/core/rotation_between.hpp): on random unit vectors the corrected matrix maps the old normal onto the
 // new one and is a rotation; the matrix is the exponential of the axis-angle; the printed entry (1,2) and the
 // printed axis direction would not do it.

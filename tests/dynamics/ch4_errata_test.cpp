@@ -1,13 +1,11 @@
-// The corrected behaviour where the spec's ch4 extract (§9) finds the printed formulas wrong, pinned on the
-// exact model of src/dynamics:
-//  - erratum 11 ((116) counts the whole |ω|² of a strut, spin included) and erratum 14 ((128) takes the
-//  radial
-//    speed for |v_C|): the strut parts' and the platform's CoM velocities are the time derivatives of their
+// The corrected behaviour where the printed formulas of Smirnov 2019, chapter 4, are wrong
+// (docs/theory/dynamics.md, §7), pinned on the exact model of src/dynamics:
+//  - the printed (116) counts the whole |ω|² of a strut, spin included, and (128) takes the radial speed
+//    for |v_C|: the strut parts' and the platform's CoM velocities are the time derivatives of their
 //    positions, checked against differences of the positions along a motion;
-//  - erratum 13 (ω expanded in q only, so the rotational inertia never enters the mass matrix) and erratum 2
-//  (no
-//    Ṁ terms): the platform's rotational inertia is the rotational block of the mass matrix, and a moving
-//    machine has velocity-product terms;
+//  - (127), (132), (140) expand ω in q only, so the rotational inertia never enters the mass matrix, and
+//    (107) has no Ṁ terms: the platform's rotational inertia is the rotational block of the mass matrix,
+//    and a moving machine has velocity-product terms;
 //  - the energy accounting of (86)/(93) (no regeneration: negative work counts as drawn) and the bound (87):
 //    lowering a platform and raising it again draws at least twice its change of potential energy without
 //    recovery, once when braking is free, and once with recovery between drives.

@@ -1,9 +1,9 @@
-// The elastic machine's energy (spec ch4 §8.5 tests 3 and 5), on the ch5 hexapod, the planar biped and five
-// random hexapods with random inertial and elastic parameters, the drives held:
+// The elastic machine's energy (the model of Smirnov 2019, §4.5), on the ch5 hexapod, the planar biped and
+// five random hexapods with random inertial and elastic parameters, the drives held:
 //  - without friction, T + Π + V_g stays what it was to 1e-8 of the vibration's energy over ten periods of
-//    the slowest mode (the seed's printed (141) flips the spring's sign, errata 17: that would not conserve
-//    anything). T and V_g come from body_motion's own functions, not from the right-hand side's matrices, so
-//    the test also checks rigid_terms against them;
+//    the slowest mode (the printed (141) flips the spring's sign: that would not conserve anything). T and
+//    V_g come from body_motion's own functions, not from the right-hand side's matrices, so the test also
+//    checks rigid_terms against them;
 //  - with viscous, quadratic or Coulomb friction it never grows (to the integrator's tolerance) and the
 //    vibration loses a good part of its energy within twenty periods.
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-// Kinematic excitation (spec ch4 §6.7): the drives follow a smooth actuator history q(t) = IK(pose(t)), and
-// the elastic machine follows the kinematic motion pose(t) = FK(q(t)) more closely the stiffer its struts:
-// the dynamic error (inertia and weight over stiffness, and the vibration they start) falls as 1/c. On the
-// ch5 hexapod, the planar biped and five random hexapods, stiffness ×1, ×100 and ×10⁴.
+// Kinematic excitation (Smirnov 2019, §4.5): the drives follow a smooth actuator history q(t) = IK(pose(t)),
+// and the elastic machine follows the kinematic motion pose(t) = FK(q(t)) more closely the stiffer its
+// struts: the dynamic error (inertia and weight over stiffness, and the vibration they start) falls as 1/c.
+// On the ch5 hexapod, the planar biped and five random hexapods, stiffness ×1, ×100 and ×10⁴.
 #include <gtest/gtest.h>
 
 #include <algorithm>

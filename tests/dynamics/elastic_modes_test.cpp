@@ -1,5 +1,5 @@
-// Natural frequencies of the elastic machine (spec ch4 §6.8), on the ch5 hexapod, the planar biped and five
-// random hexapods with random inertial and elastic parameters:
+// Natural frequencies of the elastic machine (beyond Smirnov 2019, §4.5), on the ch5 hexapod, the planar
+// biped and five random hexapods with random inertial and elastic parameters:
 //  - the static equilibrium carries gravity: the struts' forces are the rigid model's drive forces at rest
 //    with the opposite sign (a stretched strut pulls its platform joint towards the base), and the sag
 //    falls as 1/c;

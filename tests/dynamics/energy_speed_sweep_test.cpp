@@ -1,11 +1,11 @@
-// The trends of the seed's Tables 3 and 4 (spec ch4 §8.1, §8.2): the energy-efficient angle law optimised
-// with the static model (ch3), replayed in the dynamic model, saves less energy the faster the tool moves
+// The trends of Tables 3 and 4 of Smirnov 2019 (§4.4): the energy-efficient angle law optimised with the
+// static model (chapter 3), replayed in the dynamic model, saves less energy the faster the tool moves
 // (Table 4); optimised with the dynamic model at the feed (Table 3) it saves more at every speed, and its
-// saving falls more slowly (spec ch4 §8.5 test 6). The seed's case
-// E1: the ch3 hexapod, the tool point along a 100 mm line at z = 700 mm, 1000 N at 45° to the motion (707.1 N
-// against the feed, 707.1 N across it), energy without regeneration (86)/(93). The seed's absolute energies
-// cannot be matched (spec ch4 §8.4); the efficiencies η = (W_const − W_law)/W_const must fall with the speed,
-// and W_const cannot fall below the work of the load (87).
+// saving falls more slowly. The dissertation's example:
+// the ch3 hexapod, the tool point along a 100 mm line at z = 700 mm, 1000 N at 45° to the motion (707.1 N
+// against the feed, 707.1 N across it), energy without regeneration (86)/(93). Its absolute energies
+// cannot be matched (the publication leaves out data they depend on); the efficiencies η = (W_const −
+// W_law)/W_const must fall with the speed, and W_const cannot fall below the work of the load (87).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -3,7 +3,7 @@
 // parameters:
 //  - the inverse dynamics' forces, commanded along a smooth motion, give that motion back (forward and
 //    inverse dynamics are each other's inverse);
-//  - through the drive models of spec ch4 §3.6: a speed-dependent drive (static characteristic) and a
+//  - through the drive models of Smirnov 2019, §4.2: a speed-dependent drive (static characteristic) and a
 //    lagging one reproduce the motion when the command is pre-compensated by the model's inverse; left
 //    uncompensated, the lag's open-loop error grows with τ (and vanishes with it);
 //  - free motion without gravity keeps its kinetic energy; the static forces hold the platform at rest.

@@ -1,5 +1,5 @@
 // Golden outputs: what `pkm plan` and `pkm interpolate` write for the shipped examples stays the same through
-// refactoring (issue 13: the kernel and the pipeline are being recut; the numbers must not move).
+// refactoring (when the kernel and the pipeline are recut, the numbers must not move).
 //
 // Every file the command writes is compared byte for byte through its size and 64-bit FNV-1a hash (the
 // outputs are the same under the Release and the sanitizer builds: same compiler, no FMA contraction on

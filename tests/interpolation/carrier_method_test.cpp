@@ -1,4 +1,4 @@
-// The carrier-frequency method on the seeds' chapter-5 test line (spec ch5 §7, §8, E13–E15): continuous
+// The carrier-frequency method on the chapter-5 test line of Smirnov 2019 (§5.2.3, §5.2.5): continuous
 // drives at constant speed, then whole steps of 1 µm with the naive remainder registers and with the
 // discreteness correction.
 #include <gtest/gtest.h>
@@ -27,8 +27,8 @@ InterpolateOptions continuous(double period_s) {
   return options;
 }
 
-// E13: continuous drives, no acceleration; the drives' chords leave the line by at most 1.34e-5, 5.36e-5 and
-// 2.14e-4 mm at mid-period for h = 5, 10, 20 ms (the extract's own simulation; quadratic in h).
+// §5.2.3: continuous drives, no acceleration; the drives' chords leave the line by at most 1.34e-5, 5.36e-5
+// and 2.14e-4 mm at mid-period for h = 5, 10, 20 ms (an independent simulation; quadratic in h).
 TEST(CarrierCh5Line, E13MidPeriodErrorOfContinuousDrives) {
   const Ch5Line line;
   ASSERT_NEAR(line.plan.path.length(), 100.0, 1e-9);
@@ -48,7 +48,7 @@ TEST(CarrierCh5Line, E13MidPeriodErrorOfContinuousDrives) {
   }
 }
 
-// E14: whole steps of 1 µm with the remainder registers; the start positions are truncated (E3), their error
+// §5.2.5: whole steps of 1 µm with the remainder registers; the start positions are truncated, their error
 // 4.9166e-4 mm is never taken out, and the tool strays about 2e-3 mm from the line, above ρ_max = 1e-3 mm.
 TEST(CarrierCh5Line, E14NaiveRemainderRegistersExceedTheTolerance) {
   const Ch5Line line;
@@ -70,8 +70,8 @@ TEST(CarrierCh5Line, E14NaiveRemainderRegistersExceedTheTolerance) {
     EXPECT_EQ(naive.start_position[j], e3[j]) << "E3's truncated start, strut " << j + 1;
 }
 
-// E15: the floor/ceil choice per period removes the start error in the first period and keeps the tool about
-// an order of magnitude nearer the line than the naive registers.
+// §5.2.5: the floor/ceil choice per period removes the start error in the first period and keeps the tool
+// about an order of magnitude nearer the line than the naive registers.
 TEST(CarrierCh5Line, E15CorrectionRemovesTheStartErrorAndCutsTheContourError) {
   const Ch5Line line;
   for (double h : {0.005, 0.010, 0.020}) {

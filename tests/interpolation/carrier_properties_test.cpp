@@ -1,6 +1,6 @@
-// Invariants of the carrier-frequency interpolation on planned programs (not only the seeds' line): steps
-// stay within one step of the ideal motion, the drives' step rate is respected, the path ends exactly, the
-// chord check bounds the contour error, and operator override changes act from period i+2.
+// Invariants of the carrier-frequency interpolation on planned programs (not only the dissertation's line):
+// steps stay within one step of the ideal motion, the drives' step rate is respected, the path ends exactly,
+// the chord check bounds the contour error, and operator override changes act from period i+2.
 #include <gtest/gtest.h>
 
 #include "interpolation/methods/feed_override.hpp"
@@ -107,9 +107,10 @@ TEST(CarrierProperties, NoPeriodAsksMoreStepsThanTheDrivesStepRate) {
   EXPECT_LE(limited.contour.max_error_after_first_mm, options.rho_max_mm);
 }
 
-// On the seeds' line the corrected error never exceeds the start's quantisation error once the first period
-// has run (E15, carrier_method_test.cpp). A start can also be lucky (home here truncates to 3e-5 mm); what
-// holds on every program is that the corrected tool stays within ρ_max and well inside the naive registers'.
+// On the dissertation's line the corrected error never exceeds the start's quantisation error once the first
+// period has run (Smirnov 2019, §5.2.5; carrier_method_test.cpp). A start can also be lucky (home here
+// truncates to 3e-5 mm); what holds on every program is that the corrected tool stays within ρ_max and well
+// inside the naive registers'.
 TEST(CarrierProperties, CorrectedErrorStaysWithinTheToleranceOnEveryShippedHexapodProgram) {
   for (const char* program :
        {"examples/programs/pocket.ngc", "examples/programs/helix.ngc", "examples/programs/circle.ngc"}) {

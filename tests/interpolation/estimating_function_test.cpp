@@ -1,11 +1,11 @@
-// The estimating-function interpolator (spec ch5 §4) on the seeds' test hexapod (§1.3) and its test line
-// (−50, 0, 700) → (50, 0, 700), with Δ = 0.01 mm and δ = 0.01 mm as in §4.6.
+// The estimating-function interpolator (Smirnov 2019, §5.2.1) on the dissertation's test hexapod (§5.2) and
+// its test line (−50, 0, 700) → (50, 0, 700), with Δ = 0.01 mm and δ = 0.01 mm as in §5.2.1.
 //
-// Table 5's tact counts are not reproducible with the geometry that reproduces the seed's §5.2.5 numbers
-// (spec §11 E5, §14 item 10), so the first millimetre is checked qualitatively (E4/E5): fewer tacts with more
-// struts per tact, saturation from 4 struts on, fewer than the serial machine's 100 from 3 struts on. The
-// greedy rule of those checks is the extractor's ("progress > 0, max progress"), and the counts agree with
-// his reimplementation (132/70/49/40/39/40/40).
+// Table 5's tact counts are not reproducible with the geometry that reproduces the numbers of §5.2.5, so the
+// first millimetre is checked qualitatively (Tables 5 and 6): fewer tacts with more struts per tact,
+// saturation from 4 struts on, fewer than the serial machine's 100 from 3 struts on. The greedy rule of those
+// checks ("progress > 0, max progress") is not stated in the dissertation, and the counts agree with an
+// independent reimplementation of it (132/70/49/40/39/40/40).
 #include "interpolation/methods/estimating_function.hpp"
 
 #include <gtest/gtest.h>
@@ -192,7 +192,7 @@ TEST(EstimatingCh5Line, AllSixDeviatesLessThanTheDriveResolution) {
 }
 
 TEST(EstimatingCh5Line, StartIsTheTruncatedStartPoseE3) {
-  // E3: the start's strut lengths truncated to 0.001 mm put the tool 4.9166e-4 mm off the line.
+  // §5.2.5: the start's strut lengths truncated to 0.001 mm put the tool 4.9166e-4 mm off the line.
   EstimatingSettings settings = ch5_settings();
   settings.step_mm = 0.001;
   settings.deviation_mm = 0.001;
@@ -210,7 +210,8 @@ TEST(EstimatingCh5Line, WholeLineEndsNearItsEndPoint) {
   ASSERT_FALSE(run.tacts.empty());
   expect_within_deviation_unless_fallback(run, 0.01, "whole line");
   EXPECT_NEAR(run.s, 100.0, 0.01);
-  // δρ_max = 10 for the test mechanism (E8): one step on every strut moves the tool by at most about 10·Δ.
+  // δρ_max = 10 for the test mechanism (§5.2.2): one step on every strut moves the tool by at most about
+  // 10·Δ.
   EXPECT_LT(run.statistics.end_error_mm, 10.0 * kEstimatingTestStep);
   EXPECT_GT(run.statistics.end_error_mm, 0.0);
   // About 2.6 Δ per tact: fewer than the serial machine's 100 mm / Δ = 10000 tacts.
@@ -234,8 +235,8 @@ TEST(EstimatingCh5Line, OrientationCriterionKeepsThePlatformLevel) {
 }
 
 TEST(EstimatingCh5Line, GreedyDeadEndsAtSixMicronsAndTheFallbackKeepsGoing) {
-  // Spec §14 item 20: with δ = 0.006 mm the greedy final rule (all six, progress ≥ Δ) finds no admissible
-  // candidate after about 10 tacts.
+  // With δ = 0.006 mm the greedy final rule (all six, progress ≥ Δ) finds no admissible candidate after about
+  // 10 tacts, which Smirnov 2019 does not discuss.
   EstimatingSettings settings = ch5_settings();
   settings.deviation_mm = 0.006;
   settings.max_stall_tacts = 0;  // no fallback

@@ -1,6 +1,6 @@
 #pragma once
-// Helpers for the interpolation tests: the seeds' chapter-5 test line on their test hexapod, starting
-// exactly at (−50, 0, 700) (spec ch5 §1.3, §7), as a path with constant-speed timing (E13–E15: no
+// Helpers for the interpolation tests: the chapter-5 test line of Smirnov 2019 on its test hexapod, starting
+// exactly at (−50, 0, 700) (§5.2, §5.2.3), as a path with constant-speed timing (§5.2.3 and §5.2.5, without
 // acceleration) or planned like any program.
 #include <string>
 

@@ -1,4 +1,4 @@
-// The run summary's per-period compute-time distribution (issue 12): its keys exist, one sample per period,
+// The run summary's per-period compute-time distribution: its keys exist, one sample per period,
 // the percentiles ordered. No time is asserted: the machine running the tests is not ours to time.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// Analytic strut laws along planned paths (spec ch5 §5.2; cases E9–E12): the model each kind of segment gets,
-// its fit error against inverse kinematics solved here (independently of the laws), and the behaviour at the
-// path's ends and on other mechanisms.
+// Analytic strut laws along planned paths (Smirnov 2019, §5.2.2, eqs. 147–150): the model each kind of
+// segment gets, its fit error against inverse kinematics solved here (independently of the laws), and the
+// behaviour at the path's ends and on other mechanisms.
 #include "interpolation/methods/strut_laws.hpp"
 
 #include <fmt/format.h>
@@ -89,7 +89,7 @@ std::vector<int> pieces_where(const StrutLaws& laws, const path::Path& path, Tak
 }
 
 /// Least-squares polynomial of `degree` in L itself, on `nodes` Chebyshev nodes of [s0, s1]; its largest
-/// error over 201 even points: the "fit L directly" alternative that E9 rejects.
+/// error over 201 even points: the "fit L directly" alternative that §5.2.2 rejects.
 double plain_polynomial_error(const Machine& machine, const path::Path& path, double s0, double s1,
                               int degree, int nodes) {
   const int actuators = machine.mechanism->actuator_count();
@@ -116,8 +116,8 @@ double plain_polynomial_error(const Machine& machine, const path::Path& path, do
   return worst;
 }
 
-// E9: along a straight line at constant orientation L² is exactly quadratic, so eq. 149 fits it to round-off,
-// while a quadratic (or cubic) in L itself leaves a "significant" error.
+// Lines (§5.2.2): along a straight line at constant orientation L² is exactly quadratic, so eq. 149 fits it
+// to round-off, while a quadratic (or cubic) in L itself leaves a "significant" error.
 TEST(StrutLawLine, Ch5LineIsSqrtQuadraticToRoundOffAndAPlainQuadraticIsNot) {
   const Machine machine = ch5_hexapod();
   const auto plan = test::plan_or_fail(machine, example_program(machine, "ch5_line.ngc"));
@@ -145,8 +145,8 @@ TEST(StrutLawLine, Ch5LineIsSqrtQuadraticToRoundOffAndAPlainQuadraticIsNot) {
   EXPECT_GT(cubic_error, LawFitSettings{}.tolerance) << "even a cubic in L misses the tolerance";
 }
 
-// E10: a flat arc at constant orientation has L² = a0 + a1 cos θ + b1 sin θ: eqs. 148/150 fit it to
-// round-off, in the XY plane (G17) and in another plane (G18), level and tilted.
+// Arcs (§5.2.2, Fig. 166): a flat arc at constant orientation has L² = a0 + a1 cos θ + b1 sin θ: eqs. 148/150
+// fit it to round-off, in the XY plane (G17) and in another plane (G18), level and tilted.
 TEST(StrutLawArc, FlatArcsAreSqrtFourierToRoundOff) {
   const Machine machine = ch5_hexapod();
   const auto program = test::gcode_for(machine,
@@ -177,8 +177,9 @@ TEST(StrutLawArc, FlatArcsAreSqrtFourierToRoundOff) {
   EXPECT_EQ(laws.report().sqrt_fourier, static_cast<int>(arcs.size()));
 }
 
-// E12 and the fall-backs: a helix, a move that turns the platform, a rotation-only move and corner blends
-// get degree-6 polynomials within the tolerance, split where one polynomial cannot follow the segment.
+// General paths (§5.2.2) and the fall-backs: a helix, a move that turns the platform, a rotation-only move
+// and corner blends get degree-6 polynomials within the tolerance, split where one polynomial cannot follow
+// the segment.
 TEST(StrutLawGeneral, HelixTurnsAndBlendsArePolynomialsWithinTheTolerance) {
   const Machine machine = ch5_hexapod();
   const auto program = test::gcode_for(machine,
@@ -335,7 +336,7 @@ TEST(StrutLawEnds, EvaluationClampsToThePathAndAnEmptyPathIsItsStart) {
     EXPECT_NEAR(at_start[j], start[j], 1e-9);
     EXPECT_NEAR(at_end[j], end[j], 1e-9);
   }
-  // The ch5 line ends at (50, 0, 700), level: the E2 mirror image (spec ch5 §1.3).
+  // The ch5 line ends at (50, 0, 700), level: the mirror image of the start's lengths (Smirnov 2019, §5.2.5).
   EXPECT_NEAR(at_end[0], 586.3074649620, 1e-9);
   EXPECT_NEAR(at_end[3], 623.7911728446, 1e-9);
 
@@ -357,8 +358,8 @@ TEST(StrutLawEnds, EvaluationClampsToThePathAndAnEmptyPathIsItsStart) {
   }
 }
 
-// E11: the arc law may be replaced locally by a quadratic while |φ| < 0.1 rad. On the fitted arc of the ch5
-// hexapod: the remainder of the 2nd-order Taylor expansion of L(φ) = sqrt(a0 + a1 cos φ + b1 sin φ) stays
+// §5.2.2: the arc law may be replaced locally by a quadratic while |φ| < 0.1 rad. On the fitted arc of the
+// ch5 hexapod: the remainder of the 2nd-order Taylor expansion of L(φ) = sqrt(a0 + a1 cos φ + b1 sin φ) stays
 // below 1 % of the law's first-order scale (the largest slope its harmonic can give, A/(2L) with A the
 // harmonic's amplitude) for |φ| ≤ 0.1, and exceeds it further out (|φ| ≤ 0.5), at any point of the arc.
 TEST(StrutLawArc, QuadraticReplacementHoldsForPhiBelowATenthRadian) {

@@ -1,7 +1,7 @@
-// The machine file's `dynamics:` section and `limits.actuator_force_max` (docs/machine-file.md, spec ch4):
-// the shipped values read and converted (kg·m² → kg·mm²), both forms of `struts:`, and every refused input
-// named by file, line, column and key. The expected place of an error is found in the input text itself (the
-// line and column of a token), not taken from the reader.
+// The machine file's `dynamics:` section and `limits.actuator_force_max` (docs/machine-file.md; Smirnov 2019,
+// chapter 4): the shipped values read and converted (kg·m² → kg·mm²), both forms of `struts:`, and every
+// refused input named by file, line, column and key. The expected place of an error is found in the input
+// text itself (the line and column of a token), not taken from the reader.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -72,7 +72,8 @@ TEST(DynamicsFile, ShippedHexapodsHaveTheSeedsE1MassesInKgMm2) {
     ASSERT_TRUE(d.given());
     const std::string text = dynamics_example_text(file);
     EXPECT_EQ(d.line, appended_line(text.substr(0, text.find("\ndynamics:") + 1)));
-    // Spec ch4 §8.1: platform 60 kg, 0.5 kg·m² about each axis; strut parts 15 / 10 kg, 0.4 kg·m² transverse.
+    // Smirnov 2019, §4.4: platform 60 kg, 0.5 kg·m² about each axis; strut parts 15 / 10 kg, 0.4 kg·m²
+    // transverse.
     EXPECT_EQ(d.platform.mass_kg, 60.0);
     EXPECT_EQ(d.platform.inertia_kg_mm2, Eigen::Matrix3d(Eigen::Vector3d::Constant(5e5).asDiagonal()));
     EXPECT_EQ(d.payload.mass_kg, 0.0);
@@ -101,14 +102,14 @@ TEST(DynamicsFile, ShippedCh5HexapodHasElasticStrutsWithQuadraticFriction) {
   }
   const Machine ch3 = test::machine_from_example("examples/machines/hexapod_ch3.yaml");
   EXPECT_EQ(ch3.dynamics.platform.com_mm, Eigen::Vector3d(0, 0, -200));
-  EXPECT_EQ(ch3.dynamics.struts[0].stiffness_N_mm, 0.0);  // E1 is the rigid model
+  EXPECT_EQ(ch3.dynamics.struts[0].stiffness_N_mm, 0.0);  // §4.4's example is the rigid model
   EXPECT_EQ(ch3.dynamics.struts[0].damping, StrutDamping::none);
 }
 
 TEST(DynamicsFile, ShippedPlanarBipedAndTripod) {
   const Machine biped = test::machine_from_example("examples/machines/planar2.yaml");
   ASSERT_EQ(biped.dynamics.strut_count, 2);
-  EXPECT_EQ(biped.dynamics.gravity_mm_s2, Eigen::Vector3d(0, -9810, 0));  // y up, spec ch4 §3.5
+  EXPECT_EQ(biped.dynamics.gravity_mm_s2, Eigen::Vector3d(0, -9810, 0));  // y up, Smirnov 2019, §4.2
   EXPECT_EQ(biped.dynamics.platform.mass_kg, 2.0);                        // m_B, a point mass
   EXPECT_EQ(biped.dynamics.platform.inertia_kg_mm2, Eigen::Matrix3d::Zero());
   for (int j = 0; j < 2; ++j) {

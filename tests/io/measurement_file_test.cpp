@@ -1,7 +1,7 @@
 // Calibration measurement and fixture files (src/io/measurement_file.hpp, fixture_file.hpp,
 // docs/calibration.md): what a tracker file and a ballbar file read as (poses grouped by pose_id, the sigma
 // default and column, degrees turned into radians), that writing and reading back gives the same set, that
-// the fixture a file names is found next to it, and every refusal of the list (units, frame, column
+// the fixture a file names is found next to it, and every refusal (units, frame, column
 // count, NaN/inf/huge, empty file, repeated target, readings that differ within a pose, unknown target, too
 // few poses, readings beyond the travel) named by file, line, column and key, with the same place in
 // Error::location.

@@ -1,4 +1,4 @@
-// Every assembly mode of the general 6-6 Gough–Stewart platform (kinematics/stewart_all_modes.hpp, issue 20):
+// Every assembly mode of the general 6-6 Gough–Stewart platform (kinematics/stewart_all_modes.hpp):
 // the equations and their derivatives, the shipped start system, and the solver against the ground truth on
 // random general and 3-fold symmetric layouts, Dietmaier's 40-real-solution instance, and a slow independent
 // method (dense multi-start Newton).
@@ -420,7 +420,7 @@ TEST(StewartAllModes, DietmaiersInstanceHasFortyRealAssemblyModes) {
 }
 
 TEST(StewartAllModes, RandomGeneralGeometriesFindTheGroundTruthAndAnEvenNumberOfModes) {
-  // Issue 20: the ground truth among the real solutions on ≥ 99.9 % of 2000 random geometries (fkSGP:
+  // The goal: the ground truth among the real solutions on ≥ 99.9 % of 2000 random geometries (fkSGP:
   // 1993/2000).
   const int count = reduced_run() ? 20 : 2000;
   std::mt19937_64 rng(2026);

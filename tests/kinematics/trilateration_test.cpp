@@ -1,5 +1,5 @@
-// Three-sphere trilateration: the quaternion algorithm (56)–(59) against the derived values of ch2 §6.1(b),
-// the classical form against it on random cases, and the degenerate cases.
+// Three-sphere trilateration: the quaternion algorithm (56)–(59) of Smirnov 2019, §2.3.3, against
+// independently derived values, the classical form against it on random cases, and the degenerate cases.
 #include "kinematics/trilateration.hpp"
 
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@ namespace {
 
 const double kSqrt3 = std::sqrt(3.0);
 
-// ch2 §6.1(b): joints on a 400 mm circle, B = (37, −52, 480).
+// The derived case: joints on a 400 mm circle, B = (37, −52, 480).
 std::array<Eigen::Vector3d, 3> reference_joints() {
   return {Eigen::Vector3d(400, 0, 0), Eigen::Vector3d(-200, 200 * kSqrt3, 0),
           Eigen::Vector3d(-200, -200 * kSqrt3, 0)};

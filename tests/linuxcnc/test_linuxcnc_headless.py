@@ -1,4 +1,4 @@
-"""LinuxCNC runs the shipped machines headless through pkm's kinematics module (issue 19, docs/linuxcnc.md).
+"""LinuxCNC runs the shipped machines headless through pkm's kinematics module (docs/linuxcnc.md).
 
 Every sample is one servo period of LinuxCNC's motion controller: the Cartesian position it commanded and the
 joint positions its kinematics module returned for it in that period. pkm's own inverse kinematics (the Python

@@ -41,7 +41,7 @@ TEST(DriveSettings, ReadsEveryKeyWithItsLine) {
 
 TEST(DriveSettings, TheShippedCh5HexapodHasTheSeedsStepDrives) {
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
-  EXPECT_EQ(m.drives.step, 0.001);  // Δ of E14/E15
+  EXPECT_EQ(m.drives.step, 0.001);  // Δ of Smirnov 2019, §5.2.5
   EXPECT_EQ(m.drives.period_ms, 1.0);
   ASSERT_TRUE(m.drives.max_step_rate_hz.has_value());
   // At least what the struts' speed limit needs.

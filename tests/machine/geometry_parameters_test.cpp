@@ -1,4 +1,4 @@
-// The calibratable geometry of every mechanism (issue 16): Mechanism::geometry_parameters() and
+// The calibratable geometry of every mechanism: Mechanism::geometry_parameters() and
 // with_geometry() for every shipped machine (a clone keeps the inverse kinematics, each value moves it, the
 // groups are in the frames their keys say, wrong shapes fail), and the drive-offset decorator
 // (machine/actuator_offsets.hpp).

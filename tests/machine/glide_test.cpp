@@ -1,4 +1,4 @@
-// Glide machines (spec ch2 §4.10, glide_stiffness.md §3): the sphere–line IK and its branches, IK∘FK round
+// Glide machines (Smirnov 2019, §2.2.8; Rusanov et al.): the sphere–line IK and its branches, IK∘FK round
 // trips for hexaglides (6 guides) and triglides (3 guides), the Jacobian, unreachable and singular poses, and
 // the file.
 #include "machine/glide.hpp"

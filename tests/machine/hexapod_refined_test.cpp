@@ -1,6 +1,6 @@
-// Refined hexapod with real cardan joints (spec ch2 §4.7, eqs. 27–28): ideal defaults reproduce the ideal
-// hexapod, small joint errors change the lengths by their own order, IK∘FK round trips, the Jacobian, errors
-// and the file.
+// Refined hexapod with real cardan joints (Smirnov 2019, §2.2.5, eqs. 27–28): ideal defaults reproduce the
+// ideal hexapod, small joint errors change the lengths by their own order, IK∘FK round trips, the Jacobian,
+// errors and the file.
 #include "machine/hexapod_refined.hpp"
 
 #include <gtest/gtest.h>
@@ -80,7 +80,7 @@ TEST(HexapodRefined, IdealDefaultsGiveExactlyTheIdealHexapodLengths) {
     ASSERT_TRUE(l_ideal.ok() && l_refined.ok());
     EXPECT_LE((*l_ideal - *l_refined).cwiseAbs().maxCoeff(), 1e-12);
   }
-  // The spec's validation vector (ch5 §1.3, [SRC]).
+  // The strut lengths Smirnov 2019 prints for its test hexapod (§5.2.5).
   const auto lengths = refined.mechanism->inverse(hexapod_refined_krylov_pose(-50, 0, 700, 0, 0, 0));
   ASSERT_TRUE(lengths.ok());
   const double expected[6] = {623.7911728445, 607.5487036598, 603.1222458757,

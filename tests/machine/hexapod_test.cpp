@@ -1,4 +1,4 @@
-// Hexapod kinematics against the dissertation's numbers (spec ch5 §1.3, cases E2 and E3) and property tests.
+// Hexapod kinematics against the dissertation's numbers (Smirnov 2019, §5.2.5) and property tests.
 #include "machine/hexapod.hpp"
 
 #include <gtest/gtest.h>
@@ -67,8 +67,8 @@ TEST(HexapodCh5, E3TruncatedLengthsGiveThePrintedPoseAndContourError) {
   EXPECT_NEAR(deg_from_rad(c[5]), 4.61938e-6, 1e-10);
   // Contour error of the X-directed line: the perpendicular offset sqrt(dy^2 + dz^2), printed 4.9166e-4 mm.
   const double contour_error_mm = std::hypot(c[1] - 0.0, c[2] - 700.0);
-  // We get 4.91676e-4 mm; the printed 4.9166e-4 differs by 1.6e-8 mm (3e-5 relative), as in the spec's own
-  // check.
+  // We get 4.91676e-4 mm; the printed 4.9166e-4 differs by 1.6e-8 mm (3e-5 relative), as an independent
+  // recomputation also finds.
   EXPECT_NEAR(contour_error_mm, 4.9166e-4, 2e-8);
   EXPECT_LE(fk->residual_mm, 1e-9);
 }

@@ -434,8 +434,8 @@ TEST(JointLimitsCheck, ShippedCh5HexapodRegionAroundHomeIsInsideItsLimits) {
 // ---- check_conditioning_limit --------------------------------------------------------------------------
 
 TEST(JointLimitsConditioning, Planar3NearItsSingularOrientation) {
-  // The shipped planar 3-RPR has similar triangles: φ = 0 is singular at every (x, y) (ch3 V2). With φ in
-  // rad, the condition number is 69 at home (φ = 15°) and grows as 1/φ near 0: 2026 at φ = 0.0001°.
+  // The shipped planar 3-RPR has similar triangles: φ = 0 is singular at every (x, y) (Smirnov 2019, §3.3).
+  // With φ in rad, the condition number is 69 at home (φ = 15°) and grows as 1/φ near 0: 2026 at φ = 0.0001°.
   const std::string text = R"(type: planar3
 base_joints: [[0.0, 200.0], [-173.20508075688772, -100.0], [173.20508075688772, -100.0]]
 platform_joints: [[0.0, 100.0], [-86.60254037844386, -50.0], [86.60254037844386, -50.0]]

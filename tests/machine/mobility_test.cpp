@@ -1,4 +1,4 @@
-// The Somov–Malyshev examples of dissertation §1.2 (spec ch2 §1.2 table, N1) and the structures pkm assigns.
+// The Somov–Malyshev examples of Smirnov 2019, §1.2 (its table) and the structures pkm assigns.
 #include "machine/mobility.hpp"
 
 #include <gtest/gtest.h>

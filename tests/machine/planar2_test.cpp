@@ -1,4 +1,5 @@
-// Planar 2-DOF mechanism against the spec's derived reference values (ch2 §6.1(a)) and property tests.
+// Planar 2-DOF mechanism (Smirnov 2019, §2.1.1) against independently derived reference values and property
+// tests.
 #include "machine/planar2.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Planar 3-RPR platform against the spec's chapter-3 values (ch3 V2, V3 geometry) and property tests.
+// Planar 3-RPR platform against Smirnov 2019, §3.3 (Fig. 70; the layout of §3.3–3.4) and property tests.
 #include "machine/planar3.hpp"
 
 #include <gtest/gtest.h>
@@ -18,13 +18,13 @@ Pose planar_pose(double x_mm, double y_mm, double phi_deg) {
   return pose_from_planar(Eigen::Vector3d(x_mm, y_mm, rad_from_deg(phi_deg)));
 }
 
-/// det J* of eq. (82), the Jacobian of the squared lengths: 8·L1·L2·L3·det J (ch3 §4), mm⁴.
+/// det J* of eq. (82), the Jacobian of the squared lengths: 8·L1·L2·L3·det J (Smirnov 2019, §3.3), mm⁴.
 double squared_length_determinant(const Mechanism& mechanism, const Pose& pose) {
   const ActuatorVector q = *mechanism.inverse(pose);
   return 8.0 * q[0] * q[1] * q[2] * Eigen::Matrix3d(*mechanism.jacobian(pose)).determinant();
 }
 
-/// The ch3 V2/V3 layout: A_j on R = 200 mm and B'_j on R = 100 mm at the same polar angles.
+/// The layout of Smirnov 2019, §3.3–3.4: A_j on R = 200 mm and B'_j on R = 100 mm at the same polar angles.
 Planar3Geometry uniform_geometry(double first_angle_deg) {
   Planar3Geometry g;
   for (int j = 0; j < 3; ++j) {
@@ -95,7 +95,8 @@ void expect_assembly_modes_contain(const Planar3& mechanism, const Pose& truth,
 
 TEST(Planar3V2, SquaredLengthJacobianDeterminantValues) {
   const Machine m = test::machine_from_example("examples/machines/planar3.yaml");
-  // V2: x_C = −10 mm, y_C = 10 mm; the overall sign depends on the row/column order, so compare magnitudes.
+  // §3.3, Fig. 70: x_C = −10 mm, y_C = 10 mm; the overall sign depends on the row/column order, so compare
+  // magnitudes.
   const double expected[3][2] = {{-20, 1.736e9}, {-40, 5.119e9}, {-60, 1.073e10}};
   for (const auto& [phi_deg, magnitude] : expected) {
     const double det_minus = squared_length_determinant(*m.mechanism, planar_pose(-10, 10, phi_deg));
@@ -238,8 +239,9 @@ TEST(Planar3AssemblyModes, EveryModeAMultiStartSearchFindsIsEnumerated) {
 }
 
 TEST(Planar3AssemblyModes, SimilarTrianglesFindBothMirrorModes) {
-  // ch3 V2/V3 layout: at x = y = 0 the lengths are even in φ, so φ and −φ are two assembly modes of opposite
-  // sign of det J. The elimination still works although the base and platform triangles are similar.
+  // The layout of Smirnov 2019, §3.3–3.4: at x = y = 0 the lengths are even in φ, so φ and −φ are two
+  // assembly modes of opposite sign of det J. The elimination still works although the base and platform
+  // triangles are similar.
   const Machine m = test::machine_from_example("examples/machines/planar3.yaml");
   const ActuatorVector q = *m.mechanism->inverse(planar_pose(0, 0, 15));
   const auto all = m.mechanism->forward_all(q);
@@ -256,7 +258,7 @@ TEST(Planar3AssemblyModes, SimilarTrianglesFindBothMirrorModes) {
     }
   }
   EXPECT_TRUE(mirror);
-  // The V3 circle (R = 40 mm about O at φ = 15°) and poses on both sides of the singular φ = 0.
+  // The circle of §3.4.1 (R = 40 mm about O at φ = 15°) and poses on both sides of the singular φ = 0.
   const auto& mechanism = dynamic_cast<const Planar3&>(*m.mechanism);
   for (int step = 0; step < 360; step += 5) {
     const double t = rad_from_deg(step);

@@ -1,4 +1,4 @@
-// Rotopod (spec ch2 §4.10): the closed-form carriage angles and their branches, IK∘FK round trips, the
+// Rotopod (Smirnov 2019, §2.2.8): the closed-form carriage angles and their branches, IK∘FK round trips, the
 // Jacobian, unreachable poses, the angle window, degrees at the user boundary, and the machine file.
 #include "machine/rotopod.hpp"
 

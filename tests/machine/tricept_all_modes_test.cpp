@@ -1,4 +1,4 @@
-// Every assembly mode of the tricept (issue 20): on the shipped tricept and on random tricept geometries the
+// Every assembly mode of the tricept: on the shipped tricept and on random tricept geometries the
 // ground-truth tool point is among the modes, every mode fits the strut lengths to 1e-10 mm, and a grid four
 // times denser than the default finds no more.
 #include <gtest/gtest.h>

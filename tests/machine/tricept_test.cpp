@@ -113,7 +113,7 @@ TEST(Tricept, FlangeOrientationIsTheCardanOfEquations34To36) {
     EXPECT_NEAR(pose.rotation(0, 0), std::cos(beta), 1e-14);
     EXPECT_NEAR(pose.rotation(1, 0), std::sin(alpha) * std::sin(beta), 1e-14);
     EXPECT_NEAR(pose.rotation(2, 1), std::sin(alpha), 1e-14);
-    // The flange axis points from O to C (ch2 §4.9, verified), and there is no rotation about it.
+    // The flange axis points from O to C (Smirnov 2019, §2.2.7, verified), and there is no rotation about it.
     EXPECT_LT((pose.rotation.col(2) - c.normalized()).norm(), 1e-14);
     EXPECT_NEAR(pose.rotation(0, 1), 0.0, 1e-15);  // l2 = 0 in (36)
   }

@@ -1,4 +1,4 @@
-// The dissertation's chapter-5 test line on its test hexapod (spec ch5 §1.3, §7): (−50, 0, 700) → (50, 0,
+// The dissertation's chapter-5 test line on its test hexapod (Smirnov 2019, §5.2.3): (−50, 0, 700) → (50, 0,
 // 700) at 50 mm/s. Struts 2 and 3 reverse direction during the move, the others do not; at 1 kHz the tool
 // stays within 1e-4 mm of the line (FK of the actuators, at mid-period, where the drives' straight-line
 // motion between setpoints deviates most).
@@ -53,7 +53,7 @@ TEST(PlanCh5Line, StrutsTwoAndThreeReverseAndThePathErrorStaysBelowTenthMicron) 
   EXPECT_NEAR(top, 50.0, 1e-6);
   EXPECT_LT(run.summary.max_path_error_mm, 1e-4);
   EXPECT_EQ(run.summary.fk_failures, 0);
-  // The strut lengths at the line's start are the spec's E2 values.
+  // The strut lengths at the line's start are the ones Smirnov 2019 prints (§5.2.5).
   const std::array<double, 6> e2 = {623.7911728445, 607.5487036598, 603.1222458757,
                                     586.3074649620, 588.5880863511, 621.6397151039};
   for (int j = 0; j < 6; ++j) EXPECT_NEAR(line.front()->actuators[j], e2[j], 1e-6) << j;

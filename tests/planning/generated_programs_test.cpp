@@ -93,7 +93,7 @@ TEST_P(GeneratedPrograms, PlanWithinTheToleranceAndEveryLimit) {
   for (int n = 0; n < programs; ++n) {
     const test::CamShape shape = test::kCamShapes[n % std::size(test::kCamShapes)];
     if (shape == test::CamShape::five_axis_cl && !axes.tilt) continue;
-    // Mostly short programs, every eighth a long one (thousands of moves, as the circle).
+    // Mostly short programs, every eighth a long one (thousands of moves, as the CAM circle below).
     const int count = n % 8 == 7 ? static_cast<int>(test::cam_uniform(rng, 1000, 2500))
                                  : static_cast<int>(test::cam_uniform(rng, 30, 300));
     const double tolerances[] = {0.002, 0.01, 0.05};
@@ -129,7 +129,7 @@ INSTANTIATE_TEST_SUITE_P(ShippedMachines, GeneratedPrograms,
                            return name;
                          });
 
-// The report: 3000 short G1 moves around a circle of radius 25 mm with CAM noise, near-reversals and
+// A reported program: 3000 short G1 moves around a circle of radius 25 mm with CAM noise, near-reversals and
 // 0.001 mm z steps on the ch5 hexapod. A 179.9° corner blend used to leave the path by hundreds of
 // millimetres (its arc-length map overshot), so the whole program was refused ("actuator 4 at 1009 mm").
 TEST(GeneratedPrograms, TheNoisyCircleWithNearReversalsPlans) {

@@ -90,7 +90,7 @@ def test_workspace_matches_cli(tmp_path, ch5):
     delta_rho = np.array([float(r["delta_rho"]) if r["delta_rho"] else np.nan for r in rows])
     np.testing.assert_allclose(result["delta_rho"], delta_rho, rtol=1e-5, equal_nan=True)
     np.testing.assert_allclose(result["pose"][:, [0, 2]], [[float(r["x_mm"]), float(r["z_mm"])] for r in rows])
-    # δρ is the norm of S_x, S_y, S_z (spec ch5 eq. 145).
+    # δρ is the norm of S_x, S_y, S_z (Smirnov 2019, eq. 145).
     np.testing.assert_allclose(result["delta_rho"], np.linalg.norm(result["sensitivity"], axis=1), rtol=1e-12)
 
 

@@ -1,5 +1,6 @@
 """The Python examples (examples/python/*.py) run with --quick: each writes its PNG and JSON, and its key numbers
-agree with what they show (the V7 trend and Table 2, a sane δρ map, an interior layout optimum)."""
+agree with what they show (the trend and Table 2 of Smirnov 2019, §3.5.1, a sane δρ map, an interior layout
+optimum)."""
 
 import json
 import os
@@ -33,10 +34,10 @@ def test_v7_separation_study(tmp_path):
     assert delta == [0.0, 15.0, 30.0]
     # The optimiser's held-constant sum is the one batch IK gives along the same 1° points.
     assert np.allclose(const, summary["ik_const_sum_mm"], rtol=0, atol=1e-6)
-    # The seed's trend: separating the pairs shortens both sums, and the law never makes a path slower.
+    # The dissertation's trend: separating the pairs shortens both sums, and the law never makes a path slower.
     assert (greedy <= const + 1e-9).all()
     assert (np.diff(const) < 0).all() and (np.diff(greedy) < 0).all()
-    # Table 2 (spec V7's rule): constant within 1 mm of the seed; the optimum at most the seed's + 1 mm.
+    # Table 2: constant within 1 mm of the printed sum; the optimum at most the printed one + 1 mm.
     assert abs(const[0] - 148.6) <= 1.0 and abs(const[2] - 126.0) <= 1.0
     assert greedy[2] <= 85.0 + 1.0
     assert (np.array(summary["largest_angle_deg"]) <= 10.0 + 1e-9).all()

@@ -1,5 +1,5 @@
-// The hexapod of ch3 §3.5.1 (spec V7, Table 2): increment-optimal laws on the R = 50 mm circle at z = 700 mm,
-// for platform-joint pair separations δ = 0…50°.
+// The hexapod of Smirnov 2019, §3.5.1 (Table 2): increment-optimal laws on the R = 50 mm circle at
+// z = 700 mm, for platform-joint pair separations δ = 0…50°.
 #include <gtest/gtest.h>
 
 #include "redundancy_test_support.hpp"
@@ -27,9 +27,9 @@ redundancy::OptimizeOptions v7_options(redundancy::FreeSet free, redundancy::Sol
 
 class Ch3HexapodTable2 : public ::testing::TestWithParam<HexapodCase> {};
 
-// Constant angles match Table 2 to ±1 mm; the three-angle optimum is at most the printed value (the seeds'
-// optimiser stopped short of the per-step optimum: V7), so the time ratio is at least the printed one; and
-// the whole-path solver is never worse than greedy.
+// Constant angles match Table 2 to ±1 mm; the three-angle optimum is at most the printed value (the
+// dissertation's optimiser stopped short of the per-step optimum), so the time ratio is at least the printed
+// one; and the whole-path solver is never worse than greedy.
 TEST_P(Ch3HexapodTable2, ConstantAndThreeAngleSums) {
   const HexapodCase c = GetParam();
   const Machine machine = machine_from_text(ch3_hexapod_text(c.separation_deg), "ch3_hexapod.yaml");

@@ -1,5 +1,5 @@
-// The planar tripod of ch3 §3.4 (spec V3, V3b, V4): increment- and force-optimal laws on the R = 40 mm
-// circle.
+// The planar tripod of Smirnov 2019, §3.4 (§3.4.1, Fig. 79; §3.4.2): increment- and force-optimal laws on the
+// R = 40 mm circle.
 #include <gtest/gtest.h>
 
 #include "redundancy_test_support.hpp"
@@ -18,10 +18,11 @@ struct PlanarCase {
 
 class Ch3PlanarIncrement : public ::testing::TestWithParam<PlanarCase> {};
 
-// V3 (paper: 228 → 207 mm) and V3b (baselines 10° and 20°, "practically the same" reduction): the extract's
-// reproduction gives 227.89/207.84, 227.07/207.85, 228.87/207.84 mm. The whole-path solver reaches them from
-// every start; the seeds' greedy from 15° and 20°, while from 10° it turns φ towards the singular 0°
-// (where the struts barely move: the locking configuration of ch3 §4) and stalls at the keep-out margin.
+// §3.4.1 (Smirnov 2010: 228 → 207 mm) and the baselines 10° and 20° of Fig. 79b ("practically the same"
+// reduction): recomputed, 227.89/207.84, 227.07/207.85, 228.87/207.84 mm. The whole-path solver reaches them
+// from every start; the dissertation's greedy from 15° and 20°, while from 10° it turns φ towards the
+// singular 0° (where the struts barely move: the locking configuration of §3.3) and stalls at the keep-out
+// margin.
 TEST_P(Ch3PlanarIncrement, CircleSumsMatchTheSeeds) {
   const PlanarCase c = GetParam();
   const Machine machine = machine_from_example("examples/machines/planar3.yaml");
@@ -30,7 +31,8 @@ TEST_P(Ch3PlanarIncrement, CircleSumsMatchTheSeeds) {
   options.law.law = Law::increment;
   options.step_mm = one_degree_mm(40.0);
   options.solver = redundancy::Solver::global;
-  // No bounds (start ± 30°): only the keep-out margin keeps the laws off the singular φ = 0 (ch3 §4).
+  // No bounds (start ± 30°): only the keep-out margin keeps the laws off the singular φ = 0 (Smirnov 2019,
+  // §3.3).
   const auto result = optimize_or_fail(machine, program, options);
   ASSERT_TRUE(result.whole_path.has_value());
   const auto& whole = result.whole_path->metrics;
@@ -69,8 +71,8 @@ TEST(Ch3PlanarIncrement, WholePathIsNoWorseThanGreedyAndBoundsHold) {
   }
 }
 
-// V4: cutting force 1000 N tangential and 100 N normal, cutter radius 5 mm, 5° ≤ φ ≤ 30°. A 900 N drive can
-// do the operation with the force-optimal law; the most loaded drive's force drops by more than 30 %
+// §3.4.2: cutting force 1000 N tangential and 100 N normal, cutter radius 5 mm, 5° ≤ φ ≤ 30°. A 900 N drive
+// can do the operation with the force-optimal law; the most loaded drive's force drops by more than 30 %
 // somewhere; the law is never worse than holding φ = 15° at any point.
 TEST(Ch3PlanarForce, V4PeakForceDropsBelowA900NDrive) {
   const Machine machine = machine_from_example("examples/machines/planar3.yaml");
@@ -94,7 +96,7 @@ TEST(Ch3PlanarForce, V4PeakForceDropsBelowA900NDrive) {
     best_reduction = std::max(best_reduction, 1.0 - optimal.max_force_N[k] / constant.max_force_N[k]);
   }
   EXPECT_GT(best_reduction, 0.30);
-  // The optimum uses the upper bound on part of the path (V4 reproduction).
+  // The optimum uses the upper bound on part of the path (as recomputed for §3.4.2).
   EXPECT_NEAR(optimal.max_rad[0] * 180.0 / std::numbers::pi, 30.0, 1e-6);
 }
 

@@ -1,5 +1,6 @@
-// Properties of the three laws and both solvers, on the seeds' machines: never worse than holding, bounds and
-// singular positions respected, energy at least the required work, force limits honoured, bad input named.
+// Properties of the three laws and both solvers, on Smirnov 2019's machines: never worse than holding, bounds
+// and singular positions respected, energy at least the required work, force limits honoured, bad input
+// named.
 #include <gtest/gtest.h>
 
 #include "redundancy_test_support.hpp"
@@ -20,7 +21,8 @@ redundancy::OptimizeOptions planar_options(Law law) {
   return options;
 }
 
-// Greedy: every step is at least as good as holding the previous values (ch3 §3.4: "hold" is a candidate).
+// Greedy: every step is at least as good as holding the previous values (Smirnov 2019, §3.4: "hold" is a
+// candidate).
 TEST(RedundancyLaws, GreedyStepsNeverLoseToHolding) {
   const Machine machine = machine_from_text(ch3_hexapod_text(30.0), "ch3_hexapod.yaml");
   const auto program = gcode_for(machine, circle_program(50.0, 700.0));
@@ -101,14 +103,14 @@ TEST(RedundancyLaws, ForceLimitIsHonouredOrNamed) {
   options.law.force_limit_N = 1000.0;
   const auto result = optimize_or_fail(machine, program, options);
   EXPECT_LE(result.greedy.metrics.peak_force_N, 1000.0);
-  options.law.force_limit_N = 500.0;  // below what any φ in 5…30° can do (V4: optimum ≈ 790 N)
+  options.law.force_limit_N = 500.0;  // below what any φ in 5…30° can do (§3.4.2: optimum ≈ 790 N)
   auto refused = redundancy::optimize_program(program, machine, options);
   ASSERT_FALSE(refused);
   EXPECT_NE(refused.error().message.find("test.ngc:"), std::string::npos) << refused.error().message;
 }
 
-// ch3 §4: φ = 0 is singular for the uniform planar tripod at every (x, y); a law must not cross it even when
-// the bounds would allow.
+// Smirnov 2019, §3.3: φ = 0 is singular for the uniform planar tripod at every (x, y); a law must not cross
+// it even when the bounds would allow.
 TEST(RedundancyLaws, LawsStayOnTheStartSideOfASingularPosition) {
   const Machine machine = machine_from_example("examples/machines/planar3.yaml");
   const auto program = gcode_for(machine, circle_program(40.0, 0.0, 15.0));

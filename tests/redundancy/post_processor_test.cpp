@@ -1,6 +1,6 @@
-// The post-processor (ch3 §3.6): the written program means the chosen free coordinates, runs through the
-// planner without limit violations, and its machining time at strut speed limits drops by the ratio the
-// increment law predicts.
+// The post-processor (Smirnov 2019, §3.6): the written program means the chosen free coordinates, runs
+// through the planner without limit violations, and its machining time at strut speed limits drops by the
+// ratio the increment law predicts.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -59,7 +59,7 @@ TEST(PostProcessor, WrittenProgramCarriesTheChosenAngles) {
 
 TEST(PostProcessor, MachiningTimeDropsByTheIncrementRatio) {
   // A planar tripod whose struts are slow (5 mm/s) against the programmed feed (10 mm/s): the struts set
-  // the pace everywhere, so the time follows Σ max|ΔL| (ch3 §3.1).
+  // the pace everywhere, so the time follows Σ max|ΔL| (Smirnov 2019, §3.1).
   std::string text;
   {
     std::ifstream in(source_path("examples/machines/planar3.yaml"));

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers for the redundancy-law tests: the seeds' machines and test paths (spec ch3 V3, V4, V7).
+// Helpers for the redundancy-law tests: the machines and test paths of Smirnov 2019, §3.4 and §3.5.1.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -11,8 +11,9 @@
 
 namespace pkm::test {
 
-/// The ch3 §3.5.1 hexapod (V7 reconstruction): base joints on R 500 every 60°, platform joints on R 300, the
-/// pair of each merged point separated by δ (each joint δ/2 towards its own base joint), tool 200 mm out.
+/// The hexapod of Smirnov 2019, §3.5.1, as reconstructed to reproduce Table 2: base joints on R 500 every
+/// 60°, platform joints on R 300, the pair of each merged point separated by δ (each joint δ/2 towards its
+/// own base joint), tool 200 mm out.
 inline std::string ch3_hexapod_text(double separation_deg) {
   std::string text = "type: hexapod\nangles: krylov\nbase_joints:\n";
   for (int j = 0; j < 6; ++j) {
@@ -47,7 +48,7 @@ inline redundancy::OptimizeResult optimize_or_fail(const Machine& machine,
   return std::move(result.value());
 }
 
-/// One degree of a circle of this radius, the seeds' path step.
+/// One degree of a circle of this radius, the path step of Smirnov 2019, §3.4–3.5.
 inline double one_degree_mm(double radius_mm) {
   return radius_mm * std::numbers::pi / 180.0;
 }

@@ -1,6 +1,6 @@
-// The loop design and analysis against the textbook's closed forms (spec textbook_motion_control.md §2.7.3
-// and the figures): technical optimum speed loop 1/(2T²p² + 2Tp + 1), position loop the 3rd-order
-// Butterworth polynomial with ω0 = 1/(2T), their overshoot, settling, margins and ramp error.
+// The loop design and analysis against the closed forms of the motion-control textbook (§2.7.3): technical
+// optimum speed loop 1/(2T²p² + 2Tp + 1), position loop the 3rd-order Butterworth polynomial with
+// ω0 = 1/(2T), their overshoot, settling, margins and ramp error.
 #include "servo/loop_analysis.hpp"
 
 #include <gtest/gtest.h>

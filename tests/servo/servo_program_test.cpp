@@ -1,7 +1,7 @@
-// pkm servo as a library call on planned runs of the ch5 hexapod (issue 17's property tests): the contour
-// error tends to the plan's own path error as the current loop gets faster, a too small u_max is reported
-// with its program lines, the coupled and decoupled plants agree where the coupling ratio is small and differ
-// where it is not, and unstable gains are refused naming the drive, with nothing written.
+// pkm servo as a library call on planned runs of the ch5 hexapod: the contour error tends to the plan's own
+// path error as the current loop gets faster, a too small u_max is reported with its program lines, the
+// coupled and decoupled plants agree where the coupling ratio is small and differ where it is not, and
+// unstable gains are refused naming the drive, with nothing written.
 #include "pipeline/servo_program.hpp"
 
 #include <fmt/format.h>

@@ -1,5 +1,5 @@
-// Actuator forces from a load (seed (73)/(91)): the virtual-work balance for every shipped machine, the
-// hexapod's fast path against the generic one, the planar case against the seed's (73) coefficients, and
+// Actuator forces from a load (Smirnov 2019, (73)/(91)): the virtual-work balance for every shipped machine,
+// the hexapod's fast path against the generic one, the planar case against the coefficients of (73), and
 // singular or unreachable poses.
 #include "statics/actuator_forces.hpp"
 
@@ -141,7 +141,8 @@ TEST(StaticsForces, PushingStrutsHaveAPositiveForce) {
 }
 
 TEST(StaticsForces, SingularPlanarPoseIsAnError) {
-  // The V2 layout: similar triangles at the same polar angles are singular at φ = 0 everywhere (spec ch3 V2).
+  // The layout of Smirnov 2019, §3.3: similar triangles at the same polar angles are singular at φ = 0
+  // everywhere (its Fig. 71).
   const Machine machine = test::machine_from_example("examples/machines/planar3.yaml");
   auto forces = actuator_forces(*machine.mechanism, pose_from_planar(Eigen::Vector3d(-10, 10, 0.0)),
                                 Wrench{Eigen::Vector3d(100, 0, 0), Eigen::Vector3d::Zero()});

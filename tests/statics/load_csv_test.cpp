@@ -1,4 +1,4 @@
-// Per-line CSV load files (statics/load_model.hpp parse_load_csv; issue 15's "per-line force file").
+// Per-line CSV load files (statics/load_model.hpp parse_load_csv).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 

@@ -34,7 +34,8 @@ TEST(LoadModel, TangentialForceAtTheCutterEdgeGivesAMoment) {
   LoadModel model;
   model.default_load.tangential_N = 1000;
   model.default_load.cutter_radius_mm = 5;
-  // Contact on the left, c = (0, 5, 0): (0, 5, 0) × (−1000, 0, 0) = (0, 0, 5000), |M| = P_τ R_Ф (seed V4).
+  // Contact on the left, c = (0, 5, 0): (0, 5, 0) × (−1000, 0, 0) = (0, 0, 5000), |M| = P_τ R_Ф
+  // (Smirnov 2019, §3.4.2).
   EXPECT_TRUE(model.wrench_at(along_x()).moment_Nmm.isApprox(Eigen::Vector3d(0, 0, 5000)));
   model.default_load.contact_side = -1;
   EXPECT_TRUE(model.wrench_at(along_x()).moment_Nmm.isApprox(Eigen::Vector3d(0, 0, -5000)));
@@ -111,8 +112,8 @@ TEST(LoadModel, EmptyOnlyWhenEveryCaseIsZero) {
 }
 
 TEST(LoadModel, ConstantTangentialLoadRotatesWithTheTangentOnACircle) {
-  // The V4 circle (R = 40 mm, counter-clockwise): the cutting force turns with the feed direction while its
-  // size and the cutter-edge moment stay constant.
+  // The circle of Smirnov 2019, §3.4.2 (R = 40 mm, counter-clockwise): the cutting force turns with the feed
+  // direction while its size and the cutter-edge moment stay constant.
   LoadModel model;
   model.default_load.tangential_N = 1000;
   model.default_load.normal_N = 100;

@@ -1,5 +1,5 @@
-// Seed case V4 (spec ch3 §6, §3.4.2): the planar tripod of V3 milling a hole — tool point on a circle of
-// R = 40 mm, P_τ = 1000 N, P_n = 100 N, cutter radius 5 mm, constant φ = 15°. The spec's reconstruction gives
+// The force example of Smirnov 2019, §3.4.2: the planar tripod of §3.4.1 milling a hole — tool point on a
+// circle of R = 40 mm, P_τ = 1000 N, P_n = 100 N, cutter radius 5 mm, constant φ = 15°. A recomputation gives
 // the peak strut force over the circle for the two signs of the moment P_τ R_Ф and of the normal force;
 // the load model (tangential force at the cutter edge) and the statics together reproduce all four.
 #include <gtest/gtest.h>
@@ -45,9 +45,9 @@ TEST(StaticsV4, ConstantAnglePeakStrutForces) {
     double peak_N;
   };
   // Contact on the right (outside the tool path, at the wall of the hole): the moment of the tangential force
-  // at its contact point, the spec's "consistent" sign, 966.4 N (normal inward) / 958.0 N (outward).
-  // Contact on the left gives the opposite moment, under which the seed's "over 1000 N" holds: 1050.4 /
-  // 1035.1.
+  // at its contact point, the consistent sign, 966.4 N (normal inward) / 958.0 N (outward).
+  // Contact on the left gives the opposite moment, under which the dissertation's "over 1000 N" holds:
+  // 1050.4 / 1035.1.
   for (const Case c :
        {Case{-1, 100.0, 966.4}, Case{-1, -100.0, 958.0}, Case{+1, 100.0, 1050.4}, Case{+1, -100.0, 1035.1}}) {
     load.contact_side = c.contact_side;

@@ -1,4 +1,4 @@
-// The serial 2-axis stage of the seed's §3.1 (spec ch3 §2.1, case V1): the whole reference table, the
+// The serial 2-axis stage of Smirnov 2019, §3.1 (Figs. 60–61): the whole reference table, the
 // useful-energy bound (69) and its maximum (71).
 #include "statics/serial_stage.hpp"
 
@@ -15,7 +15,7 @@ struct V1Row {
   double angle_deg, useful_Nmm, friction_Nmm, total_Nmm;
 };
 
-// Spec ch3 V1: P_τ = P_n = 100 N, dL = 1 mm, f = 0.1.
+// Smirnov 2019, §3.1: P_τ = P_n = 100 N, dL = 1 mm, f = 0.1 (the values recomputed from (66), (68)).
 constexpr V1Row kV1Table[] = {
     {0, 100.000, 11.000, 111.000},     {15, 100.000, 14.343, 114.343},  {30, 100.000, 13.977, 113.977},
     {45, 100.000, 10.000, 110.000},    {60, 136.603, 9.817, 146.420},   {67.5, 141.421, 9.793, 151.214},

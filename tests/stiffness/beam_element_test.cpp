@@ -1,8 +1,8 @@
 // The frame model's beam element (src/stiffness/beam_element.hpp) against a textbook cantilever:
-//  - the closed-form tip values QL³/3EJ, QL²/2EJ, ML²/2EJ, ML/EJ, QL/EF, ML/GJ_t (the spec's cantilever with
-//    the ERRATA: L³ in entry (1,1), couplings of one sign per bending plane and the same in both places) come
-//    out of an independent integration of the elastic line (vector statics and small-rotation kinematics,
-//    no sign table), to 1e-12;
+//  - the closed-form tip values QL³/3EJ, QL²/2EJ, ML²/2EJ, ML/EJ, QL/EF, ML/GJ_t (the cantilever of Rusanov
+//    et al. with the printed errors corrected: L³ in entry (1,1), couplings of one sign per bending plane and
+//    the same in both places) come out of an independent integration of the elastic line (vector statics and
+//    small-rotation kinematics, no sign table), to 1e-12;
 //  - the finite-element beam clamped at one end, at random lengths, sections, materials and orientations in
 //    space, gives the tip those values, to 1e-12 relative;
 //  - the element stiffness is symmetric, positive semi-definite with exactly the six rigid-body motions as
@@ -89,7 +89,7 @@ TEST(BeamElement, CantileverTipValuesAreTheClosedFormsOfTheElasticLine) {
         EXPECT_NEAR(c(i, k), textbook[i], 1e-12 * textbook.cwiseAbs().maxCoeff()) << i << ", " << k;
       }
     }
-    // The tip values by name, with the signs the elastic line gives.
+    // The closed-form tip values by name, with the signs the elastic line gives.
     EXPECT_NEAR(c(0, 0), l * l * l / (3 * e * jy), 1e-12 * c(0, 0));  // Q L³/3EJ
     EXPECT_NEAR(c(1, 1), l * l * l / (3 * e * jx), 1e-12 * c(1, 1));
     EXPECT_NEAR(c(4, 0), l * l / (2 * e * jy), 1e-12 * c(4, 4) * l);   // Q L²/2EJ: turns about +y

@@ -2,7 +2,7 @@
 //  - on random hexapods, the ch5 and ch3 hexapods, the planar machines and the tripod (whose actuators are
 //    the strut lengths), a wrench w shortens each strut by P_j/c_j with P from statics (src/statics,
 //    independent of the compliance), and forward kinematics of those lengths moves the platform by C w to
-//    1e-4 relative (the issue's finite-difference check, at c·L/|P| ≥ 1e4; central, w and −w);
+//    1e-4 relative (a finite-difference check, at c·L/|P| ≥ 1e4; central, w and −w);
 //  - C is symmetric positive semi-definite with the mechanism's degrees of freedom as its rank;
 //  - E·A/L: the stiffness follows the strut's length, and doubling E halves C;
 //  - a singular position reports unbounded compliance instead of a huge number.
@@ -180,8 +180,9 @@ Machine ch3_hexapod_with_separation(double separation_deg) {
   return test::machine_from_text(text, fmt::format("ch3_separation_{}.yaml", separation_deg));
 }
 
-// Spec ch3 V7 (issue 15): on the ch3 hexapod at z = 700 mm with 10⁵ N/mm struts, the largest translational
-// compliance rises monotonically as the paired platform joints separate from 0° to 50°.
+// The hexapod of Smirnov 2019, §3.5.1 (Table 2's layouts): on the ch3 hexapod at z = 700 mm with 10⁵ N/mm
+// struts, the largest translational compliance rises monotonically as the paired platform joints separate
+// from 0° to 50°.
 TEST(StrutCompliance, SeparatingThePairedPlatformJointsRaisesTheLargestCompliance) {
   double previous = 0.0;
   for (double separation : {0.0, 10.0, 20.0, 30.0, 40.0, 50.0}) {

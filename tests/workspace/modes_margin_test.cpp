@@ -1,4 +1,4 @@
-// The assembly-mode margin (workspace/modes_margin.hpp, issue 20) checked against its definition, not against
+// The assembly-mode margin (workspace/modes_margin.hpp) checked against its definition, not against
 // numbers it printed once: the configuration found is singular (det J small against det J at the pose, by the
 // mechanism's own Jacobian) and its actuator distance is the margin; actuator changes below the margin,
 // solved by warm-started forward kinematics, stay regular and in the pose's assembly mode; the margin shrinks

@@ -142,7 +142,7 @@ void ws_expect_zone_ends_at_carriages(const std::string& machine_file, dynamics:
 }
 
 TEST(WorkspaceLimits, AGlidesWorkingZoneEndsAtItsCarriageTravel) {
-  // seed 002 Fig. 8: the working zone of a glide machine is the map with the carriage limits.
+  // Rusanov et al., Fig. 8: the working zone of a glide machine is the map with the carriage limits.
   ws_expect_zone_ends_at_carriages("examples/machines/hexaglide.yaml", dynamics::GridPlane::xy, 0, 1500, 50);
   ws_expect_zone_ends_at_carriages("examples/machines/triglide.yaml", dynamics::GridPlane::xz, 1, 600, 25);
 }

@@ -1,6 +1,6 @@
-// Workspace maps of the ch5 hexapod against what the project already pins (spec ch5 §5.1, eq. 144–146;
-// machine/conditioning_test.cpp): the cells at C (0, 0, 500) and at the tool point at z = 700, the range
-// of δρ over |x|, |y| ≤ 200 mm, every cell equal to jacobian_measures at its pose, the mechanism's
+// Workspace maps of the ch5 hexapod against what the project already pins (Smirnov 2019, §5.2.2, eqs.
+// 144–146; machine/conditioning_test.cpp): the cells at C (0, 0, 500) and at the tool point at z = 700, the
+// range of δρ over |x|, |y| ≤ 200 mm, every cell equal to jacobian_measures at its pose, the mechanism's
 // symmetries, and the map the same bit for bit on one thread or several.
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@ const workspace::LayerExtremes& ws_extremes(const workspace::WorkspaceMapSummary
 }
 
 TEST(WorkspaceMap, PoleCellsAreTheExtractsErrorAmplification) {
-  // Extract: outputs of C at (0, 0, 500): δρ = 5.05 with S = (3.72, 3.22, 1.12); over |x|, |y| ≤ 200 mm δρ
+  // Recomputed: outputs of C at (0, 0, 500): δρ = 5.05 with S = (3.72, 3.22, 1.12); over |x|, |y| ≤ 200 mm δρ
   // ranges from 5.05 to 5.92.
   const Machine m = test::machine_from_text(test::ws_ch5_pole_text());
   const auto grid =
@@ -36,18 +36,18 @@ TEST(WorkspaceMap, PoleCellsAreTheExtractsErrorAmplification) {
   EXPECT_NEAR(centre.sensitivity_sums.x(), 3.72, 0.005);
   EXPECT_NEAR(centre.sensitivity_sums.y(), 3.22, 0.005);
   EXPECT_NEAR(centre.sensitivity_sums.z(), 1.12, 0.005);
-  // Within the machine's limits everywhere on this square, so the summary's range is the extract's.
+  // Within the machine's limits everywhere on this square, so the summary's range is the recomputed one.
   const workspace::WorkspaceMapSummary s = workspace::summarise_workspace_map(map);
   EXPECT_EQ(s.status_cells[static_cast<std::size_t>(CellStatus::ok)], 41 * 41);
   const auto& delta_rho = ws_extremes(s, Layer::error_amplification);
   EXPECT_EQ(delta_rho.cells, 41 * 41);
   EXPECT_NEAR(delta_rho.min, 5.05, 0.005);  // 5.0466 at the centre, 5.046 10 mm beside it
   EXPECT_NEAR(delta_rho.max, 5.92, 0.01);
-  EXPECT_LT(delta_rho.max, 10.0);  // δρ_MAX = 10 of the extract (eq. 146's example)
+  EXPECT_LT(delta_rho.max, 10.0);  // δρ_MAX = 10 of Smirnov 2019 (eq. 146's example)
 }
 
 TEST(WorkspaceMap, ToolPointCellsAtZ700) {
-  // Extract: outputs of P (150 mm tool) at z = 700: δρ = 4.76 at the centre and at most 5.73.
+  // Recomputed: outputs of P (150 mm tool) at z = 700: δρ = 4.76 at the centre and at most 5.73.
   const Machine m = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   const auto grid = workspace::plane_section(m.mechanism->home(), dynamics::GridPlane::xy, 200, 10);
   const workspace::WorkspaceMap map = test::ws_map_of(m, grid);

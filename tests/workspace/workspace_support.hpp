@@ -13,7 +13,7 @@
 namespace pkm::test {
 
 /// The ch5 hexapod (examples/machines/hexapod_ch5.yaml, its limits included) with the outputs at the pole C:
-/// no tool, home at z = 500 mm (as machine/conditioning_test.cpp; spec ch5 §5.1's "outputs of C").
+/// no tool, home at z = 500 mm (as machine/conditioning_test.cpp; Smirnov 2019, §5.2.2's "outputs of C").
 inline std::string ws_ch5_pole_text() {
   std::ifstream in(source_path("examples/machines/hexapod_ch5.yaml"));
   std::string yaml, line;
