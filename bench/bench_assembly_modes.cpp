@@ -1,4 +1,4 @@
-// Issue 20: time per all-assembly-modes solve of a hexapod (Mechanism::assembly_modes, polished and
+// Time per all-assembly-modes solve of a hexapod (Mechanism::assembly_modes, polished and
 // labelled), on random general 6-6 geometries (goal ≤ 1.25 ms, 10× fkSGP's 12.5 ms), on random 3-fold
 // symmetric machine layouts, on Dietmaier's 40-real instance, and on the shipped machines (6-3 and 3-6: the
 // 1-D scan). Each benchmark cycles through a fixed set of instances made once; the worst single solve is

@@ -1,5 +1,5 @@
 // Identification of the ch5 hexapod's 42 parameters (18 base joints, 18 platform joints, 6 drive offsets)
-// from 100 poses measured with the triangular plate (issue 16: goal < 50 ms), for docs/PERFORMANCE.md. The
+// from 100 poses measured with the triangular plate (goal < 50 ms), for docs/PERFORMANCE.md. The
 // true machine is 0.1 mm off the drawing, the targets measured with σ = 0.01 mm; one iteration is one whole
 // calibration::identify: residual model, Jacobians, the SVD diagnostics at start and solution, the LM solve.
 //

@@ -1,4 +1,4 @@
-// Rigid inverse dynamics per servo tick (issue 14: goal ≤ 2 µs on the hexapod, so that a 1 kHz loop can
+// Rigid inverse dynamics per servo tick (goal ≤ 2 µs on the hexapod, so that a 1 kHz loop can
 // compute feed-forward forces with margin), for docs/PERFORMANCE.md. The planned helix on the ch5 hexapod
 // with the machine file's dynamics section: the motion of every tick (pose, twist and its rate by central
 // differences, as `pkm plan --dynamics` takes them) is made before the timing; one iteration is one

@@ -1,4 +1,4 @@
-// The elastic machine along a planned run (issue 14: goal ≥ 100× real time, so that `pkm plan --dynamics
+// The elastic machine along a planned run (goal ≥ 100× real time, so that `pkm plan --dynamics
 // --elastic` costs little beside the planning), for docs/PERFORMANCE.md. The planned helix on the ch5 hexapod
 // with the machine file's dynamics section (200 N/µm struts, quadratic friction), its servo ticks at 1 kHz
 // made before the timing; one iteration is the whole run through dynamics::RunElastic (the integration with

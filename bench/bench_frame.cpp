@@ -1,4 +1,4 @@
-// The frame finite-element model per path point (issue 15: goal ≤ 1 ms for a frame of 200 elements, reusing
+// The frame finite-element model per path point (goal ≤ 1 ms for a frame of 200 elements, reusing
 // the factorisation pattern), for docs/stiffness_frame.md and docs/PERFORMANCE.md: the ch5 hexapod on a frame
 // of 200 beam elements (the six columns and the ring of examples/machines/hexapod_ch5_frame.yaml, each beam
 // cut into elements: 6 columns × 17 + 6 ring beams × 16 + 2 more = 200) along the planned helix, every tick's

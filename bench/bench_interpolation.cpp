@@ -1,6 +1,6 @@
-// Interpolation down to drive steps (spec ch5) on the seeds' test hexapod and test line (−50, 0, 700) →
-// (50, 0, 700), for docs/PERFORMANCE.md; goals: the corrected carrier method under 10 µs per period (issue
-// 5), its p99.9 too (issue 12), beside the estimating-function method's time per tact, in one run.
+// Interpolation down to drive steps (Smirnov 2019, chapter 5) on the dissertation's test hexapod and test
+// line (−50, 0, 700) → (50, 0, 700), for docs/PERFORMANCE.md; goals: the corrected carrier method under 10 µs
+// per period, its p99.9 too, beside the estimating-function method's time per tact, in one run.
 //
 // BM_PeriodTime: one iteration is one servo period of the real-time part, as `pkm interpolate` times it: the
 // carrier step (ideal time, strut laws, chord check) and the quantisation (remainder registers, or the
@@ -10,12 +10,12 @@
 // (core/duration_histogram.hpp; recording does not allocate): counters p50_us, p99_us, p99_9_us, max_us,
 // periods (the count) and over_10us (periods above 10 µs), beside the mean (the benchmark's time).
 //
-// BM_EstimatingTact: the estimating-function interpolator (§4): time per tact with the seed's final candidate
-// set (all six struts move, 64 candidates, one FK each), for docs/PERFORMANCE.md. One benchmark iteration is
-// one tact; at the end of the line the run starts again (outside the timing). Counters: s_per_tact (shown
-// with SI prefixes, e.g. 40u = 40 µs), fk_per_tact, s_per_fk (the seed's t_T) and mm_per_s, the contour speed
-// this computation alone would allow: the seed's real-time bound V_K = progress per tact / time per tact
-// (§4.5, case E7: 0.23 mm/s at t_T = 1 ms).
+// BM_EstimatingTact: the estimating-function interpolator (§5.2.1): time per tact with the dissertation's
+// final candidate set (all six struts move, 64 candidates, one FK each), for docs/PERFORMANCE.md. One
+// benchmark iteration is one tact; at the end of the line the run starts again (outside the timing).
+// Counters: s_per_tact (shown with SI prefixes, e.g. 40u = 40 µs), fk_per_tact, s_per_fk (the dissertation's
+// t_T) and mm_per_s, the contour speed this computation alone would allow: the dissertation's real-time bound
+// V_K = progress per tact / time per tact (§5.2.1: 0.23 mm/s at t_T = 1 ms).
 #include <benchmark/benchmark.h>
 
 #include <chrono>

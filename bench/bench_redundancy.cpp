@@ -1,6 +1,6 @@
-// Redundancy laws (ch3), for docs/PERFORMANCE.md: time per path point of the greedy per-step law and of the
-// whole-path solver, on the seeds' circles. Goals (issue 4): greedy three-angle hexapod law under 50 µs per
-// point; whole-path solver under 1 s for a 1000-point path.
+// Redundancy laws (Smirnov 2019, chapter 3), for docs/PERFORMANCE.md: time per path point of the greedy
+// per-step law and of the whole-path solver, on the dissertation's circles. Goals: greedy three-angle hexapod
+// law under 50 µs per point; whole-path solver under 1 s for a 1000-point path.
 //   Greedy/<law>/<machine>   greedy solve only; counter us_per_point
 //   WholePath/<law>/...      whole-path solve from the greedy solution, 1000 points; counter s_per_path
 #include <benchmark/benchmark.h>
@@ -84,7 +84,7 @@ redundancy::OptimizeOptions options_for(redundancy::Law law, redundancy::FreeSet
   return options;
 }
 
-// The hexapod circle of V7 (R 50 mm at z 700 mm), 1000 points.
+// The hexapod circle of Smirnov 2019, §3.5.1 (R 50 mm at z 700 mm), 1000 points.
 constexpr double kHexapodStepMm = 2.0 * std::numbers::pi * 50.0 / 1000.0;
 
 void BM_HexapodThreeAngles(benchmark::State& state) {
@@ -111,7 +111,7 @@ void BM_HexapodSpin(benchmark::State& state) {
 }
 BENCHMARK(BM_HexapodSpin)->ArgName("law")->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->Iterations(3);
 
-// The planar circle of V3/V4 (R 40 mm, 1° steps), φ in 5…30°.
+// The planar circle of Smirnov 2019, §3.4.1–3.4.2 (R 40 mm, 1° steps), φ in 5…30°.
 void BM_PlanarPhi(benchmark::State& state) {
   const auto law = static_cast<redundancy::Law>(state.range(0));
   run(state, planar(), circle(planar(), 40.0, 0.0, 15.0),

@@ -1,4 +1,4 @@
-// The servo simulation (issue 17: goal ≥ 10⁶ simulated servo periods per second for six drives, i.e. a 60 s
+// The servo simulation (goal ≥ 10⁶ simulated servo periods per second for six drives, i.e. a 60 s
 // program at 1 kHz in < 0.1 s), for docs/PERFORMANCE.md. The ch5 hexapod's six drives, tuned to the technical
 // optimum from its servo: section, on the coupled inertia of the machine at home with the motors, follow the
 // planned helix's set points (one loop step per 1 ms period, the set point's speed fed forward as the

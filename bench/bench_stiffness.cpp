@@ -1,4 +1,4 @@
-// The strut-only tool compliance per path point (issue 15: goal ≤ 1 µs on the hexapod), for
+// The strut-only tool compliance per path point (goal ≤ 1 µs on the hexapod), for
 // docs/PERFORMANCE.md: the ch5 hexapod with its struts' stiffness along the planned helix, every tick's pose
 // made before the timing; one iteration is one stiffness::strut_compliance call, timed on its own into a
 // fixed histogram (p50, p99, p99.9, worst beside the mean). BM_StrutLinesInverseKinematics times the strut

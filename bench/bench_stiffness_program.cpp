@@ -1,4 +1,4 @@
-// pkm stiffness end to end on a 100 000-point CL program (issue 15: goal < 5 s), for docs/PERFORMANCE.md: a
+// pkm stiffness end to end on a 100 000-point CL program (goal < 5 s), for docs/PERFORMANCE.md: a
 // 5-axis zig-zag finishing of the spherical cap of examples/programs/ball_end_5axis.cl (R 150 mm, tool axis
 // on the normal) with 100 000 GOTOs, read, cut into points, every point's compliance, deflection and strut
 // forces under a cutting load, points.csv and summary.json written. BM_StiffnessProgram100kCompensated adds

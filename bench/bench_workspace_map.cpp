@@ -1,4 +1,4 @@
-// The workspace map (issue 16: "a 200 × 200 δρ map", goal under 1 s on 2 cores), for docs/PERFORMANCE.md: the
+// The workspace map (a 200 × 200 δρ map, goal under 1 s on 2 cores), for docs/PERFORMANCE.md: the
 // ch5 hexapod's xy section through its home (0, 0, 700) ± 200 mm by 2 mm, 201 × 201 = 40 401 cells, each with
 // its status under every limit of the machine file and its Jacobian measures (det J, condition number, δρ and
 // S_x, S_y, S_z). One iteration is one whole map, wall time (the worker threads' time is not the caller's);

@@ -1,4 +1,4 @@
-// How long the HTML report of a 100 000-line program takes to open (issue: "opens in under 3 s"), for
+// How long the HTML report of a 100 000-line program takes to open (goal: under 3 s), for
 // docs/PERFORMANCE.md. Generates the program (scripts/gen-long-program.py), plans it with pkm --report, then
 // opens the page in headless Chromium several times and prints the time from navigation to pkmReport.ready
 // (the 3-D view drawn and the first plots built) and to every plot built, and the page's size.

@@ -16,7 +16,7 @@
 
 namespace {
 
-// The fixture every harness input's tracker rows refer to (the seeds' plate).
+// The fixture every harness input's tracker rows refer to (the plate of Smirnov 2019, §5.2.4).
 std::vector<pkm::calibration::FixtureTarget> fuzz_meas_fixture() {
   return {{"A", {100, 0, -150}}, {"B", {-50, 86.6, -150}}, {"C", {-50, -86.6, -150}}};
 }

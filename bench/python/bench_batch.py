@@ -1,4 +1,4 @@
-"""Batch IK from Python against the C++ loop, and the Python overhead of one call (issue 18's bench).
+"""Batch IK from Python against the C++ loop, and the Python overhead of one call.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python/bench_batch.py [--poses 1000000] [--machine FILE]
 

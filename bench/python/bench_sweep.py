@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""pkm.sweep's scaling: a 1e5-point sweep on 1 and on 2 local worker processes (issue 18: goal ≥ 1.8× on 2).
+"""pkm.sweep's scaling: a 1e5-point sweep on 1 and on 2 local worker processes (goal ≥ 1.8× on 2).
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python/bench_sweep.py [--points 100000] [--repeats 5]
         [--machine examples/machines/hexapod_ch5.yaml] [--dask]
