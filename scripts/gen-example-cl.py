@@ -6,7 +6,7 @@ The surface is a spherical cap of radius 150 mm whose top is at program zero: z 
 The patch x in [-28, 28], y in [-15, 15] mm is finished in zig-zag passes along X (3 mm step-over, 4 mm between
 points). The tool axis is the surface normal, so it tilts with the surface up to about 12 degrees at the patch
 corners; with a ball-end tool whose axis is the contact normal the tool tip (the CL point) is the contact point.
-Everything stays within the brief for the ch5 hexapod examples: |x|, |y| <= 60 mm, |z| <= 40 mm, tilt <= 15 deg.
+Everything stays within the range set for the ch5 hexapod examples: |x|, |y| <= 60 mm, |z| <= 40 mm, tilt <= 15 deg.
 
 Standard library only. Usage: scripts/gen-example-cl.py [output path]  (default: the example in the repository)
 """

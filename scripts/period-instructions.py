@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Instructions per servo period of `pkm interpolate`, counted by valgrind's callgrind (issue 12).
+"""Instructions per servo period of `pkm interpolate`, counted by valgrind's callgrind.
 
 Wall-clock period times on a shared machine include the operating system (preemption, interrupts, a
 hypervisor); an instruction count does not. This runs `pkm interpolate` under callgrind, counting only inside

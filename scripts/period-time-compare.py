@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Per-period compute time of two `pkm` builds, run alternately (issue 12: before and after in one run).
+"""Per-period compute time of two `pkm` builds, run alternately (before and after in one run).
 
 On a shared machine the load changes from minute to minute, so the two binaries are run in turns, A B A B …,
 on the same program and period, and each run's distribution (summary.json: period_time_us_p50, _p99, _p99_9,

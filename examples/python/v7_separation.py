@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The V7 separation study (spec ch3 V7, Table 2; Smirnov 2019 §3.5.1): on the chapter-3 hexapod, the tool runs
+"""The separation study of Smirnov 2019, §3.5.1 (Table 2): on the chapter-3 hexapod, the tool runs
 round a circle of R 50 mm at z 700 mm; the sum over its 1° steps of the largest strut increment, Σ max_j |ΔL_j|
 (machining time at the struts' speed limit), against the separation δ of the platform joint pairs, with the
 platform angles held at zero and chosen by the increment law (greedy, all three angles within ±10°).
@@ -26,7 +26,7 @@ PROGRAM = str(REPOSITORY / "examples/programs/hexapod_circle.ngc")
 CIRCLE_RADIUS_MM, CIRCLE_Z_MM, STEPS = 50.0, 700.0, 360
 # One degree of arc per optimised point (a hair more, so that rounding cannot make it 361 parts).
 STEP_MM = 2.0 * math.pi * CIRCLE_RADIUS_MM / STEPS * (1.0 + 1e-9)
-# The seed's Table 2 (δ = 0: the text's 148 mm held constant, 145 mm optimised).
+# Table 2 of Smirnov 2019 (δ = 0: the text's 148 mm held constant, 145 mm optimised).
 SEED_TABLE2 = {0: (148.0, 145.0), 10: (139.0, 130.0), 20: (132.0, 107.0), 30: (126.0, 85.0)}
 
 

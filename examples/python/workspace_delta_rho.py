@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A workspace map of the error amplification δρ (spec ch5 §5.1, eq. 144–146: mm of tool-point error per mm of
+"""A workspace map of the error amplification δρ (Smirnov 2019, §5.2.2, eqs. 144–146: mm of tool-point error per mm of
 equal actuator errors) over a plane section of the ch5 hexapod, from one batch call of Machine.conditioning.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/python/workspace_delta_rho.py --out out/ [--quick]
