@@ -27,7 +27,7 @@ CIRCLE_RADIUS_MM, CIRCLE_Z_MM, STEPS = 50.0, 700.0, 360
 # One degree of arc per optimised point (a hair more, so that rounding cannot make it 361 parts).
 STEP_MM = 2.0 * math.pi * CIRCLE_RADIUS_MM / STEPS * (1.0 + 1e-9)
 # Table 2 of Smirnov 2019 (δ = 0: the text's 148 mm held constant, 145 mm optimised).
-SEED_TABLE2 = {0: (148.0, 145.0), 10: (139.0, 130.0), 20: (132.0, 107.0), 30: (126.0, 85.0)}
+PRINTED_TABLE2 = {0: (148.0, 145.0), 10: (139.0, 130.0), 20: (132.0, 107.0), 30: (126.0, 85.0)}
 
 
 def constant_angle_sum_mm(machine) -> float:
@@ -54,7 +54,7 @@ def increment_sums(machine, params):
 def main():
     args = arguments(__doc__.splitlines()[0])
     if not hasattr(pkm, "optimize"):
-        raise SystemExit("v7_separation: this pkm build has no pkm.optimize (the pipeline bindings of issue 18); "
+        raise SystemExit("v7_separation: this pkm build has no pkm.optimize (the pipeline bindings); "
                          "rebuild with `make python`")
     separations = [0.0, 15.0, 30.0] if args.quick else [2.5 * k for k in range(13)]
     table = pkm.sweep(increment_sums, {"platform_separation_deg": separations},
@@ -62,24 +62,24 @@ def main():
 
     delta = table["platform_separation_deg"]
     const, greedy = table["const_sum_mm"], table["greedy_sum_mm"]
-    print(" delta_deg  const_mm  greedy_mm  ratio  max|angle|_deg   seed Table 2 (const, opt)")
+    print(" delta_deg  const_mm  greedy_mm  ratio  max|angle|_deg   Smirnov 2019 Table 2 (const, opt)")
     for row in table:
-        seed = SEED_TABLE2.get(int(row["platform_separation_deg"]))
-        seed_text = f"{seed[0]:.0f}, {seed[1]:.0f}" if seed and row["platform_separation_deg"] % 10 == 0 else ""
+        printed = PRINTED_TABLE2.get(int(row["platform_separation_deg"]))
+        printed_text = f"{printed[0]:.0f}, {printed[1]:.0f}" if printed and row["platform_separation_deg"] % 10 == 0 else ""
         print(f"{row['platform_separation_deg']:10.1f} {row['const_sum_mm']:9.2f} {row['greedy_sum_mm']:10.2f} "
-              f"{row['const_sum_mm'] / row['greedy_sum_mm']:6.2f} {row['largest_angle_deg']:15.2f}   {seed_text}")
+              f"{row['const_sum_mm'] / row['greedy_sum_mm']:6.2f} {row['largest_angle_deg']:15.2f}   {printed_text}")
 
     plt = pyplot()
     figure, (sums, ratio) = plt.subplots(2, 1, figsize=(7, 7), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
     sums.plot(delta, const, "o-", color="tab:gray", label="angles held at 0 (pkm)")
     sums.plot(delta, greedy, "o-", color="tab:blue", label="increment law, greedy, 3 angles ±10° (pkm)")
-    seed_delta = sorted(SEED_TABLE2)
-    sums.plot(seed_delta, [SEED_TABLE2[d][0] for d in seed_delta], "s", mfc="none", color="tab:gray",
-              label="seed Table 2, constant")
-    sums.plot(seed_delta, [SEED_TABLE2[d][1] for d in seed_delta], "^", mfc="none", color="tab:blue",
-              label="seed Table 2, optimal")
+    printed_delta = sorted(PRINTED_TABLE2)
+    sums.plot(printed_delta, [PRINTED_TABLE2[d][0] for d in printed_delta], "s", mfc="none", color="tab:gray",
+              label="Smirnov 2019, Table 2, constant")
+    sums.plot(printed_delta, [PRINTED_TABLE2[d][1] for d in printed_delta], "^", mfc="none", color="tab:blue",
+              label="Smirnov 2019, Table 2, optimal")
     sums.set_ylabel("Σ max_j |ΔL_j| along the circle (mm)")
-    sums.set_title("V7: ch3 hexapod, R 50 mm circle at z 700 mm, 1° steps")
+    sums.set_title("Table 2 hexapod, R 50 mm circle at z 700 mm, 1° steps")
     sums.grid(True, alpha=0.3)
     sums.legend()
     ratio.plot(delta, const / greedy, "o-", color="tab:green")
