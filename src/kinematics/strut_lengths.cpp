@@ -172,8 +172,9 @@ struct OctRotation {
   const StrutOct& operator()(int i, int j) const noexcept { return entries[3 * i + j]; }
 };
 
-// The fused copies: the angles' sines and cosines, the matrix and the six lengths in one function, the pose
-// never stored. The same operations per value as pose_from_vector and the lanes above, so the same bits.
+// The fused copies: the angles' sines and cosines, the matrix and the six lengths in one function, no Pose
+// handed from call to call. The same operations per value as pose_from_vector and the lanes above, so the
+// same bits.
 [[gnu::target("avx2"), gnu::flatten]] bool lengths_at_quads(const SixStrutLayout& layout,
                                                             AngleConvention convention,
                                                             const PoseVector& coordinates,
@@ -195,9 +196,9 @@ struct OctRotation {
     return lengths_at_baseline(layout, convention, coordinates, lengths_mm);
   // The matrix computed in all lanes at once (from the sines and cosines spread over the lanes, and the
   // position loaded into them): fewer instructions than scalars spread over the lanes one by one, on the
-  // two ports that run AVX-512. The zero-masking permutation for GCC 12 (see core/sincos3.hpp).
-  // The permutations' indices loaded from a table (hidden from the compiler by the empty asm): built from
-  // immediates, as the compiler would, each would cost one more instruction on the AVX-512 ports.
+  // two ports that run AVX-512. The permutations' indices are loaded from a table (hidden from the compiler
+  // by the empty asm): built from immediates, as the compiler would, each would cost one more instruction
+  // on those ports. The zero-masking permutation for GCC 12 (see core/sincos3.hpp).
   alignas(64) static constexpr std::int64_t kLane[7][8] = {
       {0, 0, 0, 0, 0, 0, 0, 0}, {1, 1, 1, 1, 1, 1, 1, 1}, {2, 2, 2, 2, 2, 2, 2, 2}, {3, 3, 3, 3, 3, 3, 3, 3},
       {4, 4, 4, 4, 4, 4, 4, 4}, {5, 5, 5, 5, 5, 5, 5, 5}, {6, 6, 6, 6, 6, 6, 6, 6}};
