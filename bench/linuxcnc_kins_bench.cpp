@@ -8,7 +8,7 @@
 // return its poses (pkmkins to 1e-8, genhexkins to 1e-6), or the program stops with an error.
 //
 // Beside the modules, pkm's hot IK through its Mechanism interface in this process, from the same EmcPose:
-// degrees → radians, pose_from_vector (the angles → matrix conversion) and Mechanism::actuator_values on the
+// degrees → radians and Mechanism::actuator_values_at (the angles → matrix conversion included) on the
 // machine file's mechanism, what pkmkins' kinematicsInverse does inside without the module's joint
 // bookkeeping. It must agree with genhexkins to 1e-6 mm along the path too.
 //
@@ -19,7 +19,7 @@
 //     work of one servo period (LinuxCNC's motion controller calls inverse for the command and forward for
 //     the feedback every period in coordinated mode); a servo thread has to budget for the tail, not the
 //     mean;
-//   - the hot IK side by side: genhexkins' kinematicsInverse and Mechanism::actuator_values over the whole
+//   - the hot IK side by side: genhexkins' kinematicsInverse and Mechanism::actuator_values_at over the whole
 //     path in blocks, alternating, each block timed as a whole (no clock reading per call), with the ratio;
 //   - Google Benchmarks, one call per iteration, cycling along the path (BM_Inverse/pkm_actuator_values is
 //     the interface's).
@@ -308,14 +308,14 @@ std::unique_ptr<pkm::Machine> load_interface_machine() {
   return std::make_unique<pkm::Machine>(std::move(loaded.value()));
 }
 
-// An EmcPose's joints through Mechanism::actuator_values: the six coordinates (angles in degrees, LinuxCNC's
-// A, B, C: the abc convention, as pkmkins reads them) to a pose, angles → matrix included, then the hot IK.
+// An EmcPose's joints through Mechanism::actuator_values_at: the six coordinates (angles in degrees,
+// LinuxCNC's A, B, C: the abc convention, as pkmkins reads them) to the joints, angles → matrix included.
 inline bool interface_inverse(const pkm::Mechanism& mechanism, const EmcPose& world, double* joints) {
   const pkm::PoseVector v =
       (pkm::PoseVector() << world.tran.x, world.tran.y, world.tran.z, pkm::rad_from_deg(world.a),
        pkm::rad_from_deg(world.b), pkm::rad_from_deg(world.c))
           .finished();
-  return mechanism.actuator_values(pkm::pose_from_vector(pkm::AngleConvention::abc, v), joints);
+  return mechanism.actuator_values_at(pkm::AngleConvention::abc, v, joints);
 }
 
 void unload(KinsModule& m) {
@@ -395,17 +395,18 @@ void verify(KinsModule& pkmkins, KinsModule& genhexkins, const pkm::Mechanism& m
   for (std::size_t k = 0; k < kSamples; ++k) {
     Joints joints{};
     if (!interface_inverse(mechanism, path[k], joints.data())) {
-      fail("Mechanism::actuator_values failed at sample " + std::to_string(k));
+      fail("Mechanism::actuator_values_at failed at sample " + std::to_string(k));
     }
     for (int j = 0; j < kJoints; ++j) {
       worst_interface = std::max(worst_interface, std::abs(joints[j] - genhexkins.joints[k][j]));
     }
   }
   if (!(worst_interface <= kInverseAgreementMm)) {
-    fail("Mechanism::actuator_values and genhexkins disagree by " + std::to_string(worst_interface) + " mm");
+    fail("Mechanism::actuator_values_at and genhexkins disagree by " + std::to_string(worst_interface) +
+         " mm");
   }
   std::printf(
-      "inverse kinematics, Mechanism::actuator_values vs genhexkins: max |joint difference| %.3g mm\n",
+      "inverse kinematics, Mechanism::actuator_values_at vs genhexkins: max |joint difference| %.3g mm\n",
       worst_interface);
 
   for (KinsModule* m : {&pkmkins, &genhexkins}) {
@@ -553,9 +554,10 @@ void print_table(KinsModule& pkmkins, KinsModule& genhexkins, const std::vector<
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// The hot IK side by side: genhexkins' kinematicsInverse and Mechanism::actuator_values, each over the whole
-// path as one timed block, the two alternating block by block (a noisy stretch of a shared machine hits both
-// alike). The per-call time of a block is its time over the samples; the medians of the blocks are compared.
+// The hot IK side by side: genhexkins' kinematicsInverse and Mechanism::actuator_values_at, each over the
+// whole path as one timed block, the two alternating block by block (a noisy stretch of a shared machine hits
+// both alike). The per-call time of a block is its time over the samples; the medians of the blocks are
+// compared.
 constexpr int kHotBlocks = 21;
 
 double median_of(std::vector<double> values) {
@@ -580,7 +582,7 @@ double interface_block_ns(const pkm::Mechanism& mechanism, const std::vector<Emc
   double joints[kJoints];
   const Clock::time_point start = Clock::now();
   for (const EmcPose& world : path) {
-    if (!interface_inverse(mechanism, world, joints)) fail("Mechanism::actuator_values failed");
+    if (!interface_inverse(mechanism, world, joints)) fail("Mechanism::actuator_values_at failed");
     benchmark::DoNotOptimize(joints);
   }
   return static_cast<double>(ns_between(start, Clock::now())) / static_cast<double>(path.size());
@@ -603,11 +605,11 @@ void print_hot_inverse(const KinsModule& genhexkins, const pkm::Mechanism& mecha
       "hot IK side by side, %d blocks x %zu samples each, alternating; per call, median (fastest) of the "
       "blocks:\n",
       kHotBlocks, kSamples);
-  std::printf("  genhexkins kinematicsInverse       %7.1f ns (%.1f)\n", g,
+  std::printf("  genhexkins kinematicsInverse          %7.1f ns (%.1f)\n", g,
               *std::min_element(genhex_ns.begin(), genhex_ns.end()));
-  std::printf("  Mechanism::actuator_values (pkm)   %7.1f ns (%.1f)\n", p,
+  std::printf("  Mechanism::actuator_values_at (pkm)   %7.1f ns (%.1f)\n", p,
               *std::min_element(interface_ns.begin(), interface_ns.end()));
-  std::printf("  genhexkins / pkm                   %7.2f x\n\n", g / p);
+  std::printf("  genhexkins / pkm                      %7.2f x\n\n", g / p);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -633,7 +635,7 @@ void BM_InterfaceInverse(benchmark::State& state, const pkm::Mechanism* mechanis
   std::size_t k = 0;
   for (auto _ : state) {
     if (!interface_inverse(*mechanism, (*path)[k], joints)) {
-      state.SkipWithError("Mechanism::actuator_values failed");
+      state.SkipWithError("Mechanism::actuator_values_at failed");
       break;
     }
     benchmark::DoNotOptimize(joints);

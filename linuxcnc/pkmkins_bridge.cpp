@@ -181,9 +181,8 @@ int pkmkins_inverse(pkmkins_machine* m, const double world[6], double* joints) {
     if (m->controlled.controlled[static_cast<std::size_t>(i)]) return -1;
     v[i] = 0.0;
   }
-  const pkm::Pose pose = pkm::pose_from_vector(kWorldConvention, v);
   double actuators[pkm::kMaxActuators];
-  if (!m->machine.mechanism->actuator_values(pose, actuators)) return -1;
+  if (!m->machine.mechanism->actuator_values_at(kWorldConvention, v, actuators)) return -1;
   for (int j = 0; j < m->joints; ++j) {
     if (!std::isfinite(actuators[j])) return -1;
     joints[j] = joint_from_actuator(*m, actuators[j]);

@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <new>
@@ -131,6 +132,15 @@ void noalloc_short_path(const Mechanism& mech, int count, std::vector<Pose>& pos
   }
 }
 
+// actuator_values_at from the pose's coordinates: the bits of actuator_values at pose_from_vector of them.
+bool same_values_from_coordinates(const Mechanism& mech, const Pose& pose) {
+  const PoseVector c = vector_from_pose(mech.convention(), pose);
+  std::array<double, kMaxActuators> at{}, reference{};
+  if (!mech.actuator_values_at(mech.convention(), c, at.data())) return false;
+  if (!mech.actuator_values(pose_from_vector(mech.convention(), c), reference.data())) return false;
+  return std::memcmp(at.data(), reference.data(), sizeof(double) * mech.actuator_count()) == 0;
+}
+
 // The servo-loop forms of the interface: warm FK with the mechanism's own workspace (made once, before the
 // count), hot IK into caller storage, and the twist Jacobian, along a short path of every shipped machine.
 TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
@@ -158,6 +168,7 @@ TEST(NoAllocation, WarmForwardAndHotInverseOfEveryShippedMachine) {
       previous = fk->pose;
       ASSERT_TRUE(mech.actuator_values(poses[i], hot.data())) << file;
       for (int j = 0; j < n; ++j) ASSERT_NEAR(hot[j], values[i][j], 1e-12) << file;
+      ASSERT_TRUE(same_values_from_coordinates(mech, poses[i])) << file;
       ASSERT_TRUE(mech.twist_jacobian(poses[i], twist)) << file;
       ASSERT_EQ(twist.rows(), n);
       ASSERT_TRUE(mech.controlled_twists(poses[i], basis)) << file;
@@ -199,6 +210,7 @@ TEST(NoAllocation, WarmForwardAndHotInverseThroughActuatorOffsets) {
       previous = fk->pose;
       ASSERT_TRUE(mech.actuator_values(poses[i], hot.data())) << file;
       for (int j = 0; j < n; ++j) ASSERT_NEAR(hot[j], values[i][j], 1e-12) << file;
+      ASSERT_TRUE(same_values_from_coordinates(mech, poses[i])) << file;
     }
     EXPECT_EQ(g_allocations.load() - before, 0) << file;
   }

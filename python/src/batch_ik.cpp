@@ -31,7 +31,7 @@ class IkRow {
 
   RowResult operator()(const PoseVector& pose, double* out) const noexcept {
     if (!all_finite(pose.data(), 6)) return RowResult::invalid_input;
-    if (mechanism_.actuator_values(pose_from_vector(convention_, pose), out) &&
+    if (mechanism_.actuator_values_at(convention_, pose, out) &&
         (!check_limits_ || range_.contains(out, count())))
       return RowResult::ok;
     return RowResult::failed;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/rotation_from_sines.hpp"
 #include "core/rotation_kernels.hpp"
 #include "core/sincos3.hpp"
 #include "core/units.hpp"
@@ -85,37 +86,6 @@ Eigen::Matrix3d rot_z(double a) {
 }
 
 namespace {
-
-// The closed forms of the conventions from the angles' sines and cosines. The tests check them against the
-// products of elementary rotations that define the conventions.
-inline Eigen::Matrix3d rotation_from_sines(AngleConvention convention, const double* sines,
-                                           const double* cosines) {
-#if defined(__clang__)
-#pragma clang fp contract(off)  // no fused multiply–add, even where the target has it: the same bits
-#endif
-  const double s1 = sines[0], c1 = cosines[0];
-  const double s2 = sines[1], c2 = cosines[1];
-  const double s3 = sines[2], c3 = cosines[2];
-  Eigen::Matrix3d r;
-  switch (convention) {
-    case AngleConvention::abc:  // Rz(C)Ry(B)Rx(A), (A, B, C) = angles; eq. 12
-      r << c2 * c3, s1 * s2 * c3 - c1 * s3, c1 * s2 * c3 + s1 * s3,  //
-          c2 * s3, s1 * s2 * s3 + c1 * c3, c1 * s2 * s3 - s1 * c3,   //
-          -s2, s1 * c2, c1 * c2;
-      return r;
-    case AngleConvention::krylov:  // Rz(-ψ)Rx(-ϑ)Ry(-γ), (ψ, ϑ, γ) = angles; eq. 15 (rows l, m, n)
-      r << c1 * c3 + s2 * s1 * s3, s1 * c2, s1 * s2 * c3 - c1 * s3,  //
-          c1 * s2 * s3 - s1 * c3, c1 * c2, s1 * s3 + c1 * s2 * c3,   //
-          c2 * s3, -s2, c2 * c3;
-      return r;
-    case AngleConvention::euler_zxz:  // Rz(ψ)Rx(ϑ)Rz(φ), (ψ, ϑ, φ) = angles; eq. 13
-      r << c1 * c3 - c2 * s1 * s3, -c1 * s3 - c2 * s1 * c3, s1 * s2,  //
-          s1 * c3 + c2 * c1 * s3, -s1 * s3 + c2 * c1 * c3, -c1 * s2,  //
-          s2 * s3, s2 * c3, c2;
-      return r;
-  }
-  return Eigen::Matrix3d::Identity();
-}
 
 #if PKM_HAS_WIDE_KERNELS
 // abc's matrix from the sine and cosine lanes (s1 s2 s3 ·), (c1 c2 c3 ·), each column's first two entries as

@@ -1,7 +1,8 @@
 #pragma once
 // sin and cos of three angles at once, for the angles → matrix conversion on the IK hot path
 // (rotation_from_angles): a range reduction and two short polynomials on the angles in the lanes of a vector
-// (one AVX2 vector where the processor has it, two SSE2 pairs otherwise), instead of six calls into the C
+// (one AVX2 vector where the processor has it, two SSE2 pairs otherwise; sines and cosines in one AVX-512
+// vector for the hexapod's fused kernel, kinematics/strut_lengths.cpp), instead of six calls into the C
 // library. Accurate to about one unit in the last place (within 1.2e-16 of std::sin and std::cos;
 // tests/core/sincos3_test.cpp), and the same bits on every processor and in every build: plain IEEE
 // operations in a fixed order, no fused multiply–add.
@@ -18,6 +19,9 @@
 #include <cstring>
 
 #include "core/wide_kernels.hpp"
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace pkm {
 namespace sincos3_detail {
@@ -27,6 +31,8 @@ using IntPair = std::uint64_t __attribute__((vector_size(16)));
 #if PKM_HAS_WIDE_KERNELS
 using Quad = double __attribute__((vector_size(32)));
 using IntQuad = std::uint64_t __attribute__((vector_size(32)));
+using Oct = double __attribute__((vector_size(64)));
+using IntOct = std::uint64_t __attribute__((vector_size(64)));
 #endif
 
 constexpr double kLimit = 823549.6654215439;       // 2^19·π/2
@@ -116,14 +122,94 @@ inline void pairs_sincos3(const double* angles, double* sin_out, double* cos_out
   cos_out[2] = c2[0];
 }
 
+#if PKM_HAS_WIDE_KERNELS
+// *p, loaded by itself: the empty asm keeps the compiler from merging it with a neighbour's load.
+inline double loaded_alone(const double* p) noexcept {
+  double v = *p;
+  asm("" : "+x"(v));
+  return v;
+}
+
+// fdlibm's sin coefficients (lanes 0–3) beside its cos coefficients (lanes 4–7), those of sincos_lanes.
+constexpr Oct kPoly0 = {-1.66666666666666324348e-01, -1.66666666666666324348e-01, -1.66666666666666324348e-01,
+                        -1.66666666666666324348e-01, 4.16666666666666019037e-02,  4.16666666666666019037e-02,
+                        4.16666666666666019037e-02,  4.16666666666666019037e-02};
+constexpr Oct kPoly1 = {8.33333333332248946124e-03,  8.33333333332248946124e-03,  8.33333333332248946124e-03,
+                        8.33333333332248946124e-03,  -1.38888888888741095749e-03, -1.38888888888741095749e-03,
+                        -1.38888888888741095749e-03, -1.38888888888741095749e-03};
+constexpr Oct kPoly2 = {-1.98412698298579493134e-04, -1.98412698298579493134e-04, -1.98412698298579493134e-04,
+                        -1.98412698298579493134e-04, 2.48015872894767294178e-05,  2.48015872894767294178e-05,
+                        2.48015872894767294178e-05,  2.48015872894767294178e-05};
+constexpr Oct kPoly3 = {2.75573137070700676789e-06,  2.75573137070700676789e-06,  2.75573137070700676789e-06,
+                        2.75573137070700676789e-06,  -2.75573143513906633035e-07, -2.75573143513906633035e-07,
+                        -2.75573143513906633035e-07, -2.75573143513906633035e-07};
+constexpr Oct kPoly4 = {-2.50507602534068634195e-08, -2.50507602534068634195e-08, -2.50507602534068634195e-08,
+                        -2.50507602534068634195e-08, 2.08757232129817482790e-09,  2.08757232129817482790e-09,
+                        2.08757232129817482790e-09,  2.08757232129817482790e-09};
+constexpr Oct kPoly5 = {1.58969099521155010221e-10,  1.58969099521155010221e-10,  1.58969099521155010221e-10,
+                        1.58969099521155010221e-10,  -1.13596475577881948265e-11, -1.13596475577881948265e-11,
+                        -1.13596475577881948265e-11, -1.13596475577881948265e-11};
+constexpr __mmask8 kSineLanes = 0x0f;
+
+// sincos_lanes in one AVX-512 vector whose lanes 0–3 and 4–7 hold the same angles: the sines in the first
+// half, the cosines in the second, both polynomials in one chain (each lane takes its own coefficients). Per
+// lane the same IEEE operations as sincos_lanes (a sine lane's y + (−0 + zy·p) is y + zy·p exactly), so the
+// same bits. The caller must fuse no multiply–add (AVX-512 has FMA; see core/rotation_from_sines.hpp).
+template <bool reduce>
+[[gnu::target("avx512f")]] inline Oct sincos_oct(const Oct& x) noexcept {
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#endif
+  Oct y = x;
+  IntOct quadrant = {};
+  if constexpr (reduce) {
+    constexpr double kShift = 0x1.8p52;
+    const Oct shifted = x * 0x1.45f306dc9c883p-1 + kShift;
+    const Oct n = shifted - kShift;
+    std::memcpy(&quadrant, &shifted, sizeof quadrant);
+    y = ((x - n * 0x1.921fb544p+0) - n * 0x1.0b4611a6p-34) - n * 0x1.3198a2e037073p-69;
+  }
+  const Oct z = y * y;
+  const Oct z2 = z * z;
+  const Oct z4 = z2 * z2;
+  const Oct poly = (kPoly0 + z * kPoly1) + z2 * (kPoly2 + z * kPoly3) + z4 * (kPoly4 + z * kPoly5);
+  // sin: y + (z·y)·poly; cos: w + (((1 − w) − z/2) + z²·poly), w = 1 − z/2: both as a + (b + m·poly).
+  const Oct half_z = 0.5 * z;
+  const Oct w = 1.0 - half_z;
+  const Oct a = _mm512_mask_blend_pd(kSineLanes, w, y);
+  const Oct b = _mm512_mask_blend_pd(kSineLanes, (1.0 - w) - half_z, _mm512_set1_pd(-0.0));
+  const Oct m = _mm512_mask_blend_pd(kSineLanes, z2, z * y);
+  const Oct r = a + (b + m * poly);
+  // The sines take the sign of y (sin(−0) = −0), the cosines keep theirs.
+  constexpr std::uint64_t kSignBit = std::uint64_t{1} << 63;
+  constexpr IntOct kSineSign = {kSignBit, kSignBit, kSignBit, kSignBit, 0, 0, 0, 0};
+  IntOct r_bits, y_bits;
+  std::memcpy(&r_bits, &r, sizeof r_bits);
+  std::memcpy(&y_bits, &y, sizeof y_bits);
+  r_bits = (r_bits & ~kSineSign) | (y_bits & kSineSign);
+  if constexpr (reduce) {
+    // Odd n swaps a sine lane with its cosine lane (the halves swapped); the signs as in sincos_lanes: the
+    // cosine lanes' quadrant counts one more.
+    // The zero-masking forms: GCC 12 warns of the plain forms' undefined source as uninitialised.
+    const __m512i swapped = _mm512_maskz_shuffle_i64x2(0xff, (__m512i)r_bits, (__m512i)r_bits, 0x4e);
+    const IntOct swap = -(quadrant & 1);
+    constexpr IntOct kCosineQuadrant = {0, 0, 0, 0, 1, 1, 1, 1};
+    r_bits = ((r_bits & ~swap) | ((IntOct)swapped & swap)) ^ (((quadrant + kCosineQuadrant) & 2) << 62);
+  }
+  Oct out;
+  std::memcpy(&out, &r_bits, sizeof out);
+  return out;
+}
+#endif
+
 }  // namespace sincos3_detail
 
 /// sin_out[k] = sin(angles[k]), cos_out[k] = cos(angles[k]), k = 0, 1, 2, with SSE2 pairs. Never allocates.
 inline void sincos3_baseline(const double* angles, double* sin_out, double* cos_out) noexcept {
-  using namespace sincos3_detail;
-  if (all_within(angles, kQuarterPi)) return pairs_sincos3<false>(angles, sin_out, cos_out);
-  if (all_within(angles, kLimit)) return pairs_sincos3<true>(angles, sin_out, cos_out);
-  library_sincos3(angles, sin_out, cos_out);
+  namespace d = sincos3_detail;  // qualified: a unity build may hold other names Quad
+  if (d::all_within(angles, d::kQuarterPi)) return d::pairs_sincos3<false>(angles, sin_out, cos_out);
+  if (d::all_within(angles, d::kLimit)) return d::pairs_sincos3<true>(angles, sin_out, cos_out);
+  d::library_sincos3(angles, sin_out, cos_out);
 }
 
 #if PKM_HAS_WIDE_KERNELS
@@ -132,14 +218,14 @@ inline void sincos3_baseline(const double* angles, double* sin_out, double* cos_
 /// wide_kernels_available().
 [[gnu::target("avx2")]] inline bool sincos3_avx2_lanes(const double* angles, sincos3_detail::Quad& sin_out,
                                                        sincos3_detail::Quad& cos_out) noexcept {
-  using namespace sincos3_detail;
-  const Quad x = {angles[0], angles[1], angles[2], 0.0};
-  if (all_within(angles, kQuarterPi)) {
-    sincos_lanes<Quad, IntQuad, false>(x, sin_out, cos_out);
+  namespace d = sincos3_detail;  // qualified: a unity build may hold other names Quad
+  const d::Quad x = {angles[0], angles[1], angles[2], 0.0};
+  if (d::all_within(angles, d::kQuarterPi)) {
+    d::sincos_lanes<d::Quad, d::IntQuad, false>(x, sin_out, cos_out);
     return true;
   }
-  if (!all_within(angles, kLimit)) return false;
-  sincos_lanes<Quad, IntQuad, true>(x, sin_out, cos_out);
+  if (!d::all_within(angles, d::kLimit)) return false;
+  d::sincos_lanes<d::Quad, d::IntQuad, true>(x, sin_out, cos_out);
   return true;
 }
 
@@ -153,6 +239,35 @@ inline void sincos3_baseline(const double* angles, double* sin_out, double* cos_
     cos_out[k] = c[k];
   }
 }
+
+/// The three angles' sines in lanes 0–2 and cosines in lanes 4–6 of one AVX-512 vector (lanes 3 and 7: those
+/// of 0), the same bits as sincos3_baseline; false, lanes unset, where an angle needs the C library. Inline
+/// for a caller's AVX-512 copy, which must fuse no multiply–add (see core/rotation_from_sines.hpp). Only
+/// where avx512_kernels_available().
+[[gnu::target("avx512f")]] inline bool sincos3_avx512_lanes(const double* angles,
+                                                            sincos3_detail::Oct& sincos) noexcept {
+  namespace d = sincos3_detail;  // qualified: a unity build may hold other names Quad
+  // Loaded one by one: the caller has usually just stored them so, and a wider load (which the compiler would
+  // make of two) would wait for those stores to reach the cache: no store forwarding, about 25 ns a call.
+  const __m128d angles01 = _mm_unpacklo_pd(_mm_set_sd(angles[0]), _mm_set_sd(d::loaded_alone(angles + 1)));
+  const __m256d angles4 = _mm256_insertf128_pd(_mm256_castpd128_pd256(angles01), _mm_set_sd(angles[2]), 1);
+  // The three angles (and 0) in both halves; the zero-masking form for GCC 12 (see sincos_oct).
+  const d::Oct x = _mm512_maskz_broadcast_f64x4(0xff, angles4);
+  const __m256d magnitude = _mm256_andnot_pd(_mm256_set1_pd(-0.0), angles4);
+  // Compared for ≤, false for a NaN: as all_within.
+  if (_mm256_movemask_pd(_mm256_cmp_pd(magnitude, _mm256_set1_pd(d::kQuarterPi), _CMP_LE_OQ)) == 0xf) {
+    sincos = d::sincos_oct<false>(x);
+    return true;
+  }
+  if (_mm256_movemask_pd(_mm256_cmp_pd(magnitude, _mm256_set1_pd(d::kLimit), _CMP_LE_OQ)) != 0xf)
+    return false;
+  sincos = d::sincos_oct<true>(x);
+  return true;
+}
+
+/// sincos3_baseline by sincos3_avx512_lanes (compiled without fused multiply–adds), for the tests that
+/// compare the copies. Only where avx512_kernels_available().
+void sincos3_avx512(const double* angles, double* sin_out, double* cos_out) noexcept;
 #endif
 
 }  // namespace pkm

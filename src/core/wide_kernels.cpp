@@ -21,6 +21,15 @@ bool wide_kernels_available() {
 #endif
 }
 
+bool avx512_kernels_available() {
+#if PKM_HAS_WIDE_KERNELS
+  static const bool available = wide_kernels_available() && __builtin_cpu_supports("avx512f");
+  return available;
+#else
+  return false;
+#endif
+}
+
 bool wide_kernels_enabled() {
   return wide_kernels_available() && baseline_only_scopes.load(std::memory_order_relaxed) == 0;
 }

@@ -23,6 +23,10 @@ namespace pkm {
 /// Whether this processor runs the PKM_WIDE_KERNEL copies (AVX2 and FMA on x86-64); false elsewhere.
 bool wide_kernels_available();
 
+/// Whether this processor runs the AVX-512 copies of the kernels that have one (AVX-512F besides AVX2 and
+/// FMA); false elsewhere.
+bool avx512_kernels_available();
+
 /// Whether the kernels without an option of their own (the elastic right-hand side's) take their wide copy:
 /// available and not turned off by a BaselineKernelsOnly in scope.
 bool wide_kernels_enabled();

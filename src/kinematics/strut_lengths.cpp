@@ -1,8 +1,12 @@
 #include "kinematics/strut_lengths.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
+#include "core/rotation_from_sines.hpp"
+#include "core/rotation_kernels.hpp"
+#include "core/sincos3.hpp"
 #include "core/wide_kernels.hpp"
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -33,20 +37,26 @@ struct StrutLanes {
   V bx, by, bz, ax, ay, az;
 };
 
-// `squared`: the squared lengths |d|² of the lanes' struts at `pose`: d = (R·b)_xyz + (p − a), the rotation's
-// first two products summed apart from the third and the offset (a short dependency chain), |d|² = (dx² +
-// dy²) + dz². Each operation is one IEEE operation per lane: a strut's value does not depend on the vector's
-// width.
-template <class V>
-inline void squared_lengths(const StrutLanes<V>& s, const Pose& pose, V& squared) noexcept {
+// `squared`: the squared lengths |d|² of the lanes' struts at the pose of rotation r (r(i, j)) and position p
+// (p[k]): d = (R·b)_xyz + (p − a), the rotation's first two products summed apart from the third and the
+// offset (a short dependency chain), |d|² = (dx² + dy²) + dz². Each operation is one IEEE operation per lane
+// (the entries scalars, or vectors holding an entry in every lane): a strut's value does not depend on the
+// vector's width.
+template <class V, class Rotation, class Position>
+inline void squared_lengths(const StrutLanes<V>& s, const Rotation& r, const Position& p,
+                            V& squared) noexcept {
 #if defined(__clang__)
 #pragma clang fp contract(off)  // no fused multiply–add, even where the target has it: the same bits
 #endif
-  const Eigen::Matrix3d& r = pose.rotation;
-  const V dx = (r(0, 0) * s.bx + r(0, 1) * s.by) + (r(0, 2) * s.bz + (pose.position_mm.x() - s.ax));
-  const V dy = (r(1, 0) * s.bx + r(1, 1) * s.by) + (r(1, 2) * s.bz + (pose.position_mm.y() - s.ay));
-  const V dz = (r(2, 0) * s.bx + r(2, 1) * s.by) + (r(2, 2) * s.bz + (pose.position_mm.z() - s.az));
+  const V dx = (r(0, 0) * s.bx + r(0, 1) * s.by) + (r(0, 2) * s.bz + (p[0] - s.ax));
+  const V dy = (r(1, 0) * s.bx + r(1, 1) * s.by) + (r(1, 2) * s.bz + (p[1] - s.ay));
+  const V dz = (r(2, 0) * s.bx + r(2, 1) * s.by) + (r(2, 2) * s.bz + (p[2] - s.az));
   squared = (dx * dx + dy * dy) + dz * dz;
+}
+
+template <class V>
+inline void squared_lengths(const StrutLanes<V>& s, const Pose& pose, V& squared) noexcept {
+  squared_lengths(s, pose.rotation, pose.position_mm, squared);
 }
 
 // Struts first … first + lanes − 1 of `layout`, loaded whole (the lanes lie within the rows).
@@ -95,11 +105,18 @@ bool six_strut_lengths_pairs(const SixStrutLayout& layout, const Pose& pose, dou
   return positive(l01) && positive(l23) && positive(l45);
 }
 
+// From the coordinates: the baseline conversion (the C library's sines and cosines where an angle needs them)
+// and the baseline lanes. Out of line: the vector copies that fall back to it stay leaf functions.
+[[gnu::noinline]] bool lengths_at_baseline(const SixStrutLayout& layout, AngleConvention convention,
+                                           const PoseVector& coordinates, double* lengths_mm) noexcept {
+  const Pose pose{coordinates.head<3>(), rotation_from_angles_baseline(convention, coordinates.tail<3>())};
+  return six_strut_lengths_pairs(layout, pose, lengths_mm);
+}
+
 #if PKM_HAS_WIDE_KERNELS
 // The AVX2 copy, without fused multiply–adds: the same operations per strut, so the same bits.
-[[gnu::target("avx2"), gnu::flatten]] bool six_strut_lengths_quads(const SixStrutLayout& layout,
-                                                                   const Pose& pose,
-                                                                   double* lengths_mm) noexcept {
+[[gnu::target("avx2")]] inline bool quad_lengths(const SixStrutLayout& layout, const Pose& pose,
+                                                 double* lengths_mm) noexcept {
   StrutLanes<StrutQuad> first, last;
   load_struts(layout, 0, first);
   load_struts(layout, 2, last);
@@ -117,9 +134,9 @@ bool six_strut_lengths_pairs(const SixStrutLayout& layout, const Pose& pose, dou
 // The AVX-512 copy: the six struts in one vector (lanes 6 and 7 masked off), the same operations per strut.
 // Fewer instructions than the AVX2 copy: 8 % less time for the whole hot IK, conversion included (Xeon of
 // 2023).
-[[gnu::target("avx512f"), gnu::flatten]] bool six_strut_lengths_octs(const SixStrutLayout& layout,
-                                                                     const Pose& pose,
-                                                                     double* lengths_mm) noexcept {
+template <class Rotation, class Position>
+[[gnu::target("avx512f")]] inline bool oct_lengths(const SixStrutLayout& layout, const Rotation& r,
+                                                   const Position& p, double* lengths_mm) noexcept {
   constexpr __mmask8 kSix = 0x3f;
   const double* b = layout.platform_mm.data();
   const double* a = layout.base_mm.data();
@@ -131,17 +148,77 @@ bool six_strut_lengths_pairs(const SixStrutLayout& layout, const Pose& pose, dou
   s.ay = _mm512_maskz_loadu_pd(kSix, a + 6);
   s.az = _mm512_maskz_loadu_pd(kSix, a + 12);
   StrutOct squared;
-  squared_lengths(s, pose, squared);
+  squared_lengths(s, r, p, squared);
   const __m512d lengths = _mm512_maskz_sqrt_pd(kSix, squared);
   _mm512_mask_storeu_pd(lengths_mm, kSix, lengths);
   return _mm512_mask_cmp_pd_mask(kSix, lengths, _mm512_setzero_pd(), _CMP_GT_OQ) == kSix;
+}
+
+[[gnu::target("avx2"), gnu::flatten]] bool six_strut_lengths_quads(const SixStrutLayout& layout,
+                                                                   const Pose& pose,
+                                                                   double* lengths_mm) noexcept {
+  return quad_lengths(layout, pose, lengths_mm);
+}
+
+[[gnu::target("avx512f"), gnu::flatten]] bool six_strut_lengths_octs(const SixStrutLayout& layout,
+                                                                     const Pose& pose,
+                                                                     double* lengths_mm) noexcept {
+  return oct_lengths(layout, pose.rotation, pose.position_mm, lengths_mm);
+}
+
+// A rotation's entries, each in every lane of a vector, row by row.
+struct OctRotation {
+  StrutOct entries[9];
+  const StrutOct& operator()(int i, int j) const noexcept { return entries[3 * i + j]; }
+};
+
+// The fused copies: the angles' sines and cosines, the matrix and the six lengths in one function, no Pose
+// handed from call to call. The same operations per value as pose_from_vector and the lanes above, so the
+// same bits.
+[[gnu::target("avx2"), gnu::flatten]] bool lengths_at_quads(const SixStrutLayout& layout,
+                                                            AngleConvention convention,
+                                                            const PoseVector& coordinates,
+                                                            double* lengths_mm) noexcept {
+  sincos3_detail::Quad s, c;
+  if (!sincos3_avx2_lanes(coordinates.data() + 3, s, c))
+    return lengths_at_baseline(layout, convention, coordinates, lengths_mm);
+  const double sines[3] = {s[0], s[1], s[2]}, cosines[3] = {c[0], c[1], c[2]};
+  const Pose pose{coordinates.head<3>(), rotation_from_sines(convention, sines, cosines)};
+  return quad_lengths(layout, pose, lengths_mm);
+}
+
+[[gnu::target("avx512f"), gnu::flatten]] bool lengths_at_octs(const SixStrutLayout& layout,
+                                                              AngleConvention convention,
+                                                              const PoseVector& coordinates,
+                                                              double* lengths_mm) noexcept {
+  sincos3_detail::Oct sc;
+  if (!sincos3_avx512_lanes(coordinates.data() + 3, sc))
+    return lengths_at_baseline(layout, convention, coordinates, lengths_mm);
+  // The matrix computed in all lanes at once (from the sines and cosines spread over the lanes, and the
+  // position loaded into them): fewer instructions than scalars spread over the lanes one by one, on the
+  // two ports that run AVX-512. The permutations' indices are loaded from a table (hidden from the compiler
+  // by the empty asm): built from immediates, as the compiler would, each would cost one more instruction
+  // on those ports. The zero-masking permutation for GCC 12 (see core/sincos3.hpp).
+  alignas(64) static constexpr std::int64_t kLane[7][8] = {
+      {0, 0, 0, 0, 0, 0, 0, 0}, {1, 1, 1, 1, 1, 1, 1, 1}, {2, 2, 2, 2, 2, 2, 2, 2}, {3, 3, 3, 3, 3, 3, 3, 3},
+      {4, 4, 4, 4, 4, 4, 4, 4}, {5, 5, 5, 5, 5, 5, 5, 5}, {6, 6, 6, 6, 6, 6, 6, 6}};
+  const std::int64_t* table = &kLane[0][0];
+  asm("" : "+r"(table));
+  const auto spread = [&sc, table](int lane) -> StrutOct {
+    return _mm512_maskz_permutexvar_pd(0xff, _mm512_load_si512(table + 8 * lane), sc);
+  };
+  OctRotation r;
+  rotation_entries(convention, spread(0), spread(1), spread(2), spread(4), spread(5), spread(6), r.entries);
+  const StrutOct p[3] = {_mm512_set1_pd(coordinates[0]), _mm512_set1_pd(coordinates[1]),
+                         _mm512_set1_pd(coordinates[2])};
+  return oct_lengths(layout, r, p, lengths_mm);
 }
 
 enum class StrutKernel { pairs, quads, octs };
 
 StrutKernel strut_kernel_of_this_processor() {
   if (!wide_kernels_available()) return StrutKernel::pairs;
-  return __builtin_cpu_supports("avx512f") ? StrutKernel::octs : StrutKernel::quads;
+  return avx512_kernels_available() ? StrutKernel::octs : StrutKernel::quads;
 }
 
 // Decided once, when the library is loaded.
@@ -160,6 +237,33 @@ bool six_strut_lengths(const SixStrutLayout& layout, const Pose& pose, double* l
 
 bool six_strut_lengths_baseline(const SixStrutLayout& layout, const Pose& pose, double* lengths_mm) noexcept {
   return six_strut_lengths_pairs(layout, pose, lengths_mm);
+}
+
+bool six_strut_lengths_at(const SixStrutLayout& layout, AngleConvention convention,
+                          const PoseVector& coordinates, double* lengths_mm) noexcept {
+#if PKM_HAS_WIDE_KERNELS
+  if (strut_kernel == StrutKernel::octs) return lengths_at_octs(layout, convention, coordinates, lengths_mm);
+  if (strut_kernel == StrutKernel::quads)
+    return lengths_at_quads(layout, convention, coordinates, lengths_mm);
+#endif
+  return lengths_at_baseline(layout, convention, coordinates, lengths_mm);
+}
+
+int strut_kernel_count() noexcept {
+#if PKM_HAS_WIDE_KERNELS
+  return static_cast<int>(strut_kernel) + 1;
+#else
+  return 1;
+#endif
+}
+
+bool six_strut_lengths_at_kernel(int kernel, const SixStrutLayout& layout, AngleConvention convention,
+                                 const PoseVector& coordinates, double* lengths_mm) noexcept {
+#if PKM_HAS_WIDE_KERNELS
+  if (kernel == 2) return lengths_at_octs(layout, convention, coordinates, lengths_mm);
+  if (kernel == 1) return lengths_at_quads(layout, convention, coordinates, lengths_mm);
+#endif
+  return lengths_at_baseline(layout, convention, coordinates, lengths_mm);
 }
 
 }  // namespace pkm

@@ -21,4 +21,18 @@ bool six_strut_lengths(const SixStrutLayout& layout, const Pose& pose, double* l
 /// The same with the baseline (SSE2) lanes whatever the processor: for the tests, which compare the two.
 bool six_strut_lengths_baseline(const SixStrutLayout& layout, const Pose& pose, double* lengths_mm) noexcept;
 
+/// six_strut_lengths at the pose of six coordinates (x, y, z in mm, three angles in rad in `convention`): the
+/// same bits as six_strut_lengths(layout, pose_from_vector(convention, coordinates), lengths_mm). Where the
+/// processor has AVX2 or AVX-512, one kernel from the coordinates to the lengths (sines and cosines, matrix,
+/// lengths), the pose never stored: the hexapod's hot IK from what a controller hands over.
+bool six_strut_lengths_at(const SixStrutLayout& layout, AngleConvention convention,
+                          const PoseVector& coordinates, double* lengths_mm) noexcept;
+
+/// For the tests, which compare the copies: how many this processor runs (1: the baseline, 2: also AVX2,
+/// 3: also AVX-512), and six_strut_lengths_at with copy `kernel` (0, 1, 2: baseline, AVX2, AVX-512; below
+/// strut_kernel_count()).
+int strut_kernel_count() noexcept;
+bool six_strut_lengths_at_kernel(int kernel, const SixStrutLayout& layout, AngleConvention convention,
+                                 const PoseVector& coordinates, double* lengths_mm) noexcept;
+
 }  // namespace pkm

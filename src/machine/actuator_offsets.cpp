@@ -76,6 +76,13 @@ bool ActuatorOffsets::actuator_values(const Pose& pose, double* out) const noexc
   return true;
 }
 
+bool ActuatorOffsets::actuator_values_at(AngleConvention convention, const PoseVector& coordinates,
+                                         double* out) const noexcept {
+  if (!inner_->actuator_values_at(convention, coordinates, out)) return false;
+  for (int j = 0; j < offsets_.size(); ++j) out[j] -= offsets_[j];
+  return true;
+}
+
 std::vector<GeometryGroup> ActuatorOffsets::geometry_parameters() const {
   std::vector<GeometryGroup> groups = inner_->geometry_parameters();
   groups.push_back(actuator_offsets_group(offsets_, inner_->actuators_are_angles()));

@@ -43,6 +43,8 @@ class ActuatorOffsets final : public Mechanism {
   Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
                                        const FkOptions& options = {}) const override;
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
+  bool actuator_values_at(AngleConvention convention, const PoseVector& coordinates,
+                          double* out) const noexcept override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override { return inner_->jacobian(pose); }
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override {
     return inner_->twist_jacobian(pose, out);

@@ -145,6 +145,11 @@ bool Hexapod::actuator_values(const Pose& pose, double* out) const noexcept {
   return six_strut_lengths(layout_, pose, out);  // false for a zero (or NaN) length, as inverse()
 }
 
+bool Hexapod::actuator_values_at(AngleConvention convention, const PoseVector& coordinates,
+                                 double* out) const noexcept {
+  return six_strut_lengths_at(layout_, convention, coordinates, out);  // the same bits, without a Pose
+}
+
 int Hexapod::strut_joints(const Pose& pose, StrutJointPoints& out) const {
   for (int j = 0; j < 6; ++j) {
     out.base_mm[j] = geometry_.base_joints_mm[j];

@@ -61,6 +61,8 @@ class Hexapod final : public Mechanism {
   std::unique_ptr<FkWorkspace> make_fk_workspace() const override;
   /// strut_lengths(); false when a strut would have zero length (as inverse()).
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
+  bool actuator_values_at(AngleConvention convention, const PoseVector& coordinates,
+                          double* out) const noexcept override;
   bool twist_jacobian(const Pose& pose, JacobianMatrix& out) const noexcept override {
     out = twist_jacobian(pose);
     return true;

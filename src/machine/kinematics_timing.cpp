@@ -57,8 +57,7 @@ KinematicsTiming time_kinematics(const Mechanism& mechanism, const KinematicsTim
   // workspace (what interpolation, a LinuxCNC module and the bindings call).
   std::array<double, kMaxActuators> values{};
   for (const PoseVector& p : poses) {
-    if (mechanism.actuator_values(pose_from_vector(mechanism.convention(), p), values.data()))
-      checksum += values[0];
+    if (mechanism.actuator_values_at(mechanism.convention(), p, values.data())) checksum += values[0];
   }
   t.ik_ns_per_pose = seconds_since(start) * 1e9 / o.ik_poses;
 

@@ -83,6 +83,11 @@ bool Mechanism::actuator_values(const Pose& pose, double* out) const noexcept {
   return true;
 }
 
+bool Mechanism::actuator_values_at(AngleConvention convention, const PoseVector& coordinates,
+                                   double* out) const noexcept {
+  return actuator_values(pose_from_vector(convention, coordinates), out);
+}
+
 Eigen::Matrix<double, 6, 6> coordinate_twists(AngleConvention convention, const Pose& pose) noexcept {
   Eigen::Matrix<double, 6, 6> t = Eigen::Matrix<double, 6, 6>::Zero();
   t.topLeftCorner<3, 3>().setIdentity();

@@ -112,6 +112,12 @@ class Mechanism {
   /// message: it runs at every interpolation period. The default calls inverse(), which allocates only when
   /// it fails.
   virtual bool actuator_values(const Pose& pose, double* out) const noexcept;
+  /// actuator_values at the pose of six coordinates (x, y, z in mm, three angles in rad in `convention`), as
+  /// a controller hands them over (LinuxCNC's EmcPose): the same values, bit for bit, as
+  /// actuator_values(pose_from_vector(convention, coordinates), out), which the default calls. The hexapod
+  /// goes from the coordinates to its lengths in one kernel (kinematics/strut_lengths.hpp).
+  virtual bool actuator_values_at(AngleConvention convention, const PoseVector& coordinates,
+                                  double* out) const noexcept;
   /// d(actuators)/d(controlled coordinates), angle rates in rad in the mechanism's convention.
   virtual Result<JacobianMatrix> jacobian(const Pose& pose) const = 0;
   /// Twist form of the Jacobian: actuator rates from the platform twist (tool-point velocity v mm/s and

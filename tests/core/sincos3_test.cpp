@@ -1,6 +1,7 @@
 // The three-angle sine and cosine of the IK hot path (core/sincos3.hpp): within one unit in the last place of
-// the C library's, the AVX2 copy bit for bit the SSE2 one, signed zeros and the fallback for huge or
-// non-finite angles; rotation_from_angles' AVX2 copy bit for bit its baseline.
+// the C library's, the AVX2 and AVX-512 copies bit for bit the SSE2 one, signed zeros and the fallback for
+// huge or non-finite angles; rotation_from_angles' AVX2 copy bit for bit its baseline. The AVX-512 copy is
+// compared where the processor has it.
 #include "core/sincos3.hpp"
 
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@ bool same_bits(double a, double b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-// Both copies where the processor has AVX2; the baseline alone elsewhere.
+// Every copy the processor runs (AVX2, AVX-512) against the baseline.
 void sincos3_both(const double* angles, double* sines, double* cosines, bool& copies_agree) {
   sincos3_baseline(angles, sines, cosines);
   copies_agree = true;
@@ -28,6 +29,12 @@ void sincos3_both(const double* angles, double* sines, double* cosines, bool& co
   if (!wide_kernels_available()) return;
   double wide_sines[3], wide_cosines[3];
   sincos3_avx2(angles, wide_sines, wide_cosines);
+  for (int k = 0; k < 3; ++k) {
+    copies_agree =
+        copies_agree && same_bits(wide_sines[k], sines[k]) && same_bits(wide_cosines[k], cosines[k]);
+  }
+  if (!avx512_kernels_available()) return;
+  sincos3_avx512(angles, wide_sines, wide_cosines);
   for (int k = 0; k < 3; ++k) {
     copies_agree =
         copies_agree && same_bits(wide_sines[k], sines[k]) && same_bits(wide_cosines[k], cosines[k]);

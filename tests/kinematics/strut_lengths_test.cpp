@@ -1,5 +1,5 @@
-// The six struts' hot IK kernel (kinematics/strut_lengths.hpp): |p + R·b_j − a_j| to rounding, and the AVX2
-// copy bit for bit the SSE2 one.
+// The six struts' hot IK kernel (kinematics/strut_lengths.hpp): |p + R·b_j − a_j| to rounding, the vector
+// copies bit for bit the SSE2 one, also from the six coordinates.
 #include "kinematics/strut_lengths.hpp"
 
 #include <gtest/gtest.h>
@@ -33,6 +33,42 @@ TEST(SixStrutLengths, AreTheDistancesOfTheJointsAndTheSameBitsInBothCopies) {
   }
 }
 
+// From the coordinates (six_strut_lengths_at): every copy the processor runs gives the bits of
+// pose_from_vector and the baseline lanes, in every convention, with and without the angles' range reduction
+// and for angles the C library takes.
+TEST(SixStrutLengths, FromTheCoordinatesTheSameBitsInEveryCopy) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  SixStrutLayout layout;
+  for (int j = 0; j < 6; ++j) {
+    layout.platform_mm.col(j) = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 200.0;
+    layout.base_mm.col(j) = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 400.0;
+  }
+  const int copies = strut_kernel_count();
+  EXPECT_GE(copies, 1);
+  for (const double range : {0.5, 0.78, 3.0, 40.0, 2e6}) {
+    for (int i = 0; i < 1000; ++i) {
+      const PoseVector c = (PoseVector() << 50 * u(rng), 50 * u(rng), 500 + 50 * u(rng), range * u(rng),
+                            range * u(rng), range * u(rng))
+                               .finished();
+      for (const AngleConvention convention :
+           {AngleConvention::abc, AngleConvention::krylov, AngleConvention::euler_zxz}) {
+        const Pose pose = pose_from_vector(convention, c);
+        double expected[6];
+        const bool reachable = six_strut_lengths_baseline(layout, pose, expected);
+        double lengths[6];
+        EXPECT_EQ(six_strut_lengths_at(layout, convention, c, lengths), reachable);
+        EXPECT_EQ(std::memcmp(lengths, expected, sizeof lengths), 0) << range << " " << i;
+        for (int copy = 0; copy < copies; ++copy) {
+          EXPECT_EQ(six_strut_lengths_at_kernel(copy, layout, convention, c, lengths), reachable);
+          ASSERT_EQ(std::memcmp(lengths, expected, sizeof lengths), 0)
+              << "copy " << copy << " " << to_string(convention) << " " << c.transpose();
+        }
+      }
+    }
+  }
+}
+
 TEST(SixStrutLengths, FalseWhenAPlatformJointIsOnItsBaseJoint) {
   SixStrutLayout layout;
   for (int j = 0; j < 6; ++j) {
@@ -49,6 +85,10 @@ TEST(SixStrutLengths, FalseWhenAPlatformJointIsOnItsBaseJoint) {
     EXPECT_FALSE(six_strut_lengths(touching, pose, lengths)) << collapsed;
     EXPECT_FALSE(six_strut_lengths_baseline(touching, pose, lengths)) << collapsed;
     EXPECT_EQ(lengths[collapsed], 0.0);
+    const PoseVector c = vector_from_pose(AngleConvention::abc, pose);
+    for (int copy = 0; copy < strut_kernel_count(); ++copy) {
+      EXPECT_FALSE(six_strut_lengths_at_kernel(copy, touching, AngleConvention::abc, c, lengths)) << copy;
+    }
   }
 }
 
