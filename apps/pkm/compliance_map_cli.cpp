@@ -16,13 +16,7 @@ namespace {
 
 void print_compliance_map_json(const Machine& machine, const dynamics::PlaneGrid& grid,
                                const pipeline::ComplianceMapJobResult& r, const std::string& out_path) {
-  const Mechanism& mech = *machine.mechanism;
   const stiffness::StiffnessMapSummary& s = r.summary;
-  const double share = s.points > 0 ? static_cast<double>(s.with_value) / s.points : 0.0;
-  const auto pose_at = [&](int index) -> nlohmann::json {
-    if (index < 0) return nullptr;
-    return user_from_pose(mech, r.poses[index]);
-  };
   const auto value_at = [&](int index) -> nlohmann::json {
     if (index < 0) return nullptr;
     return r.points[index].lowest_stiffness_N_um;
@@ -32,25 +26,13 @@ void print_compliance_map_json(const Machine& machine, const dynamics::PlaneGrid
     const Eigen::Vector3d& d = r.points[index].direction;
     return {d.x(), d.y(), d.z()};
   };
-  print_json({{"machine", machine.source},
-              {"out", out_path},
-              {"model", "strut-only"},
-              {"plane", to_string(grid.plane)},
-              {"centre", user_from_pose(mech, grid.centre)},
-              {"range_mm", grid.half_range_mm},
-              {"step_mm", grid.step_mm},
-              {"points_per_axis", static_cast<int>(r.points_per_axis)},
-              {"points", s.points},
-              {"with_stiffness", s.with_value},
-              {"reachable_share", share},
-              {"unreachable", s.unreachable},
-              {"out_of_range", s.out_of_range},
-              {"singular", s.singular},
-              {"min_stiffness_N_um", value_at(s.lowest_index)},
-              {"min_direction", direction_at(s.lowest_index)},
-              {"min_pose", pose_at(s.lowest_index)},
-              {"max_stiffness_N_um", value_at(s.highest_index)},
-              {"max_pose", pose_at(s.highest_index)}});
+  nlohmann::json json = map_summary_json(machine, grid, static_cast<int>(r.points_per_axis), r.poses, s,
+                                         "with_stiffness", out_path);
+  json["model"] = "strut-only";
+  json["min_stiffness_N_um"] = value_at(s.lowest_index);
+  json["min_direction"] = direction_at(s.lowest_index);
+  json["max_stiffness_N_um"] = value_at(s.highest_index);
+  print_json(json);
 }
 
 void print_compliance_map(const Machine& machine, const dynamics::PlaneGrid& grid,

@@ -16,6 +16,32 @@ Error map_grid_error(const std::string& flag, const Error& error) {
 
 }  // namespace
 
+nlohmann::json map_summary_json(const Machine& machine, const dynamics::PlaneGrid& grid, int points_per_axis,
+                                const std::vector<Pose>& poses, const dynamics::MapPointCounts& counts,
+                                const std::string& with_value_key, const std::string& out_path) {
+  const Mechanism& mech = *machine.mechanism;
+  const auto pose_at = [&](int index) -> nlohmann::json {
+    if (index < 0) return nullptr;
+    return user_from_pose(mech, poses[index]);
+  };
+  const double share = counts.points > 0 ? static_cast<double>(counts.with_value) / counts.points : 0.0;
+  return {{"machine", machine.source},
+          {"out", out_path},
+          {"plane", to_string(grid.plane)},
+          {"centre", user_from_pose(mech, grid.centre)},
+          {"range_mm", grid.half_range_mm},
+          {"step_mm", grid.step_mm},
+          {"points_per_axis", points_per_axis},
+          {"points", counts.points},
+          {with_value_key, counts.with_value},
+          {"reachable_share", share},
+          {"unreachable", counts.unreachable},
+          {"out_of_range", counts.out_of_range},
+          {"singular", counts.singular},
+          {"min_pose", pose_at(counts.lowest_index)},
+          {"max_pose", pose_at(counts.highest_index)}};
+}
+
 void add_map_grid_options(CLI::App& command, MapGridArguments& arguments, CLI::Option* map_flag) {
   // Kept as text: map_plane_grid reads it against the mechanism, as --pose is read.
   command

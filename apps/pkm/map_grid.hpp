@@ -3,9 +3,13 @@
 // `pkm compliance --map` take the same --centre, --plane, --range-mm and --step-mm and refuse the same
 // inputs (dynamics/pose_grid.hpp builds the grid).
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "dynamics/map_point_counts.hpp"
 #include "dynamics/pose_grid.hpp"
+#include "machine/machine.hpp"
 #include "machine/mechanism.hpp"
 #include "pipeline/plane_map_grid.hpp"
 
@@ -28,6 +32,13 @@ void add_map_grid_options(CLI::App& command, MapGridArguments& arguments, CLI::O
 /// name the flag: a centre that is no pose, a plane a planar machine cannot move in, more than
 /// kMaxMapGridPoints points.
 Result<dynamics::PlaneGrid> map_plane_grid(const Mechanism& mechanism, const MapGridArguments& arguments);
+
+/// The JSON fields every map prints (--json): the machine, the output file, the grid, how many points have a
+/// value (under `with_value_key`) and why the others have none, and "min_pose"/"max_pose", the poses of the
+/// lowest and highest values (null without any). The caller adds its values.
+nlohmann::json map_summary_json(const Machine& machine, const dynamics::PlaneGrid& grid, int points_per_axis,
+                                const std::vector<Pose>& poses, const dynamics::MapPointCounts& counts,
+                                const std::string& with_value_key, const std::string& out_path);
 
 /// "x, y, z, a1, a2, a3" of a pose, as --pose takes it.
 std::string map_pose_text(const Mechanism& mechanism, const Pose& pose);

@@ -13,34 +13,16 @@ namespace {
 
 void print_modes_map_json(const Machine& machine, const dynamics::PlaneGrid& grid,
                           const pipeline::ModesMapJobResult& r, const std::string& out_path) {
-  const Mechanism& mech = *machine.mechanism;
   const dynamics::FrequencyMapSummary& s = r.summary;
-  const double share = s.points > 0 ? static_cast<double>(s.with_value) / s.points : 0.0;
-  const auto at = [&](int index) -> nlohmann::json {
-    if (index < 0) return nullptr;
-    return user_from_pose(mech, r.poses[index]);
-  };
   const auto frequency = [&](int index) -> nlohmann::json {
     if (index < 0) return nullptr;
     return r.points[index].lowest_frequency_Hz;
   };
-  print_json({{"machine", machine.source},
-              {"out", out_path},
-              {"plane", to_string(grid.plane)},
-              {"centre", user_from_pose(mech, grid.centre)},
-              {"range_mm", grid.half_range_mm},
-              {"step_mm", grid.step_mm},
-              {"points_per_axis", static_cast<int>(r.points_per_axis)},
-              {"points", s.points},
-              {"with_frequency", s.with_value},
-              {"reachable_share", share},
-              {"unreachable", s.unreachable},
-              {"out_of_range", s.out_of_range},
-              {"singular", s.singular},
-              {"min_frequency_Hz", frequency(s.lowest_index)},
-              {"min_pose", at(s.lowest_index)},
-              {"max_frequency_Hz", frequency(s.highest_index)},
-              {"max_pose", at(s.highest_index)}});
+  nlohmann::json json = map_summary_json(machine, grid, static_cast<int>(r.points_per_axis), r.poses, s,
+                                         "with_frequency", out_path);
+  json["min_frequency_Hz"] = frequency(s.lowest_index);
+  json["max_frequency_Hz"] = frequency(s.highest_index);
+  print_json(json);
 }
 
 void print_modes_map(const Machine& machine, const dynamics::PlaneGrid& grid,
