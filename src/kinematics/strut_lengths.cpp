@@ -211,6 +211,9 @@ struct OctRotation {
   rotation_entries(convention, spread(0), spread(1), spread(2), spread(4), spread(5), spread(6), r.entries);
   const StrutOct p[3] = {_mm512_set1_pd(coordinates[0]), _mm512_set1_pd(coordinates[1]),
                          _mm512_set1_pd(coordinates[2])};
+  // rotation_entries writes all nine entries for every convention; zeroing them first would cost the hot
+  // path nine more vector stores.
+  // cppcheck-suppress uninitvar
   return oct_lengths(layout, r, p, lengths_mm);
 }
 
