@@ -187,6 +187,13 @@ struct OctRotation {
   return quad_lengths(layout, pose, lengths_mm);
 }
 
+// Lane `lane` of `sc` in every lane (the permutation's indices from row `lane` of `table`). A function of
+// its own, not a lambda: clang does not give a lambda its enclosing function's target.
+[[gnu::target("avx512f")]] inline StrutOct spread_lane(const sincos3_detail::Oct& sc,
+                                                       const std::int64_t* table, int lane) noexcept {
+  return _mm512_maskz_permutexvar_pd(0xff, _mm512_load_si512(table + 8 * lane), sc);
+}
+
 [[gnu::target("avx512f"), gnu::flatten]] bool lengths_at_octs(const SixStrutLayout& layout,
                                                               AngleConvention convention,
                                                               const PoseVector& coordinates,
@@ -204,11 +211,10 @@ struct OctRotation {
       {4, 4, 4, 4, 4, 4, 4, 4}, {5, 5, 5, 5, 5, 5, 5, 5}, {6, 6, 6, 6, 6, 6, 6, 6}};
   const std::int64_t* table = &kLane[0][0];
   asm("" : "+r"(table));
-  const auto spread = [&sc, table](int lane) -> StrutOct {
-    return _mm512_maskz_permutexvar_pd(0xff, _mm512_load_si512(table + 8 * lane), sc);
-  };
   OctRotation r;
-  rotation_entries(convention, spread(0), spread(1), spread(2), spread(4), spread(5), spread(6), r.entries);
+  rotation_entries(convention, spread_lane(sc, table, 0), spread_lane(sc, table, 1),
+                   spread_lane(sc, table, 2), spread_lane(sc, table, 4), spread_lane(sc, table, 5),
+                   spread_lane(sc, table, 6), r.entries);
   const StrutOct p[3] = {_mm512_set1_pd(coordinates[0]), _mm512_set1_pd(coordinates[1]),
                          _mm512_set1_pd(coordinates[2])};
   // rotation_entries writes all nine entries for every convention; zeroing them first would cost the hot
