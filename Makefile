@@ -89,7 +89,7 @@ sanitize:
 	@cmake --build build-asan -j $(JOBS) --target pkm_tests pkm $(if $(filter 0,$(SANITIZE_FUZZ_SECONDS)),,pkm_fuzzers)
 	@mkdir -p build-asan/Testing/Temporary
 	@[ -f build-asan/Testing/Temporary/CTestCostData.txt ] || cp tests/sanitizer_test_costs.txt build-asan/Testing/Temporary/CTestCostData.txt
-	cd build-asan && PKM_GENERATED_PROGRAMS=2 PKM_HONEST_PROGRAMS=4 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '$(SANITIZE_SKIP)'
+	cd build-asan && PKM_GENERATED_PROGRAMS=2 PKM_HONEST_PROGRAMS=2 PKM_RANDOM_GEOMETRIES=1 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -E '$(SANITIZE_SKIP)'
 	@if [ "$(SANITIZE_FUZZ_SECONDS)" != 0 ]; then bash fuzz/run.sh build-asan $(SANITIZE_FUZZ_SECONDS); fi
 
 # Formatting must match .clang-format; cppcheck must find nothing.

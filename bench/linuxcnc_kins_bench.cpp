@@ -8,7 +8,7 @@
 // return its poses (pkmkins to 1e-8, genhexkins to 1e-6), or the program stops with an error.
 //
 // Beside the modules, pkm's hot IK through its Mechanism interface in this process, from the same EmcPose:
-// degrees → radians and Mechanism::actuator_values_at (the angles → matrix conversion included) on the
+// degrees → radians and Mechanism::actuator_values_at (the angles' sines and cosines included) on the
 // machine file's mechanism, what pkmkins' kinematicsInverse does inside without the module's joint
 // bookkeeping. It must agree with genhexkins to 1e-6 mm along the path too.
 //
@@ -309,7 +309,7 @@ std::unique_ptr<pkm::Machine> load_interface_machine() {
 }
 
 // An EmcPose's joints through Mechanism::actuator_values_at: the six coordinates (angles in degrees,
-// LinuxCNC's A, B, C: the abc convention, as pkmkins reads them) to the joints, angles → matrix included.
+// LinuxCNC's A, B, C: the abc convention, as pkmkins reads them) to the joints, the rotation included.
 inline bool interface_inverse(const pkm::Mechanism& mechanism, const EmcPose& world, double* joints) {
   const pkm::PoseVector v =
       (pkm::PoseVector() << world.tran.x, world.tran.y, world.tran.z, pkm::rad_from_deg(world.a),

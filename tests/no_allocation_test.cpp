@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -132,13 +133,16 @@ void noalloc_short_path(const Mechanism& mech, int count, std::vector<Pose>& pos
   }
 }
 
-// actuator_values_at from the pose's coordinates: the bits of actuator_values at pose_from_vector of them.
+// actuator_values_at from the pose's coordinates: the values of actuator_values at pose_from_vector of them,
+// to rounding (the hexapod turns its joints by the elementary rotations instead of the matrix).
 bool same_values_from_coordinates(const Mechanism& mech, const Pose& pose) {
   const PoseVector c = vector_from_pose(mech.convention(), pose);
   std::array<double, kMaxActuators> at{}, reference{};
   if (!mech.actuator_values_at(mech.convention(), c, at.data())) return false;
   if (!mech.actuator_values(pose_from_vector(mech.convention(), c), reference.data())) return false;
-  return std::memcmp(at.data(), reference.data(), sizeof(double) * mech.actuator_count()) == 0;
+  for (int j = 0; j < mech.actuator_count(); ++j)
+    if (!(std::abs(at[j] - reference[j]) <= 1e-12 * (1.0 + std::abs(reference[j])))) return false;
+  return true;
 }
 
 // The servo-loop forms of the interface: warm FK with the mechanism's own workspace (made once, before the

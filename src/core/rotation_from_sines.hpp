@@ -1,6 +1,6 @@
 #pragma once
 // A convention's rotation matrix from its three angles' sines and cosines, for the conversions on the IK hot
-// path (core/rotation.cpp, kinematics/strut_lengths.cpp): inline, so that a caller's AVX2 or AVX-512 copy
+// path (core/rotation.cpp): inline, so that a caller's AVX2 or AVX-512 copy
 // compiles it along with its work. Every entry by plain IEEE operations in a fixed order: the same bits in
 // every copy, provided the caller fuses no multiply–add (a target with FMA under GCC needs
 // `#pragma GCC optimize("fp-contract=off")` around the caller, as in kinematics/strut_lengths.cpp).

@@ -186,7 +186,8 @@ template <bool reduce>
   IntOct r_bits, y_bits;
   std::memcpy(&r_bits, &r, sizeof r_bits);
   std::memcpy(&y_bits, &y, sizeof y_bits);
-  r_bits = (r_bits & ~kSineSign) | (y_bits & kSineSign);
+  // One bitwise select (0xca: the first operand's bits choose the second's over the third's), not three.
+  r_bits = (IntOct)_mm512_ternarylogic_epi64((__m512i)kSineSign, (__m512i)y_bits, (__m512i)r_bits, 0xca);
   if constexpr (reduce) {
     // Odd n swaps a sine lane with its cosine lane (the halves swapped); the signs as in sincos_lanes: the
     // cosine lanes' quadrant counts one more.

@@ -8,10 +8,12 @@
 
 namespace pkm {
 
-/// Six struts' joints by coordinate: row k holds component k of the six joints.
+/// Six struts' joints by coordinate: row k holds component k of the six joints in columns 0–5. Columns 6 and
+/// 7 stay zero: a row fills one AVX-512 vector, loaded whole (a cache line: the rows are 64-byte aligned).
 struct SixStrutLayout {
-  Eigen::Matrix<double, 3, 6, Eigen::RowMajor> platform_mm;  ///< b_j, platform joints in the tool frame
-  Eigen::Matrix<double, 3, 6, Eigen::RowMajor> base_mm;      ///< a_j, base joints in the base frame
+  using Rows = Eigen::Matrix<double, 3, 8, Eigen::RowMajor | Eigen::DontAlign>;
+  alignas(64) Rows platform_mm = Rows::Zero();  ///< b_j, platform joints in the tool frame
+  alignas(64) Rows base_mm = Rows::Zero();      ///< a_j, base joints in the base frame
 };
 
 /// lengths_mm[j] = |p + R·b_j − a_j| for the six struts of `layout` at `pose`; true when every length is > 0
@@ -22,9 +24,11 @@ bool six_strut_lengths(const SixStrutLayout& layout, const Pose& pose, double* l
 bool six_strut_lengths_baseline(const SixStrutLayout& layout, const Pose& pose, double* lengths_mm) noexcept;
 
 /// six_strut_lengths at the pose of six coordinates (x, y, z in mm, three angles in rad in `convention`): the
-/// same bits as six_strut_lengths(layout, pose_from_vector(convention, coordinates), lengths_mm). Where the
-/// processor has AVX2 or AVX-512, one kernel from the coordinates to the lengths (sines and cosines, matrix,
-/// lengths), the pose never stored: the hexapod's hot IK from what a controller hands over.
+/// hexapod's hot IK from what a controller hands over. The platform joints are turned by the convention's
+/// three elementary rotations in turn (core/rotate_by_angles.hpp), the matrix never formed: fewer operations,
+/// and the lengths of six_strut_lengths(layout, pose_from_vector(convention, coordinates)) to rounding (a few
+/// units in the last place), not their bits. Where the processor has AVX2 or AVX-512, one kernel from the
+/// coordinates to the lengths; every copy gives the same bits.
 bool six_strut_lengths_at(const SixStrutLayout& layout, AngleConvention convention,
                           const PoseVector& coordinates, double* lengths_mm) noexcept;
 

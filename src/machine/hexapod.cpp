@@ -168,16 +168,17 @@ int Hexapod::strut_state(const Pose& pose, StrutJointPoints& ends, double* actua
   // twist_jacobian() makes them strut by strut, to rounding (tests/machine/twist_jacobian_test.cpp).
   using Lanes = Eigen::Array<double, 1, 6>;
   const Eigen::Matrix3d& r = pose.rotation;
-  const Lanes px = layout_.platform_mm.row(0).array(), py = layout_.platform_mm.row(1).array(),
-              pz = layout_.platform_mm.row(2).array();
+  const Lanes px = layout_.platform_mm.row(0).head<6>().array(),
+              py = layout_.platform_mm.row(1).head<6>().array(),
+              pz = layout_.platform_mm.row(2).head<6>().array();
   const Lanes arm_x = r(0, 0) * px + r(0, 1) * py + r(0, 2) * pz;  // R b_j: the joint from the tool point
   const Lanes arm_y = r(1, 0) * px + r(1, 1) * py + r(1, 2) * pz;
   const Lanes arm_z = r(2, 0) * px + r(2, 1) * py + r(2, 2) * pz;
   const Lanes joint_x = arm_x + pose.position_mm.x(), joint_y = arm_y + pose.position_mm.y(),
               joint_z = arm_z + pose.position_mm.z();
-  const Lanes ox = pose.position_mm.x() - layout_.base_mm.row(0).array(),
-              oy = pose.position_mm.y() - layout_.base_mm.row(1).array(),
-              oz = pose.position_mm.z() - layout_.base_mm.row(2).array();
+  const Lanes ox = pose.position_mm.x() - layout_.base_mm.row(0).head<6>().array(),
+              oy = pose.position_mm.y() - layout_.base_mm.row(1).head<6>().array(),
+              oz = pose.position_mm.z() - layout_.base_mm.row(2).head<6>().array();
   const Lanes dx = (r(0, 0) * px + r(0, 1) * py) + (r(0, 2) * pz + ox);
   const Lanes dy = (r(1, 0) * px + r(1, 1) * py) + (r(1, 2) * pz + oy);
   const Lanes dz = (r(2, 0) * px + r(2, 1) * py) + (r(2, 2) * pz + oz);

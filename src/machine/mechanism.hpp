@@ -113,9 +113,10 @@ class Mechanism {
   /// it fails.
   virtual bool actuator_values(const Pose& pose, double* out) const noexcept;
   /// actuator_values at the pose of six coordinates (x, y, z in mm, three angles in rad in `convention`), as
-  /// a controller hands them over (LinuxCNC's EmcPose): the same values, bit for bit, as
-  /// actuator_values(pose_from_vector(convention, coordinates), out), which the default calls. The hexapod
-  /// goes from the coordinates to its lengths in one kernel (kinematics/strut_lengths.hpp).
+  /// a controller hands them over (LinuxCNC's EmcPose): the values of
+  /// actuator_values(pose_from_vector(convention, coordinates), out), which the default calls (bit for bit).
+  /// The hexapod goes from the coordinates to its lengths in one kernel that turns the joints by the three
+  /// elementary rotations instead of forming the matrix (kinematics/strut_lengths.hpp): equal to rounding.
   virtual bool actuator_values_at(AngleConvention convention, const PoseVector& coordinates,
                                   double* out) const noexcept;
   /// d(actuators)/d(controlled coordinates), angle rates in rad in the mechanism's convention.
