@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/units.hpp"
 #include "planning/path_sampling.hpp"
@@ -57,18 +58,7 @@ void RunMonitor::add(const ServoTick& tick) {
       }
     }
     previous_velocity_ = velocity;
-    // Path speed against the feed of the segment the tick is on (and the one it came from).
-    summary_.max_path_speed = std::max(summary_.max_path_speed, tick.path_speed);
-    double cap = segment_speed_cap(plan_.path.segments[tick.segment], machine_.motion, override_factor_);
-    if (previous_.segment != tick.segment) {
-      cap = std::max(
-          cap, segment_speed_cap(plan_.path.segments[previous_.segment], machine_.motion, override_factor_));
-    }
-    if (cap > 0.0) {
-      const double ratio = tick.path_speed / cap;
-      last_feed_ratio_ = ratio > 1.0 && ratio <= 1.0 + kFeedRatioRounding ? 1.0 : ratio;
-      summary_.max_feed_ratio = std::max(summary_.max_feed_ratio, last_feed_ratio_);
-    }
+    add_feed_ratio(tick);
     const double path_accel = (tick.path_speed - previous_path_speed_) / h;
     summary_.max_path_accel = std::max(summary_.max_path_accel, std::abs(path_accel));
     if (count_ > 1)
@@ -77,48 +67,75 @@ void RunMonitor::add(const ServoTick& tick) {
     previous_path_accel_ = path_accel;
     previous_path_speed_ = tick.path_speed;
 
-    if (evaluate_error_) {
-      // The drives move linearly between setpoints: the largest deviation is near mid-period.
-      const ActuatorVector middle = 0.5 * (tick.actuators + previous_.actuators);
-      auto fk = machine_.mechanism->forward(middle, fk_guess_);
-      if (fk) {
-        fk_guess_ = fk->pose;
-        int hint = previous_.segment;
-        const double s_mid = 0.5 * (tick.s + previous_.s);
-        const path::PathPoint on_path = plan_.path.evaluate(s_mid, hint);
-        Eigen::Vector3d error = fk->pose.position_mm - on_path.position_mm;
-        // Reduced-DOF mechanisms: the coordinates they do not control follow, and are no error.
-        const AxisMask axes = machine_.mechanism->controlled_axes();
-        for (int c = 0; c < 3; ++c) {
-          if (!axes.controlled[c]) error[c] = 0.0;
-        }
-        const Eigen::Vector3d chord = tick.pose.position_mm - previous_.pose.position_mm;
-        if (chord.norm() > 1e-12) {  // perpendicular part: lag along the path is not a contour error
-          const Eigen::Vector3d t = chord.normalized();
-          error -= error.dot(t) * t;
-        }
-        last_path_error_mm_ = error.norm();
-        if (error.norm() > summary_.max_path_error_mm) {
-          summary_.max_path_error_mm = error.norm();
-          summary_.max_path_error_line = tick.line;
-        }
-        if (axes.controlled[5] && axes.controlled[3] == axes.controlled[4]) {  // all angles, or planar φ
-          const double angle = Eigen::Quaterniond(fk->pose.rotation).angularDistance(on_path.rotation);
-          last_orientation_error_deg_ = deg_from_rad(angle);
-          summary_.max_orientation_error_deg =
-              std::max(summary_.max_orientation_error_deg, last_orientation_error_deg_);
-        }
-      } else {
-        last_fk_failed_ = true;
-        ++summary_.fk_failures;
-      }
-    }
+    if (evaluate_error_) add_path_error(tick);
   }
   previous_ = tick;
   ++count_;
   summary_.ticks = count_;
   summary_.duration_s = tick.time_s;
   summary_.end_pose = tick.pose;
+}
+
+// Path speed against the feed of the segment the tick is on (and the one it came from).
+void RunMonitor::add_feed_ratio(const ServoTick& tick) {
+  const double h = plan_.period_s;
+  summary_.max_path_speed = std::max(summary_.max_path_speed, tick.path_speed);
+  double cap = segment_speed_cap(plan_.path.segments[tick.segment], machine_.motion, override_factor_);
+  if (previous_.segment != tick.segment) {
+    cap = std::max(
+        cap, segment_speed_cap(plan_.path.segments[previous_.segment], machine_.motion, override_factor_));
+  }
+  if (cap > 0.0) {
+    const double ratio = tick.path_speed / cap;
+    // The speed is a difference of two arc lengths from the jerk filter's running sum of n samples, whose
+    // rounding grows with the distance travelled: up to about n·ε·s in each, re-summed every n ticks. On a
+    // long program (tens of metres, s ≈ 1e4–1e5 mm) that exceeds kFeedRatioRounding of a slow feed.
+    const double window = std::max(1, plan_.filter_ticks);
+    const double position_rounding =
+        2.0 * (window + 2.0) * std::numeric_limits<double>::epsilon() * std::abs(tick.s);
+    const double allowance = kFeedRatioRounding + position_rounding / (h * cap);
+    last_feed_ratio_ = ratio > 1.0 && ratio <= 1.0 + allowance ? 1.0 : ratio;
+    summary_.max_feed_ratio = std::max(summary_.max_feed_ratio, last_feed_ratio_);
+  }
+}
+
+// The path error at the mid-period before `tick`: FK of the mean of the two ticks' actuators against the
+// path.
+void RunMonitor::add_path_error(const ServoTick& tick) {
+  // The drives move linearly between setpoints: the largest deviation is near mid-period.
+  const ActuatorVector middle = 0.5 * (tick.actuators + previous_.actuators);
+  auto fk = machine_.mechanism->forward(middle, fk_guess_);
+  if (fk) {
+    fk_guess_ = fk->pose;
+    int hint = previous_.segment;
+    const double s_mid = 0.5 * (tick.s + previous_.s);
+    const path::PathPoint on_path = plan_.path.evaluate(s_mid, hint);
+    Eigen::Vector3d error = fk->pose.position_mm - on_path.position_mm;
+    // Reduced-DOF mechanisms: the coordinates they do not control follow, and are no error.
+    const AxisMask axes = machine_.mechanism->controlled_axes();
+    for (int c = 0; c < 3; ++c) {
+      if (!axes.controlled[c]) error[c] = 0.0;
+    }
+    const Eigen::Vector3d chord = tick.pose.position_mm - previous_.pose.position_mm;
+    if (chord.norm() > 1e-12) {  // perpendicular part: lag along the path is not a contour error
+      const Eigen::Vector3d t = chord.normalized();
+      error -= error.dot(t) * t;
+    }
+    last_path_error_mm_ = error.norm();
+    if (error.norm() > summary_.max_path_error_mm) {
+      summary_.max_path_error_mm = error.norm();
+      summary_.max_path_error_line = tick.line;
+    }
+    if (axes.controlled[5] && axes.controlled[3] == axes.controlled[4]) {  // all angles, or planar φ
+      const double angle = Eigen::Quaterniond(fk->pose.rotation).angularDistance(on_path.rotation);
+      last_orientation_error_deg_ = deg_from_rad(angle);
+      summary_.max_orientation_error_deg =
+          std::max(summary_.max_orientation_error_deg, last_orientation_error_deg_);
+    }
+  } else {
+    last_fk_failed_ = true;
+    ++summary_.fk_failures;
+  }
 }
 
 }  // namespace pkm::planning

@@ -39,7 +39,8 @@ struct RunSummary {
       0.0;                      ///< when the mechanism controls the orientation (all angles, or planar φ)
   double max_path_speed = 0.0;  ///< path units per second
   /// Path speed / (programmed feed × override, capped by the machine), ≤ 1: a ratio within
-  /// kFeedRatioRounding of 1 counts as 1 (the jerk filter's sums round by about 1e-10).
+  /// kFeedRatioRounding of 1 counts as 1 (the jerk filter's sums round by about 1e-10), and within the
+  /// rounding of the arc length itself, which grows with the distance travelled (run_monitor.cpp).
   double max_feed_ratio = 0.0;
   double max_path_accel = 0.0;  ///< path units per second², from the ticks
   double max_path_jerk = 0.0;
@@ -67,6 +68,8 @@ class RunMonitor {
   bool last_fk_failed() const { return last_fk_failed_; }
 
  private:
+  void add_feed_ratio(const ServoTick& tick);
+  void add_path_error(const ServoTick& tick);
   const MotionPlan& plan_;
   const Machine& machine_;
   double override_factor_;
