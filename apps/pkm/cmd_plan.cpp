@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <map>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -41,6 +42,7 @@ struct PlanArguments {
   bool dynamics = false;
   bool elastic = false;
   bool stiffness = false;
+  formats::TickTables tables = formats::TickTables::csv;
 };
 
 void add_plan_options(CLI::App& cmd, PlanArguments& a) {
@@ -83,6 +85,13 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
                "stiffness: section): deflection.csv and a stiffness block in summary.json");
   cmd.add_flag("--json", a.json, "print the summary as JSON");
   cmd.add_option("--report", a.report_file, "also write the HTML report of the run to this file");
+  cmd.add_option("--tables", a.tables,
+                 "the servo-rate tables as CSV files (csv, default) or as the groups of DIR/ticks.h5 (hdf5: "
+                 "compressed, for numpy and pandas through h5py; not with --report)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, formats::TickTables>{{"csv", formats::TickTables::csv},
+                                                     {"hdf5", formats::TickTables::hdf5}},
+          CLI::ignore_case));
   add_redundancy_options(cmd, a.redundancy, false);
 }
 
@@ -110,6 +119,7 @@ Result<pipeline::PlanJob> plan_job(const PlanArguments& a, std::optional<redunda
   }
   job.out_directory = a.out_dir;
   job.report_path = a.report_file;
+  job.tick_tables = a.tables;
   return job;
 }
 

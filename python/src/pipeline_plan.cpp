@@ -29,6 +29,7 @@ struct PlanArguments {
   std::string load;
   bool evaluate_path_error = true;
   std::string out_dir;
+  formats::TickTables tables = formats::TickTables::csv;
 };
 
 /// The drive forces per tick (RunDynamics hands them on in order).
@@ -167,6 +168,7 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
   job.elastic = a.dynamics && a.elastic;
   job.dynamics_load = std::move(*load);
   job.out_directory = a.out_dir;
+  job.tick_tables = a.tables;
   PlanRun r;
   ArrayListener listener(machine, r);
   job.listener = &listener;
@@ -238,8 +240,12 @@ void bind_plan(py::module_& m) {
          const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
          const std::string& load, bool dynamics, bool elastic, bool path_error, const py::object& tool_table,
-         const py::object& subroutine_path, const py::object& parameter_file, const py::object& out_dir) {
+         const py::object& subroutine_path, const py::object& parameter_file, const py::object& out_dir,
+         const std::string& tables) {
         PlanArguments a;
+        if (tables != "csv" && tables != "hdf5")
+          throw py::value_error(fmt::format("tables '{}': expected 'csv' or 'hdf5'", tables));
+        a.tables = tables == "hdf5" ? formats::TickTables::hdf5 : formats::TickTables::csv;
         a.program_path = optional_path(program_path);
         a.program_options = program_options(tool_table, subroutine_path, parameter_file);
         a.out_dir = optional_path(out_dir);
@@ -281,14 +287,15 @@ void bind_plan(py::module_& m) {
       py::arg("load") = "", py::arg("dynamics") = false, py::arg("elastic") = false,
       py::arg("path_error") = true, py::arg("tool_table") = py::none(),
       py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(),
-      py::arg("out_dir") = py::none(),
+      py::arg("out_dir") = py::none(), py::arg("tables") = "csv",
       R"doc(Plans a part program on `machine` and returns its servo-rate motion, as `pkm plan` does.
 
 Arguments (the CLI's options): servo_period_ms (default 1 ms, --rate 1000/period), feed_override_pct (0 < … ≤
 200), blend_tolerance_mm (corner blending; default the machine file's; 0: exact stop), path_error (FK of the
 actuators at every mid-period, as without --no-path-error), tool_table (G43), subroutine_path and parameter_file
 (as pkm.interpret), out_dir (also write the CLI's
-actuators.csv, path.csv, summary.json and with dynamics forces.csv there).
+actuators.csv, path.csv, summary.json and with dynamics forces.csv there), tables ('csv', or 'hdf5': the tables
+as the groups of out_dir/ticks.h5, as `pkm plan --tables hdf5`).
 law ('increment' | 'force' | 'energy'): first choose the coordinates the program leaves free by that drive
 control law, as pkm.optimize does, with free, bounds_deg (lo, hi), law_step_mm, solver, energy_accounting,
 force_model, force_limit_N, max_rate_deg_per_mm and load (the CLI's --load text, e.g.

@@ -125,82 +125,78 @@ nlohmann::json plan_summary_json(const planning::MotionPlan& plan, const Machine
 
 namespace {
 
-// One row of path.csv: the tool point in program coordinates, A B C, speed, feed cap and path error.
-void write_path_row(const planning::ServoTick& tick, const planning::RunMonitor& monitor,
-                    const Machine& machine, fmt::memory_buffer& path_csv) {
-  const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
-  const Eigen::Vector3d abc =
-      angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
+// One row of path.csv: the tool point in program coordinates, A B C, speed, feed cap and path error (the
+// values of path_values).
+void write_path_row(const double* v, fmt::memory_buffer& path_csv) {
   fmt::format_to(std::back_inserter(path_csv),
-                 "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},{:.4f},", tick.time_s,
-                 tick.line, tick.s, p.x(), p.y(), p.z(), abc.x(), abc.y(), abc.z(), tick.path_speed,
-                 monitor.last_feed_cap());
+                 "{:.6f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f},{:.4f},", v[0],
+                 static_cast<long>(v[1]), v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10]);
   // An empty field where the error was not evaluated (first tick, --no-path-error, FK failure).
-  if (const double e = monitor.last_path_error_mm(); std::isfinite(e))
-    fmt::format_to(std::back_inserter(path_csv), "{:.3e}", e);
+  if (std::isfinite(v[11])) fmt::format_to(std::back_inserter(path_csv), "{:.3e}", v[11]);
   path_csv.push_back('\n');
 }
 
 }  // namespace
 
-PlanFiles::PlanFiles(const Machine& machine, const analyses::PlanAnalysisOptions& analyses)
+void path_values(const planning::ServoTick& tick, const planning::RunMonitor& monitor, const Machine& machine,
+                 double* out) {
+  const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
+  const Eigen::Vector3d abc =
+      angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
+  const double e = monitor.last_path_error_mm();
+  const double values[12] = {tick.time_s,
+                             static_cast<double>(tick.line),
+                             tick.s,
+                             p.x(),
+                             p.y(),
+                             p.z(),
+                             abc.x(),
+                             abc.y(),
+                             abc.z(),
+                             tick.path_speed,
+                             monitor.last_feed_cap(),
+                             std::isfinite(e) ? e : std::nan("")};
+  std::copy(values, values + 12, out);
+}
+
+PlanFiles::PlanFiles(const Machine& machine, const analyses::PlanAnalysisOptions& analyses, TickTables tables)
     : machine_(machine),
       analyses_(analyses),
+      tables_(tables),
       actuators_(machine.mechanism->actuator_count()),
-      angular_(machine.mechanism->actuators_are_angles()) {}
+      angular_(machine.mechanism->actuators_are_angles()),
+      commands_(machine.dynamics.drive != DriveModel::ideal) {}
 
 Status PlanFiles::open(OutputSet& outputs) {
+  if (tables_ == TickTables::hdf5) return open_hdf5(outputs);
   const bool elastic = analyses_.dynamics && analyses_.elastic;
-  for (auto [file, name, wanted] :
-       {std::tuple{&actuators_csv_, "actuators.csv", true}, std::tuple{&path_csv_, "path.csv", true},
-        std::tuple{&summary_file_, "summary.json", true},
-        std::tuple{&forces_csv_, "forces.csv", analyses_.dynamics},
-        std::tuple{&response_csv_, "response.csv", elastic},
-        std::tuple{&deflection_csv_, "deflection.csv", analyses_.stiffness}}) {
+  const std::vector<Hdf5Column> none;
+  for (auto [file, name, columns, wanted] :
+       {std::tuple{&actuators_csv_, "actuators.csv", actuator_columns(actuators_, angular_), true},
+        std::tuple{&path_csv_, "path.csv", path_columns(), true},
+        std::tuple{&summary_file_, "summary.json", none, true},
+        std::tuple{&forces_csv_, "forces.csv", force_columns(actuators_, angular_, commands_),
+                   analyses_.dynamics},
+        std::tuple{&response_csv_, "response.csv", response_columns(), elastic},
+        std::tuple{&deflection_csv_, "deflection.csv", deflection_columns(), analyses_.stiffness}}) {
     if (!wanted) continue;
     if (Status opened = file->open(outputs.staged_path(name)); !opened) return opened;
+    if (!columns.empty()) fmt::format_to(std::back_inserter(file->buffer), "{}", csv_header(columns));
   }
-  auto& a = actuators_csv_.buffer;
-  fmt::format_to(std::back_inserter(a), "time_s");
-  for (int j = 1; j <= actuators_; ++j)
-    fmt::format_to(std::back_inserter(a), ",q{}_{}", j, angular_ ? "deg" : "mm");
-  a.push_back('\n');
-  fmt::format_to(std::back_inserter(path_csv_.buffer),
-                 "time_s,line,s,x_program_mm,y_program_mm,z_program_mm,a_abc_deg,b_abc_deg,c_abc_deg,"
-                 "path_speed_mm_s,feed_mm_s,path_error_mm\n");
-  if (analyses_.dynamics) open_forces();
-  if (elastic)
-    fmt::format_to(std::back_inserter(response_csv_.buffer),
-                   "time_s,line,dx_mm,dy_mm,dz_mm,rotation_deg,tool_error_mm\n");
-  if (analyses_.stiffness)
-    fmt::format_to(std::back_inserter(deflection_csv_.buffer),
-                   "time_s,line,dx_mm,dy_mm,dz_mm,normal_mm,rotation_rad\n");
   return ok_status();
 }
 
-// forces.csv's header row.
-void PlanFiles::open_forces() {
-  auto& b = forces_csv_.buffer;
-  const std::string force_unit = angular_ ? "Nmm" : "N";
-  fmt::format_to(std::back_inserter(b), "time_s,line");
-  for (int j = 1; j <= actuators_; ++j)
-    fmt::format_to(std::back_inserter(b), ",P{0}_{1},P{0}_static_{1},P{0}_dynamic_{1}", j, force_unit);
-  for (int j = 1; j <= actuators_; ++j) fmt::format_to(std::back_inserter(b), ",power{}_W", j);
-  // A drive that is not ideal needs another command than the force: u_j, what to feed forward.
-  if (machine_.dynamics.drive != DriveModel::ideal) {
-    for (int j = 1; j <= actuators_; ++j) fmt::format_to(std::back_inserter(b), ",u{}_{}", j, force_unit);
-  }
-  b.push_back('\n');
-}
-
 Status PlanFiles::on_tick(const planning::ServoTick& tick, const planning::RunMonitor& monitor) {
+  if (tables_ == TickTables::hdf5) return on_tick_hdf5(tick, monitor);
   auto& a = actuators_csv_.buffer;
   const double scale = angular_ ? deg_from_rad(1.0) : 1.0;
   fmt::format_to(std::back_inserter(a), "{:.6f}", tick.time_s);
   for (int j = 0; j < actuators_; ++j)
     fmt::format_to(std::back_inserter(a), ",{:.6f}", tick.actuators[j] * scale);
   a.push_back('\n');
-  write_path_row(tick, monitor, machine_, path_csv_.buffer);
+  double path[kPathColumns];
+  path_values(tick, monitor, machine_, path);
+  write_path_row(path, path_csv_.buffer);
   for (BufferedStagedFile* f : {&actuators_csv_, &path_csv_}) {
     if (auto flushed = f->flush_if_large(); !flushed) return flushed;
   }
@@ -208,9 +204,10 @@ Status PlanFiles::on_tick(const planning::ServoTick& tick, const planning::RunMo
 }
 
 analyses::PlanAnalysisSinks PlanFiles::analysis_sinks() {
+  if (tables_ == TickTables::hdf5) return hdf5_sinks();
   analyses::PlanAnalysisSinks sinks;
   const int n = actuators_;
-  const bool commands = machine_.dynamics.drive != DriveModel::ideal;
+  const bool commands = commands_;
   if (analyses_.dynamics) {
     sinks.dynamics = [this, n, commands](const dynamics::TickDynamics& t) -> Status {
       auto& b = forces_csv_.buffer;
@@ -246,6 +243,9 @@ analyses::PlanAnalysisSinks PlanFiles::analysis_sinks() {
 }
 
 Status PlanFiles::finish(const nlohmann::json& summary) {
+  fmt::format_to(std::back_inserter(summary_file_.buffer), "{}\n", json_text(summary));
+  if (Status committed = summary_file_.commit(); !committed) return committed;
+  if (tables_ == TickTables::hdf5) return finish_hdf5();
   const bool elastic = analyses_.dynamics && analyses_.elastic;
   for (auto [file, written] :
        {std::pair{&forces_csv_, analyses_.dynamics}, std::pair{&response_csv_, elastic},
@@ -253,8 +253,7 @@ Status PlanFiles::finish(const nlohmann::json& summary) {
     if (!written) continue;
     if (auto committed = file->commit(); !committed) return committed;
   }
-  fmt::format_to(std::back_inserter(summary_file_.buffer), "{}\n", json_text(summary));
-  for (BufferedStagedFile* f : {&actuators_csv_, &path_csv_, &summary_file_}) {
+  for (BufferedStagedFile* f : {&actuators_csv_, &path_csv_}) {
     if (auto committed = f->commit(); !committed) return committed;
   }
   return ok_status();

@@ -5,10 +5,15 @@
 // DIR/response.csv (the elastic machine's deviation from the commanded pose) and DIR/deflection.csv (the
 // tool's deflection under the process load). The files join an OutputSet (io/output_set.hpp): they replace
 // the previous run's only together, when the whole run succeeded, so a failed run leaves the previous run
-// complete and nothing of its own.
+// complete and nothing of its own. With TickTables::hdf5 the five servo-rate tables are the groups actuators,
+// path, forces, response and deflection of DIR/ticks.h5 instead (formats/plan_tables.hpp), the same columns.
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
 
 #include "analyses/plan_analyses.hpp"
+#include "formats/hdf5_table.hpp"
+#include "formats/plan_tables.hpp"
 #include "io/buffered_file.hpp"
 #include "io/output_set.hpp"
 #include "machine/machine.hpp"
@@ -20,7 +25,8 @@ namespace pkm::formats {
 /// Listens to the ticks of a run (actuators.csv, path.csv) and, through analysis_sinks(), to its analyses.
 class PlanFiles final : public planning::TickObserver {
  public:
-  PlanFiles(const Machine& machine, const analyses::PlanAnalysisOptions& analyses);
+  PlanFiles(const Machine& machine, const analyses::PlanAnalysisOptions& analyses,
+            TickTables tables = TickTables::csv);
   PlanFiles(const PlanFiles&) = delete;
   PlanFiles& operator=(const PlanFiles&) = delete;
 
@@ -33,13 +39,27 @@ class PlanFiles final : public planning::TickObserver {
   Status finish(const nlohmann::json& summary);
 
  private:
-  void open_forces();
+  Status open_hdf5(OutputSet& outputs);
+  Status on_tick_hdf5(const planning::ServoTick& tick, const planning::RunMonitor& monitor);
+  analyses::PlanAnalysisSinks hdf5_sinks();
+  Status finish_hdf5();
   const Machine& machine_;
   analyses::PlanAnalysisOptions analyses_;
+  TickTables tables_;
   int actuators_ = 0;
   bool angular_ = false;
+  bool commands_ = false;  // the drives are not ideal: forces has their commands too
   BufferedStagedFile actuators_csv_, path_csv_, summary_file_, forces_csv_, response_csv_, deflection_csv_;
+  std::optional<Hdf5File> ticks_h5_;
+  Hdf5Table actuators_h5_, path_h5_, forces_h5_, response_h5_, deflection_h5_;
+  std::vector<double> row_;  // one row of the widest table, reused
 };
+
+/// A tick's row of the path table (path_columns(): time, line, s, x y z, A B C, speed, feed cap, path error;
+/// NaN where the error was not evaluated) into out[0 … kPathColumns − 1].
+inline constexpr int kPathColumns = 12;
+void path_values(const planning::ServoTick& tick, const planning::RunMonitor& monitor, const Machine& machine,
+                 double* out);
 
 /// summary.json of a planned run (units in the key names): the motion, the machine's limits and warnings,
 /// and a "dynamics" and a "stiffness" block for the analyses that listened.
