@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include <iostream>
-#include <map>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -85,13 +84,14 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
                "stiffness: section): deflection.csv and a stiffness block in summary.json");
   cmd.add_flag("--json", a.json, "print the summary as JSON");
   cmd.add_option("--report", a.report_file, "also write the HTML report of the run to this file");
-  cmd.add_option("--tables", a.tables,
-                 "the servo-rate tables as CSV files (csv, default) or as the groups of DIR/ticks.h5 (hdf5: "
-                 "compressed, for numpy and pandas through h5py; not with --report)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, formats::TickTables>{{"csv", formats::TickTables::csv},
-                                                     {"hdf5", formats::TickTables::hdf5}},
-          CLI::ignore_case));
+  cmd.add_option_function<std::string>(
+         "--tables",
+         [&a](const std::string& value) {
+           a.tables = value == "hdf5" ? formats::TickTables::hdf5 : formats::TickTables::csv;
+         },
+         "the servo-rate tables as CSV files (csv, default) or as the groups of DIR/ticks.h5 (hdf5: "
+         "compressed, for numpy and pandas through h5py; not with --report)")
+      ->check(CLI::IsMember({"csv", "hdf5"}));
   add_redundancy_options(cmd, a.redundancy, false);
 }
 

@@ -119,6 +119,13 @@ def test_the_report_is_refused_with_hdf5_tables_and_nothing_is_written(tmp_path)
     assert not out.exists() and not (tmp_path / "report.html").exists()
 
 
+def test_an_unknown_table_form_is_refused_naming_the_choices(tmp_path):
+    done = plan_cli(tmp_path / "run", "--tables", "parquet")
+    assert done.returncode != 0
+    assert "--tables: parquet not in {csv,hdf5}" in done.stderr, done.stderr
+    assert not (tmp_path / "run").exists()
+
+
 def test_a_failed_run_leaves_no_ticks_file(tmp_path):
     program = tmp_path / "far.ngc"
     # Half the way in bounds, then far outside the machine's reach: refused during the run.
