@@ -32,22 +32,29 @@ struct PlannedTicks {
   std::vector<planning::ServoTick> ticks;
 };
 
+/// examples/programs/NAME planned on the ch5 hexapod from where its programs start, at its servo rate.
+inline planning::MotionPlan ch5_plan(const char* name) {
+  const Machine& machine = ch5_hexapod();
+  const planning::ProgramStart start = planning::program_start(machine);
+  program::InterpretOptions interpret;
+  interpret.start_mm = start.start_mm;
+  interpret.start_abc_deg = start.start_abc_deg;
+  auto program = program::load_part_program(
+      (std::filesystem::path(PKM_SOURCE_DIR) / "examples/programs" / name).string(), interpret);
+  if (!program) throw std::runtime_error(program.error().message);
+  auto plan = planning::plan_motion(machine, *program, planning::PlanOptions{});
+  if (!plan) throw std::runtime_error(plan.error().message);
+  return std::move(*plan);
+}
+
 /// examples/programs/helix.ngc, planned once at the first call.
 inline const PlannedTicks& ch5_helix_ticks() {
   static const PlannedTicks run = [] {
     const Machine& machine = ch5_hexapod();
-    const planning::ProgramStart start = planning::program_start(machine);
-    program::InterpretOptions interpret;
-    interpret.start_mm = start.start_mm;
-    interpret.start_abc_deg = start.start_abc_deg;
-    auto program = program::load_part_program(
-        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/programs/helix.ngc").string(), interpret);
-    if (!program) throw std::runtime_error(program.error().message);
-    auto plan = planning::plan_motion(machine, *program, planning::PlanOptions{});
-    if (!plan) throw std::runtime_error(plan.error().message);
+    const planning::MotionPlan plan = ch5_plan("helix.ngc");
     PlannedTicks r;
-    r.period_s = plan->period_s;
-    planning::ServoStream stream(*plan, machine);
+    r.period_s = plan.period_s;
+    planning::ServoStream stream(plan, machine);
     planning::ServoTick tick;
     while (stream.next(tick)) r.ticks.push_back(tick);
     return r;

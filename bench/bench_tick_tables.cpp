@@ -18,19 +18,7 @@ namespace pkm {
 namespace {
 
 const planning::MotionPlan& pocket_plan() {
-  static const planning::MotionPlan plan = [] {
-    const Machine& machine = bench::ch5_hexapod();
-    const planning::ProgramStart start = planning::program_start(machine);
-    program::InterpretOptions interpret;
-    interpret.start_mm = start.start_mm;
-    interpret.start_abc_deg = start.start_abc_deg;
-    auto program = program::load_part_program(
-        (std::filesystem::path(PKM_SOURCE_DIR) / "examples/programs/pocket.ngc").string(), interpret);
-    if (!program) throw std::runtime_error(program.error().message);
-    auto planned = planning::plan_motion(machine, *program, planning::PlanOptions{});
-    if (!planned) throw std::runtime_error(planned.error().message);
-    return std::move(*planned);
-  }();
+  static const planning::MotionPlan plan = bench::ch5_plan("pocket.ngc");
   return plan;
 }
 
