@@ -33,6 +33,12 @@ struct PlanOptions {
   /// ticks, about 10 GB of CSV; and 50 M samples, a few GB of planning data.
   long max_ticks = 86'400'000;
   std::size_t max_samples = 50'000'000;
+  /// The look-ahead window (lookahead_profile.hpp): the speeds are planned with at most this much path,
+  /// this many moves and this many planning samples ahead of the last final speed. Where braking needs
+  /// more, the window sets the speed (counted in PlanStatistics::lookahead_binding).
+  double lookahead_mm = 5000.0;
+  int lookahead_moves = 10000;
+  std::size_t lookahead_samples = 262'144;
   ProgressSink progress;  ///< told how far the planning is, now and then (core/progress.hpp)
 };
 
@@ -47,6 +53,9 @@ struct PlanStatistics {
   double max_condition_number = 0.0;
   /// Fraction of the path length where the actuators, not the feed, set the speed cap.
   double actuator_limited_fraction = 0.0;
+  /// Places where the look-ahead window was full before braking distance was found: the speed there is
+  /// lower than the whole program's plan would give (0: the plan equals the whole program's).
+  long lookahead_binding = 0;
 };
 
 struct MotionPlan {

@@ -9,6 +9,7 @@
 #include "machine/joint_limits.hpp"
 #include "path/path_builder.hpp"
 #include "planning/commanded_coordinates.hpp"
+#include "planning/lookahead_profile.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/path_sampling.hpp"
 
@@ -42,6 +43,12 @@ Status check_options(const PlanOptions& options) {
         fmt::format("path tolerance: must be 0 (exact stops) or a positive distance in mm, got {}",
                     *options.path_tolerance_mm));
   }
+  if (!(options.lookahead_mm > 0.0) || options.lookahead_moves < 1 || options.lookahead_samples < 2) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("look-ahead window: needs a length > 0 mm, at least 1 move and 2 samples, got "
+                                  "{} mm, {} moves, {} samples",
+                                  options.lookahead_mm, options.lookahead_moves, options.lookahead_samples));
+  }
   return ok_status();
 }
 
@@ -68,6 +75,18 @@ Error too_many_ticks(const MotionPlan& plan, long max_ticks) {
                   plan.program_source, line, plan.duration_s, plan.duration_s / plan.period_s,
                   1.0 / plan.period_s, max_ticks, longest_line, longest_s),
       ErrorLocation{plan.program_source, line, 0, ""}};
+}
+
+/// The look-ahead window of `options` for the filter window T: no cap is above the machine's fastest speed.
+LookaheadSettings lookahead_settings(const PlanOptions& options, const MotionSettings& motion, double window_s) {
+  LookaheadSettings settings;
+  settings.filter_window_s = window_s;
+  settings.fastest_cap =
+      std::max({motion.rapid_mm_min, motion.max_feed_mm_min, motion.angular_feed_deg_min}) / 60.0;
+  settings.max_length = options.lookahead_mm;
+  settings.max_moves = options.lookahead_moves;
+  settings.max_samples = options.lookahead_samples;
+  return settings;
 }
 
 }  // namespace
@@ -119,8 +138,10 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   if (!sampled) return sampled.error();
 
   report_progress(options.progress, "timing the motion");
-  erode_caps(plan.samples, window_s, 0.0);
-  plan_speeds(plan.samples);
+  std::vector<int> sample_move(plan.samples.size());
+  for (std::size_t i = 0; i < sample_move.size(); ++i)
+    sample_move[i] = plan.path.segments[plan.sample_segment[i]].move;
+  const long binding = plan_speeds_lookahead(plan.samples, sample_move, lookahead_settings(options, motion, window_s));
   plan.timed = time_profile(plan.samples);
   // In double first: a motion of 1e15 s must be refused, not overflow a long.
   const double ticks = std::ceil(plan.timed.end_time_s / plan.period_s) + plan.filter_ticks - 1;
@@ -137,6 +158,7 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   stats.samples = plan.samples.size();
   stats.length_mm = plan.path.length();
   stats.filter_time_s = window_s;
+  stats.lookahead_binding = binding;
   return plan;
 }
 
