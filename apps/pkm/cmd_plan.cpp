@@ -69,6 +69,14 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
                  "refuse a path that needs more planning samples than this (the memory grows with them)")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{2}, std::size_t{1'000'000'000}));
+  cmd.add_option("--lookahead-mm", a.options.lookahead_mm,
+                 "the look-ahead window's path length, mm: the speeds are planned this far ahead at most")
+      ->capture_default_str()
+      ->check(number_in({0.0, 1e9, false, true, "mm"}));
+  cmd.add_option("--lookahead-moves", a.options.lookahead_moves,
+                 "the look-ahead window's moves: the speeds are planned this many moves ahead at most")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100'000'000));
   cmd.add_flag("--no-path-error", a.no_path_error,
                "skip the forward-kinematics check of the path error (faster)");
   auto* dynamics_flag = cmd.add_flag(

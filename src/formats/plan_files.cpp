@@ -88,10 +88,18 @@ nlohmann::json plan_summary_json(const planning::MotionPlan& plan, const Machine
       {"max_condition_number", st.max_condition_number},
       {"actuator_limited_fraction", st.actuator_limited_fraction},
       {"planning_samples", st.samples},
+      {"lookahead_binding", st.lookahead_binding},
       {"limits", limits},
       {"actuators", actuators},
       {"warnings", planning::machine_warnings(machine)},
   };
+  if (st.lookahead_binding > 0) {
+    summary["warnings"].push_back(fmt::format(
+        "the look-ahead window set the speed at {} places (it was full before the braking distance was "
+        "found): the motion is slower there than the whole program's plan; raise --lookahead-mm or "
+        "--lookahead-moves",
+        st.lookahead_binding));
+  }
   if (!run.path_error_evaluated) {  // not measured (--no-path-error): no figure rather than a 0 that claims
     for (const char* key :
          {"max_path_error_mm", "max_path_error_line", "path_error_bound_mm", "max_orientation_error_deg"})

@@ -14,8 +14,9 @@ constexpr std::size_t kPlanEvery = 512;
 /// A full window is planned once this fraction of its samples more has come: it overshoots its bound by
 /// that much at most, and a window that hands on only a few samples per planning is not planned per sample.
 constexpr std::size_t kFullWindowSteps = 16;
-/// History is dropped in batches (erasing the front of the arrays moves the rest).
-constexpr std::size_t kDropAtLeast = 4096;
+/// History is dropped in batches once it is as long as the rest of the window (erasing the front of the
+/// arrays moves the rest; every planning erodes the history too).
+constexpr std::size_t kDropAtLeast = 64;
 
 template <class T>
 void erase_front(std::vector<T>& values, std::size_t count) {
@@ -47,7 +48,9 @@ void LookaheadProfile::push(const RawSample& sample) {
     advance(false);
 }
 
-void LookaheadProfile::finish() { advance(true); }
+void LookaheadProfile::finish() {
+  advance(true);
+}
 
 std::size_t LookaheadProfile::last_final_caps(bool at_end) const {
   const std::size_t n = window_.size();
@@ -70,6 +73,12 @@ void LookaheadProfile::erode_window() {
   window_.speed_cap = raw_speed_cap_;
   window_.accel_cap = raw_accel_cap_;
   erode_caps(window_, settings_.filter_window_s, settings_.erosion_margin);
+  // The sample handed on last keeps the caps it was planned with: the forward pass leaves it with them, and
+  // the history that lowered them may be gone.
+  if (first_waiting_ > 0) {
+    window_.speed_cap[first_waiting_ - 1] = planned_caps_[0];
+    window_.accel_cap[first_waiting_ - 1] = planned_caps_[1];
+  }
 }
 
 /// The passes of plan_speeds over the waiting samples up to `last`, the forward one from the speed handed
@@ -100,10 +109,11 @@ std::size_t LookaheadProfile::plan_window(std::size_t last, bool at_end) {
 
 void LookaheadProfile::hand_on(std::size_t last) {
   for (std::size_t i = first_waiting_; i <= last; ++i) {
-    planned_.push_back(PlannedSample{window_.s[i], window_.speed_cap[i], window_.accel_cap[i], window_.speed[i],
-                                     window_.hold_s[i], window_.stop[i] != 0});
+    planned_.push_back(PlannedSample{window_.s[i], window_.speed_cap[i], window_.accel_cap[i],
+                                     window_.speed[i], window_.hold_s[i], window_.stop[i] != 0});
   }
   first_waiting_ = last + 1;
+  planned_caps_ = {window_.speed_cap[last], window_.accel_cap[last]};
 }
 
 void LookaheadProfile::drop_history() {
@@ -113,7 +123,7 @@ void LookaheadProfile::drop_history() {
   const auto kept = std::lower_bound(window_.s.begin(), window_.s.end(), keep_from);
   std::size_t drop = static_cast<std::size_t>(kept - window_.s.begin());
   drop = std::min(drop == 0 ? 0 : drop - 1, first_waiting_ - 1);
-  if (drop < kDropAtLeast) return;
+  if (drop < kDropAtLeast || 2 * drop < window_.size()) return;
   erase_front(window_.s, drop);
   erase_front(window_.speed_cap, drop);
   erase_front(window_.accel_cap, drop);
@@ -134,14 +144,17 @@ void LookaheadProfile::advance(bool at_end) {
   erode_window();
   std::size_t final_sample = plan_window(last, at_end);
   const bool found = final_sample != kNone && final_sample >= first_waiting_;
-  if (!at_end && window_full(window_.size() - 1)) {
+  if (!at_end && last > first_waiting_ && window_full(window_.size() - 1)) {
     // Full: at least the window's first quarter is handed on, as planned to stop at `last`, which the
-    // motion can always do. Binding where that is beyond what the plan found final. (A quarter, not more:
-    // every sample handed on this way brakes for the assumed stop, and the next window speeds up again.)
-    const double middle = window_.s[first_waiting_] + 0.25 * (window_.s[last] - window_.s[first_waiting_]);
+    // motion can always do. Binding where that is beyond what the plan found final. Never `last` itself:
+    // its speed is the assumed stop, and two rests in a row would cross the path between them in no time.
+    // (A quarter, not more: every sample handed on this way brakes for the assumed stop, and the next
+    // window speeds up again.)
+    const double quarter_s = window_.s[first_waiting_] + 0.25 * (window_.s[last] - window_.s[first_waiting_]);
     const auto after = std::upper_bound(window_.s.begin() + static_cast<std::ptrdiff_t>(first_waiting_),
-                                        window_.s.begin() + static_cast<std::ptrdiff_t>(last) + 1, middle);
-    const std::size_t quarter = std::max(first_waiting_, static_cast<std::size_t>(after - window_.s.begin()) - 1);
+                                        window_.s.begin() + static_cast<std::ptrdiff_t>(last), quarter_s);
+    const std::size_t quarter =
+        std::max(first_waiting_, static_cast<std::size_t>(after - window_.s.begin()) - 1);
     if (!found || quarter > final_sample) {
       ++binding_count_;
       final_sample = quarter;

@@ -17,6 +17,7 @@
 // counted (the run's summary reports them).
 //
 // Memory is bounded by the window (plus the reach behind it the caps' spreads need), not by the path.
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -85,11 +86,12 @@ class LookaheadProfile {
   void drop_history();
 
   LookaheadSettings settings_;
-  double reach_ = 0.0;  ///< the farthest any cap spreads: T·V_max + margin
+  double reach_ = 0.0;     ///< the farthest any cap spreads: T·V_max + margin
   ProfileSamples window_;  ///< history (final, kept for the spreads) then waiting samples
   std::vector<double> raw_speed_cap_, raw_accel_cap_;
   std::vector<int> move_;
-  std::size_t first_waiting_ = 0;  ///< index in window_ of the oldest sample without a final speed
+  std::size_t first_waiting_ = 0;         ///< index in window_ of the oldest sample without a final speed
+  std::array<double, 2> planned_caps_{};  ///< speed and acceleration caps of the sample handed on last
   std::size_t pushed_since_advance_ = 0;
   std::size_t full_window_step_ = 1;  ///< pushes between two plannings of a full window
   std::vector<PlannedSample> planned_;

@@ -44,10 +44,11 @@ Status check_options(const PlanOptions& options) {
                     *options.path_tolerance_mm));
   }
   if (!(options.lookahead_mm > 0.0) || options.lookahead_moves < 1 || options.lookahead_samples < 2) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("look-ahead window: needs a length > 0 mm, at least 1 move and 2 samples, got "
-                                  "{} mm, {} moves, {} samples",
-                                  options.lookahead_mm, options.lookahead_moves, options.lookahead_samples));
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("look-ahead window: needs a length > 0 mm, at least 1 move and 2 samples, got "
+                    "{} mm, {} moves, {} samples",
+                    options.lookahead_mm, options.lookahead_moves, options.lookahead_samples));
   }
   return ok_status();
 }
@@ -78,7 +79,8 @@ Error too_many_ticks(const MotionPlan& plan, long max_ticks) {
 }
 
 /// The look-ahead window of `options` for the filter window T: no cap is above the machine's fastest speed.
-LookaheadSettings lookahead_settings(const PlanOptions& options, const MotionSettings& motion, double window_s) {
+LookaheadSettings lookahead_settings(const PlanOptions& options, const MotionSettings& motion,
+                                     double window_s) {
   LookaheadSettings settings;
   settings.filter_window_s = window_s;
   settings.fastest_cap =
@@ -141,7 +143,8 @@ Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalP
   std::vector<int> sample_move(plan.samples.size());
   for (std::size_t i = 0; i < sample_move.size(); ++i)
     sample_move[i] = plan.path.segments[plan.sample_segment[i]].move;
-  const long binding = plan_speeds_lookahead(plan.samples, sample_move, lookahead_settings(options, motion, window_s));
+  const long binding =
+      plan_speeds_lookahead(plan.samples, sample_move, lookahead_settings(options, motion, window_s));
   plan.timed = time_profile(plan.samples);
   // In double first: a motion of 1e15 s must be refused, not overflow a long.
   const double ticks = std::ceil(plan.timed.end_time_s / plan.period_s) + plan.filter_ticks - 1;

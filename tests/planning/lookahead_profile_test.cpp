@@ -112,7 +112,10 @@ TEST(LookaheadProfile, ABindingWindowKeepsEveryLimitAndIsNeverFaster) {
     std::uniform_int_distribution<int> moves(1, 60);
     std::uniform_int_distribution<std::size_t> samples(2, 300);
     ProfileSamples windowed = g.samples;
-    plan_speeds_lookahead(windowed, g.move, settings(length(rng), moves(rng), samples(rng)));
+    // Every third trial the tightest window: full at every sample, so it is planned at every push.
+    const bool tightest = trial % 3 == 0;
+    plan_speeds_lookahead(windowed, g.move,
+                          tightest ? settings(1.0, 1, 2) : settings(length(rng), moves(rng), samples(rng)));
     expect_within_limits(windowed, whole);
     for (std::size_t i = 0; i < whole.size(); ++i) EXPECT_LE(windowed.speed[i], whole.speed[i]) << i;
   }

@@ -136,7 +136,14 @@ TEST_P(PlanHonesty, EveryProgramIsRefusedAtALineOrHoldsAtEveryTick) {
     const std::string label = fmt::format("{} program {} (reach {}, stray {}):\n{}", GetParam(), n, reach,
                                           stray, generated.text.substr(0, 1500));
     const program::CanonicalProgram program = test::gcode_for(machine, generated.text, "honest.ngc");
-    auto plan = planning::plan_motion(machine, program, {});
+    // Every other program through a look-ahead window of a few moves, which binds: the plan then brakes
+    // for a stop assumed at the window's end, and must still hold every limit.
+    planning::PlanOptions options;
+    if (n % 2 == 1) {
+      options.lookahead_moves = 1 + n % 5;
+      options.lookahead_mm = 1.0;
+    }
+    auto plan = planning::plan_motion(machine, program, options);
     Result<planning::RunSummary> streamed =
         plan ? planning::stream_plan(*plan, machine, {}, {}) : Result<planning::RunSummary>(plan.error());
     if (!streamed) {
