@@ -3,17 +3,21 @@
 //   Interpret     G-code text → canonical moves
 //   Plan          interpret + path with corner blends + speed profile (IK and limits at every sample)
 //   ServoOutput   the planned motion at 1 kHz: filter, path evaluation and IK per tick (no files written)
+//   SpeedProfile  the speed passes alone on the plan's samples: over the whole program at once (erosion,
+//                 forward, backward) against through the default look-ahead window
 // Counters: blocks/s, ticks/s, real-time factor (motion seconds per compute second) and peak memory.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
 
 #include "bench_support.hpp"
 #include "io/machine_file.hpp"
+#include "planning/lookahead_profile.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
 #include "program/part_program.hpp"
@@ -155,6 +159,57 @@ void BM_ServoOutput(benchmark::State& state) {
   state.counters["motion_s"] = plan->duration_s;
 }
 BENCHMARK(BM_ServoOutput)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+/// The plan's samples and the move of each, planned once for both speed-profile benchmarks.
+struct ProfileInput {
+  planning::ProfileSamples samples;
+  std::vector<int> move;
+  planning::LookaheadSettings window;
+};
+const ProfileInput& profile_input() {
+  static const ProfileInput input = [] {
+    ProfileInput in;
+    auto program = program::interpret_gcode(long_program(), "long.ngc", start_options());
+    auto plan = planning::plan_motion(machine(), *program, {});
+    in.samples = plan->samples;
+    for (int segment : plan->sample_segment) in.move.push_back(plan->path.segments[segment].move);
+    const planning::PlanOptions defaults;
+    const MotionSettings& motion = machine().motion;
+    in.window.filter_window_s = plan->statistics.filter_time_s;
+    in.window.fastest_cap =
+        std::max({motion.rapid_mm_min, motion.max_feed_mm_min, motion.angular_feed_deg_min}) / 60.0;
+    in.window.max_length = defaults.lookahead_mm;
+    in.window.max_moves = defaults.lookahead_moves;
+    in.window.max_samples = defaults.lookahead_samples;
+    return in;
+  }();
+  return input;
+}
+
+void BM_SpeedProfileWhole(benchmark::State& state) {
+  const ProfileInput& in = profile_input();
+  for (auto _ : state) {
+    planning::ProfileSamples samples = in.samples;
+    planning::erode_caps(samples, in.window.filter_window_s, 0.0);
+    planning::plan_speeds(samples);
+    benchmark::DoNotOptimize(samples.speed.data());
+  }
+  state.counters["samples"] = static_cast<double>(in.samples.size());
+}
+BENCHMARK(BM_SpeedProfileWhole)->Unit(benchmark::kMillisecond);
+
+void BM_SpeedProfileWindow(benchmark::State& state) {
+  const ProfileInput& in = profile_input();
+  long binding = 0;
+  for (auto _ : state) {
+    planning::ProfileSamples samples = in.samples;
+    binding = planning::plan_speeds_lookahead(samples, in.move, in.window);
+    benchmark::DoNotOptimize(samples.speed.data());
+  }
+  state.counters["samples"] = static_cast<double>(in.samples.size());
+  state.counters["binding"] = static_cast<double>(binding);
+}
+BENCHMARK(BM_SpeedProfileWindow)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace pkm
