@@ -22,12 +22,14 @@ Error tick_error(ErrorCode code, const MotionPlan& plan, const ServoTick& tick, 
 /// The forward kinematics of the drives' motion against the planned path and orientation.
 Status check_tick_path(const MotionPlan& plan, const Machine& machine, const ServoTick& tick,
                        const RunMonitor& monitor) {
-  const std::string near = program_pose_text(machine, tick.pose);
+  // The pose's text only when a check fails: formatting it (and its angles) at every tick cost more than
+  // the tick's inverse kinematics.
+  const auto near = [&] { return program_pose_text(machine, tick.pose); };
   if (monitor.last_fk_failed()) {
     return tick_error(ErrorCode::unreachable, plan, tick,
                       fmt::format("near {} the forward kinematics of the planned actuator motion did not "
                                   "converge: the plan cannot be verified there (a singular configuration)",
-                                  near));
+                                  near()));
   }
   const double bound_mm = path_error_bound_mm(plan);
   if (const double error_mm = monitor.last_path_error_mm(); error_mm > bound_mm) {
@@ -37,7 +39,7 @@ Status check_tick_path(const MotionPlan& plan, const Machine& machine, const Ser
             "near {} the planned actuator motion puts the tool {:.4g} mm off the path (tolerance {:g} "
             "mm): the path crosses a singularity or another assembly mode of the mechanism; limits in "
             "the machine file keep plans out of such regions",
-            near, error_mm, bound_mm));
+            near(), error_mm, bound_mm));
   }
   if (const double error_deg = monitor.last_orientation_error_deg(); error_deg > kOrientationErrorBoundDeg) {
     return tick_error(
@@ -45,7 +47,7 @@ Status check_tick_path(const MotionPlan& plan, const Machine& machine, const Ser
         fmt::format("near {} the planned actuator motion turns the tool {:.4g} deg away from the "
                     "programmed orientation (bound {:g} deg): the path crosses a singularity or "
                     "another assembly mode of the mechanism",
-                    near, error_deg, kOrientationErrorBoundDeg));
+                    near(), error_deg, kOrientationErrorBoundDeg));
   }
   return ok_status();
 }
