@@ -90,7 +90,7 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
            a.tables = value == "hdf5" ? formats::TickTables::hdf5 : formats::TickTables::csv;
          },
          "the servo-rate tables as CSV files (csv, default) or as the groups of DIR/ticks.h5 (hdf5: "
-         "compressed, for numpy and pandas through h5py; not with --report)")
+         "compressed, for numpy and pandas through h5py)")
       ->check(CLI::IsMember({"csv", "hdf5"}));
   add_redundancy_options(cmd, a.redundancy, false);
 }
@@ -183,6 +183,13 @@ void print_plan_table(const pipeline::PlanProgramResult& result, const Machine& 
                              result.law->constant.increment_sum_mm, a.redundancy.free);
   }
   print_plan_analyses(result.run, angles);
+  if (a.tables == formats::TickTables::hdf5) {
+    std::cout << fmt::format("  written           {}/ticks.h5 (actuators, path{}{}{}), summary.json\n",
+                             a.out_dir, result.run.dynamics ? ", forces" : "",
+                             result.run.elastic ? ", response" : "",
+                             result.run.deflection ? ", deflection" : "");
+    return;
+  }
   std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}{}{}\n", a.out_dir,
                            result.run.dynamics ? ", forces.csv" : "",
                            result.run.elastic ? ", response.csv" : "",

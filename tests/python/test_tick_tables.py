@@ -1,12 +1,14 @@
 """A planned run's servo-rate tables as HDF5 (`pkm plan --tables hdf5`, pkm.plan(tables="hdf5")): DIR/ticks.h5
 holds the CSV files' tables as groups and their columns as datasets, which h5py and numpy read as they are, equal
-to the CSV to the digits it prints, each with its unit; the file is several times smaller; the report, which reads
-the CSV files, is refused with it; a failed run leaves no ticks.h5 behind.
+to the CSV to the digits it prints, each with its unit; the file is several times smaller; the report read from it
+is the report read from the CSV files, to the digits the CSV prints; a failed run leaves no ticks.h5 behind.
 """
 
 import csv
 import json
+import math
 import os
+import re
 import subprocess
 from pathlib import Path
 
@@ -48,7 +50,7 @@ def read_csv(path):
 
 
 def assert_table_equals_csv(group, header, columns, decimals):
-    assert list(group.keys()) == sorted(header)  # h5py lists a group's datasets by name
+    assert list(group.keys()) == header  # in the CSV's order: the group tracks its datasets' creation order
     for name in header:
         data = group[name][()]
         expected = columns[name]
@@ -111,12 +113,102 @@ def test_pkm_plan_writes_the_same_file_and_its_arrays_match_it(tmp_path):
         pkm.plan(machine, str(PROGRAMS / "pocket.ngc"), out_dir=str(tmp_path), tables="parquet")
 
 
-def test_the_report_is_refused_with_hdf5_tables_and_nothing_is_written(tmp_path):
-    out = tmp_path / "run"
-    done = plan_cli(out, "--tables", "hdf5", "--report", str(tmp_path / "report.html"))
-    assert done.returncode != 0
-    assert "--tables" in done.stderr and "--report" in done.stderr, done.stderr
-    assert not out.exists() and not (tmp_path / "report.html").exists()
+def report_data(page):
+    """The report's data, as the page embeds it (report/report_html.cpp)."""
+    text = page.read_text()
+    opening = '<script type="application/json" id="pkm-report-data">'
+    start = text.index(opening) + len(opening)
+    return json.loads(text[start:text.index("</script>", start)])
+
+
+NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def report_tolerances(period_s, ticks):
+    """How far a number of the report may be from the CSV report's, per chart (else the default): the CSV's last
+    printed digit and half the HDF5 quantum of a table's column (formats/plan_tables.hpp) each move a value by at
+    most that digit, 1e-6 for positions and times, 1e-4 for speeds and forces; a speed or acceleration that the
+    report takes from differences of positions moves by 2 or 4 of them over the period (squared); the energy
+    sums the powers' 5 decimals over every tick; the exact columns (path and tool errors) by the CSV's 4-digit
+    mantissa, relatively. On top of that, the report's own last printed digit (6 significant digits)."""
+    position = 1e-6
+    return {
+        "default": (position, 0.0),
+        "actuator_speeds": (2 * position / period_s, 0.0),
+        "actuator_accels": (4 * position / period_s ** 2, 0.0),
+        "path_speed": (1e-4, 0.0),
+        "contour_error": (1e-12, 1e-4),
+        "dynamic_error": (1e-12, 1e-4),
+        "drive_forces": (1e-4, 0.0),
+        "drive_forces_static": (1e-4, 0.0),
+        "drive_forces_dynamic": (1e-4, 0.0),
+        "drive_power": (7 * 1e-5, 0.0),
+        "drive_energy": (6 * 1e-5 * period_s * ticks, 0.0),
+    }
+
+
+def assert_reports_agree(a, b, tolerance, where="report"):
+    """Equal structure, equal text, numbers (also those inside text) within `tolerance` = (absolute, relative) plus
+    one unit of the sixth significant digit."""
+    assert type(a) is type(b) or (isinstance(a, (int, float)) and isinstance(b, (int, float))), where
+    if isinstance(a, dict):
+        assert a.keys() == b.keys(), where
+        for key in a:
+            assert_reports_agree(a[key], b[key], tolerance, f"{where}.{key}")
+    elif isinstance(a, list):
+        assert len(a) == len(b), where
+        for k, (x, y) in enumerate(zip(a, b)):
+            assert_reports_agree(x, y, tolerance, f"{where}[{k}]")
+    elif isinstance(a, str):
+        assert NUMBER.split(a) == NUMBER.split(b), f"{where}: {a!r} != {b!r}"
+        for x, y in zip(NUMBER.findall(a), NUMBER.findall(b)):
+            assert_reports_agree(float(x), float(y), tolerance, f"{where}: {a!r} != {b!r}")
+    elif isinstance(a, (int, float)) and not isinstance(a, bool):
+        absolute, relative = tolerance
+        scale = max(abs(a), abs(b))
+        digit = 10.0 ** (math.floor(math.log10(scale)) - 5) if scale > 0 else 0.0
+        assert abs(a - b) <= absolute + relative * scale + 1.01 * digit, f"{where}: {a} != {b}"
+    else:
+        assert a == b, where
+
+
+def bucket_extremes(series):
+    """The series with each bucket's two points (report/decimator.hpp: its minimum and maximum, in the order they
+    occurred) as (smaller, larger): where a bucket's values are level, the tables' last digit may turn which of
+    the two came first."""
+    out = []
+    for one in series:
+        values = one["values"]
+        pairs = [values[k:k + 2] for k in range(0, len(values), 2)]
+        out.append({**one, "values": [sorted(p) if None not in p else p for p in pairs]})
+    return out
+
+
+def test_the_report_of_the_hdf5_tables_is_the_report_of_the_csv_tables(tmp_path):
+    runs = {}
+    for form in ("csv", "hdf5"):
+        out = tmp_path / form
+        done = plan_cli(out, "--tables", form, "--report", str(out / "report.html"))
+        assert done.returncode == 0, done.stderr
+        runs[form] = report_data(out / "report.html")
+    assert (tmp_path / "hdf5" / "ticks.h5").exists() and not (tmp_path / "hdf5" / "path.csv").exists()
+    csv_report, hdf5_report = runs["csv"], runs["hdf5"]
+    ticks, rate_hz = csv_report["summary"]["ticks"], csv_report["summary"]["rate_hz"]
+    assert ticks > 10000  # many blocks of the HDF5 reader's rows
+    tolerances = report_tolerances(1.0 / rate_hz, ticks)
+    charts = {chart["id"]: chart for chart in csv_report["charts"]}
+    assert {"actuator_accels", "drive_forces", "drive_energy"} <= charts.keys()  # with --dynamics
+    assert [c["id"] for c in hdf5_report["charts"]] == [c["id"] for c in csv_report["charts"]]
+    for mine, theirs in zip(hdf5_report["charts"], csv_report["charts"]):
+        tolerance = tolerances.get(mine["id"], tolerances["default"])
+        assert_reports_agree(mine["x"], theirs["x"], tolerances["default"], f"{mine['id']}.x")
+        assert_reports_agree(bucket_extremes(mine["series"]), bucket_extremes(theirs["series"]), tolerance,
+                             mine["id"])
+    rest = [key for key in csv_report if key != "charts"]
+    for key in rest:
+        # The limits reached name the peaks of speed and acceleration, which move as their charts do.
+        tolerance = tolerances["actuator_accels"] if key == "limits_reached" else tolerances["default"]
+        assert_reports_agree(hdf5_report[key], csv_report[key], tolerance, key)
 
 
 def test_an_unknown_table_form_is_refused_naming_the_choices(tmp_path):
