@@ -1,4 +1,5 @@
-// The progress line of the long commands: the phases in order, the bar, the program line, elapsed and left;
+// The progress line of the long commands: the phases in order, the bar, the program line, the ticks written,
+// elapsed and left;
 // nothing on stderr where it is not asked for and stderr is not a terminal.
 #include <gtest/gtest.h>
 
@@ -37,10 +38,20 @@ TEST(ProgressCli, AsLinesThePhasesComeInOrderWithLineElapsedAndTheEnd) {
   const std::vector<std::string> lines = stderr_lines(plan_args("always", "always"));
   ASSERT_GE(lines.size(), 2U);
   EXPECT_EQ(lines.front(), "pkm plan: reading the program  0:00 elapsed");
-  // Every line names the command and its elapsed time; a fraction comes with its bar.
+  // Every line names the command and its elapsed time; a fraction comes with its bar; the writing of the
+  // outputs, and only it, tells the ticks written ("1 tick", "812 ticks", "48.1 k ticks", "1.2 M ticks").
   const std::regex shape(
-      R"(pkm plan: [a-z' ]+(  \[[#.]{20}\] +\d+ %)?(  line \d+)?  \d+:\d\d elapsed(  \d+:\d\d left)?)");
-  for (const std::string& line : lines) EXPECT_TRUE(std::regex_match(line, shape)) << line;
+      R"(pkm plan: [a-z' ]+(  \[[#.]{20}\] +\d+ %)?(  line \d+)?(  (1 tick|\d+ ticks|\d+\.\d [kM] ticks))?)"
+      R"(  \d+:\d\d elapsed(  \d+:\d\d left)?)");
+  const std::regex ticks(R"(  (1 tick|[1-9]\d* ticks|\d+\.\d [kM] ticks)  )");
+  int writing = 0;
+  for (const std::string& line : lines) {
+    EXPECT_TRUE(std::regex_match(line, shape)) << line;
+    const bool writes = line.find("writing the outputs") != std::string::npos;
+    EXPECT_EQ(std::regex_search(line, ticks), writes) << line;
+    writing += writes ? 1 : 0;
+  }
+  EXPECT_GE(writing, 1);
   // The last line is where the command ended: the report, after every tick was written.
   EXPECT_NE(lines.back().find("writing the report"), std::string::npos) << lines.back();
   const std::vector<std::string> order = {
