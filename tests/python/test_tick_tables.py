@@ -76,6 +76,7 @@ def test_the_hdf5_tables_are_the_csv_tables_with_units_and_smaller(tmp_path):
     assert done.returncode == 0, done.stderr
     done = plan_cli(as_hdf5, "--tables", "hdf5")
     assert done.returncode == 0, done.stderr
+    assert done.returncode == 0, done.stderr
     assert not (as_hdf5 / "actuators.csv").exists() and not (as_hdf5 / "path.csv").exists()
     summary_csv = json.loads((as_csv / "summary.json").read_text())
     summary_hdf5 = json.loads((as_hdf5 / "summary.json").read_text())
@@ -129,16 +130,16 @@ def report_tolerances(period_s, ticks):
     printed digit and half the HDF5 quantum of a table's column (formats/plan_tables.hpp) each move a value by at
     most that digit, 1e-6 for positions and times, 1e-4 for speeds and forces; a speed or acceleration that the
     report takes from differences of positions moves by 2 or 4 of them over the period (squared); the energy
-    sums the powers' 5 decimals over every tick; the exact columns (path and tool errors) by the CSV's 4-digit
-    mantissa, relatively. On top of that, the report's own last printed digit (6 significant digits)."""
+    sums the powers' 5 decimals over every tick; the exact columns (path and tool errors) by the CSV's significant
+    digits, relatively. On top of that, the report's own last printed digit (6 significant digits)."""
     position = 1e-6
     return {
         "default": (position, 0.0),
         "actuator_speeds": (2 * position / period_s, 0.0),
         "actuator_accels": (4 * position / period_s ** 2, 0.0),
         "path_speed": (1e-4, 0.0),
-        "contour_error": (1e-12, 1e-4),
-        "dynamic_error": (1e-12, 1e-4),
+        "contour_error": (1e-12, 5.01e-4),  # path.csv's path error: 4 significant digits
+        "dynamic_error": (1e-12, 5.01e-5),  # response.csv: 4 decimals of the mantissa
         "drive_forces": (1e-4, 0.0),
         "drive_forces_static": (1e-4, 0.0),
         "drive_forces_dynamic": (1e-4, 0.0),
@@ -149,12 +150,14 @@ def report_tolerances(period_s, ticks):
 
 def assert_reports_agree(a, b, tolerance, where="report"):
     """Equal structure, equal text, numbers (also those inside text) within `tolerance` = (absolute, relative) plus
-    one unit of the sixth significant digit."""
+    one unit of the sixth significant digit; a dict of tolerances gives each key of a dict its own ("default" for
+    the others)."""
     assert type(a) is type(b) or (isinstance(a, (int, float)) and isinstance(b, (int, float))), where
     if isinstance(a, dict):
         assert a.keys() == b.keys(), where
         for key in a:
-            assert_reports_agree(a[key], b[key], tolerance, f"{where}.{key}")
+            inner = tolerance.get(key, tolerance["default"]) if isinstance(tolerance, dict) else tolerance
+            assert_reports_agree(a[key], b[key], inner, f"{where}.{key}")
     elif isinstance(a, list):
         assert len(a) == len(b), where
         for k, (x, y) in enumerate(zip(a, b)):
@@ -204,11 +207,23 @@ def test_the_report_of_the_hdf5_tables_is_the_report_of_the_csv_tables(tmp_path)
         assert_reports_agree(mine["x"], theirs["x"], tolerances["default"], f"{mine['id']}.x")
         assert_reports_agree(bucket_extremes(mine["series"]), bucket_extremes(theirs["series"]), tolerance,
                              mine["id"])
-    rest = [key for key in csv_report if key != "charts"]
-    for key in rest:
-        # The limits reached name the peaks of speed and acceleration, which move as their charts do.
-        tolerance = tolerances["actuator_accels"] if key == "limits_reached" else tolerances["default"]
-        assert_reports_agree(hdf5_report[key], csv_report[key], tolerance, key)
+    # The scene prints positions to 0.1 µm, the limit closeness to 1e-3, errors to 3 and forces to 4 significant
+    # digits (report/scene.cpp): one unit of that last digit, on top of what moves the values. The closeness of
+    # a drive is its largest ratio to a limit, speeds' and accelerations' included.
+    limits = csv_report["summary"]["limits"]
+    speeds, accels = tolerances["actuator_speeds"][0], tolerances["actuator_accels"][0]
+    closeness = 1e-3 + max(speeds / limits["actuator_speed"], accels / limits["actuator_accel"])
+    at_tenth_um, three_digits = (1e-4 + 1e-6, 0.0), (1e-300, 1.01e-2)
+    scene = {"default": tolerances["default"], "executed_path": at_tenth_um, "programmed_path": at_tenth_um,
+             "base_polygon": at_tenth_um, "executed_error_mm": three_digits, "error_scale_mm": three_digits,
+             "drive_force_scale": (1e-4, 1.01e-3),
+             "frames": {"default": at_tenth_um, "time_s": tolerances["default"], "line": (0.0, 0.0),
+                        "strut_closeness": (closeness, 0.0), "drive_force": (1e-4, 1.01e-3)}}
+    # The limits reached name the peaks of speed and acceleration, which move as their charts do.
+    rest = {key: value for key, value in csv_report.items() if key != "charts"}
+    assert_reports_agree({key: hdf5_report[key] for key in rest}, rest,
+                         {"default": tolerances["default"], "scene": scene,
+                          "limits_reached": tolerances["actuator_accels"]})
 
 
 def test_an_unknown_table_form_is_refused_naming_the_choices(tmp_path):
