@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 
 #include "formats/hdf5_table.hpp"
 #include "report/table_rows.hpp"
@@ -89,7 +90,7 @@ TEST(Hdf5TableReader, TheRowSourceGivesTheCsvFormsRows) {
   const std::vector<Hdf5Column> columns = wide_columns();
   {
     std::ofstream csv(dir / "path.csv");
-    csv << csv_header(columns);
+    csv << std::setprecision(17) << csv_header(columns);  // every double as it is
     for (long r = 0; r < 50; ++r) {
       const std::vector<double> values = row_values(r, columns.size());
       for (std::size_t c = 0; c < values.size(); ++c) csv << (c > 0 ? "," : "") << values[c];
