@@ -72,9 +72,10 @@ def assert_table_equals_csv(group, header, columns, decimals):
 
 def test_the_hdf5_tables_are_the_csv_tables_with_units_and_smaller(tmp_path):
     as_csv, as_hdf5 = tmp_path / "csv", tmp_path / "hdf5"
-    done = plan_cli(as_csv)
+    done = plan_cli(as_csv, "--tables", "csv")
     assert done.returncode == 0, done.stderr
-    done = plan_cli(as_hdf5, "--tables", "hdf5")
+    assert not (as_csv / "ticks.h5").exists()
+    done = plan_cli(as_hdf5)  # the default
     assert done.returncode == 0, done.stderr
     assert done.returncode == 0, done.stderr
     assert not (as_hdf5 / "actuators.csv").exists() and not (as_hdf5 / "path.csv").exists()
