@@ -88,7 +88,8 @@ Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std:
         Eigen::Vector3d(p[columns[5]], p[columns[6]], p[columns[7]]) * (std::numbers::pi / 180.0));
     auto complete = mechanism.complete_pose(pose);
     if (!complete) return servo_table_error(path, complete.error().message);
-    const double time_s = a[*time_column];
+    // To the µs whichever form held it: the servo period is then the CSV's (report/table_rows.hpp).
+    const double time_s = report::tick_time_s(a[*time_column]);
     if (!input.time_s.empty() && !(time_s > input.time_s.back()))
       return servo_table_error(actuators, "time_s does not increase");
     input.time_s.push_back(time_s);

@@ -103,13 +103,6 @@ struct ActuatorTrack {
   LimitPeak speed_peak, accel_peak, position_peak;
 };
 
-// The ticks' times are multiples of the servo period: the CSV prints them to the µs, ticks.h5 keeps them to
-// 2^-20 s (formats/plan_tables.hpp). Read back to the µs (the CSV's times as they are), a tick has the same
-// time, speed and acceleration and falls into the same frame and bucket whichever form the run wrote.
-double on_the_microsecond(double time_s) {
-  return std::round(time_s * 1e6) / 1e6;
-}
-
 // The columns of the path table the report reads, in kPathColumns' order; feed and path error are -1 when
 // absent.
 constexpr std::size_t kFeedColumn = 10, kPathErrorColumn = 11;
@@ -322,7 +315,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     auto more = next_in_step(path, prow, actuators, arow);
     if (!more) return more.error();
     if (!*more) break;
-    t = on_the_microsecond(prow[static_cast<std::size_t>(column[0])]);
+    t = tick_time_s(prow[static_cast<std::size_t>(column[0])]);
     line = static_cast<int>(prow[static_cast<std::size_t>(column[1])]);
     const double s = prow[static_cast<std::size_t>(column[2])];
     track.add(arow, t - t_prev, count, line, t, limits);

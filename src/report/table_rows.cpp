@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "formats/hdf5_table_reader.hpp"
@@ -74,6 +75,10 @@ Result<int> TableRows::require(std::string_view name) const {
   const int index = column(name);
   if (index < 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no column '{}'", where(0), name));
   return index;
+}
+
+double tick_time_s(double stored_s) {
+  return std::round(stored_s * 1e6) / 1e6;
 }
 
 formats::TickTables tick_tables_in(const std::string& directory) {

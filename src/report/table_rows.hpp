@@ -36,6 +36,12 @@ class TableRows {
   Result<int> require(std::string_view name) const;
 };
 
+/// A tick's time as a table holds it, to the microsecond. The ticks' times are multiples of the servo period:
+/// the CSV prints them to the µs, ticks.h5 keeps them to 2^-20 s (formats/plan_tables.hpp). Read back to the
+/// µs (the CSV's times as they are), a tick has the same time, period, speed and acceleration whichever form
+/// the run wrote.
+double tick_time_s(double stored_s);
+
 /// The form of the servo-rate tables in `directory`: hdf5 when it holds ticks.h5, else csv.
 formats::TickTables tick_tables_in(const std::string& directory);
 /// The tables' file(s) of that form are in `directory` (ticks.h5; actuators.csv and path.csv).
