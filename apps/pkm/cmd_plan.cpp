@@ -1,8 +1,9 @@
 // pkm plan PROGRAM --machine M.yaml [--rate HZ] [--override PCT] [--tolerance MM] [--law L --free F ...]
 //   --out DIR [--json]:
 // interprets a part program, plans it within the feed, path and actuator limits, and writes the servo-rate
-// motion (ticks.h5, or actuators.csv and path.csv with --tables csv) and summary.json into DIR. With --law, the coordinates the operation
-// leaves free are first chosen by that drive control law (as `pkm optimize` does) and the result is planned.
+// motion (ticks.h5, or actuators.csv and path.csv with --tables csv) and summary.json into DIR. With --law,
+// the coordinates the operation leaves free are first chosen by that drive control law (as `pkm optimize`
+// does) and the result is planned.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -49,7 +50,9 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
                  "part program: G-code, or CL data (told apart by content; --format)")
       ->required();
   cmd.add_option("--machine", a.machine_path, "machine file (YAML)")->required();
-  cmd.add_option("--out", a.out_dir, "directory for the servo-rate tables (ticks.h5, or CSV files: --tables) and summary.json")->required();
+  cmd.add_option("--out", a.out_dir,
+                 "directory for the servo-rate tables (ticks.h5, or CSV files: --tables) and summary.json")
+      ->required();
   cmd.add_option("--rate", a.options.rate_hz, "servo rate, Hz")
       ->capture_default_str()
       ->check(number_in({1.0, 100000.0, true, true, "Hz"}));
@@ -75,9 +78,10 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
       "--dynamics", a.dynamics,
       "also the drive forces, power and energy (rigid bodies of the machine file's dynamics: section): "
       "the forces table and a dynamics block in summary.json");
-  cmd.add_flag("--elastic", a.elastic,
-               "with --dynamics, also the elastic struts' response to the planned motion: the response table, "
-               "the lowest natural frequency and the largest dynamic tool error")
+  cmd.add_flag(
+         "--elastic", a.elastic,
+         "with --dynamics, also the elastic struts' response to the planned motion: the response table, "
+         "the lowest natural frequency and the largest dynamic tool error")
       ->needs(dynamics_flag);
   cmd.add_flag("--stiffness", a.stiffness,
                "also the tool's deflection under --load with the struts as springs (the machine file's "

@@ -59,13 +59,15 @@ TEST(PlanCli, WritesActuatorsPathAndSummary) {
 
 TEST(PlanCli, ByDefaultTheTablesAreTicksH5) {
   const std::string out = fresh_dir("default");
-  const auto run = test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " +
-                                     test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out,
-                                 false);
+  const auto run =
+      test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " +
+                        test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out,
+                    false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   EXPECT_TRUE(fs::exists(fs::path(out) / "ticks.h5"));
   EXPECT_TRUE(fs::exists(fs::path(out) / "summary.json"));
-  for (const char* name : {"actuators.csv", "path.csv"}) EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name;
+  for (const char* name : {"actuators.csv", "path.csv"})
+    EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name;
   EXPECT_NE(run.out.find(out + "/ticks.h5 (actuators, path), summary.json"), std::string::npos) << run.out;
 }
 
