@@ -1,7 +1,7 @@
 # Two commands do all the set-up on a fresh Debian machine:
 #   make run   installs what is missing, builds build/pkm and plans the shipped pocket program on the ch5 hexapod
-#              (servo-rate actuator motion in build/run/: actuators.csv, path.csv, summary.json, and the HTML
-#              report build/run/report.html)
+#              (servo-rate actuator motion in build/run/: ticks.h5 with the actuators and path tables,
+#              summary.json, and the HTML report build/run/report.html)
 #   make test  installs what is missing, builds and runs the whole test suite
 # Extra targets: make sanitize (tests under AddressSanitizer + UBSanitizer), make lint (clang-format check, cppcheck,
 # no new function over 100 lines: scripts/function-sizes.py),

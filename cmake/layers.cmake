@@ -85,8 +85,10 @@ target_precompile_headers(pkm_analysis REUSE_FROM pkm_io)
 pkm_layer(pkm_formats formats formats)
 target_link_libraries(pkm_formats PUBLIC pkm_analysis PRIVATE ${HDF5_LINK_LIBRARIES})
 target_precompile_headers(pkm_formats REUSE_FROM pkm_io)
-# HDF5's headers and definitions for the one file that includes them, outside the shared precompiled header.
-set_source_files_properties(${PROJECT_SOURCE_DIR}/src/formats/hdf5_table.cpp PROPERTIES
+# HDF5's headers and definitions for the two files that include them (the writer and the reader), outside the
+# shared precompiled header.
+set_source_files_properties(${PROJECT_SOURCE_DIR}/src/formats/hdf5_table.cpp
+  ${PROJECT_SOURCE_DIR}/src/formats/hdf5_table_reader.cpp PROPERTIES
   INCLUDE_DIRECTORIES "${HDF5_INCLUDE_DIRS}" COMPILE_OPTIONS "${HDF5_CFLAGS_OTHER}"
   SKIP_PRECOMPILE_HEADERS ON SKIP_UNITY_BUILD_INCLUSION ON)
 

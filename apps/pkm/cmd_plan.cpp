@@ -1,8 +1,9 @@
 // pkm plan PROGRAM --machine M.yaml [--rate HZ] [--override PCT] [--tolerance MM] [--law L --free F ...]
 //   --out DIR [--json]:
 // interprets a part program, plans it within the feed, path and actuator limits, and writes the servo-rate
-// motion (actuators.csv, path.csv) and summary.json into DIR. With --law, the coordinates the operation
-// leaves free are first chosen by that drive control law (as `pkm optimize` does) and the result is planned.
+// motion (ticks.h5, or actuators.csv and path.csv with --tables csv) and summary.json into DIR. With --law,
+// the coordinates the operation leaves free are first chosen by that drive control law (as `pkm optimize`
+// does) and the result is planned.
 #include <fmt/format.h>
 
 #include <iostream>
@@ -41,7 +42,7 @@ struct PlanArguments {
   bool dynamics = false;
   bool elastic = false;
   bool stiffness = false;
-  formats::TickTables tables = formats::TickTables::csv;
+  formats::TickTables tables = formats::TickTables::hdf5;
 };
 
 void add_plan_options(CLI::App& cmd, PlanArguments& a) {
@@ -49,7 +50,9 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
                  "part program: G-code, or CL data (told apart by content; --format)")
       ->required();
   cmd.add_option("--machine", a.machine_path, "machine file (YAML)")->required();
-  cmd.add_option("--out", a.out_dir, "directory for actuators.csv, path.csv and summary.json")->required();
+  cmd.add_option("--out", a.out_dir,
+                 "directory for the servo-rate tables (ticks.h5, or CSV files: --tables) and summary.json")
+      ->required();
   cmd.add_option("--rate", a.options.rate_hz, "servo rate, Hz")
       ->capture_default_str()
       ->check(number_in({1.0, 100000.0, true, true, "Hz"}));
@@ -82,14 +85,15 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
   auto* dynamics_flag = cmd.add_flag(
       "--dynamics", a.dynamics,
       "also the drive forces, power and energy (rigid bodies of the machine file's dynamics: section): "
-      "forces.csv and a dynamics block in summary.json");
-  cmd.add_flag("--elastic", a.elastic,
-               "with --dynamics, also the elastic struts' response to the planned motion: response.csv, "
-               "the lowest natural frequency and the largest dynamic tool error")
+      "the forces table and a dynamics block in summary.json");
+  cmd.add_flag(
+         "--elastic", a.elastic,
+         "with --dynamics, also the elastic struts' response to the planned motion: the response table, "
+         "the lowest natural frequency and the largest dynamic tool error")
       ->needs(dynamics_flag);
   cmd.add_flag("--stiffness", a.stiffness,
                "also the tool's deflection under --load with the struts as springs (the machine file's "
-               "stiffness: section): deflection.csv and a stiffness block in summary.json");
+               "stiffness: section): the deflection table and a stiffness block in summary.json");
   cmd.add_flag("--json", a.json, "print the summary as JSON");
   cmd.add_option("--report", a.report_file, "also write the HTML report of the run to this file");
   cmd.add_option_function<std::string>(
@@ -97,8 +101,8 @@ void add_plan_options(CLI::App& cmd, PlanArguments& a) {
          [&a](const std::string& value) {
            a.tables = value == "hdf5" ? formats::TickTables::hdf5 : formats::TickTables::csv;
          },
-         "the servo-rate tables as CSV files (csv, default) or as the groups of DIR/ticks.h5 (hdf5: "
-         "compressed, for numpy and pandas through h5py; not with --report)")
+         "the servo-rate tables as the groups of DIR/ticks.h5 (hdf5, default: compressed, for numpy and "
+         "pandas through h5py) or as CSV files (csv: actuators.csv, path.csv, ...)")
       ->check(CLI::IsMember({"csv", "hdf5"}));
   add_redundancy_options(cmd, a.redundancy, false);
 }
@@ -191,6 +195,13 @@ void print_plan_table(const pipeline::PlanProgramResult& result, const Machine& 
                              result.law->constant.increment_sum_mm, a.redundancy.free);
   }
   print_plan_analyses(result.run, angles);
+  if (a.tables == formats::TickTables::hdf5) {
+    std::cout << fmt::format("  written           {}/ticks.h5 (actuators, path{}{}{}), summary.json\n",
+                             a.out_dir, result.run.dynamics ? ", forces" : "",
+                             result.run.elastic ? ", response" : "",
+                             result.run.deflection ? ", deflection" : "");
+    return;
+  }
   std::cout << fmt::format("  written           {}/actuators.csv, path.csv, summary.json{}{}{}\n", a.out_dir,
                            result.run.dynamics ? ", forces.csv" : "",
                            result.run.elastic ? ", response.csv" : "",

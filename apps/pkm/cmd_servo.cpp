@@ -70,7 +70,8 @@ void add_servo_command(CLI::App& app, int& exit_code) {
   auto machine_path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto decoupled = std::make_shared<bool>(false);
-  cmd->add_option("plan", job->plan_directory, "output directory of pkm plan (actuators.csv, path.csv)")
+  cmd->add_option("plan", job->plan_directory,
+                  "output directory of pkm plan (ticks.h5, or actuators.csv and path.csv)")
       ->required();
   cmd->add_option("--machine", *machine_path, "machine file (YAML) with a servo: section")->required();
   cmd->add_option("--out", job->out_directory,

@@ -67,6 +67,13 @@ std::string clock_text(double seconds) {
   return fmt::format("{}:{:02}", total / 60, total % 60);
 }
 
+std::string ticks_text(long ticks) {
+  if (ticks == 1) return "1 tick";
+  if (ticks < 10'000) return fmt::format("{} ticks", ticks);
+  if (ticks < 999'950) return fmt::format("{:.1f} k ticks", static_cast<double>(ticks) / 1e3);
+  return fmt::format("{:.1f} M ticks", static_cast<double>(ticks) / 1e6);
+}
+
 std::string progress_text(const ProgressStep& step, double elapsed_s, double phase_elapsed_s) {
   std::string text(step.phase);
   const bool known = step.fraction >= 0.0;
@@ -78,6 +85,7 @@ std::string progress_text(const ProgressStep& step, double elapsed_s, double pha
                         std::string(static_cast<std::size_t>(width - filled), '.'), fraction * 100.0);
   }
   if (step.line > 0) text += fmt::format("  line {}", step.line);
+  if (step.ticks >= 0) text += "  " + ticks_text(step.ticks);
   text += fmt::format("  {} elapsed", clock_text(elapsed_s));
   // The phase's own rate so far: a phase that started late is not charged for the ones before it.
   if (known && fraction >= 0.01 && fraction < 1.0 && phase_elapsed_s >= 0.5)
@@ -119,6 +127,8 @@ void ProgressDisplay::update(const ProgressStep& step) {
   fraction_ = step.fraction;
   // A phase that names no line keeps the one it last named; a new phase starts without one.
   if (step.line > 0 || new_phase) line_ = step.line;
+  // Likewise the ticks written: a phase that tells none keeps the count it last told.
+  if (step.ticks >= 0 || new_phase) ticks_ = step.ticks;
 }
 
 void ProgressDisplay::tick() {
@@ -133,8 +143,9 @@ void ProgressDisplay::draw(bool as_line) {
   const Clock::time_point now = Clock::now();
   const double elapsed_s = std::chrono::duration<double>(now - started_).count();
   const double phase_s = std::chrono::duration<double>(now - phase_started_).count();
-  const std::string text = fmt::format(
-      "pkm {}: {}", command_, progress_text(ProgressStep{phase_, fraction_, line_}, elapsed_s, phase_s));
+  const std::string text =
+      fmt::format("pkm {}: {}", command_,
+                  progress_text(ProgressStep{phase_, fraction_, line_, ticks_}, elapsed_s, phase_s));
   if (as_line) {
     if (!phase_changed_ && std::chrono::duration<double>(now - last_line_).count() < kLineEveryS) return;
     std::cerr << text << "\n" << std::flush;

@@ -1,6 +1,7 @@
 #pragma once
 // The progress line of the commands that can run for a while, on stderr:
 //   pkm plan: planning  [########............]  41 %  line 4812  0:03 elapsed  0:04 left
+//   pkm plan: writing the outputs  [####################]  98 %  line 5120  1.2 M ticks  0:09 elapsed
 // A ticker redraws it four times a second from what the computation last told (core/progress.hpp), so that
 // even a phase that reports nothing shows its name and the time it has taken: no command is silent for
 // seconds. On a terminal it appears after the first second (short commands stay quiet) and is erased when
@@ -24,8 +25,12 @@ enum class ProgressMode { automatic, always, never };
 void add_progress_options(CLI::App& app);
 
 /// The line's text (without the command): phase, bar and percentage when the fraction is known, the program
-/// line, the elapsed time and, from the phase's own rate, the time left in it.
+/// line, the servo ticks written (ticks_text), the elapsed time and, from the phase's own rate, the time left
+/// in it.
 std::string progress_text(const ProgressStep& step, double elapsed_s, double phase_elapsed_s);
+
+/// "1 tick", "812 ticks", "48.1 k ticks", "1.2 M ticks": a count that stays short as it grows.
+std::string ticks_text(long ticks);
 
 /// "0:07", "12:03", "1:02:03".
 std::string clock_text(double seconds);
@@ -61,6 +66,7 @@ class ProgressDisplay {
   std::string phase_;
   double fraction_ = -1.0;
   int line_ = 0;
+  long ticks_ = -1;
   bool phase_changed_ = true;
   bool drawn_ = false;
   bool stop_ = false;

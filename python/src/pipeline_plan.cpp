@@ -287,15 +287,15 @@ void bind_plan(py::module_& m) {
       py::arg("load") = "", py::arg("dynamics") = false, py::arg("elastic") = false,
       py::arg("path_error") = true, py::arg("tool_table") = py::none(),
       py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(),
-      py::arg("out_dir") = py::none(), py::arg("tables") = "csv",
+      py::arg("out_dir") = py::none(), py::arg("tables") = "hdf5",
       R"doc(Plans a part program on `machine` and returns its servo-rate motion, as `pkm plan` does.
 
 Arguments (the CLI's options): servo_period_ms (default 1 ms, --rate 1000/period), feed_override_pct (0 < … ≤
 200), blend_tolerance_mm (corner blending; default the machine file's; 0: exact stop), path_error (FK of the
 actuators at every mid-period, as without --no-path-error), tool_table (G43), subroutine_path and parameter_file
 (as pkm.interpret), out_dir (also write the CLI's
-actuators.csv, path.csv, summary.json and with dynamics forces.csv there), tables ('csv', or 'hdf5': the tables
-as the groups of out_dir/ticks.h5, as `pkm plan --tables hdf5`).
+files there: the servo-rate tables and summary.json), tables ('hdf5', the default: the tables as the groups of
+out_dir/ticks.h5; 'csv': as actuators.csv, path.csv and with dynamics forces.csv; as `pkm plan --tables`).
 law ('increment' | 'force' | 'energy'): first choose the coordinates the program leaves free by that drive
 control law, as pkm.optimize does, with free, bounds_deg (lo, hi), law_step_mm, solver, energy_accounting,
 force_model, force_limit_N, max_rate_deg_per_mm and load (the CLI's --load text, e.g.

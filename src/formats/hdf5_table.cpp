@@ -6,15 +6,11 @@
 #include <cmath>
 #include <cstdint>
 
+#include "formats/hdf5_handle.hpp"
+
 namespace pkm::formats {
 
 namespace {
-
-// HDF5 prints its error stack to stderr by default; pkm reports its own message instead.
-void quiet_hdf5_errors() {
-  static const bool quiet = [] { return H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0; }();
-  (void)quiet;
-}
 
 Error hdf5_error(const std::string& path, const std::string& what) {
   Error e = make_error(ErrorCode::io, fmt::format("cannot write {}: {}", path, what));
@@ -22,21 +18,7 @@ Error hdf5_error(const std::string& path, const std::string& what) {
   return e;
 }
 
-// Closes an HDF5 handle of any kind when it leaves scope.
-class Handle {
- public:
-  explicit Handle(hid_t id) : id_(id) {}
-  ~Handle() {
-    if (id_ >= 0) H5Idec_ref(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-};
+using Handle = Hdf5Handle;
 
 // A variable-length UTF-8 string attribute (h5py reads it as str).
 bool write_string_attribute(hid_t owner, const std::string& name, const std::string& value) {
@@ -173,7 +155,12 @@ Hdf5File::~Hdf5File() {
 
 Result<Hdf5Table> Hdf5File::table(const std::string& name, const std::vector<Hdf5Column>& columns,
                                   long chunk_rows) {
-  const Handle group(H5Gcreate2(id_, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  // The columns' order is kept (link creation order), so that a reader sees them as the CSV header has them.
+  const Handle group_properties(H5Pcreate(H5P_GROUP_CREATE));
+  if (!group_properties.valid() ||
+      H5Pset_link_creation_order(group_properties.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0)
+    return hdf5_error(path_, fmt::format("cannot set up the table {}", name));
+  const Handle group(H5Gcreate2(id_, name.c_str(), H5P_DEFAULT, group_properties.get(), H5P_DEFAULT));
   if (!group.valid()) return hdf5_error(path_, fmt::format("cannot create the table {}", name));
   Hdf5Table table;
   table.state_ = std::make_unique<Hdf5Table::State>();
@@ -215,20 +202,6 @@ Error read_error(const std::string& path, const std::string& what) {
   return e;
 }
 
-// The string attribute `name` of `owner` (variable-length, as write_string_attribute writes it).
-bool read_string_attribute(hid_t owner, const char* name, std::string& out) {
-  const Handle attribute(H5Aopen(owner, name, H5P_DEFAULT));
-  if (!attribute.valid()) return false;
-  const Handle type(H5Aget_type(attribute.get()));
-  if (!type.valid() || H5Tis_variable_str(type.get()) <= 0) return false;
-  char* text = nullptr;
-  if (H5Aread(attribute.get(), type.get(), &text) < 0) return false;
-  out = text != nullptr ? text : "";
-  const Handle space(H5Aget_space(attribute.get()));
-  H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, &text);
-  return true;
-}
-
 }  // namespace
 
 Result<Hdf5ColumnData> read_hdf5_column(const std::string& path, const std::string& table,
@@ -249,7 +222,7 @@ Result<Hdf5ColumnData> read_hdf5_column(const std::string& path, const std::stri
   if (rows > 0 &&
       H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.values.data()) < 0)
     return read_error(path, fmt::format("cannot read {}", name));
-  if (!read_string_attribute(dataset.get(), "unit", data.unit))
+  if (!read_hdf5_string_attribute(dataset.get(), "unit", data.unit))
     return read_error(path, fmt::format("{} has no unit", name));
   return data;
 }

@@ -100,11 +100,6 @@ Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& 
 }  // namespace
 
 Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
-  if (job.tick_tables == formats::TickTables::hdf5 && !job.report_path.empty())
-    return make_error(
-        ErrorCode::bad_input,
-        "tables hdf5 (--tables): the report reads the CSV tables; leave out the report (--report) "
-        "or write CSV");
   report_progress(job.progress, "reading the program");
   auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();

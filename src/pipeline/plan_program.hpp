@@ -34,8 +34,8 @@ struct PlanJob {
   bool stiffness = false;
   ProgressSink progress;      ///< told the phase, how far it is and the program line, now and then
   std::string out_directory;  ///< empty: no files (the caller listens to the ticks itself)
-  /// The servo-rate tables as CSV files or as the groups of ticks.h5 (formats/plan_tables.hpp). The report
-  /// reads the CSV files: with hdf5, report_path must be empty.
+  /// The servo-rate tables as CSV files or as the groups of ticks.h5 (formats/plan_tables.hpp); the report
+  /// reads either.
   formats::TickTables tick_tables = formats::TickTables::csv;
   std::string report_path;  ///< empty: no report
   /// Also listening to the run, after the files: every tick, and the analyses' ticks (e.g. into arrays).

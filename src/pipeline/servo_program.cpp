@@ -13,18 +13,19 @@
 #include "io/output_manifest.hpp"
 #include "io/output_set.hpp"
 #include "io/version.hpp"
-#include "report/csv_table.hpp"
 #include "report/report_data.hpp"
 #include "report/report_html.hpp"
+#include "report/table_rows.hpp"
 
 namespace pkm::pipeline {
 namespace fs = std::filesystem;
 
 namespace {
 
-Error servo_csv_error(const report::CsvReader& csv, const std::string& what) {
-  return Error{ErrorCode::bad_input, fmt::format("{}:{}: {}", csv.path(), csv.line(), what),
-               ErrorLocation{csv.path(), static_cast<int>(csv.line()), 0, {}}};
+Error servo_table_error(const report::TableRows& table, const std::string& what) {
+  Error e = make_error(ErrorCode::bad_input, fmt::format("{}: {}", table.where(), what));
+  e.location.file = table.name();
+  return e;
 }
 
 }  // namespace
@@ -38,11 +39,14 @@ Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std:
   const Mechanism& mechanism = *machine.mechanism;
   const int m = mechanism.actuator_count();
   const bool angular = mechanism.actuators_are_angles();
-  report::CsvReader actuators, path;
-  if (Status opened = actuators.open((fs::path(plan_directory) / "actuators.csv").string()); !opened)
-    return opened.error();
-  if (Status opened = path.open((fs::path(plan_directory) / "path.csv").string()); !opened)
-    return opened.error();
+  // The plan's tables in the form its folder holds (CSV files or ticks.h5).
+  const formats::TickTables tables = report::tick_tables_in(plan_directory);
+  auto actuator_table = report::open_tick_table(plan_directory, tables, "actuators");
+  if (!actuator_table) return actuator_table.error();
+  auto path_table = report::open_tick_table(plan_directory, tables, "path");
+  if (!path_table) return path_table.error();
+  report::TableRows& actuators = **actuator_table;
+  report::TableRows& path = **path_table;
   std::vector<int> q_columns;
   for (int j = 1; j <= m; ++j) {
     auto column = actuators.require(fmt::format("q{}_{}", j, angular ? "deg" : "mm"));
@@ -68,14 +72,14 @@ Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std:
     if (!more) return more.error();
     if (!*more) break;
     if (std::abs(a[*time_column] - p[columns[0]]) > 1e-6)
-      return servo_csv_error(path, "not the tick of actuators.csv (a different run?)");
+      return servo_table_error(path, fmt::format("not the tick of {} (a different run?)", actuators.name()));
     ActuatorVector q(m);
     for (int j = 0; j < m; ++j) q[j] = a[q_columns[j]] * unit;
     for (int c = 0; c < 8; ++c) {
       if (!std::isfinite(p[columns[c]]))
-        return servo_csv_error(path, fmt::format("{}: not a number", names[c]));
+        return servo_table_error(path, fmt::format("{}: not a number", names[c]));
     }
-    if (!q.allFinite()) return servo_csv_error(actuators, "an actuator position is not a number");
+    if (!q.allFinite()) return servo_table_error(actuators, "an actuator position is not a number");
     Pose pose;
     pose.position_mm =
         Eigen::Vector3d(p[columns[2]], p[columns[3]], p[columns[4]]) + machine.motion.program_origin_mm;
@@ -83,24 +87,25 @@ Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std:
         AngleConvention::abc,
         Eigen::Vector3d(p[columns[5]], p[columns[6]], p[columns[7]]) * (std::numbers::pi / 180.0));
     auto complete = mechanism.complete_pose(pose);
-    if (!complete) return servo_csv_error(path, complete.error().message);
-    const double time_s = a[*time_column];
+    if (!complete) return servo_table_error(path, complete.error().message);
+    // To the µs whichever form held it: the servo period is then the CSV's (report/table_rows.hpp).
+    const double time_s = report::tick_time_s(a[*time_column]);
     if (!input.time_s.empty() && !(time_s > input.time_s.back()))
-      return servo_csv_error(actuators, "time_s does not increase");
+      return servo_table_error(actuators, "time_s does not increase");
     input.time_s.push_back(time_s);
     input.line.push_back(static_cast<int>(p[columns[1]]));
     input.setpoint.push_back(q);
     input.pose.push_back(*complete);
   }
   if (input.time_s.size() < 2)
-    return make_error(ErrorCode::bad_input, fmt::format("{}: fewer than two servo ticks", actuators.path()));
+    return make_error(ErrorCode::bad_input, fmt::format("{}: fewer than two servo ticks", actuators.name()));
   input.period_s = input.time_s[1] - input.time_s[0];
   // The plan writes times to the µs: every step must be the same period.
   for (std::size_t k = 1; k < input.time_s.size(); ++k) {
     if (std::abs(input.time_s[k] - input.time_s[k - 1] - input.period_s) > 2e-6) {
       return make_error(
           ErrorCode::bad_input,
-          fmt::format("{}: row {}: the servo period changes ({} s after {} s)", actuators.path(), k + 1,
+          fmt::format("{}: row {}: the servo period changes ({} s after {} s)", actuators.name(), k + 1,
                       input.time_s[k] - input.time_s[k - 1], input.period_s));
     }
   }

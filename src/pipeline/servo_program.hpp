@@ -1,6 +1,6 @@
 #pragma once
-// `pkm servo PLAN_DIR` as one library call (docs/servo.md): reads a planned run back
-// (actuators.csv: the set points; path.csv: the commanded tool poses and their program lines), designs each
+// `pkm servo PLAN_DIR` as one library call (docs/servo.md): reads a planned run back from its ticks.h5 or CSV
+// files (actuators: the set points; path: the commanded tool poses and their program lines), designs each
 // drive's loops from the machine file's `servo:` section, refuses unstable loops, simulates all drives on the
 // coupled plant, and writes servo.csv (per tick: following error, force and command per drive, contour error
 // and lag), servo_bode.csv (each drive's loops, continuous and sampled) and servo_summary.json, as one output

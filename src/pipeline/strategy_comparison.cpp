@@ -239,7 +239,7 @@ Result<StrategyComparison> compare_strategies(const Machine& machine, const Stra
     if (job.progress) {
       progress = [&](const ProgressStep& step) {
         phase.assign(label).append(step.phase);
-        job.progress(ProgressStep{phase, step.fraction, step.line});
+        job.progress(ProgressStep{phase, step.fraction, step.line, step.ticks});
       };
     }
     auto result = run_comparison_case(machine, job, c, outputs.staging_directory(), progress);

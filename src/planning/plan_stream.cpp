@@ -34,10 +34,10 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
     }
     if (options.progress && tick.index % report_every == 0)
       report_progress(options.progress, "writing the outputs", static_cast<double>(tick.index) / total,
-                      tick.line);
+                      tick.line, tick.index + 1);
   }
   if (stream.error()) return *stream.error();
-  report_progress(options.progress, "writing the outputs", 1.0);
+  report_progress(options.progress, "writing the outputs", 1.0, 0, total);
   for (TickObserver* observer : observers) {
     if (Status finished = observer->on_finish(); !finished) return finished.error();
   }

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include "report/report_data.hpp"
 
@@ -17,12 +16,6 @@ enum Plot { kTotal, kStatic, kDynamic, kPower, kEnergy, kError };
 /// The files' times have six decimals; a row of another tick is at least one servo period away.
 constexpr double kSameTickS = 2e-6;
 
-Result<bool> next_row(CsvReader& csv, std::vector<double>& row) {
-  const bool more = csv.next(row);
-  if (csv.error()) return *csv.error();
-  return more;
-}
-
 std::vector<std::string> names_with(const std::vector<std::string>& names, const std::string& extra) {
   std::vector<std::string> out = names;
   out.push_back(extra);
@@ -31,38 +24,41 @@ std::vector<std::string> names_with(const std::vector<std::string>& names, const
 
 }  // namespace
 
-Status DynamicsTrace::open(const std::string& directory, const nlohmann::json& summary, int drives,
-                           long expected_rows, int buckets) {
+Status DynamicsTrace::open(const std::string& directory, formats::TickTables tables,
+                           const nlohmann::json& summary, int drives, long expected_rows, int buckets) {
   if (!summary.contains("dynamics") || !summary["dynamics"].is_object()) return ok_status();
   const nlohmann::json& block = summary["dynamics"];
-  const std::filesystem::path dir(directory);
   drives_ = drives;
-  if (Status opened = forces_csv_.open((dir / "forces.csv").string()); !opened) return opened;
-  auto forces_time = forces_csv_.require("time_s");
+  auto forces = open_tick_table(directory, tables, "forces");
+  if (!forces) return forces.error();
+  forces_ = std::move(*forces);
+  auto forces_time = forces_->require("time_s");
   if (!forces_time) return forces_time.error();
   forces_time_col_ = *forces_time;
-  // Angular drives give torques in N·mm (P1_Nmm); the file's header says which.
-  const std::string unit = forces_csv_.column("P1_Nmm") >= 0 ? "Nmm" : "N";
+  // Angular drives give torques in N·mm (P1_Nmm); the table's columns say which.
+  const std::string unit = forces_->column("P1_Nmm") >= 0 ? "Nmm" : "N";
   force_unit_ = unit == "Nmm" ? "N·mm" : "N";
   for (int j = 1; j <= drives; ++j) {
     for (auto [name, columns] : {std::pair{fmt::format("P{}_{}", j, unit), &total_col_},
                                  std::pair{fmt::format("P{}_static_{}", j, unit), &static_col_},
                                  std::pair{fmt::format("P{}_dynamic_{}", j, unit), &dynamic_col_},
                                  std::pair{fmt::format("power{}_W", j), &power_col_}}) {
-      auto index = forces_csv_.require(name);
+      auto index = forces_->require(name);
       if (!index) return index.error();
       columns->push_back(*index);
     }
   }
   elastic_ = block.contains("max_dynamic_tool_error_mm");
   if (elastic_) {
-    if (Status opened = response_csv_.open((dir / "response.csv").string()); !opened) return opened;
+    auto response = open_tick_table(directory, tables, "response");
+    if (!response) return response.error();
+    response_ = std::move(*response);
     for (const char* name : {"tool_error_mm", "dx_mm", "dy_mm", "dz_mm"}) {
-      auto index = response_csv_.require(name);
+      auto index = response_->require(name);
       if (!index) return index.error();
       response_col_.push_back(*index);
     }
-    auto time = response_csv_.require("time_s");
+    auto time = response_->require("time_s");
     if (!time) return time.error();
     response_time_col_ = *time;
   }
@@ -83,13 +79,13 @@ Status DynamicsTrace::open(const std::string& directory, const nlohmann::json& s
 
 Status DynamicsTrace::next(double time_s, double s_mm) {
   if (!active_) return ok_status();
-  auto more = next_row(forces_csv_, row_);
+  auto more = forces_->next(row_);
   if (!more) return more.error();
   const double file_time_s = *more ? row_[static_cast<std::size_t>(forces_time_col_)] : 0.0;
   if (!*more || std::abs(file_time_s - time_s) > kSameTickS) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("{}:{}: not the tick at {:.6f} s of path.csv (a different run?)",
-                                  forces_csv_.path(), forces_csv_.line() + (*more ? 0 : 1), time_s));
+                      fmt::format("{}: not the tick at {:.6f} s of the path (a different run?)",
+                                  forces_->where(*more ? 0 : 1), time_s));
   }
   const double h = period_s_ > 0.0 ? period_s_ : rows_ > 0 ? time_s - previous_time_s_ : 0.0;
   double sum_W = 0.0;
@@ -112,13 +108,12 @@ Status DynamicsTrace::next(double time_s, double s_mm) {
   plots_[kPower].add(time_s, s_mm, power_.data());
   plots_[kEnergy].add(time_s, s_mm, energy_J_.data());
   if (elastic_) {
-    auto response = next_row(response_csv_, row_);
+    auto response = response_->next(row_);
     if (!response) return response.error();
     if (!*response || std::abs(row_[static_cast<std::size_t>(response_time_col_)] - time_s) > kSameTickS) {
-      return make_error(
-          ErrorCode::bad_input,
-          fmt::format("{}:{}: not the tick at {:.6f} s of path.csv (a different run?)", response_csv_.path(),
-                      response_csv_.line() + (*response ? 0 : 1), time_s));
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: not the tick at {:.6f} s of the path (a different run?)",
+                                    response_->where(*response ? 0 : 1), time_s));
     }
     for (std::size_t k = 0; k < error_.size(); ++k)
       error_[k] = row_[static_cast<std::size_t>(response_col_[k])];
@@ -131,13 +126,13 @@ Status DynamicsTrace::next(double time_s, double s_mm) {
 
 Status DynamicsTrace::finish() {
   if (!active_) return ok_status();
-  for (CsvReader* csv : {&forces_csv_, &response_csv_}) {
-    if (csv == &response_csv_ && !elastic_) continue;
-    auto more = next_row(*csv, row_);
+  for (TableRows* table : {forces_.get(), response_.get()}) {
+    if (table == nullptr) continue;
+    auto more = table->next(row_);
     if (!more) return more.error();
     if (*more) {
-      return make_error(ErrorCode::bad_input, fmt::format("{}:{}: more rows than path.csv (a different run?)",
-                                                          csv->path(), csv->line()));
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: more rows than the path (a different run?)", table->where()));
     }
   }
   for (MinMaxDecimator& plot : plots_) plot.finish();
@@ -154,7 +149,7 @@ double DynamicsTrace::peak_force() const {
 nlohmann::json DynamicsTrace::charts(const std::optional<double>& force_limit) const {
   nlohmann::json charts = nlohmann::json::array();
   if (!active_) return charts;
-  // Named as forces.csv names the drives' forces (P1_N …) and powers (power1_W …).
+  // Named as the forces table names the drives' forces (P1_N …) and powers (power1_W …).
   const nlohmann::json limits = plus_minus_lines(force_limit, force_unit_);
   charts.push_back(chart_json("drive_forces", "Drive forces (positive: the drive pushes)", "force",
                               force_unit_, plots_[kTotal], drive_names("P", drives_), true, limits));

@@ -1,8 +1,9 @@
 // The report of a `pkm plan` run: actuator positions, speeds and accelerations against their limits, path
-// speed against the programmed feed, the path error, and the 3-D animation, from actuators.csv and path.csv;
-// with --dynamics also the drive forces, power and energy (forces.csv) and the dynamic tool error
-// (response.csv), and struts that can be coloured by force; after `pkm servo` the following and contour
-// error, the servo rows of the table and the loops' Bode data (servo_plots.hpp).
+// speed against the programmed feed, the path error, and the 3-D animation, from the actuators and path
+// tables (actuators.csv and path.csv, or their groups of ticks.h5: report/table_rows.hpp); with --dynamics
+// also the drive forces, power and energy (forces) and the dynamic tool error (response), and struts that can
+// be coloured by force; after `pkm servo` the following and contour error, the servo rows of the table and
+// the loops' Bode data (servo_plots.hpp).
 #include <fmt/format.h>
 
 #include <array>
@@ -12,12 +13,12 @@
 
 #include "core/rotation.hpp"
 #include "core/units.hpp"
-#include "report/csv_table.hpp"
 #include "report/dynamics_table.hpp"
 #include "report/dynamics_trace.hpp"
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
 #include "report/servo_plots.hpp"
+#include "report/table_rows.hpp"
 
 namespace pkm::report {
 
@@ -102,9 +103,10 @@ struct ActuatorTrack {
   LimitPeak speed_peak, accel_peak, position_peak;
 };
 
-// The columns of path.csv the report reads, in kPathColumns' order; feed and path error are -1 when absent.
+// The columns of the path table the report reads, in kPathColumns' order; feed and path error are -1 when
+// absent.
 constexpr std::size_t kFeedColumn = 10, kPathErrorColumn = 11;
-Result<std::array<int, 12>> path_csv_columns(CsvReader& path) {
+Result<std::array<int, 12>> path_table_columns(const TableRows& path) {
   // The pose in program coordinates: the tool point from program zero and G-code's A B C (plan_output.cpp).
   static const char* const kPathColumns[] = {"time_s",       "line",           "s",         "x_program_mm",
                                              "y_program_mm", "z_program_mm",   "a_abc_deg", "b_abc_deg",
@@ -235,37 +237,63 @@ Result<nlohmann::json> plan_document(const Machine& machine, const RunFiles& fil
   return report;
 }
 
+// The run's actuators and path tables, in the form its folder holds, with the path's columns and the rows
+// expected (the summary's ticks, else counted).
+struct PlanTables {
+  formats::TickTables form = formats::TickTables::csv;
+  std::unique_ptr<TableRows> path, actuators;
+  std::array<int, 12> column{};
+  long expected = 0;
+};
+
+Result<PlanTables> open_plan_tables(const Machine& machine, const RunFiles& files) {
+  PlanTables t;
+  t.form = tick_tables_in(files.directory);
+  auto path = open_tick_table(files.directory, t.form, "path");
+  if (!path) return path.error();
+  auto actuators = open_tick_table(files.directory, t.form, "actuators");
+  if (!actuators) return actuators.error();
+  t.path = std::move(*path);
+  t.actuators = std::move(*actuators);
+  const nlohmann::json& sm = files.summary;
+  const bool counted = sm.contains("ticks") && sm["ticks"].is_number_integer() && sm["ticks"].get<long>() > 0;
+  auto rows = counted ? Result<long>(sm["ticks"].get<long>()) : t.path->count_rows();
+  if (!rows) return rows.error();
+  t.expected = *rows;
+  const int n = machine.mechanism->actuator_count();
+  if (static_cast<int>(t.actuators->columns().size()) != n + 1) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}: {} actuator columns, but {} has {} actuators", t.actuators->where(),
+                                  t.actuators->columns().size() - 1, machine.source, n));
+  }
+  auto columns = path_table_columns(*t.path);
+  if (!columns) return columns.error();
+  t.column = *columns;
+  return t;
+}
+
 }  // namespace
 
 Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files,
                                    const ReportOptions& options) {
-  const fs::path dir(files.directory);
-  const std::string path_file = (dir / "path.csv").string();
-  const std::string actuator_file = (dir / "actuators.csv").string();
-  auto rows = expected_rows(files.summary, "ticks", path_file);
-  if (!rows) return rows.error();
-  CsvReader path, actuators;
-  if (Status opened = path.open(path_file); !opened) return opened.error();
-  if (Status opened = actuators.open(actuator_file); !opened) return opened.error();
+  auto opened_tables = open_plan_tables(machine, files);
+  if (!opened_tables) return opened_tables.error();
+  TableRows& path = *opened_tables->path;
+  TableRows& actuators = *opened_tables->actuators;
+  const std::array<int, 12>& column = opened_tables->column;
+  const formats::TickTables tables = opened_tables->form;
   const int n = machine.mechanism->actuator_count();
-  if (static_cast<int>(actuators.columns().size()) != n + 1) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("{}:1: {} actuator columns, but {} has {} actuators", actuator_file,
-                                  actuators.columns().size() - 1, machine.source, n));
-  }
-  auto columns = path_csv_columns(path);
-  if (!columns) return columns.error();
-  const std::array<int, 12>& column = *columns;
 
   const std::string unit = actuator_unit(machine);
   const ActuatorLimits limits = limits_in_file_units(machine);
-  const long expected = *rows;
+  const long expected = opened_tables->expected;
   PlanCharts plots(n, expected, options.chart_buckets);
   const double duration = value_or_nan(files.summary, "duration_s");
   SceneBuilder scene(machine, std::isfinite(duration) ? duration : 0.0, expected, options.frames,
                      options.path_points);
   DynamicsTrace dynamics;
-  if (Status opened = dynamics.open(files.directory, files.summary, n, expected, options.chart_buckets);
+  if (Status opened =
+          dynamics.open(files.directory, tables, files.summary, n, expected, options.chart_buckets);
       !opened)
     return opened.error();
   ServoTrace servo;
@@ -287,7 +315,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     auto more = next_in_step(path, prow, actuators, arow);
     if (!more) return more.error();
     if (!*more) break;
-    t = prow[static_cast<std::size_t>(column[0])];
+    t = tick_time_s(prow[static_cast<std::size_t>(column[0])]);
     line = static_cast<int>(prow[static_cast<std::size_t>(column[1])]);
     const double s = prow[static_cast<std::size_t>(column[2])];
     track.add(arow, t - t_prev, count, line, t, limits);
@@ -323,7 +351,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     t_prev = t;
     ++count;
   }
-  if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no rows", path_file));
+  if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no rows", path.name()));
   if (t > last_frame_time) {  // the end of the run is a frame
     pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
     scene.add_frame(t, line, pose, track.closeness);

@@ -14,6 +14,7 @@
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
 #include "report/stiffness_plots.hpp"
+#include "report/table_rows.hpp"
 #include "report/workspace_report.hpp"
 
 namespace pkm::report {
@@ -205,15 +206,15 @@ Result<nlohmann::json> report_from_directory(const std::string& directory, const
     return workspace_report(directory, summary, options);
   if (summary.is_object() && summary.value("command", "") == "calibrate identify")
     return calibration_report(directory, summary, options);
-  const bool planned = fs::exists(dir / "actuators.csv") && fs::exists(dir / "path.csv");
+  const bool planned = has_tick_tables(directory);
   // pkm stiffness: its points and a summary that names the stiffness model.
   const bool deflected =
       fs::exists(dir / "points.csv") && summary.contains("model") && summary.contains("points");
   const bool interpolated = fs::exists(dir / "steps.csv") && fs::exists(dir / "contour.csv");
   if (!planned && !interpolated && !deflected) {
     return make_error(ErrorCode::bad_input,
-                      fmt::format("{}: neither actuators.csv + path.csv (pkm plan), steps.csv + contour.csv "
-                                  "(pkm interpolate) nor points.csv (pkm stiffness)",
+                      fmt::format("{}: neither ticks.h5 or actuators.csv + path.csv (pkm plan), steps.csv + "
+                                  "contour.csv (pkm interpolate) nor points.csv (pkm stiffness)",
                                   directory));
   }
   std::string machine_file = options.machine_file;
@@ -256,7 +257,9 @@ Result<nlohmann::json> report_from_directory(const std::string& directory, const
   if (!interpolation_summary && !planned) {
     return make_error(
         ErrorCode::bad_input,
-        fmt::format("{}: the summary is pkm plan's, but actuators.csv or path.csv is missing", directory));
+        fmt::format(
+            "{}: the summary is pkm plan's, but neither ticks.h5 nor actuators.csv and path.csv are there",
+            directory));
   }
   auto report = interpolation_summary ? interpolate_report(*machine, files, options)
                                       : plan_report(*machine, files, options);

@@ -1,8 +1,8 @@
 #pragma once
-// Building the report's data (docs/report-data.md) from a run's output directory: `pkm plan` (actuators.csv,
-// path.csv, summary.json) or `pkm interpolate` (steps.csv, contour.csv, summary.json). The machine and
-// program files are the ones the summary names, unless given. Everything long is decimated on the way in, so
-// a run of any length gives a page that opens quickly.
+// Building the report's data (docs/report-data.md) from a run's output directory: `pkm plan` (ticks.h5 or
+// actuators.csv + path.csv, summary.json) or `pkm interpolate` (steps.csv, contour.csv, summary.json). The
+// machine and program files are the ones the summary names, unless given. Everything long is decimated on
+// the way in, so a run of any length gives a page that opens quickly.
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>

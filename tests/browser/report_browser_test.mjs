@@ -375,13 +375,15 @@ try {
     const out = c.command === 'optimize' ? join(dir, 'optimized.ngc') : dir;
     if (c.workspace) runWorkspace(c, dir, page_file);
     else if (c.servo) {
-      execFileSync(args.pkm, ['plan', join(root, c.program), '--machine', join(root, c.machine), '--out', dir], { stdio: 'pipe' });
+      execFileSync(args.pkm, ['plan', join(root, c.program), '--machine', join(root, c.machine), '--tables', 'csv', '--out', dir],
+                   { stdio: 'pipe' });
       execFileSync(args.pkm, ['servo', dir, '--machine', join(root, c.machine), '--report', page_file], { stdio: 'pipe' });
     } else if (c.calibration) {
       execFileSync(args.pkm, ['calibrate', 'identify', '--machine', join(root, c.machine), '--measurements', join(root, c.measurements),
                               '--out', join(dir, 'calibrated.yaml'), '--dir', dir, '--report', page_file], { stdio: 'pipe', cwd: root });
     } else execFileSync(args.pkm, [c.command, join(root, c.program), '--machine', join(root, c.machine), '--out', out,
-                                 '--report', page_file, ...c.extra], { stdio: 'pipe' });
+                                 '--report', page_file, ...(c.command === 'plan' ? ['--tables', 'csv'] : []), ...c.extra],
+                        { stdio: 'pipe' });
     if (c.stiffness) addStiffnessFiles(c, dir, page_file);
     const rows = c.rows ? readCsv(join(dir, c.rows)) : null;
     const fail = (what) => failures.push(`${c.name}: ${what}`);

@@ -561,7 +561,7 @@ std::vector<CatalogueCase> catalogue_cases() {
        plan_sentinel,
        "run"},
       {"plan_path_csv_is_directory",
-       plan + "--out {t}/irun",
+       plan + "--tables csv --out {t}/irun",
        2,
        {"cannot write {t}/irun/path.csv: Is a directory"},
        [](const fs::path& t) {

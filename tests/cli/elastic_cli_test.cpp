@@ -98,7 +98,7 @@ TEST(ElasticCli, PlanWritesTheResponseAndTheElasticSummary) {
   const std::string out = fresh_elastic_dir("circle");
   const auto run = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
                                      elastic_cli_machine("hexapod_ch5.yaml") +
-                                     " --dynamics --elastic --out " + out + " --json",
+                                     " --dynamics --elastic --tables csv --out " + out + " --json",
                                  false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const auto summary = nlohmann::json::parse(run.out);
@@ -141,8 +141,9 @@ TEST(ElasticCli, PlanRefusesElasticWithoutDynamicsOrStiffnessAndWritesNothing) {
   EXPECT_NE(alone.exit_code, 0);
   EXPECT_NE(alone.out.find("--elastic requires --dynamics"), std::string::npos) << alone.out;
   const std::string machine = elastic_cli_rigid_struts_machine();
-  const auto rigid = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") +
-                                   " --machine " + machine + " --dynamics --elastic --out " + out);
+  const auto rigid =
+      test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " + machine +
+                    " --dynamics --elastic --tables csv --out " + out);
   EXPECT_EQ(rigid.exit_code, 2) << rigid.out;
   EXPECT_NE(rigid.out.find(machine + ":"), std::string::npos) << rigid.out;
   EXPECT_NE(rigid.out.find("dynamics.struts.stiffness_N_mm: not given"), std::string::npos) << rigid.out;

@@ -87,7 +87,8 @@ TEST(OptimizeCli, MachinesWithoutFreeCoordinatesAreRefused) {
 TEST(OptimizeCli, PlanWithLawReportsTheLaw) {
   const std::string dir = fresh_path("plan_law");
   const auto run = test::run_pkm(
-      "plan " + planar_args() + " --law increment --bounds 5,30 --out " + dir + " --json", false);
+      "plan " + planar_args() + " --law increment --bounds 5,30 --tables csv --out " + dir + " --json",
+      false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const auto summary = nlohmann::json::parse(run.out);
   ASSERT_TRUE(summary.contains("redundancy"));

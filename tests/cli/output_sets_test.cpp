@@ -43,7 +43,7 @@ std::string outsets_machine() {
 
 std::string outsets_plan(const fs::path& out, const std::string& extra = "") {
   return "plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " + outsets_machine() +
-         " --no-path-error --out " + out.string() + " " + extra;
+         " --no-path-error --tables csv --out " + out.string() + " " + extra;
 }
 
 std::string outsets_stiffness(const fs::path& out, const std::string& extra = "") {
@@ -348,7 +348,7 @@ TEST(OutputSets, TwoRunsIntoOneFolderAtOnceEndWithOneWholeSet) {
   const fs::path t = outsets_dir("concurrent");
   const std::string program = outsets_long_program(t, 8);
   const std::string args =
-      "plan " + program + " --machine " + outsets_machine() + " --out " + (t / "run").string();
+      "plan " + program + " --machine " + outsets_machine() + " --tables csv --out " + (t / "run").string();
   const pid_t first = outsets_spawn(args + " --rate 2000", t / "first.err");
   const pid_t second = outsets_spawn(args + " --rate 1000", t / "second.err");
   const int first_code = outsets_wait(first), second_code = outsets_wait(second);

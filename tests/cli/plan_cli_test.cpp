@@ -1,4 +1,5 @@
-// pkm plan from the command line: the three output files, the summary, and failures that leave no output.
+// pkm plan from the command line: the output files (ticks.h5 by default, the CSV tables with --tables csv),
+// the summary, and failures that leave no output.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -30,7 +31,7 @@ TEST(PlanCli, WritesActuatorsPathAndSummary) {
   const std::string out = fresh_dir("circle");
   const auto run = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
                                      test::source_path("examples/machines/hexapod_ch5.yaml") +
-                                     " --rate 500 --out " + out + " --json",
+                                     " --rate 500 --tables csv --out " + out + " --json",
                                  false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const auto summary = nlohmann::json::parse(run.out);
@@ -56,12 +57,27 @@ TEST(PlanCli, WritesActuatorsPathAndSummary) {
   EXPECT_EQ(header, "time_s,q1_mm,q2_mm,q3_mm,q4_mm,q5_mm,q6_mm");
 }
 
+TEST(PlanCli, ByDefaultTheTablesAreTicksH5) {
+  const std::string out = fresh_dir("default");
+  const auto run =
+      test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " +
+                        test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out,
+                    false);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "ticks.h5"));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "summary.json"));
+  for (const char* name : {"actuators.csv", "path.csv"})
+    EXPECT_FALSE(fs::exists(fs::path(out) / name)) << name;
+  EXPECT_NE(run.out.find(out + "/ticks.h5 (actuators, path), summary.json"), std::string::npos) << run.out;
+}
+
 TEST(PlanCli, ALimitViolationNamesTheLineAndWritesNothing) {
   const std::string out = fresh_dir("violation");
   const std::string program =
       test::write_temp_file("plan_climb.ngc", "G21 G90\nG0 X0 Y0 Z0\nG1 Z500 F600\nM2\n");
-  const auto run = test::run_pkm("plan " + program + " --machine " +
-                                 test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out);
+  const auto run =
+      test::run_pkm("plan " + program + " --machine " +
+                    test::source_path("examples/machines/hexapod_ch5.yaml") + " --tables csv --out " + out);
   EXPECT_EQ(run.exit_code, 3) << run.out;
   EXPECT_NE(run.out.find("plan_climb.ngc:3:"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("actuator_max"), std::string::npos) << run.out;
@@ -76,9 +92,9 @@ TEST(PlanCli, BadProgramAndBadOptionsExitWithTwo) {
                                  test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out);
   EXPECT_EQ(run.exit_code, 2) << run.out;
   EXPECT_NE(run.out.find("plan_bad.ngc:2"), std::string::npos) << run.out;
-  const auto override_run =
-      test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
-                    test::source_path("examples/machines/hexapod_ch5.yaml") + " --override 250 --out " + out);
+  const auto override_run = test::run_pkm(
+      "plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
+      test::source_path("examples/machines/hexapod_ch5.yaml") + " --override 250 --tables csv --out " + out);
   EXPECT_EQ(override_run.exit_code, 2) << override_run.out;
   EXPECT_NE(override_run.out.find("override"), std::string::npos);
   EXPECT_FALSE(fs::exists(fs::path(out) / "path.csv"));

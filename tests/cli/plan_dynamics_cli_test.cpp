@@ -35,7 +35,7 @@ TEST(PlanDynamicsCli, WritesForcesAndTheDynamicsSummary) {
   const std::string out = fresh_dynamics_dir("helix");
   const auto run = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
                                      test::source_path("examples/machines/hexapod_ch5.yaml") +
-                                     " --dynamics --out " + out + " --json",
+                                     " --dynamics --tables csv --out " + out + " --json",
                                  false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const auto summary = nlohmann::json::parse(run.out);
@@ -68,9 +68,9 @@ TEST(PlanDynamicsCli, WritesForcesAndTheDynamicsSummary) {
 
 TEST(PlanDynamicsCli, WithoutADynamicsSectionItSaysSoAndWritesNothing) {
   const std::string out = fresh_dynamics_dir("none");
-  const auto run =
-      test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
-                    test::source_path("examples/machines/hexaglide.yaml") + " --dynamics --out " + out);
+  const auto run = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
+                                 test::source_path("examples/machines/hexaglide.yaml") +
+                                 " --dynamics --tables csv --out " + out);
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.out.find("hexaglide.yaml: the machine file has no dynamics: section"), std::string::npos)
       << run.out;
@@ -86,7 +86,7 @@ TEST(PlanDynamicsCli, AForceAboveTheDrivesLimitNamesTheLineAndWritesNothing) {
   const std::string machine_path = test::write_temp_file("force_limited.yaml", machine);
   const std::string out = fresh_dynamics_dir("limit");
   const auto run = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
-                                 machine_path + " --dynamics --out " + out);
+                                 machine_path + " --dynamics --tables csv --out " + out);
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.out.find("circle.ngc:"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("above actuator_force_max 250.0 N (" + machine_path + ":"), std::string::npos)
@@ -102,7 +102,7 @@ TEST(PlanDynamicsCli, ALaggingDriveGetsTheCommandThatGivesItsForce) {
   const std::string machine_path = test::write_temp_file("lagging_drives.yaml", machine);
   const std::string out = fresh_dynamics_dir("lag");
   const auto run = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
-                                 machine_path + " --dynamics --out " + out);
+                                 machine_path + " --dynamics --tables csv --out " + out);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   std::ifstream forces(fs::path(out) / "forces.csv");
   std::string header;
@@ -134,7 +134,7 @@ TEST(PlanDynamicsCli, ALaggingDriveGetsTheCommandThatGivesItsForce) {
   const std::string ideal_out = fresh_dynamics_dir("ideal");
   const auto ideal = test::run_pkm("plan " + test::source_path("examples/programs/circle.ngc") +
                                    " --machine " + test::source_path("examples/machines/hexapod_ch5.yaml") +
-                                   " --dynamics --out " + ideal_out);
+                                   " --dynamics --tables csv --out " + ideal_out);
   ASSERT_EQ(ideal.exit_code, 0) << ideal.out;
   const std::string ideal_forces = text_of((fs::path(ideal_out) / "forces.csv").string());
   EXPECT_NE(ideal_forces.find("power6_W\n"), std::string::npos);

@@ -90,8 +90,8 @@ TEST(ReportCli, PlanReportHoldsTheBundleAndWhatTheRunWrote) {
   const std::string page = out + "/view/report.html";
   const std::string program = test::source_path("examples/programs/pocket.ngc");
   const auto run = test::run_pkm("plan " + program + " --machine " +
-                                 test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out +
-                                 " --report " + page);
+                                 test::source_path("examples/machines/hexapod_ch5.yaml") +
+                                 " --tables csv --out " + out + " --report " + page);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const std::string html = file_text(page);
   // Self-contained: the bundled page code is inline and nothing is fetched.
@@ -285,10 +285,11 @@ TEST(ReportCli, BadDirectoriesExitNonZeroAndWriteNoReport) {
 
   // A plan directory whose path.csv was cut short: the error names the files.
   const std::string out = fresh_report_dir("cut");
-  ASSERT_EQ(test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " +
-                          test::source_path("examples/machines/hexapod_ch5.yaml") + " --out " + out)
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " +
+                    test::source_path("examples/machines/hexapod_ch5.yaml") + " --tables csv --out " + out)
+          .exit_code,
+      0);
   const std::string text = file_text(out + "/path.csv");
   std::ofstream(out + "/path.csv") << text.substr(0, text.size() / 2) << "\n";
   run = test::run_pkm("report " + out);

@@ -1,6 +1,7 @@
 // pkm servo on a planned run of the shipped ch5 hexapod (its servo: section): the printed summary and its
 // JSON, the files it writes beside the plan; a machine without a servo: section, a directory that is not a
-// plan and a damaged actuators.csv exit 2 naming what is wrong and write nothing.
+// plan and a damaged actuators.csv exit 2 naming what is wrong and write nothing; a plan whose tables are
+// ticks.h5 gives the servo run of its CSV tables.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -19,13 +20,13 @@ std::string servo_cli_machine(const std::string& file) {
   return test::source_path("examples/machines/" + file);
 }
 
-// The ch5 line planned into a fresh directory.
-std::string servo_cli_plan(const std::string& name) {
+// The ch5 line planned into a fresh directory, its tables as CSV files (or `tables`).
+std::string servo_cli_plan(const std::string& name, const std::string& tables = "csv") {
   const fs::path dir = fs::temp_directory_path() / ("pkm_servo_cli_" + name);
   fs::remove_all(dir);
-  const auto planned =
-      test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") + " --machine " +
-                    servo_cli_machine("hexapod_ch5.yaml") + " --out " + (dir / "plan").string());
+  const auto planned = test::run_pkm("plan " + test::source_path("examples/programs/ch5_line.ngc") +
+                                     " --machine " + servo_cli_machine("hexapod_ch5.yaml") + " --tables " +
+                                     tables + " --out " + (dir / "plan").string());
   EXPECT_EQ(planned.exit_code, 0) << planned.out;
   return (dir / "plan").string();
 }
@@ -83,6 +84,28 @@ TEST(ServoCli, RefusesAMachineWithoutServoAPlanlessDirectoryAndADamagedRunWritin
   EXPECT_EQ(damaged.exit_code, 2) << damaged.out;
   EXPECT_NE(damaged.out.find("actuators.csv:40"), std::string::npos) << damaged.out;
   EXPECT_FALSE(fs::exists(fs::path(plan) / "servo.csv"));
+}
+
+TEST(ServoCli, APlanOfHdf5TablesGivesTheServoRunOfItsCsvTables) {
+  nlohmann::json summaries[2];
+  const char* forms[2] = {"csv", "hdf5"};
+  for (int k = 0; k < 2; ++k) {
+    const std::string plan = servo_cli_plan(std::string("forms_") + forms[k], forms[k]);
+    EXPECT_EQ(fs::exists(fs::path(plan) / "ticks.h5"), k == 1);
+    const auto run = test::run_pkm(
+        "servo " + plan + " --machine " + servo_cli_machine("hexapod_ch5.yaml") + " --json", false);
+    ASSERT_EQ(run.exit_code, 0) << run.out;
+    summaries[k] = nlohmann::json::parse(run.out);
+  }
+  EXPECT_EQ(summaries[1]["ticks"], summaries[0]["ticks"]);
+  EXPECT_GT(summaries[0]["ticks"].get<long>(), 100);
+  // The set points differ by the tables' rounding (1e-6 mm): the loops' errors by as little.
+  for (const char* key : {"max_contour_error_mm", "rms_contour_error_mm"}) {
+    const double csv = summaries[0][key].get<double>(), hdf5 = summaries[1][key].get<double>();
+    EXPECT_GT(csv, 0.0) << key;
+    EXPECT_NEAR(hdf5, csv, 1e-3 * csv + 1e-6) << key;
+  }
+  EXPECT_EQ(summaries[1]["max_contour_line"], summaries[0]["max_contour_line"]);
 }
 
 }  // namespace

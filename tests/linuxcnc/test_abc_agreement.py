@@ -33,7 +33,7 @@ def planned(machine, program, out_dir):
     """pkm's plan of the program: the program coordinates and actuator positions (LinuxCNC's units) per tick, in
     full precision from pkm.plan, which plans as `pkm plan` does and writes its files too (out_dir); the CLI's
     actuators.csv holds the same numbers to its six decimals."""
-    result = pkm.plan(machine, program, out_dir=out_dir)
+    result = pkm.plan(machine, program, out_dir=out_dir, tables="csv")
     unit = "actuators_mm" if "actuators_mm" in result else "actuators_rad"
     actuators = result[unit] if unit == "actuators_mm" else np.degrees(result[unit])
     printed = np.loadtxt(os.path.join(out_dir, "actuators.csv"), delimiter=",", skiprows=1, ndmin=2)[:, 1:]

@@ -1,5 +1,6 @@
 // What pkm plan tells its progress sink (core/progress.hpp): the phases in order, each one's fraction in
-// [0, 1] and never going back, the lines those of the program, and the writing told through to its end.
+// [0, 1] and never going back, the lines those of the program, and the writing told through to its end, with
+// the ticks written counting up to the run's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,9 +29,11 @@ struct Told {
   std::string phase;
   double fraction;
   int line;
+  long ticks;
 };
 
-std::vector<Told> plan_and_listen(const std::string& program, const std::string& name, bool report) {
+std::vector<Told> plan_and_listen(const std::string& program, const std::string& name, bool report,
+                                  long* run_ticks = nullptr) {
   auto machine = load_machine_file(test::source_path("examples/machines/hexapod_ch5.yaml"));
   EXPECT_TRUE(machine) << machine.error().message;
   std::vector<Told> told;
@@ -40,10 +43,11 @@ std::vector<Told> plan_and_listen(const std::string& program, const std::string&
   fs::remove_all(job.out_directory);
   if (report) job.report_path = job.out_directory + "/report.html";
   job.progress = [&](const ProgressStep& step) {
-    told.push_back({std::string(step.phase), step.fraction, step.line});
+    told.push_back({std::string(step.phase), step.fraction, step.line, step.ticks});
   };
   auto result = pipeline::plan_program(*machine, job);
   EXPECT_TRUE(result) << result.error().message;
+  if (result && run_ticks != nullptr) *run_ticks = result->summary["ticks"].get<long>();
   return told;
 }
 
@@ -80,6 +84,25 @@ TEST(PlanProgress, PhasesInOrderFractionsForwardLinesOfTheProgram) {
   constexpr bool report = PKM_REPORT_PAGE;
   expect_honest_progress(plan_and_listen("pocket.ngc", "pocket", report), line_count("pocket.ngc"), report);
   expect_honest_progress(plan_and_listen("helix.ngc", "helix", false), line_count("helix.ngc"), false);
+}
+
+TEST(PlanProgress, TheWritingCountsTheTicksUpToTheRuns) {
+  long run_ticks = 0;
+  const std::vector<Told> told = plan_and_listen("helix.ngc", "helix_ticks", false, &run_ticks);
+  ASSERT_GT(run_ticks, 1000);
+  long last = 0, steps = 0;
+  for (const Told& step : told) {
+    if (step.phase != "writing the outputs") {
+      EXPECT_LT(step.ticks, 0) << step.phase << " writes no ticks";
+      continue;
+    }
+    EXPECT_GE(step.ticks, last) << "the count went back";
+    EXPECT_LE(step.ticks, run_ticks);
+    last = step.ticks;
+    ++steps;
+  }
+  EXPECT_GT(steps, 2);
+  EXPECT_EQ(last, run_ticks) << "the last count is every tick of the run";
 }
 
 }  // namespace

@@ -132,7 +132,7 @@ def test_stiffness_matches_cli(tmp_path, ch5):
 
 def test_servo_matches_cli(tmp_path, ch5):
     program = str(SOURCE / "examples" / "programs" / "ch5_line.ngc")
-    pkm.plan(ch5, program, out_dir=tmp_path / "plan")
+    pkm.plan(ch5, program, out_dir=tmp_path / "plan", tables="csv")
     result = pkm.servo(ch5, tmp_path / "plan", out_dir=tmp_path / "py")
     expected = cli_json("servo", tmp_path / "plan", "--machine", CH5, "--out", tmp_path / "cli")
     written = json.loads((tmp_path / "cli" / "servo_summary.json").read_text())

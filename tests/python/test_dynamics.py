@@ -119,8 +119,8 @@ def test_single_row_load_and_argument_errors(ch5):
 
 
 def test_elastic_plan_matches_cli(ch5, tmp_path):
-    done = subprocess.run([PKM, "plan", LINE, "--machine", CH5, "--dynamics", "--elastic", "--out", tmp_path / "cli",
-                           "--json"], capture_output=True, text=True, check=True)
+    done = subprocess.run([PKM, "plan", LINE, "--machine", CH5, "--dynamics", "--elastic", "--tables", "csv", "--out",
+                           tmp_path / "cli", "--json"], capture_output=True, text=True, check=True)
     expected = json.loads(done.stdout)
     expected.pop("planning_time_s")  # a wall-clock time; Python has it as result["planning_time_s"]
     result = pkm.plan(ch5, LINE, dynamics=True, elastic=True)

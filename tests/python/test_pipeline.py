@@ -146,7 +146,7 @@ PLAN_PAIRS = [("hexapod_ch5", "ch5_line.ngc"), ("planar3", "planar_circle.ngc"),
 def test_plan_summary_and_arrays_match_cli(tmp_path, machine_name, program):
     machine = pkm.Machine.load(machine_path(machine_name))
     result = pkm.plan(machine, program_path(program))
-    cli("plan", program_path(program), "--machine", machine_path(machine_name), "--out", tmp_path)
+    cli("plan", program_path(program), "--machine", machine_path(machine_name), "--tables", "csv", "--out", tmp_path)
     expected = json.loads((tmp_path / "summary.json").read_text())
     summary = result["summary"]
     assert_same(summary, expected)
@@ -207,13 +207,16 @@ def test_plan_writes_the_cli_files_when_asked(tmp_path, ch5):
     result = pkm.plan(ch5, program_path("ch5_line.ngc"), out_dir=tmp_path / "run")
     written = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert_same(result["summary"], written)
-    assert (tmp_path / "run" / "actuators.csv").exists()
+    # The servo-rate tables as ticks.h5 unless tables="csv" (as pkm plan --tables).
+    assert (tmp_path / "run" / "ticks.h5").exists() and not (tmp_path / "run" / "actuators.csv").exists()
+    pkm.plan(ch5, program_path("ch5_line.ngc"), out_dir=tmp_path / "csv", tables="csv")
+    assert (tmp_path / "csv" / "actuators.csv").exists() and not (tmp_path / "csv" / "ticks.h5").exists()
 
 
 def test_plan_dynamics_matches_cli(tmp_path, ch5):
     result = pkm.plan(ch5, program_path("ch5_line.ngc"), dynamics=True)
-    cli("plan", program_path("ch5_line.ngc"), "--machine", machine_path("hexapod_ch5"), "--dynamics", "--out",
-        tmp_path)
+    cli("plan", program_path("ch5_line.ngc"), "--machine", machine_path("hexapod_ch5"), "--dynamics", "--tables",
+        "csv", "--out", tmp_path)
     expected = json.loads((tmp_path / "summary.json").read_text())
     assert_same(result["summary"], expected)
     d = result["dynamics"]

@@ -84,7 +84,7 @@ TEST(RunDeflection, PlanWritesTheDeflectionAndItsSummary) {
   const std::string out = deflection_dir("circle");
   const std::string args = "plan " + test::source_path("examples/programs/circle.ngc") + " --machine " +
                            test::source_path("examples/machines/hexapod_ch5.yaml") +
-                           " --stiffness --json --out ";
+                           " --stiffness --json --tables csv --out ";
   const auto run = test::run_pkm(args + out + " --load tangential=500", false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const auto summary = nlohmann::json::parse(run.out);
