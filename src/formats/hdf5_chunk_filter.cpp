@@ -1,7 +1,8 @@
 #include "formats/hdf5_chunk_filter.hpp"
 
-#include <zlib.h>
+#include <libdeflate.h>
 
+#include <memory>
 #include <stdexcept>
 
 namespace pkm::formats {
@@ -15,10 +16,15 @@ std::vector<std::uint8_t> shuffle_deflate(const void* elements, std::size_t coun
     std::uint8_t* plane = shuffled.data() + b * count;
     for (std::size_t i = 0; i < count; ++i) plane[i] = in[i * element_bytes + b];
   }
-  uLongf size = compressBound(static_cast<uLong>(total));
-  std::vector<std::uint8_t> out(size);
-  if (compress2(out.data(), &size, shuffled.data(), static_cast<uLong>(total), level) != Z_OK)
-    throw std::runtime_error("zlib could not deflate a chunk");  // only out of memory: compressBound fits
+  // libdeflate writes the same zlib stream HDF5's deflate filter inflates, two to three times faster than
+  // zlib at this level. A compressor per call: chunks are deflated on threads of their own.
+  const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
+      libdeflate_alloc_compressor(level), &libdeflate_free_compressor);
+  if (!compressor) throw std::runtime_error("libdeflate could not set up a compressor");
+  std::vector<std::uint8_t> out(libdeflate_zlib_compress_bound(compressor.get(), total));
+  const std::size_t size =
+      libdeflate_zlib_compress(compressor.get(), shuffled.data(), total, out.data(), out.size());
+  if (size == 0) throw std::runtime_error("libdeflate could not deflate a chunk");  // the bound always fits
   out.resize(size);
   return out;
 }
