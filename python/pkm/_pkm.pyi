@@ -151,7 +151,8 @@ def plan(machine: Machine, program_path: str | os.PathLike[str], *, servo_period
          tool_table: Optional[str | os.PathLike[str]] = None,
          subroutine_path: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
          parameter_file: Optional[str | os.PathLike[str]] = None,
-         out_dir: Optional[str | os.PathLike[str]] = None, tables: str = "hdf5") -> dict[str, Any]:
+         out_dir: Optional[str | os.PathLike[str]] = None, tables: str = "hdf5",
+         lookahead_mm: float = 5000.0, lookahead_moves: int = 10000) -> dict[str, Any]:
     """The planned servo-rate motion: summary (as summary.json), time_s, line, actuators_mm (T, n), pose_machine (T, 6)
     (base frame, Machine.angle_convention), xyz_program_mm (T, 3) and abc_deg (T, 3) (program coordinates, G-code A B C),
     and with dynamics=True a dynamics dict (force_N, static_force_N, dynamic_force_N, power_W ...); with

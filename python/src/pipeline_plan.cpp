@@ -241,8 +241,14 @@ void bind_plan(py::module_& m) {
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
          const std::string& load, bool dynamics, bool elastic, bool path_error, const py::object& tool_table,
          const py::object& subroutine_path, const py::object& parameter_file, const py::object& out_dir,
-         const std::string& tables) {
+         const std::string& tables, double lookahead_mm, int lookahead_moves) {
         PlanArguments a;
+        if (!(lookahead_mm > 0.0) || lookahead_moves < 1)
+          throw py::value_error(fmt::format(
+              "lookahead_mm {}, lookahead_moves {}: expected a length > 0 mm and at least 1 move", lookahead_mm,
+              lookahead_moves));
+        a.plan.lookahead_mm = lookahead_mm;
+        a.plan.lookahead_moves = lookahead_moves;
         if (tables != "csv" && tables != "hdf5")
           throw py::value_error(fmt::format("tables '{}': expected 'csv' or 'hdf5'", tables));
         a.tables = tables == "hdf5" ? formats::TickTables::hdf5 : formats::TickTables::csv;
@@ -288,6 +294,8 @@ void bind_plan(py::module_& m) {
       py::arg("path_error") = true, py::arg("tool_table") = py::none(),
       py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(),
       py::arg("out_dir") = py::none(), py::arg("tables") = "hdf5",
+      py::arg("lookahead_mm") = planning::PlanOptions{}.lookahead_mm,
+      py::arg("lookahead_moves") = planning::PlanOptions{}.lookahead_moves,
       R"doc(Plans a part program on `machine` and returns its servo-rate motion, as `pkm plan` does.
 
 Arguments (the CLI's options): servo_period_ms (default 1 ms, --rate 1000/period), feed_override_pct (0 < … ≤
@@ -295,7 +303,10 @@ Arguments (the CLI's options): servo_period_ms (default 1 ms, --rate 1000/period
 actuators at every mid-period, as without --no-path-error), tool_table (G43), subroutine_path and parameter_file
 (as pkm.interpret), out_dir (also write the CLI's
 files there: the servo-rate tables and summary.json), tables ('hdf5', the default: the tables as the groups of
-out_dir/ticks.h5; 'csv': as actuators.csv, path.csv and with dynamics forces.csv; as `pkm plan --tables`).
+out_dir/ticks.h5; 'csv': as actuators.csv, path.csv and with dynamics forces.csv; as `pkm plan --tables`),
+lookahead_mm and lookahead_moves (the look-ahead window of the speed planning, as --lookahead-mm and
+--lookahead-moves: within them the plan equals the whole program's; summary['lookahead_binding'] counts the
+places where the window set the speed).
 law ('increment' | 'force' | 'energy'): first choose the coordinates the program leaves free by that drive
 control law, as pkm.optimize does, with free, bounds_deg (lo, hi), law_step_mm, solver, energy_accounting,
 force_model, force_limit_N, max_rate_deg_per_mm and load (the CLI's --load text, e.g.

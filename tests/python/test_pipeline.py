@@ -283,3 +283,31 @@ def test_optimize_matches_cli(tmp_path):
     assert result["free_rad"].shape == (s["points"], k)
     lo, hi = np.radians(np.array(s["free_range_deg"]).T)
     assert (result["free_rad"] >= lo - 1e-12).all() and (result["free_rad"] <= hi + 1e-12).all()
+
+
+def straight_then_reversal(tmp_path):
+    """160 moves of 0.5 mm at the ch5 hexapod's fastest feed, then straight back (a stop)."""
+    lines = ["G21 G90 G17 G94", "G0 X-40 Y0 Z0", "G1 F6000"]
+    lines += [f"G1 X{-40.0 + 0.5 * k:.1f}" for k in range(1, 161)]
+    lines += ["G1 X-40", "M2"]
+    path = tmp_path / "straight.ngc"
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)
+
+
+def test_plan_look_ahead_window_binds_slower_and_says_so(tmp_path, ch5):
+    program = straight_then_reversal(tmp_path)
+    whole = pkm.plan(ch5, program)
+    windowed = pkm.plan(ch5, program, lookahead_moves=4)
+    assert whole["summary"]["lookahead_binding"] == 0
+    assert windowed["summary"]["lookahead_binding"] > 0
+    assert any("look-ahead window" in w for w in windowed["summary"]["warnings"])
+    assert not any("look-ahead window" in w for w in whole["summary"]["warnings"])
+    assert windowed["summary"]["duration_s"] > whole["summary"]["duration_s"]
+    assert windowed["summary"]["max_path_speed_mm_s"] < whole["summary"]["max_path_speed_mm_s"]
+    # The CLI's options give the same plan.
+    out = tmp_path / "cli"
+    cli("plan", program, "--machine", machine_path("hexapod_ch5"), "--out", out, "--lookahead-moves", 4)
+    assert_same(windowed["summary"], json.loads((out / "summary.json").read_text()))
+    with pytest.raises(ValueError, match="lookahead"):
+        pkm.plan(ch5, program, lookahead_mm=0.0)
