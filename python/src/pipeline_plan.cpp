@@ -244,9 +244,9 @@ void bind_plan(py::module_& m) {
          const std::string& tables, double lookahead_mm, int lookahead_moves) {
         PlanArguments a;
         if (!(lookahead_mm > 0.0) || lookahead_moves < 1)
-          throw py::value_error(fmt::format(
-              "lookahead_mm {}, lookahead_moves {}: expected a length > 0 mm and at least 1 move", lookahead_mm,
-              lookahead_moves));
+          throw py::value_error(
+              fmt::format("lookahead_mm {}, lookahead_moves {}: expected a length > 0 mm and at least 1 move",
+                          lookahead_mm, lookahead_moves));
         a.plan.lookahead_mm = lookahead_mm;
         a.plan.lookahead_moves = lookahead_moves;
         if (tables != "csv" && tables != "hdf5")
