@@ -231,6 +231,33 @@ py::dict plan_result(const Machine& machine, PlanRun&& r) {
 
 }  // namespace
 
+/// pkm.plan's planning options, checked as the CLI checks its flags.
+planning::PlanOptions plan_options(std::optional<double> servo_period_ms, double feed_override_pct,
+                                   std::optional<double> blend_tolerance_mm, double lookahead_mm,
+                                   int lookahead_moves) {
+  planning::PlanOptions plan;
+  if (servo_period_ms) {
+    if (!(*servo_period_ms >= 0.01 && *servo_period_ms <= 1000.0))
+      throw py::value_error(fmt::format("servo_period_ms {}: expected 0.01 … 1000 ms", *servo_period_ms));
+    plan.rate_hz = 1000.0 / *servo_period_ms;
+  }
+  if (!(feed_override_pct > 0.0 && feed_override_pct <= 200.0))
+    throw py::value_error(fmt::format("feed_override_pct {}: expected > 0 and ≤ 200 %", feed_override_pct));
+  plan.override_pct = feed_override_pct;
+  if (blend_tolerance_mm) {
+    if (!(*blend_tolerance_mm >= 0.0 && *blend_tolerance_mm <= 100.0))
+      throw py::value_error(fmt::format("blend_tolerance_mm {}: expected 0 … 100 mm", *blend_tolerance_mm));
+    plan.path_tolerance_mm = blend_tolerance_mm;
+  }
+  if (!(lookahead_mm > 0.0) || lookahead_moves < 1)
+    throw py::value_error(
+        fmt::format("lookahead_mm {}, lookahead_moves {}: expected a length > 0 mm and at least 1 move",
+                    lookahead_mm, lookahead_moves));
+  plan.lookahead_mm = lookahead_mm;
+  plan.lookahead_moves = lookahead_moves;
+  return plan;
+}
+
 void bind_plan(py::module_& m) {
   m.def(
       "plan",
@@ -243,34 +270,14 @@ void bind_plan(py::module_& m) {
          const py::object& subroutine_path, const py::object& parameter_file, const py::object& out_dir,
          const std::string& tables, double lookahead_mm, int lookahead_moves) {
         PlanArguments a;
-        if (!(lookahead_mm > 0.0) || lookahead_moves < 1)
-          throw py::value_error(
-              fmt::format("lookahead_mm {}, lookahead_moves {}: expected a length > 0 mm and at least 1 move",
-                          lookahead_mm, lookahead_moves));
-        a.plan.lookahead_mm = lookahead_mm;
-        a.plan.lookahead_moves = lookahead_moves;
         if (tables != "csv" && tables != "hdf5")
           throw py::value_error(fmt::format("tables '{}': expected 'csv' or 'hdf5'", tables));
         a.tables = tables == "hdf5" ? formats::TickTables::hdf5 : formats::TickTables::csv;
         a.program_path = optional_path(program_path);
         a.program_options = program_options(tool_table, subroutine_path, parameter_file);
         a.out_dir = optional_path(out_dir);
-        if (servo_period_ms) {
-          if (!(*servo_period_ms >= 0.01 && *servo_period_ms <= 1000.0))
-            throw py::value_error(
-                fmt::format("servo_period_ms {}: expected 0.01 … 1000 ms", *servo_period_ms));
-          a.plan.rate_hz = 1000.0 / *servo_period_ms;
-        }
-        if (!(feed_override_pct > 0.0 && feed_override_pct <= 200.0))
-          throw py::value_error(
-              fmt::format("feed_override_pct {}: expected > 0 and ≤ 200 %", feed_override_pct));
-        a.plan.override_pct = feed_override_pct;
-        if (blend_tolerance_mm) {
-          if (!(*blend_tolerance_mm >= 0.0 && *blend_tolerance_mm <= 100.0))
-            throw py::value_error(
-                fmt::format("blend_tolerance_mm {}: expected 0 … 100 mm", *blend_tolerance_mm));
-          a.plan.path_tolerance_mm = blend_tolerance_mm;
-        }
+        a.plan = plan_options(servo_period_ms, feed_override_pct, blend_tolerance_mm, lookahead_mm,
+                              lookahead_moves);
         if (law) {
           a.law = LawArguments{
               *law,        free,          bounds_deg,          law_step_mm, solver, energy_accounting,
