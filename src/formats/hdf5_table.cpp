@@ -63,6 +63,18 @@ int quantum_bits_for_decimals(int decimals) {
   return static_cast<int>(std::ceil(decimals * std::log2(10.0)));
 }
 
+int significant_bits_for_digits(int digits) {
+  return static_cast<int>(std::ceil(digits * std::log2(10.0))) + 1;
+}
+
+double round_to_significant_bits(double value, int bits) {
+  if (!std::isfinite(value) || value == 0.0) return value;
+  int exponent = 0;
+  const double mantissa =
+      std::frexp(value, &exponent);  // value = mantissa · 2^exponent, 0.5 ≤ |mantissa| < 1
+  return std::ldexp(std::nearbyint(std::ldexp(mantissa, bits)), exponent - bits);
+}
+
 /// A full chunk of every column, shuffled and deflated on a thread of its own (hdf5_chunk_filter.hpp).
 struct FilteredChunk {
   long first_row = 0;
@@ -179,7 +191,10 @@ Status Hdf5Table::append(const double* values) {
   for (std::size_t c = 0; c < s.columns.size(); ++c) {
     const double v = values[c];
     // Rounded to the quantum: v·2^k rounded and scaled back are exact operations on doubles.
-    s.buffered[c][s.pending] = s.scale[c] > 0.0 ? std::nearbyint(v * s.scale[c]) / s.scale[c] : v;
+    const int significant = s.columns[c].significant_bits;
+    s.buffered[c][s.pending] = s.scale[c] > 0.0  ? std::nearbyint(v * s.scale[c]) / s.scale[c]
+                               : significant > 0 ? round_to_significant_bits(v, significant)
+                                                 : v;
   }
   if (++s.pending == s.chunk_rows) return s.filter_full_chunk();
   return ok_status();

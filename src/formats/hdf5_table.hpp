@@ -7,7 +7,9 @@
 // A column may round its values to a binary quantum (2^-20 mm ≈ 0.95 µm for positions printed to 6 decimals
 // in the CSV files): the dropped low mantissa bits are zeros, which the deflate filter removes, and the
 // values stay doubles that numpy reads as they are, within half the quantum of the computed ones (the CSV's 6
-// decimals keep 5e-7; 2^-21 is 4.8e-7). A column of integers (program lines) is stored as 64-bit integers.
+// decimals keep 5e-7; 2^-21 is 4.8e-7). A column the CSV prints in scientific notation keeps as many
+// significant bits as its digits need, plus one. A column of integers (program lines) is stored as 64-bit
+// integers.
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,10 +24,17 @@ struct Hdf5Column {
   std::string unit;      ///< the "unit" attribute ("mm", "deg", "s", "" for counts)
   int quantum_bits = 0;  ///< > 0: values rounded to multiples of 2^-quantum_bits; 0: kept exactly
   bool integer = false;  ///< stored as 64-bit integers (values must be whole numbers)
+  /// > 0 (and quantum_bits 0): values rounded to this many significant bits, for columns the CSV prints in
+  /// scientific notation; 0: kept exactly.
+  int significant_bits = 0;
 };
 
 /// The binary quantum of the CSV's `decimals` digits: the largest power of two not above 10^-decimals.
 int quantum_bits_for_decimals(int decimals);
+/// The significant bits that keep the CSV's `digits` significant digits (one bit more than they hold).
+int significant_bits_for_digits(int digits);
+/// `value` rounded to `bits` significant bits (NaN, infinities and zero as they are).
+double round_to_significant_bits(double value, int bits);
 
 class Hdf5File;
 

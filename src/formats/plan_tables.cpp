@@ -13,9 +13,9 @@ Hdf5Column fixed(std::string name, std::string unit, int decimals) {
   return {std::move(name), std::move(unit), quantum_bits_for_decimals(decimals), false};
 }
 
-// A column the CSV prints in scientific notation: kept exactly.
-Hdf5Column exact(std::string name, std::string unit) {
-  return {std::move(name), std::move(unit), kExact, false};
+// A column the CSV prints in scientific notation with `digits` significant digits.
+Hdf5Column significant(std::string name, std::string unit, int digits) {
+  return {std::move(name), std::move(unit), kExact, false, significant_bits_for_digits(digits)};
 }
 
 Hdf5Column program_line() {
@@ -43,7 +43,7 @@ std::vector<Hdf5Column> path_columns() {
           fixed("c_abc_deg", "deg", 6),
           fixed("path_speed_mm_s", "mm/s", 4),
           fixed("feed_mm_s", "mm/s", 4),
-          exact("path_error_mm", "mm")};
+          significant("path_error_mm", "mm", 4)};
 }
 
 std::vector<Hdf5Column> force_columns(int actuators, bool angular, bool commands) {
@@ -62,15 +62,23 @@ std::vector<Hdf5Column> force_columns(int actuators, bool angular, bool commands
 }
 
 std::vector<Hdf5Column> response_columns() {
-  return {fixed("time_s", "s", 6),     program_line(),       exact("dx_mm", "mm"),
-          exact("dy_mm", "mm"),        exact("dz_mm", "mm"), exact("rotation_deg", "deg"),
-          exact("tool_error_mm", "mm")};
+  return {fixed("time_s", "s", 6),
+          program_line(),
+          significant("dx_mm", "mm", 5),
+          significant("dy_mm", "mm", 5),
+          significant("dz_mm", "mm", 5),
+          significant("rotation_deg", "deg", 5),
+          significant("tool_error_mm", "mm", 5)};
 }
 
 std::vector<Hdf5Column> deflection_columns() {
-  return {fixed("time_s", "s", 6),     program_line(),       exact("dx_mm", "mm"),
-          exact("dy_mm", "mm"),        exact("dz_mm", "mm"), exact("normal_mm", "mm"),
-          exact("rotation_rad", "rad")};
+  return {fixed("time_s", "s", 6),
+          program_line(),
+          significant("dx_mm", "mm", 5),
+          significant("dy_mm", "mm", 5),
+          significant("dz_mm", "mm", 5),
+          significant("normal_mm", "mm", 5),
+          significant("rotation_rad", "rad", 5)};
 }
 
 std::string csv_header(const std::vector<Hdf5Column>& columns) {

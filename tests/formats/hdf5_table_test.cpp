@@ -17,6 +17,27 @@ std::string scratch_file(const std::string& name) {
   return (dir / name).string();
 }
 
+TEST(Hdf5Table, SignificantBitsKeepTheCsvDigitsAndZeroTheRest) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> mantissa(-10.0, 10.0);
+  std::uniform_int_distribution<int> exponent(-30, 10);
+  for (const int digits : {4, 5}) {
+    const int bits = significant_bits_for_digits(digits);
+    // Half a unit of the digits' last place, relative, at its smallest (a mantissa of 9.99…).
+    EXPECT_LT(std::ldexp(1.0, -bits), 0.5 * std::pow(10.0, -digits));
+    for (int k = 0; k < 10000; ++k) {
+      const double v = std::ldexp(mantissa(rng), exponent(rng));
+      const double r = round_to_significant_bits(v, bits);
+      EXPECT_LE(std::abs(r - v), std::ldexp(std::abs(v), -bits)) << v;
+      int e = 0;
+      const double m = std::frexp(r, &e);
+      EXPECT_EQ(std::ldexp(m, bits), std::nearbyint(std::ldexp(m, bits))) << r << ": more bits than " << bits;
+    }
+  }
+  EXPECT_TRUE(std::isnan(round_to_significant_bits(std::nan(""), 15)));
+  EXPECT_EQ(round_to_significant_bits(0.0, 15), 0.0);
+}
+
 TEST(Hdf5Table, RowsReadBackRoundedToTheirQuantumAcrossChunks) {
   const std::string path = scratch_file("rows.h5");
   const std::vector<Hdf5Column> columns{{"time_s", "s", quantum_bits_for_decimals(6), false},
