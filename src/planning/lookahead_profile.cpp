@@ -43,8 +43,7 @@ void LookaheadProfile::push(const RawSample& sample) {
   move_.push_back(sample.move);
   peak_window_ = std::max(peak_window_, window_.size());
   ++pushed_since_advance_;
-  if (pushed_since_advance_ >= kPlanEvery ||
-      (pushed_since_advance_ >= full_window_step_ && window_full(window_.size() - 1)))
+  if (pushed_since_advance_ >= kPlanEvery || (pushed_since_advance_ >= full_window_step_ && window_full()))
     advance(false);
 }
 
@@ -62,8 +61,9 @@ std::size_t LookaheadProfile::last_final_caps(bool at_end) const {
   return first_reached < 2 ? kNone : first_reached - 2;
 }
 
-bool LookaheadProfile::window_full(std::size_t last) const {
-  if (first_waiting_ >= window_.size() || last < first_waiting_) return false;
+bool LookaheadProfile::window_full() const {
+  if (first_waiting_ >= window_.size()) return false;
+  const std::size_t last = window_.size() - 1;
   const std::size_t waiting = last - first_waiting_ + 1;
   return window_.s[last] - window_.s[first_waiting_] >= settings_.max_length ||
          waiting >= settings_.max_samples || move_[last] - move_[first_waiting_] >= settings_.max_moves;
@@ -144,7 +144,7 @@ void LookaheadProfile::advance(bool at_end) {
   erode_window();
   std::size_t final_sample = plan_window(last, at_end);
   const bool found = final_sample != kNone && final_sample >= first_waiting_;
-  if (!at_end && last > first_waiting_ && window_full(window_.size() - 1)) {
+  if (!at_end && last > first_waiting_ && window_full()) {
     // Full: at least the window's first quarter is handed on, as planned to stop at `last`, which the
     // motion can always do. Binding where that is beyond what the plan found final. Never `last` itself:
     // its speed is the assumed stop, and two rests in a row would cross the path between them in no time.

@@ -79,7 +79,7 @@ class LookaheadProfile {
  private:
   void advance(bool at_end);
   std::size_t last_final_caps(bool at_end) const;
-  bool window_full(std::size_t last) const;
+  bool window_full() const;
   void erode_window();
   std::size_t plan_window(std::size_t last, bool at_end);
   void hand_on(std::size_t last);
