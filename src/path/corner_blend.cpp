@@ -211,8 +211,51 @@ std::optional<Segment> corner_blend(const Segment& prev, const Segment& next, co
 }  // namespace
 
 double blend_deviation_mm(const Path& path, int blend_index) {
-  const Segment& seg = path.segments[blend_index];
-  return probe(path.curves[seg.curve_a], path.curves[seg.curve_b], seg, true).deviation_mm;
+  const Segment& seg = path.segment(blend_index);
+  return probe(path.curve(seg.curve_a), path.curve(seg.curve_b), seg, true).deviation_mm;
+}
+
+std::optional<Segment> join_corner(Path& path, Segment& prev, Segment& next, double tolerance_mm) {
+  const Curve& a = path.curve(prev.curve_a);
+  const Curve& b = path.curve(next.curve_a);
+  if (prev.rotation_only || next.rotation_only) prev.stop_after = true;  // turning: no blend joins it
+  if (prev.stop_after) return std::nullopt;
+  const double angle = std::acos(std::clamp(tangent(a, 1.0).dot(tangent(b, 0.0)), -1.0, 1.0));
+  // A join is smooth only where the tool point keeps its direction and the platform its turning rate per
+  // mm: a line that starts tilting where a tangent arc ends is a corner for the struts (their speed jumps).
+  const double rate_jump_rad_mm =
+      (a.angular_rate() / a.translation_mm - b.angular_rate() / b.translation_mm).norm();
+  if (angle <= 1e-7 && rate_jump_rad_mm <= 1e-9) return std::nullopt;  // smooth: no blend, no stop
+  // The program's G64 P, where given, else the default; the tighter of the two moves'.
+  auto tolerance_of = [tolerance_mm](const Segment& s) {
+    return s.tolerance_mm > 0.0 ? s.tolerance_mm : tolerance_mm;
+  };
+  const double tolerance = std::min(tolerance_of(prev), tolerance_of(next));
+  std::optional<Segment> blend;
+  if (tolerance > 0.0) blend = corner_blend(prev, next, a, b, angle, tolerance);
+  if (!blend) {
+    prev.stop_after = true;  // a corner: stop and turn
+    return std::nullopt;
+  }
+  blend->blend = path.blend_base + static_cast<int>(path.blend_tables.size());
+  path.blend_tables.emplace_back();
+  const BlendMap map = fill_blend_table(a, b, *blend, path.blend_tables.back());
+  blend->length = map.length;
+  blend->turn_rad = angle;
+  blend->line = prev.line;
+  blend->move = prev.move;
+  blend->rapid = prev.rapid && next.rapid;
+  blend->speed_limit = std::min(prev.speed_limit, next.speed_limit) / map.max_speed_ratio;
+  // Trim the two moves to the blend's ends; their lengths scale with the fraction (uniform curves).
+  prev.length *= (blend->fa0 - prev.fa0) / (prev.fa1 - prev.fa0);
+  prev.fa1 = blend->fa0;
+  next.length *= (next.fa1 - blend->fb1) / (next.fa1 - next.fa0);
+  next.fa0 = blend->fb1;
+  return blend;
+}
+
+bool is_sliver(const Segment& segment) {
+  return !segment.is_blend() && segment.length <= 1e-12 && !segment.stop_after;
 }
 
 void blend_corners(Path& path, double tolerance_mm) {
@@ -222,55 +265,13 @@ void blend_corners(Path& path, double tolerance_mm) {
   out.push_back(path.segments.front());
   for (std::size_t i = 1; i < path.segments.size(); ++i) {
     Segment next = path.segments[i];
-    Segment& prev = out.back();
-    const Curve& a = path.curves[prev.curve_a];
-    const Curve& b = path.curves[next.curve_a];
-    // `out` never reallocates (reserved for every move and a blend between each), so `prev` stays valid.
-    if (prev.rotation_only || next.rotation_only) prev.stop_after = true;  // turning: no blend joins it
-    if (prev.stop_after) {
-      out.push_back(next);
-      continue;
-    }
-    const double angle = std::acos(std::clamp(tangent(a, 1.0).dot(tangent(b, 0.0)), -1.0, 1.0));
-    // A join is smooth only where the tool point keeps its direction and the platform its turning rate per
-    // mm: a line that starts tilting where a tangent arc ends is a corner for the struts (their speed jumps).
-    const double rate_jump_rad_mm =
-        (a.angular_rate() / a.translation_mm - b.angular_rate() / b.translation_mm).norm();
-    if (angle <= 1e-7 && rate_jump_rad_mm <= 1e-9) {  // a smooth join needs neither a blend nor a stop
-      out.push_back(next);
-      continue;
-    }
-    // The program's G64 P, where given, else the default; the tighter of the two moves'.
-    auto tolerance_of = [tolerance_mm](const Segment& s) {
-      return s.tolerance_mm > 0.0 ? s.tolerance_mm : tolerance_mm;
-    };
-    const double tolerance = std::min(tolerance_of(prev), tolerance_of(next));
-    std::optional<Segment> blend;
-    if (tolerance > 0.0) blend = corner_blend(prev, next, a, b, angle, tolerance);
-    if (!blend) {
-      prev.stop_after = true;  // a corner: stop and turn
-      out.push_back(next);
-      continue;
-    }
-    blend->blend = static_cast<int>(path.blend_tables.size());
-    path.blend_tables.emplace_back();
-    const BlendMap map = fill_blend_table(a, b, *blend, path.blend_tables.back());
-    blend->length = map.length;
-    blend->turn_rad = angle;
-    blend->line = prev.line;
-    blend->move = prev.move;
-    blend->rapid = prev.rapid && next.rapid;
-    blend->speed_limit = std::min(prev.speed_limit, next.speed_limit) / map.max_speed_ratio;
-    // Trim the two moves to the blend's ends; their lengths scale with the fraction (uniform curves).
-    prev.length *= (blend->fa0 - prev.fa0) / (prev.fa1 - prev.fa0);
-    prev.fa1 = blend->fa0;
-    next.length *= (next.fa1 - blend->fb1) / (next.fa1 - next.fa0);
-    next.fa0 = blend->fb1;
-    out.push_back(*blend);
+    // `out` never reallocates (reserved for every move and a blend between each), so its back stays valid.
+    if (std::optional<Segment> blend = join_corner(path, out.back(), next, tolerance_mm))
+      out.push_back(*blend);
     out.push_back(next);
   }
   // Trimming can leave a move with (almost) nothing between two blends; drop such slivers.
-  std::erase_if(out, [](const Segment& s) { return !s.is_blend() && s.length <= 1e-12 && !s.stop_after; });
+  std::erase_if(out, is_sliver);
   path.segments = std::move(out);
 }
 

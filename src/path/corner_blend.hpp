@@ -9,6 +9,8 @@
 // within the tolerance is an exact stop instead; so is a join where the platform's turning rate jumps and no
 // blend fits. The blend is reparametrised by arc length (a monotone map, so every evaluated point lies on the
 // blend) so that the planned speed along it is the tool-point speed.
+#include <optional>
+
 #include "path/path.hpp"
 
 namespace pkm::path {
@@ -16,6 +18,14 @@ namespace pkm::path {
 /// Replaces the corners between consecutive plain segments of `path` by blends (in place), where the segments
 /// are not separated by a stop. `tolerance_mm` ≤ 0 leaves every corner as a stop.
 void blend_corners(Path& path, double tolerance_mm);
+
+/// The join of `prev` and `next`, consecutive plain segments of `path` (whose curves it holds): the blend
+/// between them, with both trimmed to its ends and its table added to `path`; or nothing, with `prev` marked
+/// as a stop where the corner needs one (or already was), or left as it is where the join is smooth.
+std::optional<Segment> join_corner(Path& path, Segment& prev, Segment& next, double tolerance_mm);
+
+/// A plain segment that trimming left with (almost) nothing, and no stop: left out of the path.
+bool is_sliver(const Segment& segment);
 
 /// Largest distance of the blend of segment `blend_index` from the two curves it joins (sampled).
 double blend_deviation_mm(const Path& path, int blend_index);

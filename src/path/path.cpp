@@ -6,15 +6,37 @@ namespace pkm::path {
 
 int Path::find_segment(double s, int hint) const {
   const int n = static_cast<int>(segments.size());
-  if (n == 0) return 0;
-  int i = std::clamp(hint, 0, n - 1);
+  if (n == 0) return segment_base;
+  int i = std::clamp(hint - segment_base, 0, n - 1);
   if (s < segments[i].s_start) {  // went backwards: binary search
     auto it = std::upper_bound(segments.begin(), segments.end(), s,
                                [](double value, const Segment& seg) { return value < seg.s_start; });
-    return std::max(0, static_cast<int>(it - segments.begin()) - 1);
+    return segment_base + std::max(0, static_cast<int>(it - segments.begin()) - 1);
   }
   while (i + 1 < n && s >= segments[i + 1].s_start) ++i;
-  return i;
+  return segment_base + i;
+}
+
+void Path::drop_before(int index) {
+  const int drop = std::min(index, segment_end()) - segment_base;
+  if (drop <= 0 || 2 * drop < static_cast<int>(segments.size())) return;
+  segments.erase(segments.begin(), segments.begin() + drop);
+  segment_base += drop;
+  if (segments.empty()) return;
+  // Curves and tables are numbered in path order, so the first kept segment's are the first still used.
+  const Segment& first = segments.front();
+  const int first_curve = first.curve_a;
+  curves.erase(curves.begin(), curves.begin() + (first_curve - curve_base));
+  curve_base = first_curve;
+  int first_blend = blend_base + static_cast<int>(blend_tables.size());
+  for (const Segment& seg : segments) {
+    if (seg.is_blend()) {
+      first_blend = seg.blend;
+      break;
+    }
+  }
+  blend_tables.erase(blend_tables.begin(), blend_tables.begin() + (first_blend - blend_base));
+  blend_base = first_blend;
 }
 
 static double blend_parameter(const BlendTable& table, double fraction) {
@@ -35,17 +57,17 @@ static double blend_parameter(const BlendTable& table, double fraction) {
 
 PathPoint Path::evaluate(int index, double s) const {
   if (segments.empty()) return start;
-  const Segment& seg = segments[index];
+  const Segment& seg = segment(index);
   const double fraction = seg.length > 0.0 && s < seg.s_start + seg.length
                               ? std::clamp((s - seg.s_start) / seg.length, 0.0, 1.0)
                               : 1.0;
-  const Curve& a = curves[seg.curve_a];
+  const Curve& a = curve(seg.curve_a);
   if (!seg.is_blend()) {
     const double f = seg.fa0 + fraction * (seg.fa1 - seg.fa0);
     return {a.position(f), a.rotation(f)};
   }
-  const Curve& b = curves[seg.curve_b];
-  const double u = blend_parameter(blend_tables[seg.blend], fraction);
+  const Curve& b = curve(seg.curve_b);
+  const double u = blend_parameter(blend_table(seg.blend), fraction);
   const double fa = seg.fa0 + u * (seg.fa1 - seg.fa0);
   const double fb = seg.fb0 + u * (seg.fb1 - seg.fb0);
   const double w = blend_weight(u);
@@ -55,7 +77,7 @@ PathPoint Path::evaluate(int index, double s) const {
 
 PathPoint Path::end_point() const {
   if (segments.empty()) return start;
-  return evaluate(static_cast<int>(segments.size()) - 1, length());
+  return evaluate(segment_end() - 1, length());
 }
 
 }  // namespace pkm::path

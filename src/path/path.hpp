@@ -46,14 +46,24 @@ struct PathPoint {
   Eigen::Quaterniond rotation;
 };
 
+/// A whole path, or a window of one that a streaming planner appends to and drops behind it: the vectors
+/// then hold the segments from `segment_base` on (and the curves and blend tables from their bases), while
+/// every index (a segment's curves and blend, a hint, the planner's sample segments) stays the whole path's.
+/// A whole path has every base 0, so its vectors can be indexed directly.
 class Path {
  public:
   std::vector<Curve> curves;
   std::vector<Segment> segments;
   std::vector<BlendTable> blend_tables;
+  int segment_base = 0, curve_base = 0, blend_base = 0;
   double initial_dwell_s = 0.0;
   PathPoint start;  ///< where the path starts (also the whole path when there are no segments)
 
+  const Segment& segment(int index) const { return segments[index - segment_base]; }
+  const Curve& curve(int index) const { return curves[index - curve_base]; }
+  const BlendTable& blend_table(int index) const { return blend_tables[index - blend_base]; }
+  /// One past the last segment's index.
+  int segment_end() const { return segment_base + static_cast<int>(segments.size()); }
   double length() const { return segments.empty() ? 0.0 : segments.back().s_start + segments.back().length; }
   /// Index of the segment containing s, searching forward from `hint` (monotone use is O(1)).
   int find_segment(double s, int hint) const;
@@ -61,6 +71,9 @@ class Path {
   PathPoint evaluate(int index, double s) const;
   PathPoint evaluate(double s, int& hint) const { return evaluate(hint = find_segment(s, hint), s); }
   PathPoint end_point() const;
+  /// Forgets the segments before `index` and the curves and blend tables only they use. Amortised O(1):
+  /// the vectors are compacted once what is forgotten is at least half of them.
+  void drop_before(int index);
 };
 
 /// The blend weight: 0 → 1 with zero first and second derivative at both ends (curvature-continuous joins).

@@ -98,11 +98,13 @@ TimedProfile time_profile(const ProfileSamples& p) {
 }
 
 double ProfileCursor::position_at(double t_s) {
+  const std::size_t first = samples_.first;
   const std::size_t n = samples_.size();
   if (n == 0) return 0.0;
   // Advance to the last sample whose departure is at or before t.
-  while (index_ + 1 < n && timed_.time_s[index_ + 1] <= t_s) ++index_;
-  const std::size_t i = index_;
+  std::size_t i = std::max(index_, first) - first;
+  while (i + 1 < n && timed_.time_s[i + 1] <= t_s) ++i;
+  index_ = first + i;
   const double depart = timed_.time_s[i] + samples_.hold_s[i];
   if (i + 1 >= n || t_s <= depart) return samples_.s[i];
   const double ds = samples_.s[i + 1] - samples_.s[i];

@@ -21,6 +21,8 @@ struct ProfileSamples {
   std::vector<double> speed;      ///< the planned v_i
   std::vector<double> hold_s;  ///< time to stay at rest at sample i (dwell and filter settling); 0 elsewhere
   std::vector<char> stop;      ///< the motion comes to rest at sample i (corner, dwell, program ends)
+  /// The index along the whole path of element 0: a streaming planner keeps a window of the samples.
+  std::size_t first = 0;
 
   std::size_t size() const { return s.size(); }
   void resize(std::size_t n);
@@ -47,12 +49,15 @@ struct TimedProfile {
 };
 TimedProfile time_profile(const ProfileSamples& samples);
 
-/// Cursor over the timed profile: the unfiltered position at increasing times, O(1) amortised.
+/// Cursor over the timed profile: the unfiltered position at increasing times, O(1) amortised. Over a window
+/// (ProfileSamples::first), the samples from the one before `index()` on must be kept.
 class ProfileCursor {
  public:
   ProfileCursor(const ProfileSamples& samples, const TimedProfile& timed)
       : samples_(samples), timed_(timed) {}
   double position_at(double t_s);
+  /// The sample (its index along the whole path) the profile left last.
+  std::size_t index() const { return index_; }
 
  private:
   const ProfileSamples& samples_;
