@@ -176,10 +176,9 @@ void print_plan_table(const pipeline::PlanProgramResult& result, const Machine& 
   const std::string unit = angles ? "deg" : "mm";
   const double scale = angles ? deg_from_rad(1.0) : 1.0;
   std::cout << fmt::format("{}: {} blocks on {} ({}), {} ticks at {} Hz\n", a.program_path,
-                           result.plan.statistics.blocks, machine.name, a.machine_path, run.ticks,
-                           run.rate_hz);
+                           result.statistics.blocks, machine.name, a.machine_path, run.ticks, run.rate_hz);
   std::cout << fmt::format("  duration          {:.3f} s (path {:.1f} mm, override {} %)\n", run.duration_s,
-                           result.plan.statistics.length_mm, job.plan.override_pct);
+                           result.statistics.length_mm, job.plan.override_pct);
   std::cout << fmt::format("  actuator speed    max {:.3f} {}/s   accel max {:.3f} {}/s²\n",
                            run.max_actuator_speed * scale, unit, run.max_actuator_accel * scale, unit);
   std::cout << fmt::format("  path speed        max {:.3f} mm/s ({:.1f} % of the programmed feed at most)\n",
@@ -187,7 +186,7 @@ void print_plan_table(const pipeline::PlanProgramResult& result, const Machine& 
   if (job.evaluate_path_error) {
     std::cout << fmt::format(
         "  path error        max {:.3g} mm at line {} (FK of the actuators at mid-period; bound {:g} mm)\n",
-        run.max_path_error_mm, run.max_path_error_line, planning::path_error_bound_mm(result.plan));
+        run.max_path_error_mm, run.max_path_error_line, result.path_error_bound_mm);
   }
   if (result.law) {
     std::cout << fmt::format("  {} law           Σ max|ΔL| {:.3f} mm (held constant: {:.3f} mm), free {}\n",

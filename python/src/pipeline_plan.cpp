@@ -44,7 +44,6 @@ struct ElasticArrays {
 };
 
 struct PlanRun {
-  planning::MotionPlan plan;
   analyses::PlanRun run;
   double planning_s = 0.0;
   nlohmann::json summary, law_summary;
@@ -175,7 +174,6 @@ Result<PlanRun> run_plan(const Machine& machine, const PlanArguments& a) {
   job.listener_sinks = array_sinks(a, machine.mechanism->actuator_count(), r);
   auto planned = pipeline::plan_program(machine, job);
   if (!planned) return planned.error();
-  r.plan = std::move(planned->plan);
   r.run = std::move(planned->run);
   r.planning_s = planned->planning_s;
   r.summary = std::move(planned->summary);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "io/output_set.hpp"
 #include "pipeline/load_program.hpp"
 #include "pipeline/run_report.hpp"
+#include "planning/plan_producer.hpp"
+#include "planning/run_accuracy.hpp"
 
 namespace pkm::pipeline {
 
@@ -72,10 +75,10 @@ nlohmann::json summary_with_program(const planning::MotionPlan& plan, const Mach
 /// The planned motion streamed once: to the analyses the job asks for, the output files (when the job has a
 /// folder) and the job's listener. The files are staged in `outputs`, for the caller to commit.
 Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& job,
-                                         const planning::MotionPlan& plan,
+                                         const planning::MotionPlan& plan, planning::PlanProducer* source,
                                          const std::vector<std::string>& notes, const nlohmann::json& called,
                                          OutputSet& outputs) {
-  planning::StreamOptions stream{job.plan.override_pct, job.evaluate_path_error, job.progress};
+  planning::StreamOptions stream{job.plan.override_pct, job.evaluate_path_error, job.progress, source};
   const analyses::PlanAnalysisOptions wanted{job.dynamics, job.elastic, job.stiffness, &job.dynamics_load};
   std::optional<formats::PlanFiles> files;
   std::vector<planning::TickObserver*> observers;
@@ -119,24 +122,38 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   const auto started = std::chrono::steady_clock::now();
   planning::PlanOptions plan_options = job.plan;
   plan_options.progress = job.progress;
-  auto plan = planning::plan_motion(machine, *program, plan_options);
-  if (!plan) return plan.error();
+  // A whole plan for the caller, or the plan made twice through its look-ahead window: once for its length
+  // in time, its statistics and the refusals that come before any output (the bound on the ticks), then
+  // again while the ticks stream, so memory is the window's, not the program's.
+  std::unique_ptr<planning::StreamedPlan> streamed;
+  if (job.keep_plan) {
+    auto whole = planning::plan_motion(machine, *program, plan_options);
+    if (!whole) return whole.error();
+    streamed = std::make_unique<planning::StreamedPlan>(std::move(*whole), nullptr);
+  } else {
+    auto started_plan = planning::start_streamed_plan(machine, *program, plan_options);
+    if (!started_plan) return started_plan.error();
+    streamed = std::move(*started_plan);
+  }
+  const planning::MotionPlan& plan = streamed->plan;
   result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-  // The CSVs, the summary and the report replace the previous run's together or not at all.
+  // The tables, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs{"plan"};
-  auto run = stream_planned(machine, job, *plan, program->notes, called, outputs);
+  auto run = stream_planned(machine, job, plan, streamed->source.get(), program->notes, called, outputs);
   if (!run) return run.error();
   if (!job.out_directory.empty()) {
     if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
     if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
     if (Status committed = outputs.commit(); !committed) return committed.error();
   }
-  result.summary = summary_with_program(*plan, machine, *run, program->notes, called);
+  result.summary = summary_with_program(plan, machine, *run, program->notes, called);
   result.summary["program_format"] = format;
   result.program_notes = program->notes;
   result.run = std::move(*run);
-  result.plan = std::move(*plan);
+  result.statistics = plan.statistics;
+  result.path_error_bound_mm = planning::path_error_bound_mm(plan);
+  if (job.keep_plan) result.plan = std::move(streamed->plan);
   return result;
 }
 

@@ -41,10 +41,15 @@ struct PlanJob {
   /// Also listening to the run, after the files: every tick, and the analyses' ticks (e.g. into arrays).
   planning::TickObserver* listener = nullptr;
   analyses::PlanAnalysisSinks listener_sinks;
+  /// Keep the whole plan (its path, samples and speeds) in the result. Without, the plan is made through its
+  /// look-ahead window while the ticks stream, and memory does not grow with the program.
+  bool keep_plan = false;
 };
 
 struct PlanProgramResult {
-  planning::MotionPlan plan;
+  std::optional<planning::MotionPlan> plan;       ///< with PlanJob::keep_plan
+  planning::PlanStatistics statistics;            ///< what the plan used and where it is limited
+  double path_error_bound_mm = 0.0;               ///< the bound every tick's path error was checked against
   analyses::PlanRun run;                          ///< what the streamed ticks measured
   double planning_s = 0.0;                        ///< wall time of the planning itself (not the writing)
   nlohmann::json summary;                         ///< summary.json as written

@@ -86,7 +86,7 @@ StrategyScore score_of(const std::string& name, const std::string& program_path,
   score.name = name;
   score.program_path = program_path;
   std::set<int> fed_moves;
-  for (const path::Segment& seg : planned.plan.path.segments) {
+  for (const path::Segment& seg : planned.plan->path.segments) {
     if (seg.rapid) continue;
     if (!seg.rotation_only) score.path_length_mm += seg.length;
     if (!seg.is_blend()) fed_moves.insert(seg.move);
@@ -169,6 +169,7 @@ Result<ComparisonCaseResult> run_comparison_case(const Machine& machine, const S
   plan.dynamics_load = job.load;
   plan.out_directory = run_directory;
   plan.progress = progress;
+  plan.keep_plan = true;  // the score reads the whole path
   auto planned = plan_program(machine, plan);
   if (!planned) return named_plan_error(planned.error(), c.name, staging, job.out_directory);
   FedSegments fed;

@@ -304,4 +304,26 @@ void PlanProducer::release(std::size_t sample, int segment) {
   plan_.path.drop_before(keep_segment);
 }
 
+Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
+                                                          const program::CanonicalProgram& program,
+                                                          const PlanOptions& options) {
+  auto streamed = std::make_unique<StreamedPlan>();
+  {
+    MotionPlan& measured = streamed->plan;
+    auto producer = PlanProducer::start(machine, program, options, measured);
+    if (!producer) return producer.error();
+    if (Status planned = (*producer)->run_to_end(false); !planned) return planned.error();
+  }
+  const double duration_s = streamed->plan.duration_s;
+  const PlanStatistics statistics = streamed->plan.statistics;
+  PlanOptions quiet = options;
+  quiet.progress = nullptr;  // the stream tells its own progress
+  auto source = PlanProducer::start(machine, program, quiet, streamed->plan);
+  if (!source) return source.error();
+  streamed->source = std::move(*source);
+  streamed->plan.duration_s = duration_s;
+  streamed->plan.statistics = statistics;
+  return streamed;
+}
+
 }  // namespace pkm::planning

@@ -66,4 +66,16 @@ class PlanProducer {
   std::size_t peak_samples_ = 0, peak_segments_ = 0;
 };
 
+/// A plan to stream with memory bounded by the look-ahead window: made once through the window for its
+/// duration, statistics and the refusals that come before any output (the bound on the ticks, the workspace),
+/// then started again as the window `source` extends while the ticks stream (StreamOptions::source). Held by
+/// pointer: the source plans into `plan`.
+struct StreamedPlan {
+  MotionPlan plan;
+  std::unique_ptr<PlanProducer> source;
+};
+Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
+                                                          const program::CanonicalProgram& program,
+                                                          const PlanOptions& options);
+
 }  // namespace pkm::planning

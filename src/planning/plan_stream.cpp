@@ -17,7 +17,7 @@ Error at_program_line(const MotionPlan& plan, const Error& error) {
 
 Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
                                std::span<TickObserver* const> observers) {
-  ServoStream stream(plan, machine);
+  ServoStream stream(plan, machine, options.source);
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
   const long total = stream.tick_count();
   const long report_every = std::clamp(total / 1000, 1L, 4096L);

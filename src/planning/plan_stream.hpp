@@ -13,12 +13,16 @@
 
 namespace pkm::planning {
 
+class PlanProducer;
+
 struct StreamOptions {
   double override_pct = 100.0;
   /// FK of the actuators at every mid-period: the path and orientation errors (run_monitor.hpp).
   bool evaluate_path_error = true;
   /// Told now and then how far the stream is and at which program line (core/progress.hpp).
   ProgressSink progress;
+  /// Where the plan is a window planned as it streams, its planner (plan_producer.hpp); null: a whole plan.
+  PlanProducer* source = nullptr;
 };
 
 /// Streams `plan` to `observers` and returns what the monitor measured. A tick that breaks a limit or the

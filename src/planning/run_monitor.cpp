@@ -32,7 +32,7 @@ void RunMonitor::add(const ServoTick& tick) {
   last_orientation_error_deg_ = std::numeric_limits<double>::quiet_NaN();
   last_fk_failed_ = false;
   last_feed_ratio_ = 0.0;
-  last_feed_cap_ = segment_speed_cap(plan_.path.segments[tick.segment], machine_.motion, override_factor_);
+  last_feed_cap_ = segment_speed_cap(plan_.path.segment(tick.segment), machine_.motion, override_factor_);
   for (int j = 0; j < n; ++j) {
     summary_.min_position[j] = std::min(summary_.min_position[j], tick.actuators[j]);
     summary_.max_position[j] = std::max(summary_.max_position[j], tick.actuators[j]);
@@ -80,10 +80,10 @@ void RunMonitor::add(const ServoTick& tick) {
 void RunMonitor::add_feed_ratio(const ServoTick& tick) {
   const double h = plan_.period_s;
   summary_.max_path_speed = std::max(summary_.max_path_speed, tick.path_speed);
-  double cap = segment_speed_cap(plan_.path.segments[tick.segment], machine_.motion, override_factor_);
+  double cap = segment_speed_cap(plan_.path.segment(tick.segment), machine_.motion, override_factor_);
   if (previous_.segment != tick.segment) {
     cap = std::max(
-        cap, segment_speed_cap(plan_.path.segments[previous_.segment], machine_.motion, override_factor_));
+        cap, segment_speed_cap(plan_.path.segment(previous_.segment), machine_.motion, override_factor_));
   }
   if (cap > 0.0) {
     const double ratio = tick.path_speed / cap;

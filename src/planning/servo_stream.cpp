@@ -5,12 +5,14 @@
 #include <cmath>
 
 #include "planning/path_sampling.hpp"
+#include "planning/plan_producer.hpp"
 
 namespace pkm::planning {
 
-ServoStream::ServoStream(const MotionPlan& plan, const Machine& machine)
+ServoStream::ServoStream(const MotionPlan& plan, const Machine& machine, PlanProducer* source)
     : plan_(plan),
       machine_(machine),
+      source_(source),
       cursor_(plan.samples, plan.timed),
       ring_(static_cast<std::size_t>(plan.filter_ticks), 0.0) {
   last_tick_ = std::lround(plan.duration_s / plan.period_s);
@@ -20,6 +22,15 @@ bool ServoStream::next(ServoTick& tick) {
   if (k_ > last_tick_ || error_) return false;
   const int n = plan_.filter_ticks;
   const double t = static_cast<double>(k_) * plan_.period_s;
+  if (source_ != nullptr) {
+    // What the ticks passed (the monitor still reads the segment of the tick before) goes; then the plan
+    // reaches past this tick.
+    source_->release(cursor_.index(), hint_);
+    if (Status planned = source_->extend_to(t); !planned) {
+      error_ = planned.error();
+      return false;
+    }
+  }
   const double raw = cursor_.position_at(t);
   const std::size_t slot = static_cast<std::size_t>(k_ % n);
   sum_ += raw - ring_[slot];
@@ -37,7 +48,7 @@ bool ServoStream::next(ServoTick& tick) {
   tick.path_speed = k_ == 0 ? 0.0 : (s - previous_s_) / plan_.period_s;
   tick.s = s;
   tick.segment = hint_;
-  tick.line = plan_.path.segments.empty() ? 0 : plan_.path.segments[hint_].line;
+  tick.line = plan_.path.segments.empty() ? 0 : plan_.path.segment(hint_).line;
   tick.pose = Pose{point.position_mm, point.rotation.toRotationMatrix()};
   auto ik = machine_.mechanism->inverse(tick.pose);
   if (!ik) {

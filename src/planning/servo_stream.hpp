@@ -17,6 +17,7 @@
 #include "core/result.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
+#include "planning/speed_profile.hpp"
 
 namespace pkm::planning {
 
@@ -31,9 +32,13 @@ struct ServoTick {
   ActuatorVector actuators;
 };
 
+class PlanProducer;
+
 class ServoStream {
  public:
-  ServoStream(const MotionPlan& plan, const Machine& machine);
+  /// With a `source`, `plan` is the window it plans into (plan_producer.hpp): the stream asks it for the plan
+  /// a tick needs and releases what the ticks have passed. Without, `plan` is whole.
+  ServoStream(const MotionPlan& plan, const Machine& machine, PlanProducer* source = nullptr);
   /// The next tick; false after the last. A failing inverse kinematics (which the planning grid should have
   /// caught) ends the stream with error().
   bool next(ServoTick& tick);
@@ -43,6 +48,7 @@ class ServoStream {
  private:
   const MotionPlan& plan_;
   const Machine& machine_;
+  PlanProducer* source_;
   ProfileCursor cursor_;
   std::vector<double> ring_;
   double sum_ = 0.0;

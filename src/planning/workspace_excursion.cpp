@@ -158,7 +158,7 @@ WorkspaceExcursions find_excursions(const Machine& machine, const path::Path& pa
   const bool angular_actuators = machine.mechanism->actuators_are_angles();
   bool in_excursion = false;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const int line = path.segments[segment[i]].line;
+    const int line = path.segment(segment[i]).line;
     const SampleExcess e =
         sample_excess(machine, sample_pose(path, s[i], segment[i], Eigen::Vector3d::Zero()));
     if (!outside(e)) {
