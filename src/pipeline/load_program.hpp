@@ -28,9 +28,10 @@ struct ProgramOptions {
 program::InterpretOptions interpret_options(const ProgramOptions& options);
 
 /// G-code or CL data (told apart by content, or options.format), read with `options`, starting where the
-/// machine's programs start.
+/// machine's programs start. With a `sink`, the moves go to it as they are read (program/move_output.hpp).
 Result<program::CanonicalProgram> load_program_for(const Machine& machine, const std::string& program_path,
-                                                   const ProgramOptions& options = {});
+                                                   const ProgramOptions& options = {},
+                                                   program::MoveSink sink = {});
 
 /// LinuxCNC's SUBROUTINE_PATH is a colon-separated list; the command line also repeats the option. Each
 /// given entry is split at ':' and empty pieces dropped, keeping the order.

@@ -12,6 +12,7 @@
 #include "formats/plan_files.hpp"
 #include "io/output_set.hpp"
 #include "pipeline/load_program.hpp"
+#include "pipeline/program_stream.hpp"
 #include "pipeline/run_report.hpp"
 #include "planning/plan_producer.hpp"
 #include "planning/run_accuracy.hpp"
@@ -21,24 +22,9 @@ namespace pkm::pipeline {
 nlohmann::json subroutine_lines(const program::CanonicalProgram& program) {
   // The path and the ticks keep only the main program's line, so the report could show a subroutine call's
   // text but not the lines that moved the tool; this keeps where they were written, a few per calling line.
-  constexpr std::size_t kMaxPlaces = 8;
-  std::map<int, std::vector<std::string>> places;
-  std::vector<std::string> names;
-  for (const std::string& file : program.files)
-    names.push_back(std::filesystem::path(file).filename().string());
-  for (const program::CanonicalMove& move : program.moves) {
-    if (move.source_file == 0 && move.source_line == move.line) continue;
-    if (move.line <= 0 || move.source_line <= 0) continue;
-    std::vector<std::string>& here = places[move.line];
-    if (here.size() >= kMaxPlaces) continue;
-    const std::size_t file = static_cast<std::size_t>(move.source_file);
-    const std::string name = file < names.size() ? names[file] : std::string("?");
-    std::string place = name + ":" + std::to_string(move.source_line);
-    if (std::find(here.begin(), here.end(), place) == here.end()) here.push_back(std::move(place));
-  }
-  nlohmann::json out = nlohmann::json::object();
-  for (auto& [line, list] : places) out[std::to_string(line)] = std::move(list);
-  return out;
+  SubroutineLines places;
+  for (const program::CanonicalMove& move : program.moves) places.add(move);
+  return places.json(program.files);
 }
 
 namespace {
@@ -100,17 +86,23 @@ Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& 
   return run;
 }
 
-}  // namespace
 
-Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
+/// The program planned: read whole and planned whole (a law rewrites it, or the caller keeps the plan), or
+/// read and planned as it is read (memory bounded by the look-ahead window).
+struct ProgramPlan {
+  program::CanonicalProgram program;  ///< streamed: without its moves
+  std::unique_ptr<planning::StreamedPlan> plan;
+  nlohmann::json called;  ///< subroutine_lines
+};
+
+Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& job,
+                                       const planning::PlanOptions& options, PlanProgramResult& result) {
   report_progress(job.progress, "reading the program");
   auto program = load_program_for(machine, job.program_path, job.program_options);
   if (!program) return program.error();
-
-  PlanProgramResult result;
+  ProgramPlan planned;
   // Before the law rewrites the program: the places of its moves are the ones the user wrote.
-  nlohmann::json called = subroutine_lines(*program);
-  const std::string format = program->format;
+  planned.called = subroutine_lines(*program);
   if (job.law) {
     report_progress(job.progress, "choosing the free coordinates");
     auto optimized = redundancy::optimize_program(*program, machine, *job.law);
@@ -120,27 +112,65 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
     result.law = std::move(*optimized);
   }
   const auto started = std::chrono::steady_clock::now();
+  if (job.keep_plan) {
+    auto whole = planning::plan_motion(machine, *program, options);
+    if (!whole) return whole.error();
+    planned.plan = std::make_unique<planning::StreamedPlan>(std::move(*whole), nullptr);
+  } else {
+    auto streamed = planning::start_streamed_plan(machine, *program, options);
+    if (!streamed) return streamed.error();
+    planned.plan = std::move(*streamed);
+  }
+  result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  planned.program = std::move(*program);
+  return planned;
+}
+
+/// The program read on a thread of its own, twice: once for the plan's length, statistics and refusals
+/// (and the program's notes and places), then again as the ticks stream.
+Result<ProgramPlan> plan_streamed_program(const Machine& machine, const PlanJob& job,
+                                          const planning::PlanOptions& options, PlanProgramResult& result) {
+  const auto started = std::chrono::steady_clock::now();
+  ProgramPlan planned;
+  planned.program.source = job.program_path;
+  const planning::ProgramStart start = planning::program_start(machine);
+  planned.program.start_mm = start.start_mm;
+  planned.program.start_abc_deg = start.start_abc_deg;
+  SubroutineLines places;
+  program::CanonicalProgram header;
+  int passes = 0;
+  const planning::MoveSourceFactory read = [&]() -> Result<std::unique_ptr<planning::MoveSource>> {
+    const bool first = passes++ == 0;
+    return std::unique_ptr<planning::MoveSource>(std::make_unique<ProgramStream>(
+        machine, job.program_path, job.program_options, first ? &places : nullptr, first ? &header : nullptr));
+  };
+  auto streamed = planning::start_streamed_plan(machine, planned.program, read, options);
+  if (!streamed) return streamed.error();
+  planned.plan = std::move(*streamed);
+  planned.called = places.json(header.files);
+  planned.program.format = header.format;
+  planned.program.notes = header.notes;
+  result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return planned;
+}
+
+}  // namespace
+
+Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& job) {
+  PlanProgramResult result;
   planning::PlanOptions plan_options = job.plan;
   plan_options.progress = job.progress;
-  // A whole plan for the caller, or the plan made twice through its look-ahead window: once for its length
-  // in time, its statistics and the refusals that come before any output (the bound on the ticks), then
-  // again while the ticks stream, so memory is the window's, not the program's.
-  std::unique_ptr<planning::StreamedPlan> streamed;
-  if (job.keep_plan) {
-    auto whole = planning::plan_motion(machine, *program, plan_options);
-    if (!whole) return whole.error();
-    streamed = std::make_unique<planning::StreamedPlan>(std::move(*whole), nullptr);
-  } else {
-    auto started_plan = planning::start_streamed_plan(machine, *program, plan_options);
-    if (!started_plan) return started_plan.error();
-    streamed = std::move(*started_plan);
-  }
-  const planning::MotionPlan& plan = streamed->plan;
-  result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  auto planned = job.law || job.keep_plan ? plan_whole_program(machine, job, plan_options, result)
+                                          : plan_streamed_program(machine, job, plan_options, result);
+  if (!planned) return planned.error();
+  const planning::MotionPlan& plan = planned->plan->plan;
+  const program::CanonicalProgram* program = &planned->program;
+  const nlohmann::json& called = planned->called;
+  const std::string& format = program->format;
 
   // The tables, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs{"plan"};
-  auto run = stream_planned(machine, job, plan, streamed->source.get(), program->notes, called, outputs);
+  auto run = stream_planned(machine, job, plan, planned->plan->source.get(), program->notes, called, outputs);
   if (!run) return run.error();
   if (!job.out_directory.empty()) {
     if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
@@ -153,7 +183,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   result.run = std::move(*run);
   result.statistics = plan.statistics;
   result.path_error_bound_mm = planning::path_error_bound_mm(plan);
-  if (job.keep_plan) result.plan = std::move(streamed->plan);
+  if (job.keep_plan) result.plan = std::move(planned->plan->plan);
   return result;
 }
 

@@ -150,29 +150,39 @@ std::optional<UncontrolledMove> moved_orientation(const Mechanism& mechanism, co
 
 }  // namespace
 
-Status check_commanded_coordinates(const Machine& machine, const CanonicalProgram& program) {
-  const Mechanism& mechanism = *machine.mechanism;
-  const AxisMask mask = mechanism.controlled_axes();
-  if (mask.count() == 6) return ok_status();
-  Eigen::Vector3d position_mm = program.start_mm;
+CommandedCoordinateCheck::CommandedCoordinateCheck(const Machine& machine, const CanonicalProgram& program)
+    : machine_(machine),
+      program_(program),
+      all_controlled_(machine.mechanism->controlled_axes().count() == 6),
+      position_mm_(program.start_mm),
+      abc_deg_(program.start_abc_deg) {}
+
+Status CommandedCoordinateCheck::add(const CanonicalMove& move) {
+  if (all_controlled_) return ok_status();
   // A program of tool axes starts from (0,0,1), the axis CL data has before its first TLAXIS or 6-value GOTO:
   // a first move tilted away from it is a change of the tool axis like any later one.
-  ProgramOrientation orientation{program.start_abc_deg, std::nullopt};
-  if (!program.moves.empty() && program.moves.front().orientation == program::OrientationSource::tool_axis)
-    orientation.tool_axis = Eigen::Vector3d::UnitZ();
+  if (first_ && move.orientation == program::OrientationSource::tool_axis) tool_axis_ = Eigen::Vector3d::UnitZ();
+  first_ = false;
+  if (move.kind == MoveKind::dwell) return ok_status();
+  const Mechanism& mechanism = *machine_.mechanism;
+  if (auto moved = moved_position(mechanism.controlled_axes(), move, position_mm_))
+    return uncontrolled_error(machine_, program_, *moved);
+  if (auto turned = moved_orientation(mechanism, move, ProgramOrientation{abc_deg_, tool_axis_}))
+    return uncontrolled_error(machine_, program_, *turned);
+  position_mm_ = move.end_mm;
+  if (move.orientation == program::OrientationSource::tool_axis) {
+    tool_axis_ = move.tool_axis;
+  } else {
+    abc_deg_ = move.end_abc_deg;
+    tool_axis_.reset();
+  }
+  return ok_status();
+}
+
+Status check_commanded_coordinates(const Machine& machine, const CanonicalProgram& program) {
+  CommandedCoordinateCheck check(machine, program);
   for (const CanonicalMove& move : program.moves) {
-    if (move.kind == MoveKind::dwell) continue;
-    if (auto moved = moved_position(mask, move, position_mm))
-      return uncontrolled_error(machine, program, *moved);
-    if (auto turned = moved_orientation(mechanism, move, orientation))
-      return uncontrolled_error(machine, program, *turned);
-    position_mm = move.end_mm;
-    if (move.orientation == program::OrientationSource::tool_axis) {
-      orientation.tool_axis = move.tool_axis;
-    } else {
-      orientation.abc_deg = move.end_abc_deg;
-      orientation.tool_axis.reset();
-    }
+    if (Status checked = check.add(move); !checked) return checked;
   }
   return ok_status();
 }

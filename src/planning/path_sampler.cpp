@@ -186,9 +186,9 @@ Status PathSampler::solve(Point& point) {
   const path::PathPoint on_path = path_.evaluate(point.segment, point.s);
   const Pose pose{on_path.position_mm, on_path.rotation.toRotationMatrix()};
   point.position_mm = on_path.position_mm;
-  if (count_ % 4096 == 0 && settings_.total_moves > 0) {
+  if (count_ % 4096 == 0 && settings_.total_lines > 0) {
     report_progress(settings_.progress, "planning",
-                    std::min(1.0, static_cast<double>(seg.move) / settings_.total_moves), seg.line);
+                    std::min(1.0, static_cast<double>(seg.line) / settings_.total_lines), seg.line);
   }
   auto ik = mechanism.inverse(pose);
   if (!ik) {

@@ -32,8 +32,8 @@ struct SamplingSettings {
   double chord_tolerance_mm =
       1e-3;  ///< allowed deviation between servo periods, on the tool and on actuators
   std::size_t max_samples = 50'000'000;  ///< refuse a path that needs more (PlanOptions::max_samples)
-  int total_moves = 0;                   ///< the program's moves, for the progress' fraction
-  ProgressSink progress;                 ///< told "planning", the fraction of moves and their line
+  int total_lines = 0;                   ///< the program's lines, for the progress' fraction (0: unknown)
+  ProgressSink progress;                 ///< told "planning", the fraction of the lines and the line
 };
 
 /// A planning sample with its caps (lookahead_profile.hpp) and the path segment it lies on.

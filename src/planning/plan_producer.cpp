@@ -77,7 +77,7 @@ LookaheadSettings lookahead_settings(const PlanOptions& options, const MotionSet
 }
 
 SamplingSettings sampling_settings(const PlanOptions& options, const MotionPlan& plan, double window_s,
-                                   int total_moves) {
+                                   int total_lines) {
   SamplingSettings sampling;
   sampling.override_factor = options.override_pct / 100.0;
   sampling.actuator_margin = options.actuator_limit_margin;
@@ -87,7 +87,7 @@ SamplingSettings sampling_settings(const PlanOptions& options, const MotionPlan&
   sampling.stop_hold_s = window_s;
   sampling.chord_tolerance_mm = 0.1 * std::max(plan.path_tolerance_mm, 1e-3);
   sampling.max_samples = options.max_samples;
-  sampling.total_moves = total_moves;
+  sampling.total_lines = total_lines;
   sampling.progress = options.progress;
   return sampling;
 }
@@ -100,6 +100,7 @@ void erase_front(std::vector<T>& values, std::size_t count) {
 }  // namespace
 
 struct PlanProducer::Stages {
+  CommandedCoordinateCheck commanded;
   path::PathAppender appender;
   PathSampler sampler;
   LookaheadProfile lookahead;
@@ -109,16 +110,22 @@ struct PlanProducer::Stages {
 };
 
 PlanProducer::PlanProducer(const Machine& machine, const program::CanonicalProgram& program,
-                           const PlanOptions& options, MotionPlan& plan)
-    : machine_(machine), program_(program), options_(options), plan_(plan) {}
+                           std::unique_ptr<MoveSource> moves, const PlanOptions& options, MotionPlan& plan)
+    : machine_(machine), program_(program), moves_(std::move(moves)), options_(options), plan_(plan) {}
 
 PlanProducer::~PlanProducer() = default;
 
 Result<std::unique_ptr<PlanProducer>> PlanProducer::start(const Machine& machine,
                                                           const program::CanonicalProgram& program,
                                                           const PlanOptions& options, MotionPlan& plan) {
+  return start(machine, program, std::make_unique<ProgramMoves>(program), options, plan);
+}
+
+Result<std::unique_ptr<PlanProducer>> PlanProducer::start(const Machine& machine,
+                                                          const program::CanonicalProgram& program,
+                                                          std::unique_ptr<MoveSource> moves,
+                                                          const PlanOptions& options, MotionPlan& plan) {
   if (Status status = check_options(options); !status) return status.error();
-  if (Status commanded = check_commanded_coordinates(machine, program); !commanded) return commanded.error();
   const MotionSettings& motion = machine.motion;
   plan = MotionPlan{};
   plan.program_source = program.source;
@@ -131,13 +138,13 @@ Result<std::unique_ptr<PlanProducer>> PlanProducer::start(const Machine& machine
   plan.filter_ticks = std::max(1, static_cast<int>(std::lround(filter_time * options.rate_hz)));
   const double window_s = plan.filter_ticks * plan.period_s;
   plan.statistics.filter_time_s = window_s;
-  plan.statistics.blocks = static_cast<int>(program.moves.size());
 
-  std::unique_ptr<PlanProducer> producer(new PlanProducer(machine, program, options, plan));
+  const int lines = moves->line_count();
+  std::unique_ptr<PlanProducer> producer(new PlanProducer(machine, program, std::move(moves), options, plan));
   const path::PathFrame frame = path_frame(machine);
-  const SamplingSettings sampling =
-      sampling_settings(options, plan, window_s, static_cast<int>(program.moves.size()));
-  producer->stages_.reset(new Stages{path::PathAppender(program.source, program, frame, along, plan.path),
+  const SamplingSettings sampling = sampling_settings(options, plan, window_s, lines);
+  producer->stages_.reset(new Stages{CommandedCoordinateCheck(machine, program),
+                                     path::PathAppender(program.source, program, frame, along, plan.path),
                                      PathSampler(machine, program.source, plan.path, sampling),
                                      LookaheadProfile(lookahead_settings(options, motion, window_s)), frame,
                                      along, sampling});
@@ -164,10 +171,12 @@ Status PlanProducer::run_to_end(bool keep_whole) {
 
 Status PlanProducer::pump() {
   Stages& stages = *stages_;
-  const int moves = static_cast<int>(program_.moves.size());
-  const bool at_end = next_move_ >= moves;
+  auto move = moves_->next();
+  if (!move) return move.error();
+  const bool at_end = *move == nullptr;
   if (!at_end) {
-    if (Status added = stages.appender.add(program_.moves[next_move_], next_move_); !added) return added;
+    if (Status allowed = stages.commanded.add(**move); !allowed) return allowed;
+    if (Status added = stages.appender.add(**move, next_move_); !added) return added;
     ++next_move_;
   } else {
     stages.appender.finish();
@@ -194,7 +203,9 @@ Status PlanProducer::pump() {
 /// excursions (the user moving the part needs all of it), from the whole path built again for the scan.
 Error PlanProducer::refuse(const Error& first) const {
   if (!stages_->sampler.failed_in_workspace()) return first;
-  auto whole = path::build_path(program_, stages_->frame, stages_->path_options);
+  auto program = moves_->whole();
+  if (!program) return first;
+  auto whole = path::build_path(*program, stages_->frame, stages_->path_options);
   if (!whole) return first;
   std::vector<double> s;
   std::vector<int> segment;
@@ -270,6 +281,7 @@ Status PlanProducer::finish_plan() {
   if (ticks > static_cast<double>(options_.max_ticks)) return too_many_ticks();
   const Stages& stages = *stages_;
   PlanStatistics& stats = plan_.statistics;
+  stats.blocks = next_move_;
   stats.segments = plan_.path.segment_end();
   stats.blends = stages.appender.blends();
   stats.samples = stages.sampler.sample_count();
@@ -307,10 +319,22 @@ void PlanProducer::release(std::size_t sample, int segment) {
 Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
                                                           const program::CanonicalProgram& program,
                                                           const PlanOptions& options) {
+  const MoveSourceFactory whole = [&program]() -> Result<std::unique_ptr<MoveSource>> {
+    return std::unique_ptr<MoveSource>(std::make_unique<ProgramMoves>(program));
+  };
+  return start_streamed_plan(machine, program, whole, options);
+}
+
+Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
+                                                          const program::CanonicalProgram& program,
+                                                          const MoveSourceFactory& moves,
+                                                          const PlanOptions& options) {
   auto streamed = std::make_unique<StreamedPlan>();
   {
+    auto first_pass = moves();
+    if (!first_pass) return first_pass.error();
     MotionPlan& measured = streamed->plan;
-    auto producer = PlanProducer::start(machine, program, options, measured);
+    auto producer = PlanProducer::start(machine, program, std::move(*first_pass), options, measured);
     if (!producer) return producer.error();
     if (Status planned = (*producer)->run_to_end(false); !planned) return planned.error();
   }
@@ -318,7 +342,9 @@ Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine
   const PlanStatistics statistics = streamed->plan.statistics;
   PlanOptions quiet = options;
   quiet.progress = nullptr;  // the stream tells its own progress
-  auto source = PlanProducer::start(machine, program, quiet, streamed->plan);
+  auto second_pass = moves();
+  if (!second_pass) return second_pass.error();
+  auto source = PlanProducer::start(machine, program, std::move(*second_pass), quiet, streamed->plan);
   if (!source) return source.error();
   streamed->source = std::move(*source);
   streamed->plan.duration_s = duration_s;

@@ -13,6 +13,7 @@
 #include "machine/machine.hpp"
 #include "planning/lookahead_profile.hpp"
 #include "planning/motion_plan.hpp"
+#include "planning/move_source.hpp"
 
 namespace pkm::planning {
 
@@ -22,6 +23,12 @@ class PlanProducer {
   /// program line (bad options, a move no machine can make).
   static Result<std::unique_ptr<PlanProducer>> start(const Machine& machine,
                                                      const program::CanonicalProgram& program,
+                                                     const PlanOptions& options, MotionPlan& plan);
+  /// The same with the moves from `moves` (a reader still reading): `program` gives the file's name and
+  /// where the program starts, its own moves unused.
+  static Result<std::unique_ptr<PlanProducer>> start(const Machine& machine,
+                                                     const program::CanonicalProgram& program,
+                                                     std::unique_ptr<MoveSource> moves,
                                                      const PlanOptions& options, MotionPlan& plan);
   ~PlanProducer();
 
@@ -40,8 +47,8 @@ class PlanProducer {
 
  private:
   struct Stages;
-  PlanProducer(const Machine& machine, const program::CanonicalProgram& program, const PlanOptions& options,
-               MotionPlan& plan);
+  PlanProducer(const Machine& machine, const program::CanonicalProgram& program,
+               std::unique_ptr<MoveSource> moves, const PlanOptions& options, MotionPlan& plan);
   Status pump();
   Error refuse(const Error& first) const;
   void take_planned();
@@ -51,10 +58,11 @@ class PlanProducer {
 
   const Machine& machine_;
   const program::CanonicalProgram& program_;
+  std::unique_ptr<MoveSource> moves_;
   PlanOptions options_;
   MotionPlan& plan_;
   std::unique_ptr<Stages> stages_;
-  int next_move_ = 0;
+  int next_move_ = 0;  ///< moves read so far
   bool finished_ = false;
   std::deque<int> waiting_segment_;  ///< the segments of the samples in the look-ahead window, in order
   double clock_s_ = 0.0;             ///< the unfiltered profile's departure from the sample appended last
@@ -76,6 +84,11 @@ struct StreamedPlan {
 };
 Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
                                                           const program::CanonicalProgram& program,
+                                                          const PlanOptions& options);
+/// The same with the moves of each pass from `moves` (a reader of the program file for each).
+Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
+                                                          const program::CanonicalProgram& program,
+                                                          const MoveSourceFactory& moves,
                                                           const PlanOptions& options);
 
 }  // namespace pkm::planning

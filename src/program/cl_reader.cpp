@@ -113,7 +113,9 @@ ClReader::ClReader(const std::string& source, const InterpretOptions& options, P
   program_.format = std::string(program_format_name(dialect));
   program_.start_mm = options.start_mm;
   program_.start_abc_deg = options.start_abc_deg;
-  program_.moves.reserve(static_cast<std::size_t>(line_count));  // about one move per statement
+  output_.attach(program_, options.move_sink);
+  if (!options.move_sink)
+    program_.moves.reserve(static_cast<std::size_t>(line_count));  // about one move per statement
   position_ = options.start_mm;
   initial_mm_ = options.start_mm;
   emitted_end_mm_ = options.start_mm;
@@ -122,6 +124,7 @@ ClReader::ClReader(const std::string& source, const InterpretOptions& options, P
 ClReader::~ClReader() = default;
 
 Status ClReader::apply(const ClStatement& s) {
+  if (!output_.status()) return output_.status();  // whoever takes the moves gave up
   if (s.is_comment) {
     if (!skipping_ && !s.text.empty()) program_.events.push_back({s.at.line, "$$ " + std::string(s.text)});
     return ok_status();
@@ -206,6 +209,7 @@ Result<CanonicalProgram> ClReader::finish(int line_count) {
   if (auto status = flush_compensation(last); !status) return status.error();
   if (!ended_) program_.end_line = line_count;
   note_arc_directions();
+  if (Status handed = output_.flush(); !handed) return handed.error();
   return std::move(program_);
 }
 
@@ -336,7 +340,7 @@ void ClReader::output(CanonicalMove move) {
     move.tool_axis = r * move.tool_axis;
     if (move.kind == MoveKind::arc) move.plane = cl_nearest_plane(move.normal);
   }
-  program_.moves.push_back(move);
+  (void)output_.push(move);  // a sink's error stops the reading at the next statement
 }
 
 }  // namespace pkm::program

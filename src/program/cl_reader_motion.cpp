@@ -130,7 +130,7 @@ Status ClReader::from(const ClStatement& s) {
   if (list.size() != 1) return error_at(s.at, "FROM takes one point (x,y,z or x,y,z,i,j,k)");
   if (list[0].axis) axis_ = *list[0].axis;
   const Eigen::Vector3d p = list[0].p_mm;
-  if (program_.moves.empty() && !home_mm_) {
+  if (output_.count() == 0 && !home_mm_) {
     home_mm_ = p;
     emitted_end_mm_ = p;
     program_.start_mm = apply_transforms_ ? Eigen::Vector3d(transform_ * p) : p;

@@ -125,6 +125,7 @@ class ClReader {
   const bool apply_transforms_;
   const ProgramFormat dialect_;
   CanonicalProgram program_;
+  MoveOutput output_;
   double scale_ = 1.0;                                  ///< mm per program length unit (UNITS)
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();  ///< tool tip, CL frame, mm
   Eigen::Vector3d axis_ = Eigen::Vector3d::UnitZ();     ///< tool axis, CL frame

@@ -66,7 +66,8 @@ Status Executor::run(std::string_view text, CanonicalProgram& program) {
   compensation_.set_position(state_.position_mm);
   program.start_mm = options_.start_mm;
   program.start_abc_deg = options_.start_abc_deg;
-  program.moves.reserve(text.size() / 12 + 16);
+  output_.attach(program, options_.move_sink);
+  if (!options_.move_sink) program.moves.reserve(text.size() / 12 + 16);
   write_position_parameters();
 
   BlockReader reader(text, source_, reader_options(options_), parameters_, *this);
@@ -91,6 +92,7 @@ Status Executor::run(std::string_view text, CanonicalProgram& program) {
     write_position_parameters();
   }
   if (auto flushed = flush_compensation(); !flushed) return flushed;
+  if (auto handed = output_.flush(); !handed) return handed;
   program.files = reader.files();
   program.end_line = reader.main_line();
   if (options_.write_parameter_file && !options_.parameter_file.empty())
@@ -156,23 +158,22 @@ CanonicalMove Executor::new_move(MoveKind kind) const {
 Status Executor::emit(const CanonicalMove& m) {
   compensated_.clear();
   if (auto passed = compensation_.move(m, where(), motion_column_, compensated_); !passed) return passed;
-  append_compensated();
-  return ok_status();
+  return append_compensated();
 }
 
 Status Executor::flush_compensation() {
   compensated_.clear();
   if (auto flushed = compensation_.flush(compensated_, where(), motion_column_); !flushed) return flushed;
-  append_compensated();
-  return ok_status();
+  return append_compensated();
 }
 
 // What compensation let out, from program coordinates into the work frame of each move.
-void Executor::append_compensated() {
+Status Executor::append_compensated() {
   for (CanonicalMove& out : compensated_) {
     if (out.frame != 0) move_to_work(program_->frames[static_cast<std::size_t>(out.frame)], out);
-    program_->moves.push_back(out);
+    if (Status taken = output_.push(out); !taken) return taken;
   }
+  return ok_status();
 }
 
 void Executor::add_event(std::string what) {

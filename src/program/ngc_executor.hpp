@@ -68,7 +68,7 @@ class Executor final : public PredefinedParameters, private CycleSink {
   CanonicalMove new_move(MoveKind kind) const;
   Status emit(const CanonicalMove& m);
   Status flush_compensation();
-  void append_compensated();
+  Status append_compensated();
   void add_event(std::string what);
   void refresh_frame();
   void reframe();
@@ -79,6 +79,7 @@ class Executor final : public PredefinedParameters, private CycleSink {
   const InterpretOptions& options_;
   std::optional<ToolTable> tools_;
   CanonicalProgram* program_ = nullptr;
+  MoveOutput output_;
   MachineState state_;
   std::optional<MachineState> saved_state_;  ///< M70
   ParameterStore parameters_;

@@ -262,9 +262,9 @@ Status Executor::cycle(const gcode::Block& b, int motion) {
   cycle_status_ = ok_status();
   // The moves of all the cycles count against max_blocks: an L or a Q can make a block of millions of them.
   context.max_moves = options_.max_blocks > cycle_moves_ ? options_.max_blocks - cycle_moves_ : 0;
-  const std::size_t moves_before = program_->moves.size();
+  const std::size_t moves_before = output_.count();
   Status ran = run_canned_cycle(b, where(), context, cycle_memory_, *this);
-  cycle_moves_ += program_->moves.size() - moves_before;
+  cycle_moves_ += output_.count() - moves_before;
   if (ran && cycle_status_ && (cycle_memory_.end_mm - state_.position_mm).norm() > 1e-9) {
     // After G88 (the operator retracts by hand) and G84 outside G17, LinuxCNC takes the tool to be at the
     // clear plane although no move took it there; pkm's path must be continuous, so a rapid does.
@@ -317,7 +317,7 @@ Status Executor::stop(const gcode::Block& b) {
   // rs274 empties compensation's queue at a pause (compensation stays on).
   if (auto flushed = flush_compensation(); !flushed) return flushed;
   add_event(gcode::code_name('M', code.number));
-  if (!program_->moves.empty()) program_->moves.back().exact_stop = true;
+  if (CanonicalMove* last = output_.last()) last->exact_stop = true;
   return ok_status();
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/result.hpp"
 #include "program/canonical_program.hpp"
+#include "program/move_output.hpp"
 #include "program/program_format.hpp"
 
 namespace pkm::program {
@@ -37,6 +38,9 @@ struct InterpretOptions {
   /// CL data: turn the points and tool axes from the frame MSYS/CSYS/TRNTYP give into the part frame (false:
   /// keep the CL frame the file is written in).
   bool apply_cl_transforms = true;
+  /// Given: each move is handed to it as it is read (one move late, move_output.hpp) and the program's
+  /// `moves` stay empty; its error stops the reading.
+  MoveSink move_sink;
 };
 
 /// G-code (RS274/NGC as CAM post-processors write it). `source_name` is used in messages.
