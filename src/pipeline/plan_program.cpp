@@ -86,11 +86,11 @@ Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& 
   return run;
 }
 
-
 /// The program planned: read whole and planned whole (a law rewrites it, or the caller keeps the plan), or
 /// read and planned as it is read (memory bounded by the look-ahead window).
 struct ProgramPlan {
-  program::CanonicalProgram program;  ///< streamed: without its moves
+  /// Streamed: without its moves. On the heap: the plan's source reads it where it is.
+  std::unique_ptr<program::CanonicalProgram> program;
   std::unique_ptr<planning::StreamedPlan> plan;
   nlohmann::json called;  ///< subroutine_lines
 };
@@ -98,9 +98,11 @@ struct ProgramPlan {
 Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& job,
                                        const planning::PlanOptions& options, PlanProgramResult& result) {
   report_progress(job.progress, "reading the program");
-  auto program = load_program_for(machine, job.program_path, job.program_options);
-  if (!program) return program.error();
+  auto read = load_program_for(machine, job.program_path, job.program_options);
+  if (!read) return read.error();
   ProgramPlan planned;
+  planned.program = std::make_unique<program::CanonicalProgram>(std::move(*read));
+  program::CanonicalProgram* program = planned.program.get();
   // Before the law rewrites the program: the places of its moves are the ones the user wrote.
   planned.called = subroutine_lines(*program);
   if (job.law) {
@@ -122,7 +124,6 @@ Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& jo
     planned.plan = std::move(*streamed);
   }
   result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  planned.program = std::move(*program);
   return planned;
 }
 
@@ -130,26 +131,29 @@ Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& jo
 /// (and the program's notes and places), then again as the ticks stream.
 Result<ProgramPlan> plan_streamed_program(const Machine& machine, const PlanJob& job,
                                           const planning::PlanOptions& options, PlanProgramResult& result) {
+  report_progress(job.progress, "reading the program");
   const auto started = std::chrono::steady_clock::now();
   ProgramPlan planned;
-  planned.program.source = job.program_path;
+  planned.program = std::make_unique<program::CanonicalProgram>();
+  planned.program->source = job.program_path;
   const planning::ProgramStart start = planning::program_start(machine);
-  planned.program.start_mm = start.start_mm;
-  planned.program.start_abc_deg = start.start_abc_deg;
+  planned.program->start_mm = start.start_mm;
+  planned.program->start_abc_deg = start.start_abc_deg;
   SubroutineLines places;
   program::CanonicalProgram header;
   int passes = 0;
   const planning::MoveSourceFactory read = [&]() -> Result<std::unique_ptr<planning::MoveSource>> {
     const bool first = passes++ == 0;
-    return std::unique_ptr<planning::MoveSource>(std::make_unique<ProgramStream>(
-        machine, job.program_path, job.program_options, first ? &places : nullptr, first ? &header : nullptr));
+    return std::unique_ptr<planning::MoveSource>(
+        std::make_unique<ProgramStream>(machine, job.program_path, job.program_options,
+                                        first ? &places : nullptr, first ? &header : nullptr));
   };
-  auto streamed = planning::start_streamed_plan(machine, planned.program, read, options);
+  auto streamed = planning::start_streamed_plan(machine, *planned.program, read, options);
   if (!streamed) return streamed.error();
   planned.plan = std::move(*streamed);
   planned.called = places.json(header.files);
-  planned.program.format = header.format;
-  planned.program.notes = header.notes;
+  planned.program->format = header.format;
+  planned.program->notes = header.notes;
   result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return planned;
 }
@@ -164,7 +168,7 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
                                           : plan_streamed_program(machine, job, plan_options, result);
   if (!planned) return planned.error();
   const planning::MotionPlan& plan = planned->plan->plan;
-  const program::CanonicalProgram* program = &planned->program;
+  const program::CanonicalProgram* program = planned->program.get();
   const nlohmann::json& called = planned->called;
   const std::string& format = program->format;
 

@@ -161,7 +161,8 @@ Status CommandedCoordinateCheck::add(const CanonicalMove& move) {
   if (all_controlled_) return ok_status();
   // A program of tool axes starts from (0,0,1), the axis CL data has before its first TLAXIS or 6-value GOTO:
   // a first move tilted away from it is a change of the tool axis like any later one.
-  if (first_ && move.orientation == program::OrientationSource::tool_axis) tool_axis_ = Eigen::Vector3d::UnitZ();
+  if (first_ && move.orientation == program::OrientationSource::tool_axis)
+    tool_axis_ = Eigen::Vector3d::UnitZ();
   first_ = false;
   if (move.kind == MoveKind::dwell) return ok_status();
   const Mechanism& mechanism = *machine_.mechanism;
