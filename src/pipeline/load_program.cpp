@@ -16,14 +16,19 @@ program::InterpretOptions interpret_options(const ProgramOptions& options) {
   return interpret;
 }
 
-Result<program::CanonicalProgram> load_program_for(const Machine& machine, const std::string& program_path,
-                                                   const ProgramOptions& options, program::MoveSink sink) {
+program::InterpretOptions interpret_options_for(const Machine& machine, const ProgramOptions& options,
+                                                program::MoveSink sink) {
   const planning::ProgramStart start = planning::program_start(machine);
   program::InterpretOptions interpret = interpret_options(options);
   interpret.start_mm = start.start_mm;
   interpret.start_abc_deg = start.start_abc_deg;
   interpret.move_sink = std::move(sink);
-  return program::load_part_program(program_path, interpret);
+  return interpret;
+}
+
+Result<program::CanonicalProgram> load_program_for(const Machine& machine, const std::string& program_path,
+                                                   const ProgramOptions& options, program::MoveSink sink) {
+  return program::load_part_program(program_path, interpret_options_for(machine, options, std::move(sink)));
 }
 
 std::vector<std::string> split_search_path(const std::vector<std::string>& given) {

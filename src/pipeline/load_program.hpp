@@ -27,6 +27,10 @@ struct ProgramOptions {
 /// The interpreter's options for `options`, starting at program zero (as `pkm interpret` and rs274 do).
 program::InterpretOptions interpret_options(const ProgramOptions& options);
 
+/// interpret_options for `machine`: starting where the machine's programs start, the moves to `sink` if given.
+program::InterpretOptions interpret_options_for(const Machine& machine, const ProgramOptions& options,
+                                                program::MoveSink sink = {});
+
 /// G-code or CL data (told apart by content, or options.format), read with `options`, starting where the
 /// machine's programs start. With a `sink`, the moves go to it as they are read (program/move_output.hpp).
 Result<program::CanonicalProgram> load_program_for(const Machine& machine, const std::string& program_path,

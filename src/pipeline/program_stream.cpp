@@ -13,18 +13,6 @@ constexpr std::size_t kBatchMoves = 512;
 constexpr std::size_t kMaxBatchesAhead = 8;
 constexpr std::size_t kMaxPlacesPerLine = 8;
 
-/// The lines of a file, counted in blocks (the file is not held).
-int count_lines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<char> block(1 << 20);
-  long lines = 0;
-  while (in) {
-    in.read(block.data(), static_cast<std::streamsize>(block.size()));
-    lines += std::count(block.begin(), block.begin() + in.gcount(), '\n');
-  }
-  return static_cast<int>(std::min<long>(lines + 1, std::numeric_limits<int>::max()));
-}
-
 }  // namespace
 
 void SubroutineLines::add(const program::CanonicalMove& move) {
@@ -60,7 +48,13 @@ ProgramStream::ProgramStream(const Machine& machine, std::string program_path, P
       options_(std::move(options)),
       places_(places),
       header_(header) {
-  line_count_ = count_lines(path_);
+  auto mapped = MappedText::open(path_, "part program");
+  if (!mapped) {
+    open_error_ = mapped.error();
+    return;
+  }
+  text_ = std::move(*mapped);
+  line_count_ = text_->line_count();
   filling_.reserve(kBatchMoves);
   reader_ = std::thread([this] { read(); });
 }
@@ -81,6 +75,7 @@ void ProgramStream::stop() {
 Status ProgramStream::take(const program::CanonicalMove& move) {
   filling_.push_back(move);
   if (filling_.size() < kBatchMoves) return ok_status();
+  text_->keep_around(text_->offset_near_line(move.line));
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [this] { return cancelled_ || full_.size() < kMaxBatchesAhead; });
   if (cancelled_) return Error{ErrorCode::bad_input, "the planner stopped reading the program"};
@@ -93,8 +88,9 @@ Status ProgramStream::take(const program::CanonicalMove& move) {
 }
 
 void ProgramStream::read() {
-  auto program = load_program_for(machine_, path_, options_,
-                                  [this](const program::CanonicalMove& move) { return take(move); });
+  auto program = program::read_part_program(
+      text_->text(), path_,
+      interpret_options_for(machine_, options_, [this](const program::CanonicalMove& move) { return take(move); }));
   std::lock_guard lock(mutex_);
   if (program) {
     if (header_ != nullptr) *header_ = std::move(*program);
@@ -107,6 +103,7 @@ void ProgramStream::read() {
 }
 
 Result<const program::CanonicalMove*> ProgramStream::next() {
+  if (open_error_) return *open_error_;
   if (taken_ < taking_.size()) {
     const program::CanonicalMove* move = &taking_[taken_++];
     if (places_ != nullptr) places_->add(*move);

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "io/mapped_text.hpp"
 #include "machine/machine.hpp"
 #include "pipeline/load_program.hpp"
 #include "planning/move_source.hpp"
@@ -54,6 +55,8 @@ class ProgramStream final : public planning::MoveSource {
   SubroutineLines* places_;
   int line_count_ = 0;
   program::CanonicalProgram* header_;
+  std::unique_ptr<MappedText> text_;  ///< the file, given back behind the reader
+  std::optional<Error> open_error_;
 
   std::mutex mutex_;
   std::condition_variable changed_;

@@ -8,14 +8,19 @@ namespace pkm::program {
 Result<CanonicalProgram> load_part_program(const std::string& path, const InterpretOptions& options) {
   auto text = read_text_file(path, "part program");
   if (!text) return text.error();
+  return read_part_program(*text, path, options);
+}
+
+Result<CanonicalProgram> read_part_program(std::string_view text, const std::string& path,
+                                           const InterpretOptions& options) {
   const ProgramFormat format =
-      options.format == ProgramFormat::automatic ? detect_program_format(*text) : options.format;
+      options.format == ProgramFormat::automatic ? detect_program_format(text) : options.format;
   if (is_cl_format(format)) {
     InterpretOptions cl_options = options;
     cl_options.format = format;
-    return read_cl_data(*text, path, cl_options);
+    return read_cl_data(text, path, cl_options);
   }
-  return interpret_gcode(*text, path, options);
+  return interpret_gcode(text, path, options);
 }
 
 }  // namespace pkm::program

@@ -54,4 +54,8 @@ Result<CanonicalProgram> read_cl_data(std::string_view text, const std::string& 
 /// Reads a file and picks the reader by its content (or `options.format`), whatever its extension.
 Result<CanonicalProgram> load_part_program(const std::string& path, const InterpretOptions& options = {});
 
+/// The same for a file's text already read (read_text_input's, or a mapped file's); `path` names it.
+Result<CanonicalProgram> read_part_program(std::string_view text, const std::string& path,
+                                           const InterpretOptions& options = {});
+
 }  // namespace pkm::program
