@@ -214,6 +214,22 @@ Result<Hdf5File> Hdf5File::create(const std::string& path) {
   const Handle access(H5Pcreate(H5P_FILE_ACCESS));
   if (!access.valid() || H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG) < 0)
     return hdf5_error(path, "HDF5 could not set up the file");
+  // The metadata cache (the chunk index of every column) grows by default up to 32 MB as the file does: a
+  // run's memory would grow with its length. Kept small; the columns are written in order, so little of
+  // the index is ever touched again.
+  // HDF5 keeps freed blocks in free lists of its own, unbounded by default: bounded too.
+  H5set_free_list_limits(1 << 20, 1 << 18, 1 << 20, 1 << 18, 1 << 20, 1 << 18);
+  H5AC_cache_config_t cache{};
+  cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  if (H5Pget_mdc_config(access.get(), &cache) < 0) return hdf5_error(path, "HDF5 could not set up the file");
+  cache.set_initial_size = true;
+  cache.initial_size = std::size_t{1} << 20;
+  cache.min_size = std::size_t{1} << 20;
+  cache.max_size = std::size_t{4} << 20;
+  if (H5Pset_mdc_config(access.get(), &cache) < 0) return hdf5_error(path, "HDF5 could not set up the file");
+  // The 1.10 format indexes a column's chunks with an extensible array, not a B-tree that grows in memory.
+  if (H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST) < 0)
+    return hdf5_error(path, "HDF5 could not set up the file");
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get());
   if (id < 0) return hdf5_error(path, "HDF5 could not create the file");
   return Hdf5File(path, id);

@@ -19,10 +19,10 @@ namespace {
 
 constexpr int kIndexEvery = 1024;  ///< lines between two entries of the line index
 /// What stays mapped around the reader: behind, for a short jump back (a loop body), and ahead.
-constexpr std::size_t kKeepBehindBytes = std::size_t{4} << 20;
-constexpr std::size_t kKeepAheadBytes = std::size_t{16} << 20;
+constexpr std::size_t kKeepBehindBytes = std::size_t{1} << 20;
+constexpr std::size_t kKeepAheadBytes = std::size_t{1} << 20;
 /// Indexing the lines gives back what it has read every so many bytes.
-constexpr std::size_t kIndexReleaseBytes = std::size_t{64} << 20;
+constexpr std::size_t kIndexReleaseBytes = std::size_t{4} << 20;
 
 std::size_t page_size() {
   static const std::size_t size = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
@@ -57,7 +57,8 @@ Result<std::unique_ptr<MappedText>> MappedText::open(const std::string& path, st
   }
   ::close(descriptor);
   if (size > 0 && mapped->mapping_ == nullptr) {
-    return make_error(ErrorCode::io, fmt::format("{}: cannot read {}: cannot map it into memory", path, what));
+    return make_error(ErrorCode::io,
+                      fmt::format("{}: cannot read {}: cannot map it into memory", path, what));
   }
   mapped->text_ = std::string_view(static_cast<const char*>(mapped->mapping_), mapped->mapped_bytes_);
   static constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
@@ -95,7 +96,8 @@ void MappedText::index_lines() {
 
 std::size_t MappedText::offset_near_line(int line) const {
   if (line <= 1 || line_offsets_.empty()) return 0;
-  const std::size_t entry = std::min(static_cast<std::size_t>(line - 1) / kIndexEvery, line_offsets_.size() - 1);
+  const std::size_t entry =
+      std::min(static_cast<std::size_t>(line - 1) / kIndexEvery, line_offsets_.size() - 1);
   return line_offsets_[entry];
 }
 

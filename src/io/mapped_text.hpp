@@ -3,7 +3,8 @@
 // of millions of lines read while it is planned): the pages far behind and far ahead of where the reader is
 // are given back to the system, which reads them again from the file if they are needed (a loop jumping
 // back), so the file does not stay in memory. The text is the one read_text_input gives: without a leading
-// byte-order mark; a file with lone carriage returns (old Mac line ends) is read whole and normalised instead.
+// byte-order mark; a file with lone carriage returns (old Mac line ends) is read whole and normalised
+// instead.
 #include <cstddef>
 #include <memory>
 #include <string>

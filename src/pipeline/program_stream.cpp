@@ -90,7 +90,8 @@ Status ProgramStream::take(const program::CanonicalMove& move) {
 void ProgramStream::read() {
   auto program = program::read_part_program(
       text_->text(), path_,
-      interpret_options_for(machine_, options_, [this](const program::CanonicalMove& move) { return take(move); }));
+      interpret_options_for(machine_, options_,
+                            [this](const program::CanonicalMove& move) { return take(move); }));
   std::lock_guard lock(mutex_);
   if (program) {
     if (header_ != nullptr) *header_ = std::move(*program);
