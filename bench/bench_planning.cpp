@@ -3,6 +3,8 @@
 //   Interpret     G-code text → canonical moves
 //   Plan          interpret + path with corner blends + speed profile (IK and limits at every sample)
 //   ServoOutput   the planned motion at 1 kHz: filter, path evaluation and IK per tick (no files written)
+//   Streamed      the same through the plan's look-ahead window as pkm plan runs it: the plan made once to
+//                 its end keeping nothing, then again while the servo stream pulls and releases it
 //   SpeedProfile  the speed passes alone on the plan's samples: over the whole program at once (erosion,
 //                 forward, backward) against through the default look-ahead window
 // Counters: blocks/s, ticks/s, real-time factor (motion seconds per compute second) and peak memory.
@@ -19,6 +21,7 @@
 #include "io/machine_file.hpp"
 #include "planning/lookahead_profile.hpp"
 #include "planning/motion_plan.hpp"
+#include "planning/plan_producer.hpp"
 #include "planning/servo_stream.hpp"
 #include "program/part_program.hpp"
 
@@ -159,6 +162,33 @@ void BM_ServoOutput(benchmark::State& state) {
   state.counters["motion_s"] = plan->duration_s;
 }
 BENCHMARK(BM_ServoOutput)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_ServoOutputStreamed(benchmark::State& state) {
+  auto program = program::interpret_gcode(long_program(), "long.ngc", start_options());
+  long ticks = 0;
+  std::size_t peak_samples = 0, peak_segments = 0, samples = 0;
+  for (auto _ : state) {
+    auto streamed = planning::start_streamed_plan(machine(), *program, {});
+    if (!streamed) {
+      state.SkipWithError(streamed.error().message.c_str());
+      return;
+    }
+    planning::ServoStream stream((*streamed)->plan, machine(), (*streamed)->source.get());
+    planning::ServoTick tick;
+    ticks = 0;
+    while (stream.next(tick)) ++ticks;
+    benchmark::DoNotOptimize(tick);
+    peak_samples = (*streamed)->source->peak_samples();
+    peak_segments = (*streamed)->source->peak_segments();
+    samples = (*streamed)->plan.statistics.samples;
+  }
+  state.counters["ticks_per_s"] =
+      benchmark::Counter(static_cast<double>(ticks), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["samples"] = static_cast<double>(samples);
+  state.counters["peak_window_samples"] = static_cast<double>(peak_samples);
+  state.counters["peak_window_segments"] = static_cast<double>(peak_segments);
+}
+BENCHMARK(BM_ServoOutputStreamed)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 /// The plan's samples and the move of each, planned once for both speed-profile benchmarks.
 struct ProfileInput {

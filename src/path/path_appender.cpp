@@ -28,16 +28,24 @@ double segment_speed_limit(const CanonicalMove& move, const Curve& curve, const 
   return std::min(speed, cap);
 }
 
+/// The platform rotation at the program's start: its A B C.
+Eigen::Quaterniond start_rotation(const program::CanonicalProgram& program, const PathFrame& frame) {
+  CanonicalMove start_move;
+  start_move.end_abc_deg = program.start_abc_deg;
+  return program_rotation(start_move, frame);
+}
+
 }  // namespace
 
 PathAppender::PathAppender(std::string source, const program::CanonicalProgram& program,
                            const PathFrame& frame, const PathOptions& options, Path& path)
-    : source_(std::move(source)), frame_(frame), options_(options), path_(path) {
-  tool_axis_platform_ = frame.reference_rotation.conjugate() * Eigen::Vector3d::UnitZ();
-  CanonicalMove start_move;
-  start_move.end_abc_deg = program.start_abc_deg;
-  rotation_ = program_rotation(start_move, frame);
-  controlled_ = program.start_mm + frame.program_origin_mm;  // tool length 0 at the start
+    : source_(std::move(source)),
+      frame_(frame),
+      options_(options),
+      path_(path),
+      tool_axis_platform_(frame.reference_rotation.conjugate() * Eigen::Vector3d::UnitZ()),
+      rotation_(start_rotation(program, frame)),
+      controlled_(program.start_mm + frame.program_origin_mm) {  // tool length 0 at the start
   path_.start = {controlled_, rotation_};
 }
 

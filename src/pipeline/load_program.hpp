@@ -27,7 +27,7 @@ struct ProgramOptions {
 /// The interpreter's options for `options`, starting at program zero (as `pkm interpret` and rs274 do).
 program::InterpretOptions interpret_options(const ProgramOptions& options);
 
-/// interpret_options for `machine`: starting where the machine's programs start, the moves to `sink` if given.
+/// interpret_options for `machine`: starting where its programs start, the moves to `sink` if given.
 program::InterpretOptions interpret_options_for(const Machine& machine, const ProgramOptions& options,
                                                 program::MoveSink sink = {});
 

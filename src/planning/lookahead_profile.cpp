@@ -124,12 +124,7 @@ void LookaheadProfile::drop_history() {
   std::size_t drop = static_cast<std::size_t>(kept - window_.s.begin());
   drop = std::min(drop == 0 ? 0 : drop - 1, first_waiting_ - 1);
   if (drop < kDropAtLeast || 2 * drop < window_.size()) return;
-  erase_front(window_.s, drop);
-  erase_front(window_.speed_cap, drop);
-  erase_front(window_.accel_cap, drop);
-  erase_front(window_.speed, drop);
-  erase_front(window_.hold_s, drop);
-  erase_front(window_.stop, drop);
+  window_.erase_front(drop);
   erase_front(raw_speed_cap_, drop);
   erase_front(raw_accel_cap_, drop);
   erase_front(move_, drop);

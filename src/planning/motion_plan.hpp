@@ -9,6 +9,7 @@
 #include "core/result.hpp"
 #include "machine/machine.hpp"
 #include "path/path.hpp"
+#include "path/path_builder.hpp"
 #include "planning/speed_profile.hpp"
 #include "program/canonical_program.hpp"
 
@@ -82,5 +83,8 @@ struct ProgramStart {
   Eigen::Vector3d start_abc_deg;
 };
 ProgramStart program_start(const Machine& machine);
+
+/// How program coordinates sit in `machine` (its program origin, home rotation, planar or not) for the path.
+path::PathFrame program_frame(const Machine& machine);
 
 }  // namespace pkm::planning

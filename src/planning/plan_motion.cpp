@@ -14,6 +14,14 @@ ProgramStart program_start(const Machine& machine) {
   return start;
 }
 
+path::PathFrame program_frame(const Machine& machine) {
+  path::PathFrame frame;
+  frame.program_origin_mm = machine.motion.program_origin_mm;
+  frame.reference_rotation = Eigen::Quaterniond(machine.mechanism->home().rotation);
+  frame.planar = machine.mechanism->is_planar();
+  return frame;
+}
+
 Result<MotionPlan> plan_motion(const Machine& machine, const program::CanonicalProgram& program,
                                const PlanOptions& options) {
   MotionPlan plan;

@@ -46,14 +46,6 @@ Status check_options(const PlanOptions& options) {
   return ok_status();
 }
 
-path::PathFrame path_frame(const Machine& machine) {
-  path::PathFrame frame;
-  frame.program_origin_mm = machine.motion.program_origin_mm;
-  frame.reference_rotation = Eigen::Quaterniond(machine.mechanism->home().rotation);
-  frame.planar = machine.mechanism->is_planar();
-  return frame;
-}
-
 path::PathOptions path_options(const MotionSettings& motion, const PlanOptions& options) {
   path::PathOptions path_options;
   path_options.rapid_mm_s = motion.rapid_mm_min / 60.0;
@@ -141,7 +133,7 @@ Result<std::unique_ptr<PlanProducer>> PlanProducer::start(const Machine& machine
 
   const int lines = moves->line_count();
   std::unique_ptr<PlanProducer> producer(new PlanProducer(machine, program, std::move(moves), options, plan));
-  const path::PathFrame frame = path_frame(machine);
+  const path::PathFrame frame = program_frame(machine);
   const SamplingSettings sampling = sampling_settings(options, plan, window_s, lines);
   producer->stages_.reset(new Stages{CommandedCoordinateCheck(machine, program),
                                      path::PathAppender(program.source, program, frame, along, plan.path),
@@ -300,15 +292,9 @@ void PlanProducer::release(std::size_t sample, int segment) {
     const std::size_t keep_from = std::min(sample, samples.first + samples.size() - 1);
     const std::size_t drop = keep_from > samples.first ? keep_from - samples.first : 0;
     if (drop >= kReleaseAtLeast && 2 * drop >= samples.size()) {
-      erase_front(samples.s, drop);
-      erase_front(samples.speed_cap, drop);
-      erase_front(samples.accel_cap, drop);
-      erase_front(samples.speed, drop);
-      erase_front(samples.hold_s, drop);
-      erase_front(samples.stop, drop);
+      samples.erase_front(drop);
       erase_front(plan_.sample_segment, drop);
       erase_front(plan_.timed.time_s, drop);
-      samples.first += drop;
     }
   }
   int keep_segment = std::min(segment, stages_->sampler.first_needed_segment());

@@ -18,6 +18,19 @@ void ProfileSamples::resize(std::size_t n) {
   stop.resize(n);
 }
 
+void ProfileSamples::erase_front(std::size_t count) {
+  const auto erase = [count](auto& values) {
+    values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(count));
+  };
+  erase(s);
+  erase(speed_cap);
+  erase(accel_cap);
+  erase(speed);
+  erase(hold_s);
+  erase(stop);
+  first += count;
+}
+
 void plan_speeds(ProfileSamples& p) {
   const std::size_t n = p.size();
   if (n == 0) return;

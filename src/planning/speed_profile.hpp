@@ -26,6 +26,8 @@ struct ProfileSamples {
 
   std::size_t size() const { return s.size(); }
   void resize(std::size_t n);
+  /// Forgets the first `count` samples (a window moving along the path): `first` grows by `count`.
+  void erase_front(std::size_t count);
 };
 
 /// Forward and backward passes: fills `speed` from the caps (v = 0 at the first and last sample).

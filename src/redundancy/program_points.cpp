@@ -7,19 +7,12 @@
 #include "core/rotation.hpp"
 #include "core/units.hpp"
 #include "path/curve.hpp"
+#include "planning/motion_plan.hpp"
 
 namespace pkm::redundancy {
 
 using program::CanonicalMove;
 using program::MoveKind;
-
-path::PathFrame program_frame(const Machine& machine) {
-  path::PathFrame frame;
-  frame.program_origin_mm = machine.motion.program_origin_mm;
-  frame.reference_rotation = Eigen::Quaterniond(machine.mechanism->home().rotation);
-  frame.planar = machine.mechanism->is_planar();
-  return frame;
-}
 
 namespace {
 
@@ -129,7 +122,7 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
                       fmt::format("path step: must be a positive length in mm, got {}", step_mm));
   }
   ProgramPoints out;
-  out.frame = program_frame(machine);
+  out.frame = planning::program_frame(machine);
   const path::PathFrame& frame = out.frame;
   const int move_count = static_cast<int>(program.moves.size());
   out.parts.assign(move_count, 0);
