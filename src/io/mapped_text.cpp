@@ -29,13 +29,6 @@ std::size_t page_size() {
   return size;
 }
 
-bool has_lone_carriage_return(std::string_view text) {
-  for (std::size_t i = text.find('\r'); i != std::string_view::npos; i = text.find('\r', i + 1)) {
-    if (i + 1 == text.size() || text[i + 1] != '\n') return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 Result<std::unique_ptr<MappedText>> MappedText::open(const std::string& path, std::string_view what) {
@@ -64,13 +57,13 @@ Result<std::unique_ptr<MappedText>> MappedText::open(const std::string& path, st
   static constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
   if (mapped->text_.substr(0, kByteOrderMark.size()) == kByteOrderMark)
     mapped->text_.remove_prefix(kByteOrderMark.size());
-  if (has_lone_carriage_return(mapped->text_)) {
+  if (!mapped->index_lines()) {  // lone carriage returns: read whole and normalised instead
     auto whole = read_text_input(path, what);
     if (!whole) return whole.error();
     mapped->whole_ = std::move(*whole);
     mapped->text_ = mapped->whole_;
+    mapped->index_lines();
   }
-  mapped->index_lines();
   return mapped;
 }
 
@@ -78,20 +71,27 @@ MappedText::~MappedText() {
   if (mapping_ != nullptr) ::munmap(mapping_, mapped_bytes_);
 }
 
-void MappedText::index_lines() {
+bool MappedText::index_lines() {
   line_offsets_.assign(1, 0);
   long lines = 1;
-  std::size_t released = 0;
-  for (std::size_t at = text_.find('\n'); at != std::string_view::npos; at = text_.find('\n', at + 1)) {
-    if (at + 1 < text_.size() && lines % kIndexEvery == 0) line_offsets_.push_back(at + 1);
-    if (at + 1 < text_.size()) ++lines;
-    if (at - released > kIndexReleaseBytes) {
-      keep_around(at);
-      released = at;
+  bool lone_carriage_return = false;
+  // In pieces, each given back once scanned: the whole file is never resident at once.
+  for (std::size_t begin = 0; begin < text_.size(); begin += kIndexReleaseBytes) {
+    const std::string_view piece = text_.substr(begin, kIndexReleaseBytes);
+    for (std::size_t at = piece.find('\n'); at != std::string_view::npos; at = piece.find('\n', at + 1)) {
+      const std::size_t next = begin + at + 1;
+      if (next >= text_.size()) break;
+      if (lines % kIndexEvery == 0) line_offsets_.push_back(next);
+      ++lines;
     }
+    for (std::size_t at = piece.find('\r'); at != std::string_view::npos; at = piece.find('\r', at + 1)) {
+      if (begin + at + 1 == text_.size() || text_[begin + at + 1] != '\n') lone_carriage_return = true;
+    }
+    keep_around(begin);
   }
   line_count_ = static_cast<int>(std::min<long>(lines, std::numeric_limits<int>::max()));
   keep_around(0);
+  return !lone_carriage_return || !whole_.empty();
 }
 
 std::size_t MappedText::offset_near_line(int line) const {

@@ -33,7 +33,8 @@ class MappedText {
 
  private:
   MappedText() = default;
-  void index_lines();
+  /// Indexes the lines; false where the text has a lone carriage return (it must be read whole).
+  bool index_lines();
 
   void* mapping_ = nullptr;
   std::size_t mapped_bytes_ = 0;
