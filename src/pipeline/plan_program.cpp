@@ -117,7 +117,8 @@ Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& jo
   if (job.keep_plan) {
     auto whole = planning::plan_motion(machine, *program, options);
     if (!whole) return whole.error();
-    planned.plan = std::make_unique<planning::StreamedPlan>(std::move(*whole), nullptr);
+    planned.plan = std::make_unique<planning::StreamedPlan>();
+    planned.plan->plan = std::move(*whole);
   } else {
     auto streamed = planning::start_streamed_plan(machine, *program, options);
     if (!streamed) return streamed.error();
