@@ -5,8 +5,13 @@
 
 #include <bit>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <future>
+#include <memory>
+#include <mutex>
+#include <thread>
 
 #include "formats/hdf5_chunk_filter.hpp"
 #include "formats/hdf5_handle.hpp"
@@ -99,6 +104,52 @@ FilteredChunk filter_chunk(long first_row, const std::vector<std::vector<double>
   return chunk;
 }
 
+/// The thread a table's chunks are filtered on, for the table's whole life: one thread, not one per chunk
+/// (a thread per chunk made the allocator spread the chunks over new arenas, and the memory grew with the
+/// run). One chunk at a time: the table takes each result before it hands on the next.
+class ChunkFilterThread {
+ public:
+  ChunkFilterThread() : thread_([this] { serve(); }) {}
+  ~ChunkFilterThread() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+  }
+  std::future<FilteredChunk> submit(std::function<FilteredChunk()> work) {
+    std::packaged_task<FilteredChunk()> task(std::move(work));
+    std::future<FilteredChunk> result = task.get_future();
+    {
+      std::lock_guard lock(mutex_);
+      task_ = std::move(task);
+    }
+    wake_.notify_one();
+    return result;
+  }
+
+ private:
+  void serve() {
+    for (;;) {
+      std::packaged_task<FilteredChunk()> task;
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [this] { return stopping_ || task_.valid(); });
+        if (!task_.valid()) return;
+        task = std::move(task_);
+      }
+      task();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::packaged_task<FilteredChunk()> task_;
+  bool stopping_ = false;
+  std::thread thread_;
+};
+
 struct Hdf5Table::State {
   std::string path, name;
   std::vector<Hdf5Column> columns;
@@ -110,6 +161,7 @@ struct Hdf5Table::State {
   /// The full chunk being filtered while the next one fills: the run's writing costs its ticks the time
   /// of copying their values, and the deflating goes to the other core.
   std::future<FilteredChunk> filtering;
+  std::unique_ptr<ChunkFilterThread> filter_thread;
 
   ~State() {
     if (filtering.valid()) filtering.wait();
@@ -122,7 +174,8 @@ struct Hdf5Table::State {
     if (Status stored = store_filtered(); !stored) return stored;
     std::vector<std::vector<double>> values(columns.size(), std::vector<double>(chunk_rows));
     values.swap(buffered);
-    filtering = std::async(std::launch::async, [first_row = written, values = std::move(values), this] {
+    if (!filter_thread) filter_thread = std::make_unique<ChunkFilterThread>();
+    filtering = filter_thread->submit([first_row = written, values = std::move(values), this] {
       return filter_chunk(first_row, values, columns);
     });
     written += pending;
@@ -215,17 +268,18 @@ Result<Hdf5File> Hdf5File::create(const std::string& path) {
   if (!access.valid() || H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG) < 0)
     return hdf5_error(path, "HDF5 could not set up the file");
   // The metadata cache (the chunk index of every column) grows by default up to 32 MB as the file does: a
-  // run's memory would grow with its length. Kept small; the columns are written in order, so little of
-  // the index is ever touched again.
-  // HDF5 keeps freed blocks in free lists of its own, unbounded by default: bounded too.
+  // run's memory would grow with its length. Fixed at 2 MB; the columns are written in order, so little of
+  // the index is ever touched again. HDF5 keeps freed blocks in free lists of its own, unbounded by default:
+  // bounded too.
   H5set_free_list_limits(1 << 20, 1 << 18, 1 << 20, 1 << 18, 1 << 20, 1 << 18);
   H5AC_cache_config_t cache{};
   cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
   if (H5Pget_mdc_config(access.get(), &cache) < 0) return hdf5_error(path, "HDF5 could not set up the file");
   cache.set_initial_size = true;
-  cache.initial_size = std::size_t{1} << 20;
-  cache.min_size = std::size_t{1} << 20;
-  cache.max_size = std::size_t{4} << 20;
+  cache.initial_size = cache.min_size = cache.max_size = std::size_t{2} << 20;
+  cache.incr_mode = H5C_incr__off;
+  cache.flash_incr_mode = H5C_flash_incr__off;
+  cache.decr_mode = H5C_decr__off;
   if (H5Pset_mdc_config(access.get(), &cache) < 0) return hdf5_error(path, "HDF5 could not set up the file");
   // The 1.10 format indexes a column's chunks with an extensible array, not a B-tree that grows in memory.
   if (H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST) < 0)

@@ -96,9 +96,8 @@ struct PlanProducer::Stages {
   path::PathAppender appender;
   PathSampler sampler;
   LookaheadProfile lookahead;
-  path::PathFrame frame;
+  path::PathFrame frame;  ///< for the whole path built again where a refusal lists every excursion
   path::PathOptions path_options;
-  SamplingSettings sampling;
 };
 
 PlanProducer::PlanProducer(const Machine& machine, const program::CanonicalProgram& program,
@@ -139,7 +138,7 @@ Result<std::unique_ptr<PlanProducer>> PlanProducer::start(const Machine& machine
                                      path::PathAppender(program.source, program, frame, along, plan.path),
                                      PathSampler(machine, program.source, plan.path, sampling),
                                      LookaheadProfile(lookahead_settings(options, motion, window_s)), frame,
-                                     along, sampling});
+                                     along});
   producer->tick_bound_s_ = static_cast<double>(options.max_ticks) * plan.period_s;
   report_progress(options.progress, "planning", 0.0);
   return producer;
