@@ -21,6 +21,7 @@ RunMonitor::RunMonitor(const MotionPlan& plan, const Machine& machine, double ov
   summary_.min_position.fill(std::numeric_limits<double>::infinity());
   summary_.max_position.fill(-std::numeric_limits<double>::infinity());
   fk_guess_ = machine.mechanism->home();
+  if (evaluate_path_error) fk_workspace_ = machine.mechanism->make_fk_workspace();
   previous_velocity_ = ActuatorVector::Zero(machine.mechanism->actuator_count());
   last_accel_ = ActuatorVector::Zero(machine.mechanism->actuator_count());
 }
@@ -104,8 +105,10 @@ void RunMonitor::add_feed_ratio(const ServoTick& tick) {
 void RunMonitor::add_path_error(const ServoTick& tick) {
   // The drives move linearly between setpoints: the largest deviation is near mid-period.
   const ActuatorVector middle = 0.5 * (tick.actuators + previous_.actuators);
-  auto fk = machine_.mechanism->forward(middle, fk_guess_);
-  if (fk) {
+  ErrorCode failure = ErrorCode::not_converged;
+  if (machine_.mechanism->forward_warm_quiet(middle, fk_guess_, FkOptions{}, *fk_workspace_, fk_solution_,
+                                             failure)) {
+    const FkSolution* fk = &fk_solution_;
     fk_guess_ = fk->pose;
     int hint = previous_.segment;
     const double s_mid = 0.5 * (tick.s + previous_.s);

@@ -6,6 +6,7 @@
 // between two setpoints deviates most from the curved actuator law (Smirnov 2019, §5.2.2–5.2.3).
 #include <array>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include "machine/machine.hpp"
@@ -81,6 +82,11 @@ class RunMonitor {
   std::array<int, kMaxActuators> direction_{};
   double previous_path_speed_ = 0.0, previous_path_accel_ = 0.0;
   Pose fk_guess_;
+  /// The forward kinematics' state carried from tick to tick (the previous factorisation and the
+  /// extrapolated start): the same continuation from the previous answer, without a fresh factorisation and a
+  /// cold start every period.
+  std::unique_ptr<FkWorkspace> fk_workspace_;
+  FkSolution fk_solution_;
   double last_feed_cap_ = 0.0;
   double last_path_error_mm_ = std::numeric_limits<double>::quiet_NaN();
   double last_orientation_error_deg_ = std::numeric_limits<double>::quiet_NaN();
