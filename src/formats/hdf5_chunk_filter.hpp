@@ -7,12 +7,34 @@
 // the same format zlib's compress2 writes, faster). Readers undo both as for any chunk the library wrote.
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <memory>
+
+struct libdeflate_compressor;
 
 namespace pkm::formats {
 
-/// Shuffles `count` little-endian elements of `element_bytes` bytes each, then deflates them at `level`.
-std::vector<std::uint8_t> shuffle_deflate(const void* elements, std::size_t count, std::size_t element_bytes,
-                                          int level);
+/// Bytes that keep their storage from one chunk to the next (no clearing, no reallocation once large
+/// enough): a run writes millions of chunks.
+struct ChunkBytes {
+  std::unique_ptr<std::uint8_t[]> data;
+  std::size_t capacity = 0;
+  std::size_t size = 0;
+  void reserve(std::size_t bytes);
+};
+
+/// A compressor and its shuffle buffer, made once and used for every chunk of a table (on one thread).
+class ChunkDeflater {
+ public:
+  explicit ChunkDeflater(int level);
+  ~ChunkDeflater();
+  ChunkDeflater(const ChunkDeflater&) = delete;
+  ChunkDeflater& operator=(const ChunkDeflater&) = delete;
+  /// Shuffles `count` little-endian elements of `element_bytes` bytes each, then deflates them into `out`.
+  void shuffle_deflate(const void* elements, std::size_t count, std::size_t element_bytes, ChunkBytes& out);
+
+ private:
+  libdeflate_compressor* compressor_ = nullptr;
+  ChunkBytes shuffled_;
+};
 
 }  // namespace pkm::formats

@@ -80,29 +80,31 @@ double round_to_significant_bits(double value, int bits) {
   return std::ldexp(std::nearbyint(std::ldexp(mantissa, bits)), exponent - bits);
 }
 
-/// A full chunk of every column, shuffled and deflated on a thread of its own (hdf5_chunk_filter.hpp).
-struct FilteredChunk {
+/// A full chunk of every column, shuffled and deflated on the table's filter thread (hdf5_chunk_filter.hpp).
+/// One per table, used again for every chunk: its buffers keep their storage, so a long run allocates (and
+/// clears) nothing per chunk.
+struct ChunkJob {
   long first_row = 0;
-  std::vector<std::vector<std::uint8_t>> columns;
-};
+  std::vector<std::vector<double>> values;  ///< a column each
+  std::vector<ChunkBytes> deflated;         ///< a column each
+  std::vector<std::int64_t> integers;       ///< an integer column's values, converted
+  std::unique_ptr<ChunkDeflater> deflater;
 
-FilteredChunk filter_chunk(long first_row, const std::vector<std::vector<double>>& values,
-                           const std::vector<Hdf5Column>& columns) {
-  static_assert(std::endian::native == std::endian::little, "the chunks are stored little-endian as is");
-  FilteredChunk chunk{first_row, {}};
-  std::vector<std::int64_t> integers;
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    const std::vector<double>& column = values[c];
-    if (columns[c].integer) {
-      integers.assign(column.begin(), column.end());
-      chunk.columns.push_back(
-          shuffle_deflate(integers.data(), integers.size(), sizeof(std::int64_t), kDeflate));
-    } else {
-      chunk.columns.push_back(shuffle_deflate(column.data(), column.size(), sizeof(double), kDeflate));
+  void deflate(const std::vector<Hdf5Column>& columns) {
+    static_assert(std::endian::native == std::endian::little, "the chunks are stored little-endian as is");
+    if (!deflater) deflater = std::make_unique<ChunkDeflater>(kDeflate);
+    deflated.resize(columns.size());
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const std::vector<double>& column = values[c];
+      if (columns[c].integer) {
+        integers.assign(column.begin(), column.end());
+        deflater->shuffle_deflate(integers.data(), integers.size(), sizeof(std::int64_t), deflated[c]);
+      } else {
+        deflater->shuffle_deflate(column.data(), column.size(), sizeof(double), deflated[c]);
+      }
     }
   }
-  return chunk;
-}
+};
 
 /// The thread a table's chunks are filtered on, for the table's whole life: one thread, not one per chunk
 /// (a thread per chunk made the allocator spread the chunks over new arenas, and the memory grew with the
@@ -118,9 +120,9 @@ class ChunkFilterThread {
     wake_.notify_one();
     thread_.join();
   }
-  std::future<FilteredChunk> submit(std::function<FilteredChunk()> work) {
-    std::packaged_task<FilteredChunk()> task(std::move(work));
-    std::future<FilteredChunk> result = task.get_future();
+  std::future<void> submit(std::function<void()> work) {
+    std::packaged_task<void()> task(std::move(work));
+    std::future<void> result = task.get_future();
     {
       std::lock_guard lock(mutex_);
       task_ = std::move(task);
@@ -132,7 +134,7 @@ class ChunkFilterThread {
  private:
   void serve() {
     for (;;) {
-      std::packaged_task<FilteredChunk()> task;
+      std::packaged_task<void()> task;
       {
         std::unique_lock lock(mutex_);
         wake_.wait(lock, [this] { return stopping_ || task_.valid(); });
@@ -145,7 +147,7 @@ class ChunkFilterThread {
 
   std::mutex mutex_;
   std::condition_variable wake_;
-  std::packaged_task<FilteredChunk()> task_;
+  std::packaged_task<void()> task_;
   bool stopping_ = false;
   std::thread thread_;
 };
@@ -160,7 +162,8 @@ struct Hdf5Table::State {
   long chunk_rows = 0, written = 0, pending = 0;
   /// The full chunk being filtered while the next one fills: the run's writing costs its ticks the time
   /// of copying their values, and the deflating goes to the other core.
-  std::future<FilteredChunk> filtering;
+  std::future<void> filtering;
+  ChunkJob job;  ///< the chunk being filtered; its buffers are the next chunk's once it is stored
   std::unique_ptr<ChunkFilterThread> filter_thread;
 
   ~State() {
@@ -172,12 +175,11 @@ struct Hdf5Table::State {
   /// Hands the full chunk to a thread of its own after writing the one before it.
   Status filter_full_chunk() {
     if (Status stored = store_filtered(); !stored) return stored;
-    std::vector<std::vector<double>> values(columns.size(), std::vector<double>(chunk_rows));
-    values.swap(buffered);
+    if (job.values.empty()) job.values.assign(columns.size(), std::vector<double>(chunk_rows));
+    job.values.swap(buffered);
+    job.first_row = written;
     if (!filter_thread) filter_thread = std::make_unique<ChunkFilterThread>();
-    filtering = filter_thread->submit([first_row = written, values = std::move(values), this] {
-      return filter_chunk(first_row, values, columns);
-    });
+    filtering = filter_thread->submit([this] { job.deflate(columns); });
     written += pending;
     pending = 0;
     return ok_status();
@@ -187,18 +189,17 @@ struct Hdf5Table::State {
   /// applied).
   Status store_filtered() {
     if (!filtering.valid()) return ok_status();
-    FilteredChunk chunk;
     try {
-      chunk = filtering.get();
+      filtering.get();
     } catch (const std::exception& e) {
       return hdf5_error(path, fmt::format("cannot compress {}: {}", name, e.what()));
     }
-    const hsize_t offset[1] = {static_cast<hsize_t>(chunk.first_row)};
-    const hsize_t size[1] = {static_cast<hsize_t>(chunk.first_row + chunk_rows)};
+    const hsize_t offset[1] = {static_cast<hsize_t>(job.first_row)};
+    const hsize_t size[1] = {static_cast<hsize_t>(job.first_row + chunk_rows)};
     for (std::size_t c = 0; c < datasets.size(); ++c) {
-      const std::vector<std::uint8_t>& bytes = chunk.columns[c];
+      const ChunkBytes& bytes = job.deflated[c];
       if (H5Dset_extent(datasets[c], size) < 0 ||
-          H5Dwrite_chunk(datasets[c], H5P_DEFAULT, 0, offset, bytes.size(), bytes.data()) < 0)
+          H5Dwrite_chunk(datasets[c], H5P_DEFAULT, 0, offset, bytes.size, bytes.data.get()) < 0)
         return hdf5_error(path, fmt::format("cannot write {}/{}", name, columns[c].name));
     }
     return ok_status();

@@ -58,13 +58,34 @@ nlohmann::json summary_with_program(const planning::MotionPlan& plan, const Mach
   return summary;
 }
 
+/// The program planned: read whole and planned whole (a law rewrites it, or the caller keeps the plan), or
+/// read and planned as it is read (memory bounded by the look-ahead window).
+struct ProgramPlan {
+  /// Streamed: without its moves. On the heap: the plan's source reads it where it is.
+  std::unique_ptr<program::CanonicalProgram> program;
+  /// Streamed: what the reader learns as it reads (the places of the moves, the program's format and notes),
+  /// whole once the plan has taken the last move. Before `plan`: its reader writes them until it stops.
+  std::unique_ptr<SubroutineLines> places;
+  std::unique_ptr<program::CanonicalProgram> header;
+  std::unique_ptr<planning::StreamedPlan> plan;
+  nlohmann::json called;  ///< subroutine_lines
+
+  /// After the stream: the program's notes, format and places from the reader.
+  void finish_reading() {
+    if (!header) return;
+    called = places->json(header->files);
+    program->format = header->format;
+    program->notes = header->notes;
+  }
+};
+
 /// The planned motion streamed once: to the analyses the job asks for, the output files (when the job has a
 /// folder) and the job's listener. The files are staged in `outputs`, for the caller to commit.
-Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& job,
-                                         const planning::MotionPlan& plan, planning::PlanProducer* source,
-                                         const std::vector<std::string>& notes, const nlohmann::json& called,
+Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& job, ProgramPlan& planned,
                                          OutputSet& outputs) {
-  planning::StreamOptions stream{job.plan.override_pct, job.evaluate_path_error, job.progress, source};
+  const planning::MotionPlan& plan = planned.plan->plan;
+  planning::StreamOptions stream{job.plan.override_pct, job.evaluate_path_error, job.progress,
+                                 planned.plan->source.get()};
   const analyses::PlanAnalysisOptions wanted{job.dynamics, job.elastic, job.stiffness, &job.dynamics_load};
   std::optional<formats::PlanFiles> files;
   std::vector<planning::TickObserver*> observers;
@@ -79,21 +100,14 @@ Result<analyses::PlanRun> stream_planned(const Machine& machine, const PlanJob& 
   if (job.listener != nullptr) observers.push_back(job.listener);
   auto run = analyses::stream_plan_with_analyses(plan, machine, stream, wanted, sinks, observers);
   if (!run) return run.error();
+  planned.finish_reading();
   if (files) {
-    const nlohmann::json summary = summary_with_program(plan, machine, *run, notes, called);
+    const nlohmann::json summary =
+        summary_with_program(plan, machine, *run, planned.program->notes, planned.called);
     if (Status finished = files->finish(summary); !finished) return finished.error();
   }
   return run;
 }
-
-/// The program planned: read whole and planned whole (a law rewrites it, or the caller keeps the plan), or
-/// read and planned as it is read (memory bounded by the look-ahead window).
-struct ProgramPlan {
-  /// Streamed: without its moves. On the heap: the plan's source reads it where it is.
-  std::unique_ptr<program::CanonicalProgram> program;
-  std::unique_ptr<planning::StreamedPlan> plan;
-  nlohmann::json called;  ///< subroutine_lines
-};
 
 Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& job,
                                        const planning::PlanOptions& options, PlanProgramResult& result) {
@@ -128,34 +142,25 @@ Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& jo
   return planned;
 }
 
-/// The program read on a thread of its own, twice: once for the plan's length, statistics and refusals
-/// (and the program's notes and places), then again as the ticks stream.
+/// The program read on a thread of its own while the plan is made from its moves and the ticks stream.
 Result<ProgramPlan> plan_streamed_program(const Machine& machine, const PlanJob& job,
-                                          const planning::PlanOptions& options, PlanProgramResult& result) {
+                                          const planning::PlanOptions& options) {
   report_progress(job.progress, "reading the program");
-  const auto started = std::chrono::steady_clock::now();
   ProgramPlan planned;
   planned.program = std::make_unique<program::CanonicalProgram>();
   planned.program->source = job.program_path;
   const planning::ProgramStart start = planning::program_start(machine);
   planned.program->start_mm = start.start_mm;
   planned.program->start_abc_deg = start.start_abc_deg;
-  SubroutineLines places;
-  program::CanonicalProgram header;
-  int passes = 0;
+  planned.places = std::make_unique<SubroutineLines>();
+  planned.header = std::make_unique<program::CanonicalProgram>();
   const planning::MoveSourceFactory read = [&]() -> Result<std::unique_ptr<planning::MoveSource>> {
-    const bool first = passes++ == 0;
-    return std::unique_ptr<planning::MoveSource>(
-        std::make_unique<ProgramStream>(machine, job.program_path, job.program_options,
-                                        first ? &places : nullptr, first ? &header : nullptr));
+    return std::unique_ptr<planning::MoveSource>(std::make_unique<ProgramStream>(
+        machine, job.program_path, job.program_options, planned.places.get(), planned.header.get()));
   };
   auto streamed = planning::start_streamed_plan(machine, *planned.program, read, options);
   if (!streamed) return streamed.error();
   planned.plan = std::move(*streamed);
-  planned.called = places.json(header.files);
-  planned.program->format = header.format;
-  planned.program->notes = header.notes;
-  result.planning_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return planned;
 }
 
@@ -166,17 +171,18 @@ Result<PlanProgramResult> plan_program(const Machine& machine, const PlanJob& jo
   planning::PlanOptions plan_options = job.plan;
   plan_options.progress = job.progress;
   auto planned = job.law || job.keep_plan ? plan_whole_program(machine, job, plan_options, result)
-                                          : plan_streamed_program(machine, job, plan_options, result);
+                                          : plan_streamed_program(machine, job, plan_options);
   if (!planned) return planned.error();
   const planning::MotionPlan& plan = planned->plan->plan;
-  const program::CanonicalProgram* program = planned->program.get();
-  const nlohmann::json& called = planned->called;
-  const std::string& format = program->format;
 
   // The tables, the summary and the report replace the previous run's together or not at all.
   OutputSet outputs{"plan"};
-  auto run = stream_planned(machine, job, plan, planned->plan->source.get(), program->notes, called, outputs);
+  auto run = stream_planned(machine, job, *planned, outputs);
   if (!run) return run.error();
+  if (planned->plan->source) result.planning_s = planned->plan->source->planning_s();
+  const program::CanonicalProgram* program = planned->program.get();
+  const nlohmann::json& called = planned->called;
+  const std::string& format = program->format;
   if (!job.out_directory.empty()) {
     if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
     if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();

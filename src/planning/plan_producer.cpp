@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -161,6 +162,13 @@ Status PlanProducer::run_to_end(bool keep_whole) {
 }
 
 Status PlanProducer::pump() {
+  const auto started = std::chrono::steady_clock::now();
+  Status pumped = pump_one_move();
+  planning_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return pumped;
+}
+
+Status PlanProducer::pump_one_move() {
   Stages& stages = *stages_;
   auto move = moves_->next();
   if (!move) return move.error();
@@ -187,6 +195,13 @@ Status PlanProducer::pump() {
   if (at_end) stages.lookahead.finish();
   take_planned();
   if (at_end) return finish_plan();
+  // Past the bound on the ticks: refused now, before the ticks reach it, with the whole motion's length
+  // (planned on, without keeping it).
+  if (crossing_line_ != 0 && !measuring_length_) {
+    measuring_length_ = true;
+    if (Status measured = run_to_end(false); !measured) return measured;
+    return too_many_ticks();  // finish_plan refuses it first: the bound is crossed
+  }
   return ok_status();
 }
 
@@ -315,25 +330,13 @@ Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine
                                                           const MoveSourceFactory& moves,
                                                           const PlanOptions& options) {
   auto streamed = std::make_unique<StreamedPlan>();
-  {
-    auto first_pass = moves();
-    if (!first_pass) return first_pass.error();
-    MotionPlan& measured = streamed->plan;
-    auto producer = PlanProducer::start(machine, program, std::move(*first_pass), options, measured);
-    if (!producer) return producer.error();
-    if (Status planned = (*producer)->run_to_end(false); !planned) return planned.error();
-  }
-  const double duration_s = streamed->plan.duration_s;
-  const PlanStatistics statistics = streamed->plan.statistics;
+  auto reader = moves();
+  if (!reader) return reader.error();
   PlanOptions quiet = options;
   quiet.progress = nullptr;  // the stream tells its own progress
-  auto second_pass = moves();
-  if (!second_pass) return second_pass.error();
-  auto source = PlanProducer::start(machine, program, std::move(*second_pass), quiet, streamed->plan);
+  auto source = PlanProducer::start(machine, program, std::move(*reader), quiet, streamed->plan);
   if (!source) return source.error();
   streamed->source = std::move(*source);
-  streamed->plan.duration_s = duration_s;
-  streamed->plan.statistics = statistics;
   return streamed;
 }
 

@@ -41,6 +41,10 @@ class PlanProducer {
   /// Forgets the samples before `sample` and the path before segment `segment` (indices along the whole
   /// plan), keeping what the planning itself still needs.
   void release(std::size_t sample, int segment);
+  /// The lines of the program file (for the progress through it).
+  int line_count() const { return moves_->line_count(); }
+  /// The wall time spent planning (and waiting for the reader's moves) so far.
+  double planning_s() const { return planning_s_; }
   /// The most samples and segments the plan held at once.
   std::size_t peak_samples() const { return peak_samples_; }
   std::size_t peak_segments() const { return peak_segments_; }
@@ -50,6 +54,7 @@ class PlanProducer {
   PlanProducer(const Machine& machine, const program::CanonicalProgram& program,
                std::unique_ptr<MoveSource> moves, const PlanOptions& options, MotionPlan& plan);
   Status pump();
+  Status pump_one_move();
   Error refuse(const Error& first) const;
   void take_planned();
   void append_sample(const PlannedSample& sample, int segment);
@@ -72,12 +77,14 @@ class PlanProducer {
   double slowest_s_ = 0.0;           ///< the longest time between two samples, and its line
   int slowest_line_ = 0;
   std::size_t peak_samples_ = 0, peak_segments_ = 0;
+  bool measuring_length_ = false;  ///< planning on past the bound on the ticks, for the refusal's figures
+  double planning_s_ = 0.0;
 };
 
-/// A plan to stream with memory bounded by the look-ahead window: made once through the window for its
-/// duration, statistics and the refusals that come before any output (the bound on the ticks, the workspace),
-/// then started again as the window `source` extends while the ticks stream (StreamOptions::source). Held by
-/// pointer: the source plans into `plan`.
+/// A plan to stream with memory bounded by the look-ahead window: the window `source` extends while the ticks
+/// stream (StreamOptions::source). Its duration and statistics are known once the source has finished; a
+/// refusal (the bound on the ticks, the workspace) ends the stream, and the caller discards what it wrote.
+/// Held by pointer: the source plans into `plan`.
 struct StreamedPlan {
   MotionPlan plan;
   std::unique_ptr<PlanProducer> source;
@@ -85,7 +92,7 @@ struct StreamedPlan {
 Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
                                                           const program::CanonicalProgram& program,
                                                           const PlanOptions& options);
-/// The same with the moves of each pass from `moves` (a reader of the program file for each).
+/// The same with the moves from `moves` (a reader of the program file).
 Result<std::unique_ptr<StreamedPlan>> start_streamed_plan(const Machine& machine,
                                                           const program::CanonicalProgram& program,
                                                           const MoveSourceFactory& moves,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "planning/plan_producer.hpp"
 #include "planning/run_accuracy.hpp"
 
 namespace pkm::planning {
@@ -19,8 +20,14 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
                                std::span<TickObserver* const> observers) {
   ServoStream stream(plan, machine, options.source);
   RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
+  // Streamed from a source still planning, the ticks are not counted until the plan ends: the progress is
+  // then the share of the program's lines the ticks have passed.
   const long total = stream.tick_count();
-  const long report_every = std::clamp(total / 1000, 1L, 4096L);
+  const long report_every = total > 0 ? std::clamp(total / 1000, 1L, 4096L) : 4096L;
+  const int lines = options.source != nullptr ? std::max(1, options.source->line_count()) : 1;
+  auto fraction_done = [&](const ServoTick& tick) {
+    return total > 0 ? static_cast<double>(tick.index) / total : std::min(1.0, double(tick.line) / lines);
+  };
   for (TickObserver* observer : observers) {
     if (Status started = observer->on_start(total); !started) return started.error();
   }
@@ -33,11 +40,11 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
       if (Status kept = observer->on_tick(tick, monitor); !kept) return kept.error();
     }
     if (options.progress && tick.index % report_every == 0)
-      report_progress(options.progress, "writing the outputs", static_cast<double>(tick.index) / total,
-                      tick.line, tick.index + 1);
+      report_progress(options.progress, "writing the outputs", fraction_done(tick), tick.line,
+                      tick.index + 1);
   }
   if (stream.error()) return *stream.error();
-  report_progress(options.progress, "writing the outputs", 1.0, 0, total);
+  report_progress(options.progress, "writing the outputs", 1.0, 0, stream.tick_count());
   for (TickObserver* observer : observers) {
     if (Status finished = observer->on_finish(); !finished) return finished.error();
   }

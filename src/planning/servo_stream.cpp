@@ -15,7 +15,7 @@ ServoStream::ServoStream(const MotionPlan& plan, const Machine& machine, PlanPro
       source_(source),
       cursor_(plan.samples, plan.timed),
       ring_(static_cast<std::size_t>(plan.filter_ticks), 0.0) {
-  last_tick_ = std::lround(plan.duration_s / plan.period_s);
+  if (source == nullptr || source->finished()) last_tick_ = std::lround(plan.duration_s / plan.period_s);
 }
 
 bool ServoStream::next(ServoTick& tick) {
@@ -24,11 +24,15 @@ bool ServoStream::next(ServoTick& tick) {
   const double t = static_cast<double>(k_) * plan_.period_s;
   if (source_ != nullptr) {
     // What the ticks passed (the monitor still reads the segment of the tick before) goes; then the plan
-    // reaches past this tick.
+    // reaches past this tick, or to its end, which fixes the last tick.
     source_->release(cursor_.index(), hint_);
     if (Status planned = source_->extend_to(t); !planned) {
       error_ = planned.error();
       return false;
+    }
+    if (last_tick_ == kUnknownEnd && source_->finished()) {
+      last_tick_ = std::lround(plan_.duration_s / plan_.period_s);
+      if (k_ > last_tick_) return false;
     }
   }
   const double raw = cursor_.position_at(t);

@@ -12,6 +12,7 @@
 // rest.
 //
 // Per tick: no allocation (the ring buffer is sized once).
+#include <limits>
 #include <vector>
 
 #include "core/result.hpp"
@@ -42,7 +43,8 @@ class ServoStream {
   /// The next tick; false after the last. A failing inverse kinematics (which the planning grid should have
   /// caught) ends the stream with error().
   bool next(ServoTick& tick);
-  long tick_count() const { return last_tick_ + 1; }
+  /// The ticks of the whole motion; 0 while a source is still planning (the end is not known yet).
+  long tick_count() const { return last_tick_ == kUnknownEnd ? 0 : last_tick_ + 1; }
   const std::optional<Error>& error() const { return error_; }
 
  private:
@@ -53,7 +55,8 @@ class ServoStream {
   std::vector<double> ring_;
   double sum_ = 0.0;
   long k_ = 0;
-  long last_tick_ = 0;
+  static constexpr long kUnknownEnd = std::numeric_limits<long>::max();
+  long last_tick_ = kUnknownEnd;
   int hint_ = 0;
   double previous_s_ = 0.0;
   std::optional<Error> error_;

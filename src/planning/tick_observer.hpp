@@ -15,7 +15,8 @@ class TickObserver {
  public:
   virtual ~TickObserver() = default;
   /// Once, before the first tick, with the number of ticks the run will stream (for listeners that keep
-  /// every tick: one allocation up front instead of growing as they come). An error stops the run.
+  /// every tick: one allocation up front instead of growing as they come), or 0 when the plan is still being
+  /// made as the ticks stream and their number is not known yet. An error stops the run.
   virtual Status on_start(long /*tick_count*/) { return ok_status(); }
   /// Every tick in order, after the run monitor measured it (its last_…() values are the tick's). An error
   /// stops the run.
