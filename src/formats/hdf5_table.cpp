@@ -5,14 +5,11 @@
 
 #include <bit>
 #include <cmath>
-#include <condition_variable>
 #include <cstdint>
-#include <functional>
 #include <future>
 #include <memory>
-#include <mutex>
-#include <thread>
 
+#include "formats/chunk_worker.hpp"
 #include "formats/hdf5_chunk_filter.hpp"
 #include "formats/hdf5_handle.hpp"
 
@@ -106,52 +103,6 @@ struct ChunkJob {
   }
 };
 
-/// The thread a table's chunks are filtered on, for the table's whole life: one thread, not one per chunk
-/// (a thread per chunk made the allocator spread the chunks over new arenas, and the memory grew with the
-/// run). One chunk at a time: the table takes each result before it hands on the next.
-class ChunkFilterThread {
- public:
-  ChunkFilterThread() : thread_([this] { serve(); }) {}
-  ~ChunkFilterThread() {
-    {
-      std::lock_guard lock(mutex_);
-      stopping_ = true;
-    }
-    wake_.notify_one();
-    thread_.join();
-  }
-  std::future<void> submit(std::function<void()> work) {
-    std::packaged_task<void()> task(std::move(work));
-    std::future<void> result = task.get_future();
-    {
-      std::lock_guard lock(mutex_);
-      task_ = std::move(task);
-    }
-    wake_.notify_one();
-    return result;
-  }
-
- private:
-  void serve() {
-    for (;;) {
-      std::packaged_task<void()> task;
-      {
-        std::unique_lock lock(mutex_);
-        wake_.wait(lock, [this] { return stopping_ || task_.valid(); });
-        if (!task_.valid()) return;
-        task = std::move(task_);
-      }
-      task();
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::packaged_task<void()> task_;
-  bool stopping_ = false;
-  std::thread thread_;
-};
-
 struct Hdf5Table::State {
   std::string path, name;
   std::vector<Hdf5Column> columns;
@@ -164,7 +115,7 @@ struct Hdf5Table::State {
   /// of copying their values, and the deflating goes to the other core.
   std::future<void> filtering;
   ChunkJob job;  ///< the chunk being filtered; its buffers are the next chunk's once it is stored
-  std::unique_ptr<ChunkFilterThread> filter_thread;
+  std::unique_ptr<ChunkWorker> filter_thread;  ///< one for the table's whole life (chunk_worker.hpp)
 
   ~State() {
     if (filtering.valid()) filtering.wait();
@@ -178,7 +129,7 @@ struct Hdf5Table::State {
     if (job.values.empty()) job.values.assign(columns.size(), std::vector<double>(chunk_rows));
     job.values.swap(buffered);
     job.first_row = written;
-    if (!filter_thread) filter_thread = std::make_unique<ChunkFilterThread>();
+    if (!filter_thread) filter_thread = std::make_unique<ChunkWorker>();
     filtering = filter_thread->submit([this] { job.deflate(columns); });
     written += pending;
     pending = 0;

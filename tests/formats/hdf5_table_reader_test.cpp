@@ -5,11 +5,13 @@
 #include "formats/hdf5_table_reader.hpp"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <random>
 
 #include "formats/hdf5_table.hpp"
 #include "report/table_rows.hpp"
@@ -140,6 +142,118 @@ TEST(Hdf5TableReader, ErrorsNameTheFileAndTheTable) {
   auto text = Hdf5TableReader::open((dir / "text.h5").string(), "path");
   ASSERT_FALSE(text.ok());
   EXPECT_NE(text.error().message.find("text.h5"), std::string::npos) << text.error().message;
+}
+
+// A table another program wrote: columns chunked differently, one of them deflated without the shuffle, one
+// not filtered at all. Such columns are read through HDF5's own pipeline, not as raw chunks.
+void write_foreign_table(const std::string& path, long rows) {
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const hid_t group = H5Gcreate2(file, "path", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {static_cast<hsize_t>(rows)};
+  const int chunks[3] = {10, 64, 0};  // 0: contiguous
+  const char* names[3] = {"a", "b", "c"};
+  for (int c = 0; c < 3; ++c) {
+    const hid_t space = H5Screate_simple(1, dims, nullptr);
+    const hid_t properties = H5Pcreate(H5P_DATASET_CREATE);
+    if (chunks[c] > 0) {
+      const hsize_t chunk[1] = {static_cast<hsize_t>(chunks[c])};
+      H5Pset_chunk(properties, 1, chunk);
+      if (c == 1) H5Pset_shuffle(properties);
+      H5Pset_deflate(properties, 4);
+    }
+    const hid_t dataset =
+        H5Dcreate2(group, names[c], H5T_IEEE_F64LE, space, H5P_DEFAULT, properties, H5P_DEFAULT);
+    std::vector<double> values(static_cast<std::size_t>(rows));
+    for (long r = 0; r < rows; ++r) values[static_cast<std::size_t>(r)] = r * 0.5 + c;
+    H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    H5Dclose(dataset);
+    H5Pclose(properties);
+    H5Sclose(space);
+  }
+  H5Gclose(group);
+  H5Fclose(file);
+}
+
+TEST(Hdf5TableReader, ATableAnotherProgramWroteReadsThroughHdf5sOwnFilters) {
+  const std::string path = (scratch_directory("foreign") / "ticks.h5").string();
+  write_foreign_table(path, 333);
+  auto reader = Hdf5TableReader::open(path, "path", 50);
+  ASSERT_TRUE(reader.ok()) << reader.error().message;
+  std::vector<double> row;
+  long read = 0;
+  for (;;) {
+    auto more = reader->next(row);
+    ASSERT_TRUE(more.ok()) << more.error().message;
+    if (!*more) break;
+    ASSERT_EQ(row, (std::vector<double>{read * 0.5, read * 0.5 + 1, read * 0.5 + 2})) << "row " << read;
+    ++read;
+  }
+  EXPECT_EQ(read, 333);
+}
+
+// Random rows across many chunks, read ahead a chunk at a time, come back as written; a chunk whose stored
+// bytes are damaged is an error naming the file, the table and the rows, not rows of garbage.
+TEST(Hdf5TableReader, ChunksReadAheadComeBackAsWrittenAndADamagedOneIsAnError) {
+  const std::string path = (scratch_directory("damaged") / "ticks.h5").string();
+  const std::vector<Hdf5Column> columns = wide_columns();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> value(-1e3, 1e3);
+  const long rows = 5000, chunk_rows = 256;
+  std::vector<std::vector<double>> written;
+  {
+    auto file = Hdf5File::create(path);
+    ASSERT_TRUE(file.ok());
+    auto table = file->table("path", columns, chunk_rows);
+    ASSERT_TRUE(table.ok());
+    for (long r = 0; r < rows; ++r) {
+      std::vector<double> row = row_values(r, columns.size());
+      for (std::size_t c = 2; c < row.size(); ++c) row[c] = value(rng);  // kept exactly: quantum 0
+      written.push_back(row);
+      ASSERT_TRUE(table->append(row.data()).ok());
+    }
+    ASSERT_TRUE(table->finish().ok());
+    ASSERT_TRUE(file->close().ok());
+  }
+  auto reader = Hdf5TableReader::open(path, "path");
+  ASSERT_TRUE(reader.ok()) << reader.error().message;
+  std::vector<double> row;
+  for (long r = 0; r < rows; ++r) {
+    auto more = reader->next(row);
+    ASSERT_TRUE(more.ok() && *more) << "row " << r;
+    ASSERT_EQ(row, written[static_cast<std::size_t>(r)]) << "row " << r;
+  }
+  // Damage the stored bytes of the third chunk of q5_mm.
+  haddr_t address = 0;
+  hsize_t size = 0;
+  {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t dataset = H5Dopen2(file, "path/q5_mm", H5P_DEFAULT);
+    const hsize_t offset[1] = {2 * chunk_rows};
+    unsigned mask = 0;
+    ASSERT_GE(H5Dget_chunk_info_by_coord(dataset, offset, &mask, &address, &size), 0);
+    H5Dclose(dataset);
+    H5Fclose(file);
+  }
+  {
+    std::fstream bytes(path, std::ios::in | std::ios::out | std::ios::binary);
+    bytes.seekp(static_cast<std::streamoff>(address + size / 2));
+    const std::string noise(8, '\x5a');
+    bytes.write(noise.data(), static_cast<std::streamsize>(noise.size()));
+  }
+  auto damaged = Hdf5TableReader::open(path, "path");
+  ASSERT_TRUE(damaged.ok()) << damaged.error().message;
+  std::string message;
+  for (long r = 0; r < rows && message.empty(); ++r) {
+    auto more = damaged->next(row);
+    if (!more.ok())
+      message = more.error().message;
+    else
+      ASSERT_LT(r, 2 * chunk_rows) << "rows of the damaged chunk came back";
+  }
+  EXPECT_NE(message.find("ticks.h5"), std::string::npos) << message;
+  EXPECT_NE(message.find("table path"), std::string::npos) << message;
+  EXPECT_NE(message.find("rows from 513"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -1,0 +1,61 @@
+#pragma once
+// A thread that compresses or decompresses a table's chunks while the caller fills or reads the next ones:
+// one task at a time, one thread for the table's whole life (a thread per chunk made the allocator spread the
+// chunks over new arenas, and the memory grew with the run). The caller takes each result (the future)
+// before it hands on the next task.
+#include <condition_variable>
+#include <functional>
+#include <future>
+#include <mutex>
+#include <thread>
+
+namespace pkm::formats {
+
+class ChunkWorker {
+ public:
+  ChunkWorker() : thread_([this] { serve(); }) {}
+  ~ChunkWorker() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+  }
+  ChunkWorker(const ChunkWorker&) = delete;
+  ChunkWorker& operator=(const ChunkWorker&) = delete;
+
+  /// Runs `work` on the thread; the future ends with it (or its exception).
+  std::future<void> submit(std::function<void()> work) {
+    std::packaged_task<void()> task(std::move(work));
+    std::future<void> result = task.get_future();
+    {
+      std::lock_guard lock(mutex_);
+      task_ = std::move(task);
+    }
+    wake_.notify_one();
+    return result;
+  }
+
+ private:
+  void serve() {
+    for (;;) {
+      std::packaged_task<void()> task;
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [this] { return stopping_ || task_.valid(); });
+        if (!task_.valid()) return;
+        task = std::move(task_);
+      }
+      task();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::packaged_task<void()> task_;
+  bool stopping_ = false;
+  std::thread thread_;
+};
+
+}  // namespace pkm::formats
