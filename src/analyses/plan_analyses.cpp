@@ -21,7 +21,7 @@ class AnalysisObserver final : public planning::TickObserver {
       : plan_(plan), run_(run), feed_(feed) {}
 
   Status on_tick(const planning::ServoTick& tick, const planning::RunMonitor&) override {
-    const bool cutting = !plan_.path.segment(tick.segment).rapid;
+    const bool cutting = !tick.on_segment.rapid;
     if (Status added = feed_(run_, tick, cutting); !added)
       return planning::at_program_line(plan_, added.error());
     return ok_status();

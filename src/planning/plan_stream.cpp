@@ -3,9 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <exception>
+#include <optional>
+#include <thread>
 
 #include "planning/plan_producer.hpp"
 #include "planning/run_accuracy.hpp"
+#include "planning/tick_queue.hpp"
 
 namespace pkm::planning {
 
@@ -16,34 +20,84 @@ Error at_program_line(const MotionPlan& plan, const Error& error) {
   return located;
 }
 
-Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
-                               std::span<TickObserver* const> observers) {
-  ServoStream stream(plan, machine, options.source);
-  RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
+namespace {
+
+/// The ticks from `next` measured, checked and handed to the observers: the run's loop, whichever thread
+/// makes the ticks.
+template <class NextTick>
+Status measure_and_hand_on(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
+                           std::span<TickObserver* const> observers, long total, RunMonitor& monitor,
+                           NextTick&& next) {
   // Streamed from a source still planning, the ticks are not counted until the plan ends: the progress is
   // then the share of the program's lines the ticks have passed.
-  const long total = stream.tick_count();
   const long report_every = total > 0 ? std::clamp(total / 1000, 1L, 4096L) : 4096L;
   const int lines = options.source != nullptr ? std::max(1, options.source->line_count()) : 1;
   auto fraction_done = [&](const ServoTick& tick) {
     return total > 0 ? static_cast<double>(tick.index) / total : std::min(1.0, double(tick.line) / lines);
   };
   for (TickObserver* observer : observers) {
-    if (Status started = observer->on_start(total); !started) return started.error();
+    if (Status started = observer->on_start(total); !started) return started;
   }
   ServoTick tick;
-  while (stream.next(tick)) {
+  while (next(tick)) {
     monitor.add(tick);
     if (Status held = check_tick(plan, machine, tick, monitor, options.evaluate_path_error); !held)
-      return held.error();
+      return held;
     for (TickObserver* observer : observers) {
-      if (Status kept = observer->on_tick(tick, monitor); !kept) return kept.error();
+      if (Status kept = observer->on_tick(tick, monitor); !kept) return kept;
     }
     if (options.progress && tick.index % report_every == 0)
       report_progress(options.progress, "writing the outputs", fraction_done(tick), tick.line,
                       tick.index + 1);
   }
-  if (stream.error()) return *stream.error();
+  return ok_status();
+}
+
+/// The planner and the stream on a thread of their own, the monitor and the observers on this one: the
+/// consumer reads only the ticks (ServoTick::on_segment, mid_point), never the plan's window.
+Status stream_on_two_threads(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
+                             std::span<TickObserver* const> observers, ServoStream& stream,
+                             RunMonitor& monitor) {
+  TickQueue queue;
+  std::thread producer([&] {
+    std::optional<Error> failed;
+    try {
+      ServoTick made;
+      while (stream.next(made))
+        if (!queue.push(made)) break;
+      failed = stream.error();
+    } catch (const std::exception& e) {
+      failed = Error{ErrorCode::io, fmt::format("the servo stream stopped: {}", e.what())};
+    }
+    queue.close(std::move(failed));
+  });
+  const Status consumed = measure_and_hand_on(plan, machine, options, observers, 0, monitor,
+                                              [&queue](ServoTick& tick) { return queue.pop(tick); });
+  queue.cancel();
+  producer.join();
+  if (!consumed) return consumed;
+  if (queue.error()) return *queue.error();
+  return ok_status();
+}
+
+}  // namespace
+
+Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
+                               std::span<TickObserver* const> observers) {
+  ServoStream stream(plan, machine, options.source);
+  stream.with_mid_points(options.evaluate_path_error);
+  RunMonitor monitor(plan, machine, options.override_pct, options.evaluate_path_error);
+  if (options.source != nullptr) {
+    if (Status streamed = stream_on_two_threads(plan, machine, options, observers, stream, monitor);
+        !streamed)
+      return streamed.error();
+  } else {
+    const Status streamed =
+        measure_and_hand_on(plan, machine, options, observers, stream.tick_count(), monitor,
+                            [&stream](ServoTick& tick) { return stream.next(tick); });
+    if (!streamed) return streamed.error();
+    if (stream.error()) return *stream.error();
+  }
   report_progress(options.progress, "writing the outputs", 1.0, 0, stream.tick_count());
   for (TickObserver* observer : observers) {
     if (Status finished = observer->on_finish(); !finished) return finished.error();

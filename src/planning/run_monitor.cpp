@@ -33,7 +33,7 @@ void RunMonitor::add(const ServoTick& tick) {
   last_orientation_error_deg_ = std::numeric_limits<double>::quiet_NaN();
   last_fk_failed_ = false;
   last_feed_ratio_ = 0.0;
-  last_feed_cap_ = segment_speed_cap(plan_.path.segment(tick.segment), machine_.motion, override_factor_);
+  last_feed_cap_ = segment_speed_cap(tick.on_segment, machine_.motion, override_factor_);
   for (int j = 0; j < n; ++j) {
     summary_.min_position[j] = std::min(summary_.min_position[j], tick.actuators[j]);
     summary_.max_position[j] = std::max(summary_.max_position[j], tick.actuators[j]);
@@ -81,11 +81,9 @@ void RunMonitor::add(const ServoTick& tick) {
 void RunMonitor::add_feed_ratio(const ServoTick& tick) {
   const double h = plan_.period_s;
   summary_.max_path_speed = std::max(summary_.max_path_speed, tick.path_speed);
-  double cap = segment_speed_cap(plan_.path.segment(tick.segment), machine_.motion, override_factor_);
-  if (previous_.segment != tick.segment) {
-    cap = std::max(
-        cap, segment_speed_cap(plan_.path.segment(previous_.segment), machine_.motion, override_factor_));
-  }
+  double cap = last_feed_cap_;
+  if (previous_.segment != tick.segment)
+    cap = std::max(cap, segment_speed_cap(previous_.on_segment, machine_.motion, override_factor_));
   if (cap > 0.0) {
     const double ratio = tick.path_speed / cap;
     // The speed is a difference of two arc lengths from the jerk filter's running sum of n samples, whose
@@ -110,9 +108,10 @@ void RunMonitor::add_path_error(const ServoTick& tick) {
                                              failure)) {
     const FkSolution* fk = &fk_solution_;
     fk_guess_ = fk->pose;
+    // The stream's point where it gave one (it may run on another thread than this monitor).
     int hint = previous_.segment;
-    const double s_mid = 0.5 * (tick.s + previous_.s);
-    const path::PathPoint on_path = plan_.path.evaluate(s_mid, hint);
+    const path::PathPoint on_path =
+        tick.has_mid_point ? tick.mid_point : plan_.path.evaluate(0.5 * (tick.s + previous_.s), hint);
     Eigen::Vector3d error = fk->pose.position_mm - on_path.position_mm;
     // Reduced-DOF mechanisms: the coordinates they do not control follow, and are no error.
     const AxisMask axes = machine_.mechanism->controlled_axes();

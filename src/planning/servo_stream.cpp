@@ -46,13 +46,19 @@ bool ServoStream::next(ServoTick& tick) {
   // The last tick is where every value in the window is the end: exactly the end of the path.
   double s = k_ == last_tick_ ? plan_.path.length() : sum_ / n;
   s = std::max(s, previous_s_);  // monotone even under rounding
+  tick.has_mid_point = mid_points_ && k_ > 0;
+  if (tick.has_mid_point) {
+    int mid_hint = hint_;  // the segment of the tick before, as the monitor would search from
+    tick.mid_point = plan_.path.evaluate(0.5 * (s + previous_s_), mid_hint);
+  }
   const path::PathPoint point = plan_.path.evaluate(s, hint_);
   tick.index = k_;
   tick.time_s = t;
   tick.path_speed = k_ == 0 ? 0.0 : (s - previous_s_) / plan_.period_s;
   tick.s = s;
   tick.segment = hint_;
-  tick.line = plan_.path.segments.empty() ? 0 : plan_.path.segment(hint_).line;
+  tick.on_segment = plan_.path.segments.empty() ? path::Segment{} : plan_.path.segment(hint_);
+  tick.line = tick.on_segment.line;
   tick.pose = Pose{point.position_mm, point.rotation.toRotationMatrix()};
   auto ik = machine_.mechanism->inverse(tick.pose);
   if (!ik) {

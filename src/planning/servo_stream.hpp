@@ -31,6 +31,13 @@ struct ServoTick {
   int line = 0;  ///< source line of the program
   Pose pose;     ///< commanded pose (controlled point, base frame)
   ActuatorVector actuators;
+  /// The path segment the tick is on, as the plan had it: a consumer on another thread than the stream reads
+  /// the tick, never the plan's window (which the stream extends and releases).
+  path::Segment on_segment;
+  /// The path's point at the middle of the period before this tick, where the run monitor measures the path
+  /// error (ServoStream::with_mid_points; not for the first tick).
+  path::PathPoint mid_point;
+  bool has_mid_point = false;
 };
 
 class PlanProducer;
@@ -43,6 +50,8 @@ class ServoStream {
   /// The next tick; false after the last. A failing inverse kinematics (which the planning grid should have
   /// caught) ends the stream with error().
   bool next(ServoTick& tick);
+  /// Also the path's point at every mid-period (ServoTick::mid_point), for the path error.
+  void with_mid_points(bool wanted) { mid_points_ = wanted; }
   /// The ticks of the whole motion; 0 while a source is still planning (the end is not known yet).
   long tick_count() const { return last_tick_ == kUnknownEnd ? 0 : last_tick_ + 1; }
   const std::optional<Error>& error() const { return error_; }
@@ -59,6 +68,7 @@ class ServoStream {
   long last_tick_ = kUnknownEnd;
   int hint_ = 0;
   double previous_s_ = 0.0;
+  bool mid_points_ = false;
   std::optional<Error> error_;
 };
 
