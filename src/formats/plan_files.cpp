@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <string_view>
 #include <utility>
 
@@ -146,11 +147,19 @@ void write_path_row(const double* v, fmt::memory_buffer& path_csv) {
 
 }  // namespace
 
+const Eigen::Vector3d& AbcOfRotation::of(const Eigen::Matrix3d& rotation) {
+  // Bit for bit: −0 and +0 compare equal but give atan2 different angles (±180°). NaN at first.
+  if (std::memcmp(rotation.data(), rotation_.data(), sizeof(double) * 9) != 0) {
+    rotation_ = rotation;
+    abc_deg_ = angles_from_rotation(AngleConvention::abc, rotation) * deg_from_rad(1.0);
+  }
+  return abc_deg_;
+}
+
 void path_values(const planning::ServoTick& tick, const planning::RunMonitor& monitor, const Machine& machine,
-                 double* out) {
+                 AbcOfRotation& angles, double* out) {
   const Eigen::Vector3d p = tick.pose.position_mm - machine.motion.program_origin_mm;
-  const Eigen::Vector3d abc =
-      angles_from_rotation(AngleConvention::abc, tick.pose.rotation) * deg_from_rad(1.0);
+  const Eigen::Vector3d& abc = angles.of(tick.pose.rotation);
   const double e = monitor.last_path_error_mm();
   const double values[12] = {tick.time_s,
                              static_cast<double>(tick.line),
@@ -203,7 +212,7 @@ Status PlanFiles::on_tick(const planning::ServoTick& tick, const planning::RunMo
     fmt::format_to(std::back_inserter(a), ",{:.6f}", tick.actuators[j] * scale);
   a.push_back('\n');
   double path[kPathColumns];
-  path_values(tick, monitor, machine_, path);
+  path_values(tick, monitor, machine_, abc_, path);
   write_path_row(path, path_csv_.buffer);
   for (BufferedStagedFile* f : {&actuators_csv_, &path_csv_}) {
     if (auto flushed = f->flush_if_large(); !flushed) return flushed;

@@ -7,6 +7,7 @@
 // the previous run's only together, when the whole run succeeded, so a failed run leaves the previous run
 // complete and nothing of its own. With TickTables::hdf5 the five servo-rate tables are the groups actuators,
 // path, forces, response and deflection of DIR/ticks.h5 instead (formats/plan_tables.hpp), the same columns.
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -21,6 +22,17 @@
 #include "planning/tick_observer.hpp"
 
 namespace pkm::formats {
+
+/// G-code's A B C (degrees) of a rotation, computed again only when the rotation changes: a 3-axis program
+/// keeps one orientation for millions of ticks, and the angles cost as much as the rest of the row.
+class AbcOfRotation {
+ public:
+  const Eigen::Vector3d& of(const Eigen::Matrix3d& rotation);
+
+ private:
+  Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d abc_deg_ = Eigen::Vector3d::Zero();
+};
 
 /// Listens to the ticks of a run (actuators.csv, path.csv) and, through analysis_sinks(), to its analyses.
 class PlanFiles final : public planning::TickObserver {
@@ -53,13 +65,15 @@ class PlanFiles final : public planning::TickObserver {
   std::optional<Hdf5File> ticks_h5_;
   Hdf5Table actuators_h5_, path_h5_, forces_h5_, response_h5_, deflection_h5_;
   std::vector<double> row_;  // one row of the widest table, reused
+  AbcOfRotation abc_;
 };
 
 /// A tick's row of the path table (path_columns(): time, line, s, x y z, A B C, speed, feed cap, path error;
-/// NaN where the error was not evaluated) into out[0 … kPathColumns − 1].
+/// NaN where the error was not evaluated) into out[0 … kPathColumns − 1]. `abc` keeps the angles of the
+/// rotation before.
 inline constexpr int kPathColumns = 12;
 void path_values(const planning::ServoTick& tick, const planning::RunMonitor& monitor, const Machine& machine,
-                 double* out);
+                 AbcOfRotation& abc, double* out);
 
 /// summary.json of a planned run (units in the key names): the motion, the machine's limits and warnings,
 /// and a "dynamics" and a "stiffness" block for the analyses that listened.

@@ -39,7 +39,7 @@ Status PlanFiles::on_tick_hdf5(const planning::ServoTick& tick, const planning::
   row_[0] = tick.time_s;
   for (int j = 0; j < actuators_; ++j) row_[1 + j] = tick.actuators[j] * scale;
   if (Status kept = actuators_h5_.append(row_.data()); !kept) return kept;
-  path_values(tick, monitor, machine_, row_.data());
+  path_values(tick, monitor, machine_, abc_, row_.data());
   return path_h5_.append(row_.data());
 }
 
