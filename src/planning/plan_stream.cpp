@@ -71,11 +71,21 @@ Status stream_on_two_threads(const MotionPlan& plan, const Machine& machine, con
     }
     queue.close(std::move(failed));
   });
-  const Status consumed = measure_and_hand_on(plan, machine, options, observers, 0, monitor,
-                                              [&queue](ServoTick& tick) { return queue.pop(tick); });
-  queue.cancel();
-  producer.join();
-  if (!consumed) return consumed;
+  // Stops and joins the producer however this thread leaves (an observer may throw).
+  struct Joined {
+    TickQueue& queue;
+    std::thread& thread;
+    ~Joined() {
+      queue.cancel();
+      thread.join();
+    }
+  };
+  {
+    const Joined joined{queue, producer};
+    const Status consumed = measure_and_hand_on(plan, machine, options, observers, 0, monitor,
+                                                [&queue](ServoTick& tick) { return queue.pop(tick); });
+    if (!consumed) return consumed;
+  }
   if (queue.error()) return *queue.error();
   return ok_status();
 }
