@@ -23,8 +23,8 @@ bool ServoStream::next(ServoTick& tick) {
   const int n = plan_.filter_ticks;
   const double t = static_cast<double>(k_) * plan_.period_s;
   if (source_ != nullptr) {
-    // What the ticks passed (the monitor still reads the segment of the tick before) goes; then the plan
-    // reaches past this tick, or to its end, which fixes the last tick.
+    // What the ticks passed goes (the mid-period point is still searched from the tick before's segment);
+    // then the plan reaches past this tick, or to its end, which fixes the last tick.
     source_->release(cursor_.index(), hint_);
     if (Status planned = source_->extend_to(t); !planned) {
       error_ = planned.error();
