@@ -68,8 +68,9 @@ class ArrayListener final : public planning::TickObserver {
       : machine_(machine), r_(run), n_(machine.mechanism->actuator_count()) {
     r_.actuators = n_;
   }
-  // The arrays are as long as the run: one allocation each, not the doubling of push_back (whose peak is
-  // twice the final size).
+  // The arrays are as long as the run: one allocation each where the count is known (a whole plan), not the
+  // doubling of push_back (whose peak is twice the final size). A streamed plan's ticks are counted only at
+  // its end (0 here): its arrays grow as the ticks come.
   Status on_start(long tick_count) override {
     const auto ticks = static_cast<std::size_t>(tick_count);
     for (auto* column : {&r_.time_s, &r_.s, &r_.path_speed, &r_.feed_cap, &r_.path_error})
