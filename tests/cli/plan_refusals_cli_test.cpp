@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -119,6 +121,38 @@ TEST(PlanRefusals, WorkWithoutBoundIsRefusedUpFrontAtItsLine) {
   EXPECT_EQ(small.exit_code, 3) << small.out;
   EXPECT_NE(small.out.find("bound of 100 ticks"), std::string::npos) << small.out;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// The plan is made as the ticks stream, so a refusal can come after thousands of ticks were written: the
+// folder then keeps the previous run's files, whole and unchanged, and nothing of the refused run.
+TEST(PlanRefusals, ARefusalAfterTicksWereWrittenKeepsThePreviousRunWhole) {
+  const std::string out = refusal_dir("late");
+  const auto first = plan("G21 G90\nG1 X5 F600\nM2\n", "hexapod_ch5.yaml", out);
+  ASSERT_EQ(first.exit_code, 0) << first.out;
+  const auto listing = [&out] {
+    std::map<std::string, std::uintmax_t> files;
+    for (const auto& entry : fs::recursive_directory_iterator(out))
+      files[entry.path().lexically_relative(out).string()] =
+          entry.is_regular_file() ? entry.file_size() : std::uintmax_t{0};
+    return files;
+  };
+  std::ifstream summary_in(fs::path(out) / "summary.json");
+  const std::string summary_before((std::istreambuf_iterator<char>(summary_in)), {});
+  const auto before = listing();
+  // Forty seconds of motion inside, then a move out of reach; a window of a few moves, so that the ticks of
+  // the first part are written before the planner meets the last move.
+  std::string text = "G21 G90\nG1 X0 Y0 Z0 F600\n";
+  for (int k = 0; k < 200; ++k) text += k % 2 == 0 ? "G1 X20\n" : "G1 X0\n";
+  text += "G1 Y600\nM2\n";
+  const auto refused = plan(text, "hexapod_ch5.yaml", out, "--lookahead-moves 4 --progress always");
+  EXPECT_EQ(refused.exit_code, 3) << refused.out;
+  EXPECT_NE(refused.out.find("outside the workspace from line 203"), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("k ticks"), std::string::npos) << "ticks were written first: " << refused.out;
+  EXPECT_EQ(listing(), before);
+  std::ifstream summary_after_in(fs::path(out) / "summary.json");
+  const std::string summary_after((std::istreambuf_iterator<char>(summary_after_in)), {});
+  EXPECT_EQ(summary_after, summary_before);
+  fs::remove_all(out);
 }
 
 TEST(PlanRefusals, APlanThatIsWrittenHoldsItsClaims) {
