@@ -27,7 +27,8 @@ bool TickQueue::push(const ServoTick& tick) {
 
 void TickQueue::close(std::optional<Error> error) {
   std::lock_guard lock(mutex_);
-  if (ring_[produced_ % ring_.size()].count > 0 && produced_ - consumed_ < ring_.size()) ++produced_;
+  // The filling batch always has its slot (push waited for it), so its ticks are published, never dropped.
+  if (ring_[produced_ % ring_.size()].count > 0) ++produced_;
   error_ = std::move(error);
   closed_ = true;
   changed_.notify_all();
