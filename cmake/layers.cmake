@@ -83,7 +83,7 @@ target_precompile_headers(pkm_analysis REUSE_FROM pkm_io)
 
 # The files each run writes (CSV, JSON summaries) from the values the computations return.
 pkm_layer(pkm_formats formats formats)
-target_link_libraries(pkm_formats PUBLIC pkm_analysis PRIVATE ${HDF5_LINK_LIBRARIES} ${LIBDEFLATE_LINK_LIBRARIES})
+target_link_libraries(pkm_formats PUBLIC pkm_analysis PRIVATE ${HDF5_LINK_LIBRARIES} ${LIBDEFLATE_LINK_LIBRARIES} ZLIB::ZLIB)
 target_precompile_headers(pkm_formats REUSE_FROM pkm_io)
 # HDF5's headers and definitions for the two files that include them (the writer and the reader), outside the
 # shared precompiled header.

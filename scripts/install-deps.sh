@@ -11,7 +11,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libnlopt-cxx-dev libboost-dev libtbb-dev libhdf5-dev libdeflate-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libnlopt-cxx-dev libboost-dev libtbb-dev libhdf5-dev libdeflate-dev zlib1g-dev
   clang-format cppcheck
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-matplotlib python3-h5py
   python3-pip python3-venv python3-setuptools python3-wheel

@@ -5,12 +5,20 @@
 // shuffle (byte k of every element together, so the zero low bytes of quantised values form long runs),
 // then deflate in the zlib format, which HDF5's deflate filter inflates (libdeflate, Debian's libdeflate-dev,
 // the same format zlib's compress2 writes, faster). Readers undo both as for any chunk the library wrote.
+//
+// The planes made of long runs of one byte (the low bytes of values rounded to fewer significant bits, the
+// exponent of a column that stays within one binade, a program line held for a hundred ticks) cost
+// libdeflate as much time as any other bytes, while zlib's run-length strategy encodes them in a few
+// microseconds. A deflate stream is a sequence of blocks, so the leading such planes are deflated by zlib and
+// flushed to a byte boundary (a sync flush), and libdeflate deflates the rest as the stream's final blocks:
+// one zlib stream, read by any inflater.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 
 struct libdeflate_compressor;
 struct libdeflate_decompressor;
+struct z_stream_s;
 
 namespace pkm::formats {
 
@@ -34,7 +42,13 @@ class ChunkDeflater {
   void shuffle_deflate(const void* elements, std::size_t count, std::size_t element_bytes, ChunkBytes& out);
 
  private:
+  /// Deflates the first `planes` planes of `count` bytes of the shuffled chunk (made of runs) with zlib's
+  /// run-length strategy into `out` from `at`: the bytes written. The stream ends there when `last`, else
+  /// at a byte boundary.
+  std::size_t deflate_runs(std::size_t planes, std::size_t count, bool last, ChunkBytes& out, std::size_t at);
+
   libdeflate_compressor* compressor_ = nullptr;
+  z_stream_s* runs_ = nullptr;  ///< zlib's raw deflate, run-length strategy
   ChunkBytes shuffled_;
 };
 
