@@ -1,9 +1,10 @@
 #pragma once
 // A thread that compresses or decompresses a table's chunks while the caller fills or reads the next ones:
-// one task at a time, one thread for the table's whole life (a thread per chunk made the allocator spread the
-// chunks over new arenas, and the memory grew with the run). The caller takes each result (the future)
-// before it hands on the next task.
+// tasks run one at a time in the order they were handed on, on one thread for the table's whole life (a
+// thread per chunk made the allocator spread the chunks over new arenas, and the memory grew with the run).
+// The caller bounds how many tasks wait (the futures it holds).
 #include <condition_variable>
+#include <deque>
 #include <functional>
 #include <future>
 #include <mutex>
@@ -31,7 +32,7 @@ class ChunkWorker {
     std::future<void> result = task.get_future();
     {
       std::lock_guard lock(mutex_);
-      task_ = std::move(task);
+      tasks_.push_back(std::move(task));
     }
     wake_.notify_one();
     return result;
@@ -43,9 +44,10 @@ class ChunkWorker {
       std::packaged_task<void()> task;
       {
         std::unique_lock lock(mutex_);
-        wake_.wait(lock, [this] { return stopping_ || task_.valid(); });
-        if (!task_.valid()) return;
-        task = std::move(task_);
+        wake_.wait(lock, [this] { return stopping_ || !tasks_.empty(); });
+        if (tasks_.empty()) return;
+        task = std::move(tasks_.front());
+        tasks_.pop_front();
       }
       task();
     }
@@ -53,7 +55,7 @@ class ChunkWorker {
 
   std::mutex mutex_;
   std::condition_variable wake_;
-  std::packaged_task<void()> task_;
+  std::deque<std::packaged_task<void()>> tasks_;
   bool stopping_ = false;
   std::thread thread_;
 };

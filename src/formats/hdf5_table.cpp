@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <future>
 #include <memory>
 
@@ -78,16 +80,16 @@ double round_to_significant_bits(double value, int bits) {
 }
 
 /// A full chunk of every column, shuffled and deflated on the table's filter thread (hdf5_chunk_filter.hpp).
-/// One per table, used again for every chunk: its buffers keep their storage, so a long run allocates (and
+/// A few per table, used again in turn: their buffers keep their storage, so a long run allocates (and
 /// clears) nothing per chunk.
 struct ChunkJob {
   long first_row = 0;
   std::vector<std::vector<double>> values;  ///< a column each
   std::vector<ChunkBytes> deflated;         ///< a column each
   std::vector<std::int64_t> integers;       ///< an integer column's values, converted
-  std::unique_ptr<ChunkDeflater> deflater;
 
-  void deflate(const std::vector<Hdf5Column>& columns) {
+  /// On the filter thread, with its deflater (made there on first use).
+  void deflate(const std::vector<Hdf5Column>& columns, std::unique_ptr<ChunkDeflater>& deflater) {
     static_assert(std::endian::native == std::endian::little, "the chunks are stored little-endian as is");
     if (!deflater) deflater = std::make_unique<ChunkDeflater>(kDeflate);
     deflated.resize(columns.size());
@@ -111,37 +113,45 @@ struct Hdf5Table::State {
   std::vector<std::vector<double>> buffered;  // a chunk per column
   std::vector<std::int64_t> integers;         // an integer column's chunk, converted when written
   long chunk_rows = 0, written = 0, pending = 0;
-  /// The full chunk being filtered while the next one fills: the run's writing costs its ticks the time
-  /// of copying their values, and the deflating goes to the other core.
-  std::future<void> filtering;
-  ChunkJob job;  ///< the chunk being filtered; its buffers are the next chunk's once it is stored
+  /// Full chunks being filtered while the next one fills: the run's writing costs its ticks the time of
+  /// copying their values, and the deflating goes to the other core. A few may wait, so that the thread
+  /// filling them does not stop whenever the filter thread is not the one running (two cores, more threads).
+  static constexpr std::size_t kChunksInFlight = 3;
+  std::array<ChunkJob, kChunksInFlight> jobs;  ///< a ring: the oldest being filtered at `oldest`
+  std::deque<std::future<void>> filtering;     ///< the jobs in flight, oldest first
+  std::size_t oldest = 0;
+  std::unique_ptr<ChunkDeflater> deflater;     ///< used on the filter thread only
   std::unique_ptr<ChunkWorker> filter_thread;  ///< one for the table's whole life (chunk_worker.hpp)
 
   ~State() {
-    if (filtering.valid()) filtering.wait();
+    for (std::future<void>& f : filtering) f.wait();
     for (const hid_t d : datasets)
       if (H5Iis_valid(d) > 0) H5Dclose(d);
   }
 
-  /// Hands the full chunk to a thread of its own after writing the one before it.
+  /// Hands the full chunk to the filter thread, after writing the oldest one in flight when all are.
   Status filter_full_chunk() {
-    if (Status stored = store_filtered(); !stored) return stored;
+    if (filtering.size() == kChunksInFlight)
+      if (Status stored = store_oldest(); !stored) return stored;
+    ChunkJob& job = jobs[(oldest + filtering.size()) % kChunksInFlight];
     if (job.values.empty()) job.values.assign(columns.size(), std::vector<double>(chunk_rows));
     job.values.swap(buffered);
     job.first_row = written;
     if (!filter_thread) filter_thread = std::make_unique<ChunkWorker>();
-    filtering = filter_thread->submit([this] { job.deflate(columns); });
+    filtering.push_back(filter_thread->submit([this, &job] { job.deflate(columns, deflater); }));
     written += pending;
     pending = 0;
     return ok_status();
   }
 
-  /// Writes the chunk being filtered, if any, as HDF5 would have stored it (H5Dwrite_chunk, all filters
-  /// applied).
-  Status store_filtered() {
-    if (!filtering.valid()) return ok_status();
+  /// Writes the oldest chunk in flight as HDF5 would have stored it (H5Dwrite_chunk, all filters applied).
+  Status store_oldest() {
+    std::future<void> done = std::move(filtering.front());
+    filtering.pop_front();
+    ChunkJob& job = jobs[oldest];
+    oldest = (oldest + 1) % kChunksInFlight;
     try {
-      filtering.get();
+      done.get();
     } catch (const std::exception& e) {
       return hdf5_error(path, fmt::format("cannot compress {}: {}", name, e.what()));
     }
@@ -153,6 +163,13 @@ struct Hdf5Table::State {
           H5Dwrite_chunk(datasets[c], H5P_DEFAULT, 0, offset, bytes.size, bytes.data.get()) < 0)
         return hdf5_error(path, fmt::format("cannot write {}/{}", name, columns[c].name));
     }
+    return ok_status();
+  }
+
+  /// Writes every chunk in flight.
+  Status store_filtered() {
+    while (!filtering.empty())
+      if (Status stored = store_oldest(); !stored) return stored;
     return ok_status();
   }
 
