@@ -22,8 +22,8 @@ Error at_program_line(const MotionPlan& plan, const Error& error) {
 
 namespace {
 
-/// The ticks from `next` measured, checked and handed to the observers: the run's loop, whichever thread
-/// makes the ticks.
+/// The ticks from `next` (a tick, valid until the next call, or null after the last) measured, checked and
+/// handed to the observers: the run's loop, whichever thread makes the ticks.
 template <class NextTick>
 Status measure_and_hand_on(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
                            std::span<TickObserver* const> observers, long total, RunMonitor& monitor,
@@ -38,8 +38,8 @@ Status measure_and_hand_on(const MotionPlan& plan, const Machine& machine, const
   for (TickObserver* observer : observers) {
     if (Status started = observer->on_start(total); !started) return started;
   }
-  ServoTick tick;
-  while (next(tick)) {
+  while (const ServoTick* next_tick = next()) {
+    const ServoTick& tick = *next_tick;
     monitor.add(tick);
     if (Status held = check_tick(plan, machine, tick, monitor, options.evaluate_path_error); !held)
       return held;
@@ -58,13 +58,13 @@ Status measure_and_hand_on(const MotionPlan& plan, const Machine& machine, const
 Status stream_on_two_threads(const MotionPlan& plan, const Machine& machine, const StreamOptions& options,
                              std::span<TickObserver* const> observers, ServoStream& stream,
                              RunMonitor& monitor) {
-  TickQueue queue;
+  TickQueue queue(256, 32);
   std::thread producer([&] {
     std::optional<Error> failed;
     try {
-      ServoTick made;
-      while (stream.next(made))
-        if (!queue.push(made)) break;
+      // Each tick is made where the consumer will read it.
+      while (stream.next(queue.slot()))
+        if (!queue.commit()) break;
       failed = stream.error();
     } catch (const std::exception& e) {
       failed = Error{ErrorCode::io, fmt::format("the servo stream stopped: {}", e.what())};
@@ -82,8 +82,8 @@ Status stream_on_two_threads(const MotionPlan& plan, const Machine& machine, con
   };
   {
     const Joined joined{queue, producer};
-    const Status consumed = measure_and_hand_on(plan, machine, options, observers, 0, monitor,
-                                                [&queue](ServoTick& tick) { return queue.pop(tick); });
+    const Status consumed =
+        measure_and_hand_on(plan, machine, options, observers, 0, monitor, [&queue] { return queue.next(); });
     if (!consumed) return consumed;
   }
   if (queue.error()) return *queue.error();
@@ -102,9 +102,10 @@ Result<RunSummary> stream_plan(const MotionPlan& plan, const Machine& machine, c
         !streamed)
       return streamed.error();
   } else {
-    const Status streamed =
-        measure_and_hand_on(plan, machine, options, observers, stream.tick_count(), monitor,
-                            [&stream](ServoTick& tick) { return stream.next(tick); });
+    ServoTick tick;
+    const Status streamed = measure_and_hand_on(
+        plan, machine, options, observers, stream.tick_count(), monitor,
+        [&stream, &tick]() -> const ServoTick* { return stream.next(tick) ? &tick : nullptr; });
     if (!streamed) return streamed.error();
     if (stream.error()) return *stream.error();
   }

@@ -17,31 +17,44 @@ bool TickQueue::publish() {
   return !cancelled_;
 }
 
-bool TickQueue::push(const ServoTick& tick) {
+bool TickQueue::commit() {
   // The batch at produced_ is the producer's alone until it is published.
-  Batch& batch = ring_[produced_ % ring_.size()];
-  batch.ticks[batch.count++] = tick;
-  if (batch.count < batch_ticks_) return true;
+  if (++filling_ < batch_ticks_) return true;
+  ring_[produced_ % ring_.size()].count = filling_;
+  filling_ = 0;
   return publish();
+}
+
+bool TickQueue::push(const ServoTick& tick) {
+  slot() = tick;
+  return commit();
 }
 
 void TickQueue::close(std::optional<Error> error) {
   std::lock_guard lock(mutex_);
-  // The filling batch always has its slot (push waited for it), so its ticks are published, never dropped.
-  if (ring_[produced_ % ring_.size()].count > 0) ++produced_;
+  // The filling batch always has its slot (commit waited for it), so its ticks are published, never dropped.
+  if (filling_ > 0) {
+    ring_[produced_ % ring_.size()].count = filling_;
+    filling_ = 0;
+    ++produced_;
+  }
   error_ = std::move(error);
   closed_ = true;
   changed_.notify_all();
 }
 
 bool TickQueue::pop(ServoTick& tick) {
+  const ServoTick* next_tick = next();
+  if (next_tick == nullptr) return false;
+  tick = *next_tick;
+  return true;
+}
+
+const ServoTick* TickQueue::next() {
   for (;;) {
     if (reading_) {
       Batch& batch = ring_[consumed_ % ring_.size()];
-      if (read_ < batch.count) {
-        tick = batch.ticks[read_++];
-        return true;
-      }
+      if (read_ < batch.count) return &batch.ticks[read_++];
       std::lock_guard lock(mutex_);
       batch.count = 0;
       ++consumed_;
@@ -50,7 +63,7 @@ bool TickQueue::pop(ServoTick& tick) {
     }
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [this] { return closed_ || produced_ > consumed_; });
-    if (produced_ == consumed_) return false;  // closed, and every batch read
+    if (produced_ == consumed_) return nullptr;  // closed, and every batch read
     reading_ = true;
     read_ = 0;
   }

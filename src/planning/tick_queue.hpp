@@ -2,7 +2,8 @@
 // The servo ticks handed from the thread that makes them (the planner and the stream: path, inverse
 // kinematics) to the thread that measures and writes them (the run monitor's forward kinematics, the checks,
 // the observers), so that a long run uses both cores. A ring of batches, made once: the lock is taken once
-// per batch, and nothing is allocated per tick. One producer, one consumer.
+// per batch, nothing is allocated per tick, and a tick is made and read where it lies in its batch (a tick is
+// a few hundred bytes: copying it in and out cost as much as measuring it). One producer, one consumer.
 #include <condition_variable>
 #include <cstddef>
 #include <mutex>
@@ -18,12 +19,19 @@ class TickQueue {
  public:
   explicit TickQueue(std::size_t batch_ticks = 256, std::size_t batches = 8);
 
-  /// The producer's side: false once the consumer has given up (stop producing).
+  /// The producer's side: the place to make the next tick in, then commit() it. commit() is false once the
+  /// consumer has given up (stop producing).
+  ServoTick& slot() { return ring_[produced_ % ring_.size()].ticks[filling_]; }
+  bool commit();
+  /// slot() = tick, commit().
   bool push(const ServoTick& tick);
   /// The producer's last word: the ticks pushed so far are all there are, and `error` (if any) is why.
   void close(std::optional<Error> error);
 
-  /// The consumer's side: the next tick, or false after the last (then error() says whether it failed).
+  /// The consumer's side: the next tick, valid until the next call, or null after the last (then error()
+  /// says whether it failed).
+  const ServoTick* next();
+  /// A copy of next(): false after the last.
   bool pop(ServoTick& tick);
   /// The consumer gives up: the producer's next push returns false.
   void cancel();
@@ -41,6 +49,7 @@ class TickQueue {
   std::mutex mutex_;
   std::condition_variable changed_;
   std::size_t produced_ = 0;  ///< batches published (under the lock)
+  std::size_t filling_ = 0;   ///< ticks made in the batch at produced_ (the producer's own)
   std::size_t consumed_ = 0;  ///< batches the consumer has finished with (under the lock)
   bool closed_ = false, cancelled_ = false;
   std::optional<Error> error_;  ///< set before closed_, read after it
