@@ -41,7 +41,8 @@ Status check_tick_path(const MotionPlan& plan, const Machine& machine, const Ser
             "the machine file keep plans out of such regions",
             near(), error_mm, bound_mm));
   }
-  if (const double error_deg = monitor.last_orientation_error_deg(); error_deg > kOrientationErrorBoundDeg) {
+  if (monitor.last_orientation_error_exceeds(kOrientationErrorBoundDeg)) {
+    const double error_deg = monitor.last_orientation_error_deg();
     return tick_error(
         ErrorCode::unreachable, plan, tick,
         fmt::format("near {} the planned actuator motion turns the tool {:.4g} deg away from the "

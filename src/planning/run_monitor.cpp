@@ -30,7 +30,7 @@ void RunMonitor::add(const ServoTick& tick) {
   const double h = plan_.period_s;
   const int n = static_cast<int>(tick.actuators.size());
   last_path_error_mm_ = std::numeric_limits<double>::quiet_NaN();
-  last_orientation_error_deg_ = std::numeric_limits<double>::quiet_NaN();
+  last_orientation_ = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
   last_fk_failed_ = false;
   last_feed_ratio_ = 0.0;
   last_feed_cap_ = segment_speed_cap(tick.on_segment, machine_.motion, override_factor_);
@@ -70,7 +70,11 @@ void RunMonitor::add(const ServoTick& tick) {
 
     if (evaluate_error_) add_path_error(tick);
   }
-  previous_ = tick;
+  previous_.actuators = tick.actuators;
+  previous_.position_mm = tick.pose.position_mm;
+  previous_.s = tick.s;
+  previous_.segment = tick.segment;
+  previous_.feed_cap = last_feed_cap_;
   ++count_;
   summary_.ticks = count_;
   summary_.duration_s = tick.time_s;
@@ -82,8 +86,7 @@ void RunMonitor::add_feed_ratio(const ServoTick& tick) {
   const double h = plan_.period_s;
   summary_.max_path_speed = std::max(summary_.max_path_speed, tick.path_speed);
   double cap = last_feed_cap_;
-  if (previous_.segment != tick.segment)
-    cap = std::max(cap, segment_speed_cap(previous_.on_segment, machine_.motion, override_factor_));
+  if (previous_.segment != tick.segment) cap = std::max(cap, previous_.feed_cap);
   if (cap > 0.0) {
     const double ratio = tick.path_speed / cap;
     // The speed is a difference of two arc lengths from the jerk filter's running sum of n samples, whose
@@ -118,7 +121,7 @@ void RunMonitor::add_path_error(const ServoTick& tick) {
     for (int c = 0; c < 3; ++c) {
       if (!axes.controlled[c]) error[c] = 0.0;
     }
-    const Eigen::Vector3d chord = tick.pose.position_mm - previous_.pose.position_mm;
+    const Eigen::Vector3d chord = tick.pose.position_mm - previous_.position_mm;
     if (chord.norm() > 1e-12) {  // perpendicular part: lag along the path is not a contour error
       const Eigen::Vector3d t = chord.normalized();
       error -= error.dot(t) * t;
@@ -128,16 +131,32 @@ void RunMonitor::add_path_error(const ServoTick& tick) {
       summary_.max_path_error_mm = error.norm();
       summary_.max_path_error_line = tick.line;
     }
-    if (axes.controlled[5] && axes.controlled[3] == axes.controlled[4]) {  // all angles, or planar φ
-      const double angle = Eigen::Quaterniond(fk->pose.rotation).angularDistance(on_path.rotation);
-      last_orientation_error_deg_ = deg_from_rad(angle);
-      summary_.max_orientation_error_deg =
-          std::max(summary_.max_orientation_error_deg, last_orientation_error_deg_);
-    }
+    if (axes.controlled[5] && axes.controlled[3] == axes.controlled[4])  // all angles, or planar φ
+      add_orientation_error(fk->pose.rotation, on_path.rotation.toRotationMatrix());
   } else {
     last_fk_failed_ = true;
     ++summary_.fk_failures;
   }
+}
+
+void RunMonitor::add_orientation_error(const Eigen::Matrix3d& actual, const Eigen::Matrix3d& on_path) {
+  last_orientation_ = rotation_angle_between(actual, on_path);
+  if (last_orientation_.exceeds(max_orientation_)) {
+    max_orientation_ = last_orientation_;
+    summary_.max_orientation_error_deg = max_orientation_.degrees();
+  }
+}
+
+double RunMonitor::last_orientation_error_deg() const {
+  return last_orientation_.degrees();  // NaN where not evaluated
+}
+
+bool RunMonitor::last_orientation_error_exceeds(double bound_deg) const {
+  if (bound_deg != bound_deg_) {  // asked every tick with the same bound: its sine and cosine once
+    bound_deg_ = bound_deg;
+    bound_ = RotationAngle::of_degrees(bound_deg);
+  }
+  return last_orientation_.exceeds(bound_);
 }
 
 }  // namespace pkm::planning

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "core/rotation_angle.hpp"
 #include "machine/machine.hpp"
 #include "planning/motion_plan.hpp"
 #include "planning/servo_stream.hpp"
@@ -60,7 +61,9 @@ class RunMonitor {
   double last_path_error_mm() const { return last_path_error_mm_; }
   /// Of the tick added last: the orientation error at its mid-period (deg; NaN where not evaluated, or where
   /// the mechanism does not control the whole orientation), and whether its forward kinematics failed.
-  double last_orientation_error_deg() const { return last_orientation_error_deg_; }
+  double last_orientation_error_deg() const;
+  /// last_orientation_error_deg() > bound_deg (false where not evaluated), without its arc tangent.
+  bool last_orientation_error_exceeds(double bound_deg) const;
   /// Of the tick added last: its actuator velocities and accelerations by finite differences (unit/s,
   /// unit/s²; zero where the ticks before it are too few), and its path speed over the feed cap.
   const ActuatorVector& last_velocity() const { return previous_velocity_; }
@@ -71,13 +74,22 @@ class RunMonitor {
  private:
   void add_feed_ratio(const ServoTick& tick);
   void add_path_error(const ServoTick& tick);
+  void add_orientation_error(const Eigen::Matrix3d& actual, const Eigen::Matrix3d& on_path);
   const MotionPlan& plan_;
   const Machine& machine_;
   double override_factor_;
   bool evaluate_error_;
   RunSummary summary_;
   long count_ = 0;
-  ServoTick previous_;
+  /// What the next tick needs of the one before (a whole tick is a few hundred bytes to copy every period).
+  struct PreviousTick {
+    ActuatorVector actuators;
+    Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();
+    double s = 0.0;
+    int segment = 0;
+    double feed_cap = 0.0;  ///< of its segment
+  };
+  PreviousTick previous_;
   ActuatorVector previous_velocity_;
   std::array<int, kMaxActuators> direction_{};
   double previous_path_speed_ = 0.0, previous_path_accel_ = 0.0;
@@ -89,7 +101,13 @@ class RunMonitor {
   FkSolution fk_solution_;
   double last_feed_cap_ = 0.0;
   double last_path_error_mm_ = std::numeric_limits<double>::quiet_NaN();
-  double last_orientation_error_deg_ = std::numeric_limits<double>::quiet_NaN();
+  /// The orientation error of the tick added last and the largest: compared without an arc tangent at
+  /// every tick, in degrees only where asked or where it is a new maximum.
+  RotationAngle last_orientation_{std::numeric_limits<double>::quiet_NaN(),
+                                  std::numeric_limits<double>::quiet_NaN()};
+  RotationAngle max_orientation_;
+  mutable double bound_deg_ = std::numeric_limits<double>::quiet_NaN();
+  mutable RotationAngle bound_;
   ActuatorVector last_accel_;
   double last_feed_ratio_ = 0.0;
   bool last_fk_failed_ = false;
