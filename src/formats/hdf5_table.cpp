@@ -72,12 +72,41 @@ int significant_bits_for_digits(int digits) {
 }
 
 double round_to_significant_bits(double value, int bits) {
-  if (!std::isfinite(value) || value == 0.0) return value;
+  if (!std::isfinite(value) || value == 0.0 || bits >= 53) return value;
+  constexpr int kFractionBits = 52;
+  auto word = std::bit_cast<std::uint64_t>(value);
+  if ((word >> kFractionBits & 0x7FF) != 0 && bits > 0) {
+    // A normal number: its 53 significant bits are the implicit 1 and the fraction field, so rounding to
+    // `bits` of them is rounding the word's low 53 − bits bits, half to even (as nearbyint); a carry out of
+    // the fraction raises the exponent, which is the right result (…111 rounds up to the next power of two).
+    const int dropped = kFractionBits + 1 - bits;
+    const std::uint64_t unit = std::uint64_t{1} << dropped;
+    // The last kept bit: in the fraction field, or the implicit 1 itself when only one bit is kept.
+    const std::uint64_t last_kept = bits == 1 ? 1 : (word >> dropped & 1);
+    word += (unit >> 1) - 1 + last_kept;
+    return std::bit_cast<double>(word & ~(unit - 1));
+  }
+  // Subnormal: the definition itself.
   int exponent = 0;
   const double mantissa =
       std::frexp(value, &exponent);  // value = mantissa · 2^exponent, 0.5 ≤ |mantissa| < 1
   return std::ldexp(std::nearbyint(std::ldexp(mantissa, bits)), exponent - bits);
 }
+
+namespace {
+
+/// A column's values rounded to its quantum (`scale` = 2^quantum_bits) or to its significant bits, in place:
+/// v·2^k rounded and scaled back are exact operations on doubles.
+void round_column(const Hdf5Column& column, double scale, double* values, std::size_t count) {
+  if (scale > 0.0) {
+    for (std::size_t i = 0; i < count; ++i) values[i] = std::nearbyint(values[i] * scale) / scale;
+  } else if (column.significant_bits > 0) {
+    for (std::size_t i = 0; i < count; ++i)
+      values[i] = round_to_significant_bits(values[i], column.significant_bits);
+  }
+}
+
+}  // namespace
 
 /// A full chunk of every column, shuffled and deflated on the table's filter thread (hdf5_chunk_filter.hpp).
 /// A few per table, used again in turn: their buffers keep their storage, so a long run allocates (and
@@ -88,13 +117,16 @@ struct ChunkJob {
   std::vector<ChunkBytes> deflated;         ///< a column each
   std::vector<std::int64_t> integers;       ///< an integer column's values, converted
 
-  /// On the filter thread, with its deflater (made there on first use).
-  void deflate(const std::vector<Hdf5Column>& columns, std::unique_ptr<ChunkDeflater>& deflater) {
+  /// On the filter thread, with its deflater (made there on first use): the values rounded as their
+  /// columns say, then shuffled and deflated.
+  void deflate(const std::vector<Hdf5Column>& columns, const std::vector<double>& scale,
+               std::unique_ptr<ChunkDeflater>& deflater) {
     static_assert(std::endian::native == std::endian::little, "the chunks are stored little-endian as is");
     if (!deflater) deflater = std::make_unique<ChunkDeflater>(kDeflate);
     deflated.resize(columns.size());
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      const std::vector<double>& column = values[c];
+      std::vector<double>& column = values[c];
+      round_column(columns[c], scale[c], column.data(), column.size());
       if (columns[c].integer) {
         integers.assign(column.begin(), column.end());
         deflater->shuffle_deflate(integers.data(), integers.size(), sizeof(std::int64_t), deflated[c]);
@@ -138,7 +170,7 @@ struct Hdf5Table::State {
     job.values.swap(buffered);
     job.first_row = written;
     if (!filter_thread) filter_thread = std::make_unique<ChunkWorker>();
-    filtering.push_back(filter_thread->submit([this, &job] { job.deflate(columns, deflater); }));
+    filtering.push_back(filter_thread->submit([this, &job] { job.deflate(columns, scale, deflater); }));
     written += pending;
     pending = 0;
     return ok_status();
@@ -180,6 +212,7 @@ struct Hdf5Table::State {
     const hsize_t start[1] = {static_cast<hsize_t>(written)}, count[1] = {static_cast<hsize_t>(pending)};
     const hsize_t size[1] = {static_cast<hsize_t>(written + pending)};
     for (std::size_t c = 0; c < datasets.size(); ++c) {
+      round_column(columns[c], scale[c], buffered[c].data(), static_cast<std::size_t>(pending));
       if (H5Dset_extent(datasets[c], size) < 0)
         return hdf5_error(path, fmt::format("cannot extend {}/{}", name, columns[c].name));
       const Handle file_space(H5Dget_space(datasets[c]));
@@ -210,14 +243,8 @@ Hdf5Table& Hdf5Table::operator=(Hdf5Table&&) noexcept = default;
 
 Status Hdf5Table::append(const double* values) {
   State& s = *state_;
-  for (std::size_t c = 0; c < s.columns.size(); ++c) {
-    const double v = values[c];
-    // Rounded to the quantum: v·2^k rounded and scaled back are exact operations on doubles.
-    const int significant = s.columns[c].significant_bits;
-    s.buffered[c][s.pending] = s.scale[c] > 0.0  ? std::nearbyint(v * s.scale[c]) / s.scale[c]
-                               : significant > 0 ? round_to_significant_bits(v, significant)
-                                                 : v;
-  }
+  // Rounded where the chunk is filtered (round_column), off this thread.
+  for (std::size_t c = 0; c < s.columns.size(); ++c) s.buffered[c][s.pending] = values[c];
   if (++s.pending == s.chunk_rows) return s.filter_full_chunk();
   return ok_status();
 }

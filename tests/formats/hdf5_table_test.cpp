@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 namespace pkm::formats {
@@ -36,6 +37,38 @@ TEST(Hdf5Table, SignificantBitsKeepTheCsvDigitsAndZeroTheRest) {
   }
   EXPECT_TRUE(std::isnan(round_to_significant_bits(std::nan(""), 15)));
   EXPECT_EQ(round_to_significant_bits(0.0, 15), 0.0);
+}
+
+/// The definition: the mantissa scaled to `bits` bits, rounded half to even, scaled back.
+double rounded_by_definition(double value, int bits) {
+  if (!std::isfinite(value) || value == 0.0) return value;
+  int exponent = 0;
+  const double mantissa = std::frexp(value, &exponent);
+  return std::ldexp(std::nearbyint(std::ldexp(mantissa, bits)), exponent - bits);
+}
+
+TEST(Hdf5Table, SignificantBitsRoundAsTheDefinitionIncludingTiesCarriesAndSubnormals) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> mantissa(0.5, 1.0);
+  std::uniform_int_distribution<int> exponent(-1074, 1023), bits_of(1, 52), sign(0, 1), low(0, 1 << 20);
+  for (int k = 0; k < 200000; ++k) {
+    const int bits = bits_of(rng);
+    double v = std::ldexp(mantissa(rng), exponent(rng));
+    if (k % 4 == 1) {  // exactly half way between two kept values: ties go to even
+      const double kept = std::floor(std::ldexp(mantissa(rng), bits));
+      v = std::ldexp((kept + 0.5) / std::ldexp(1.0, bits), exponent(rng) % 900);
+    } else if (k % 4 == 2) {  // all kept bits ones and more below: the carry reaches the exponent
+      v = std::ldexp(1.0 - std::ldexp(1.0 + low(rng) * 1e-7, -bits - 1), exponent(rng) % 900);
+    }
+    if (sign(rng) == 1) v = -v;
+    const double expected = rounded_by_definition(v, bits);
+    EXPECT_EQ(round_to_significant_bits(v, bits), expected) << v << " to " << bits << " bits";
+  }
+  EXPECT_EQ(round_to_significant_bits(1.5, 1), 2.0);    // a tie, to even
+  EXPECT_EQ(round_to_significant_bits(-2.5, 2), -2.0);  // 10.1b: a tie, to even
+  EXPECT_EQ(round_to_significant_bits(std::numeric_limits<double>::denorm_min(), 3),
+            std::numeric_limits<double>::denorm_min());
+  EXPECT_EQ(round_to_significant_bits(0.1, 53), 0.1);
 }
 
 TEST(Hdf5Table, RowsReadBackRoundedToTheirQuantumAcrossChunks) {
