@@ -7,6 +7,7 @@
 #include <optional>
 #include <thread>
 
+#include "core/thread_priority.hpp"
 #include "planning/plan_producer.hpp"
 #include "planning/run_accuracy.hpp"
 #include "planning/tick_queue.hpp"
@@ -60,6 +61,9 @@ Status stream_on_two_threads(const MotionPlan& plan, const Machine& machine, con
                              RunMonitor& monitor) {
   TickQueue queue(256, 32);
   std::thread producer([&] {
+    // The consumer (forward kinematics, checks, rows) is the run's longest thread; ticks made ahead can wait.
+    constexpr int kProducerNiceSteps = 5;
+    lower_this_thread_priority(kProducerNiceSteps);
     std::optional<Error> failed;
     try {
       // Each tick is made where the consumer will read it.
