@@ -51,20 +51,18 @@ constexpr std::uint8_t kZlibHeader[2] = {0x78, 0x01};
 
 ChunkDeflater::ChunkDeflater(int level) : compressor_(libdeflate_alloc_compressor(level)) {
   if (compressor_ == nullptr) throw std::runtime_error("libdeflate could not set up a compressor");
-  runs_ = new z_stream{};
-  constexpr int kRawDeflate =
-      -15;  // negative window bits: no zlib header or checksum, those are written here
+  runs_ = std::make_unique<z_stream>();
+  // Negative window bits: raw deflate, no zlib header or checksum (those are written here, once per chunk).
+  constexpr int kRawDeflate = -15;
   constexpr int kMemoryLevel = 8;
-  if (deflateInit2(runs_, 1, Z_DEFLATED, kRawDeflate, kMemoryLevel, Z_RLE) != Z_OK) {
-    delete runs_;
+  if (deflateInit2(runs_.get(), 1, Z_DEFLATED, kRawDeflate, kMemoryLevel, Z_RLE) != Z_OK) {
     libdeflate_free_compressor(compressor_);
     throw std::runtime_error("zlib could not set up a compressor");
   }
 }
 
 ChunkDeflater::~ChunkDeflater() {
-  deflateEnd(runs_);
-  delete runs_;
+  deflateEnd(runs_.get());
   libdeflate_free_compressor(compressor_);
 }
 
@@ -75,13 +73,13 @@ std::size_t ChunkDeflater::deflate_runs(std::size_t planes, std::size_t count, b
   // follow each other as one stream; a run never needs a distance into the plane before.
   std::size_t written = 0;
   for (std::size_t p = 0; p < planes; ++p) {
-    deflateReset(runs_);
+    deflateReset(runs_.get());
     runs_->next_in = shuffled_.data.get() + p * count;
     runs_->avail_in = static_cast<uInt>(count);
     runs_->next_out = out.data.get() + at + written;
     runs_->avail_out = static_cast<uInt>(out.capacity - at - written);
     const bool ends_stream = last && p + 1 == planes;
-    const int result = deflate(runs_, ends_stream ? Z_FINISH : Z_SYNC_FLUSH);
+    const int result = deflate(runs_.get(), ends_stream ? Z_FINISH : Z_SYNC_FLUSH);
     // With room to spare (the reserve below) one call consumes everything; a full output would mean more to
     // come.
     if (result == Z_STREAM_ERROR || runs_->avail_in != 0 || runs_->avail_out == 0 ||
@@ -111,7 +109,7 @@ void ChunkDeflater::shuffle_deflate(const void* elements, std::size_t count, std
   constexpr std::size_t kSyncFlushBytes = 16;  // the empty stored block a sync flush ends with, and spare
   constexpr std::size_t kChecksumBytes = 4;
   out.reserve(sizeof kZlibHeader +
-              run_planes * (deflateBound(runs_, static_cast<uLong>(count)) + kSyncFlushBytes) +
+              run_planes * (deflateBound(runs_.get(), static_cast<uLong>(count)) + kSyncFlushBytes) +
               libdeflate_deflate_compress_bound(compressor_, rest) + kChecksumBytes);
   std::memcpy(out.data.get(), kZlibHeader, sizeof kZlibHeader);
   out.size = sizeof kZlibHeader;

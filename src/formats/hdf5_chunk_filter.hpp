@@ -48,7 +48,7 @@ class ChunkDeflater {
   std::size_t deflate_runs(std::size_t planes, std::size_t count, bool last, ChunkBytes& out, std::size_t at);
 
   libdeflate_compressor* compressor_ = nullptr;
-  z_stream_s* runs_ = nullptr;  ///< zlib's raw deflate, run-length strategy
+  std::unique_ptr<z_stream_s> runs_;  ///< zlib's raw deflate, run-length strategy
   ChunkBytes shuffled_;
 };
 

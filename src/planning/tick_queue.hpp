@@ -3,7 +3,7 @@
 // kinematics) to the thread that measures and writes them (the run monitor's forward kinematics, the checks,
 // the observers), so that a long run uses both cores. A ring of batches, made once: the lock is taken once
 // per batch, nothing is allocated per tick, and a tick is made and read where it lies in its batch (a tick is
-// a few hundred bytes: copying it in and out cost as much as measuring it). One producer, one consumer.
+// a few hundred bytes, not worth copying in and out at every period). One producer, one consumer.
 #include <condition_variable>
 #include <cstddef>
 #include <mutex>
