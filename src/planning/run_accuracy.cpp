@@ -41,7 +41,8 @@ Status check_tick_path(const MotionPlan& plan, const Machine& machine, const Ser
             "the machine file keep plans out of such regions",
             near(), error_mm, bound_mm));
   }
-  if (monitor.last_orientation_error_exceeds(kOrientationErrorBoundDeg)) {
+  static const RotationAngle orientation_bound = RotationAngle::of_degrees(kOrientationErrorBoundDeg);
+  if (monitor.last_orientation_error_exceeds(orientation_bound)) {
     const double error_deg = monitor.last_orientation_error_deg();
     return tick_error(
         ErrorCode::unreachable, plan, tick,

@@ -151,12 +151,4 @@ double RunMonitor::last_orientation_error_deg() const {
   return last_orientation_.degrees();  // NaN where not evaluated
 }
 
-bool RunMonitor::last_orientation_error_exceeds(double bound_deg) const {
-  if (bound_deg != bound_deg_) {  // asked every tick with the same bound: its sine and cosine once
-    bound_deg_ = bound_deg;
-    bound_ = RotationAngle::of_degrees(bound_deg);
-  }
-  return last_orientation_.exceeds(bound_);
-}
-
 }  // namespace pkm::planning

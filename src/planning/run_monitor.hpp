@@ -62,8 +62,11 @@ class RunMonitor {
   /// Of the tick added last: the orientation error at its mid-period (deg; NaN where not evaluated, or where
   /// the mechanism does not control the whole orientation), and whether its forward kinematics failed.
   double last_orientation_error_deg() const;
-  /// last_orientation_error_deg() > bound_deg (false where not evaluated), without its arc tangent.
-  bool last_orientation_error_exceeds(double bound_deg) const;
+  /// The orientation error of the tick added last above `bound` (false where not evaluated), without its arc
+  /// tangent.
+  bool last_orientation_error_exceeds(const RotationAngle& bound) const {
+    return last_orientation_.exceeds(bound);
+  }
   /// Of the tick added last: its actuator velocities and accelerations by finite differences (unit/s,
   /// unit/s²; zero where the ticks before it are too few), and its path speed over the feed cap.
   const ActuatorVector& last_velocity() const { return previous_velocity_; }
@@ -106,8 +109,6 @@ class RunMonitor {
   RotationAngle last_orientation_{std::numeric_limits<double>::quiet_NaN(),
                                   std::numeric_limits<double>::quiet_NaN()};
   RotationAngle max_orientation_;
-  mutable double bound_deg_ = std::numeric_limits<double>::quiet_NaN();
-  mutable RotationAngle bound_;
   ActuatorVector last_accel_;
   double last_feed_ratio_ = 0.0;
   bool last_fk_failed_ = false;
