@@ -62,45 +62,85 @@ void add_limit_entry(nlohmann::json& reached, const LimitPeak& peak, const std::
        {"severity", peak.ratio > 1.0 + 1e-3 ? "exceeded" : "reached"}});
 }
 
-// Each drive's position, speed and acceleration tick by tick (the latter two by differences), how close each
-// is to its limits, and the peaks of speed, acceleration and position against them.
+// Each drive's position, speed and acceleration tick by tick (the latter two by differences), and the peaks
+// of speed, acceleration and position against their limits; how close each drive is to its limits is only
+// formed for the scene's frames (closeness_now), not at every tick.
 struct ActuatorTrack {
-  explicit ActuatorTrack(int drives)
-      : q(static_cast<std::size_t>(drives)),
+  ActuatorTrack(int drives, const ActuatorLimits& limits)
+      : limits_(limits),
+        q(static_cast<std::size_t>(drives)),
         q_prev(q.size()),
         v(q.size()),
         v_prev(q.size()),
         a(q.size()),
         closeness(q.size()) {}
 
-  void add(const std::vector<double>& row, double dt, long count, int line, double t,
-           const ActuatorLimits& limits) {
+  void add(const std::vector<double>& row, double dt, long count, int line, double t) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t j = 0; j < q.size(); ++j) {
-      const int drive = static_cast<int>(j);
       q[j] = row[j + 1];
       v[j] = count > 0 && dt > 0.0 ? (q[j] - q_prev[j]) / dt : nan;
       a[j] = count > 1 && dt > 0.0 ? (v[j] - v_prev[j]) / dt : nan;
-      if (limits.speed && std::isfinite(v[j]))
-        speed_peak.offer(std::abs(v[j]) / *limits.speed, std::abs(v[j]), *limits.speed, drive, line, t);
-      if (limits.accel && std::isfinite(a[j]))
-        accel_peak.offer(std::abs(a[j]) / *limits.accel, std::abs(a[j]), *limits.accel, drive, line, t);
-      if (limits.min && limits.max && *limits.max > *limits.min) {
-        // 1 at either end of the range, 0.99 within 1 % of the range from it.
-        const double range = *limits.max - *limits.min;
-        position_peak.offer(1.0 + (q[j] - *limits.max) / range, q[j], *limits.max, drive, line, t);
-        position_peak.offer(1.0 + (*limits.min - q[j]) / range, q[j], *limits.min, drive, line, t);
+    }
+    // Every drive has the same limits, so the largest ratio is the largest value: the ratio is only formed
+    // for a new peak.
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      const int drive = static_cast<int>(j);
+      if (limits_.speed && std::abs(v[j]) > speed_peak.value)
+        speed_peak.offer(std::abs(v[j]) / *limits_.speed, std::abs(v[j]), *limits_.speed, drive, line, t);
+      if (limits_.accel && std::abs(a[j]) > accel_peak.value)
+        accel_peak.offer(std::abs(a[j]) / *limits_.accel, std::abs(a[j]), *limits_.accel, drive, line, t);
+      if (limits_.min && limits_.max && *limits_.max > *limits_.min) {
+        if (q[j] > highest_q) highest_q = q[j], highest_at = {drive, line, t};
+        if (q[j] < lowest_q) lowest_q = q[j], lowest_at = {drive, line, t};
       }
-      closeness[j] = limit_closeness(limits, q[j], v[j], a[j]);
     }
   }
   void step() {
     q_prev = q;
     v_prev = v;
   }
+  /// How close each drive is to its limits at the last tick added (0 far, 1 at a limit).
+  const std::vector<double>& closeness_now() {
+    for (std::size_t j = 0; j < q.size(); ++j) closeness[j] = limit_closeness(limits_, q[j], v[j], a[j]);
+    return closeness;
+  }
+  /// The position nearest either end of the range, as a ratio: 1 at the end, 0.99 within 1 % of the range
+  /// from it (on a tie, the end that was come nearest first).
+  LimitPeak position_peak() const {
+    LimitPeak peak;
+    if (!(limits_.min && limits_.max && *limits_.max > *limits_.min)) return peak;
+    const double range = *limits_.max - *limits_.min;
+    auto offer_low = [&] {
+      peak.offer(1.0 + (*limits_.min - lowest_q) / range, lowest_q, *limits_.min, lowest_at.drive,
+                 lowest_at.line, lowest_at.time_s);
+    };
+    auto offer_high = [&] {
+      peak.offer(1.0 + (highest_q - *limits_.max) / range, highest_q, *limits_.max, highest_at.drive,
+                 highest_at.line, highest_at.time_s);
+    };
+    if (lowest_at.time_s < highest_at.time_s) {
+      offer_low();
+      offer_high();
+    } else {
+      offer_high();
+      offer_low();
+    }
+    return peak;
+  }
 
+  ActuatorLimits limits_;
   std::vector<double> q, q_prev, v, v_prev, a, closeness;
-  LimitPeak speed_peak, accel_peak, position_peak;
+  LimitPeak speed_peak, accel_peak;
+
+ private:
+  struct Where {
+    int drive = 0, line = 0;
+    double time_s = 0.0;
+  };
+  double highest_q = -std::numeric_limits<double>::infinity(),
+         lowest_q = std::numeric_limits<double>::infinity();
+  Where highest_at, lowest_at;
 };
 
 // The columns of the path table the report reads, in kPathColumns' order; feed and path error are -1 when
@@ -215,7 +255,7 @@ Result<nlohmann::json> plan_document(const Machine& machine, const RunFiles& fil
   nlohmann::json reached = nlohmann::json::array();
   add_limit_entry(reached, track.speed_peak, "speed", u + "/s");
   add_limit_entry(reached, track.accel_peak, "acceleration", u + "/s²");
-  add_limit_entry(reached, track.position_peak, "position", u);
+  add_limit_entry(reached, track.position_peak(), "position", u);
   for (auto& entry : dynamics_limit_entries(sm, force_limit)) reached.push_back(std::move(entry));
   for (auto& entry : servo.limit_entries()) reached.push_back(std::move(entry));
 
@@ -303,7 +343,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     return opened.error();
 
   std::vector<double> prow, arow;
-  ActuatorTrack track(n);
+  ActuatorTrack track(n, limits);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   long count = 0;
   double t_prev = 0.0, last_frame_time = -1.0;
@@ -318,7 +358,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     t = tick_time_s(prow[static_cast<std::size_t>(column[0])]);
     line = static_cast<int>(prow[static_cast<std::size_t>(column[1])]);
     const double s = prow[static_cast<std::size_t>(column[2])];
-    track.add(arow, t - t_prev, count, line, t, limits);
+    track.add(arow, t - t_prev, count, line, t);
     plots.positions.add(t, s, track.q.data());
     plots.speeds.add(t, s, track.v.data());
     plots.accels.add(t, s, track.a.data());
@@ -343,7 +383,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     if (scene.frame_due(t)) {
       // The orientation only matters for the frames (a rotation per tick would cost as much as the parsing).
       pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
-      scene.add_frame(t, line, pose, track.closeness);
+      scene.add_frame(t, line, pose, track.closeness_now());
       if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
       last_frame_time = t;
     }
@@ -354,7 +394,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   if (count == 0) return make_error(ErrorCode::bad_input, fmt::format("{}: no rows", path.name()));
   if (t > last_frame_time) {  // the end of the run is a frame
     pose.rotation = rotation_from_angles(AngleConvention::abc, abc_deg * rad_from_deg(1.0));
-    scene.add_frame(t, line, pose, track.closeness);
+    scene.add_frame(t, line, pose, track.closeness_now());
     if (dynamics.active()) scene.add_frame_forces(dynamics.forces());
   }
   if (Status finished = dynamics.finish(); !finished) return finished.error();
