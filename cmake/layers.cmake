@@ -3,7 +3,9 @@
 # headers of its own folder and of the folders before it only (scripts/include-order.py checks it in
 # `make lint`, reading this file):
 #
-#   pkm_kinematics (pkm::kinematics)  core/ kinematics/ machine/       PUBLIC Eigen, Threads (fmt header-only)
+#   pkm_kinematics (pkm::kinematics)  core/ kinematics/ machine/ execution/: the kinematics and the real-time
+#                                     executor (position-independent: LinuxCNC modules link it); PUBLIC
+#                                     Eigen, Threads (fmt header-only)
 #   pkm_io         (pkm::io)          io/                              PUBLIC kinematics, yaml-cpp, fmt, json
 #   pkm_motion     (pkm::motion)      program/ path/ planning/ interpolation/: the motion core, from the part
 #                                     program to the servo ticks and drive steps; PUBLIC io; PRIVATE NLopt
@@ -48,7 +50,7 @@ set(PKM_LIB_PCH <Eigen/Core> <Eigen/Geometry> <Eigen/LU> <fmt/format.h> <string>
 # The kinematics: poses, mechanisms, IK/FK/Jacobians, analyses. No file I/O; position-independent, so that a
 # shared object (a LinuxCNC real-time kinematics module) can link it. Its error messages use fmt header-only
 # and privately, so that a consumer of the installed library needs Eigen only.
-pkm_layer(pkm_kinematics kinematics core kinematics machine)
+pkm_layer(pkm_kinematics kinematics core kinematics machine execution)
 set_target_properties(pkm_kinematics PROPERTIES POSITION_INDEPENDENT_CODE ON)
 target_include_directories(pkm_kinematics PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/pkm>)
 target_include_directories(pkm_kinematics PRIVATE $<TARGET_PROPERTY:fmt::fmt,INTERFACE_INCLUDE_DIRECTORIES>)

@@ -18,6 +18,7 @@
 
 #include "core/units.hpp"
 #include "dynamics/run_elastic.hpp"
+#include "execution/step_executor.hpp"
 #include "interpolation/interpolate_run.hpp"
 #include "interpolation/methods/carrier_interpolator.hpp"
 #include "interpolation/quantisation/discreteness_corrector.hpp"
@@ -284,6 +285,29 @@ TEST(NoAllocation, ServoStreamTicks) {
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_GT(ticks, 1000);
   EXPECT_FALSE(stream.error().has_value());
+}
+
+// The executor of planned motion (execution/step_executor.hpp), as LinuxCNC's servo thread runs it: taking
+// nominal periods and releasing servo periods through an override change, a hold and its release.
+TEST(NoAllocation, StepExecutorPeriods) {
+  execution::ExecutorSettings settings;
+  settings.min_position_steps.fill(-1'000'000);
+  settings.max_position_steps.fill(1'000'000);
+  auto executor = std::make_unique<execution::StepExecutor>(settings);
+  executor->start({});
+  execution::NominalPeriod nominal;
+  execution::ExecutedPeriod out;
+  const long before = g_allocations.load();
+  for (long k = 1; k <= 20000; ++k) {
+    for (int j = 0; j < kMaxActuators; ++j) {
+      nominal.ideal_steps[j] = 1000.0 * std::sin(1e-3 * static_cast<double>(k) + j);
+      nominal.position_steps[j] = std::llround(nominal.ideal_steps[j]);
+    }
+    if (executor->has_room()) executor->push(nominal);
+    executor->period({k < 5000 ? 1.0 : 0.6, k > 9000 && k < 12000, false}, out);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(out.tau_periods, 1000.0);
 }
 
 // The elastic machine along a planned run (dynamics::RunElastic, as `pkm plan --elastic`): after the first
