@@ -46,12 +46,14 @@ build: configure
 python: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target pkm_python
 
-# The LinuxCNC kinematics module: rtapi_app loads modules only from its own folder, so it is installed there
-# (with sudo when not root). make test's LinuxCNC runs install it themselves when they run as root.
+# The LinuxCNC modules (the kinematics pkmkins, the executor pkmexec): rtapi_app loads modules only from its own
+# folder, so they are installed there (with sudo when not root). make test's LinuxCNC runs install them
+# themselves when they run as root.
 linuxcnc: configure
-	@cmake --build $(BUILD) -j $(JOBS) --target pkmkins
-	@$$([ "$$(id -u)" -eq 0 ] || echo sudo) install -m 644 $(BUILD)/linuxcnc/pkmkins.so /usr/lib/linuxcnc/modules/pkmkins.so
-	@echo "linuxcnc: installed /usr/lib/linuxcnc/modules/pkmkins.so"
+	@cmake --build $(BUILD) -j $(JOBS) --target pkmkins pkmexec
+	@for m in pkmkins pkmexec; do \
+		$$([ "$$(id -u)" -eq 0 ] || echo sudo) install -m 644 $(BUILD)/linuxcnc/$$m.so /usr/lib/linuxcnc/modules/$$m.so \
+		&& echo "linuxcnc: installed /usr/lib/linuxcnc/modules/$$m.so"; done
 
 # make run builds only what its job needs (the library and the CLI); make test builds the tests too.
 # build/run is this target's own folder: --force lets it replace what an older pkm left there without a
@@ -99,7 +101,7 @@ sanitize:
 lint: deps
 	@find src apps tests bench fuzz python linuxcnc tools -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
 	@cppcheck -j $(JOBS) --quiet --enable=warning,performance,portability --std=c++20 --language=c++ -I src \
-		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps linuxcnc/pkmkins_bridge.cpp
+		--suppress=missingIncludeSystem --inline-suppr --error-exitcode=1 src apps linuxcnc/pkmkins_bridge.cpp linuxcnc/pkmexec_bridge.cpp
 	@/usr/bin/python3 scripts/function-sizes.py --baseline scripts/function-sizes-allowed.txt src apps python/src linuxcnc > /dev/null
 	@/usr/bin/python3 scripts/include-order.py
 	@echo "lint: clean"

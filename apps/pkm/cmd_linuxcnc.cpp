@@ -1,6 +1,9 @@
 // pkm linuxcnc config --machine M.yaml --out DIR [--kinematics pkmkins|genhexkins] [--display PROGRAM]
 // [--json]: a simulated LinuxCNC configuration of the machine (pipeline/linuxcnc_config.hpp,
 // docs/linuxcnc.md).
+// pkm linuxcnc stream PROGRAM --machine M.yaml [--to -|FILE] [--out DIR] [--period-ms H] [--step-mm D]: the
+// program planned for execution and interpolated to whole steps, streamed period by period for pkm's HAL
+// component (pipeline/execution_stream_job.hpp).
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -9,14 +12,76 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "pipeline/execution_stream_job.hpp"
 #include "pipeline/linuxcnc_config.hpp"
 #include "pipeline/linuxcnc_launch.hpp"
+#include "program_options.hpp"
+#include "progress_display.hpp"
 
 namespace pkm::cli {
+
+namespace {
+
+struct StreamArguments {
+  std::string program, machine, to = "-", out;
+  ProgramArguments program_options;
+  double period_ms = 1.0, step_mm = 0.001;
+};
+
+void add_stream_command(CLI::App& linuxcnc, int& exit_code) {
+  auto* cmd = linuxcnc.add_subcommand(
+      "stream", "plan a program for execution and stream its drive steps to pkm's HAL component pkmexec");
+  auto args = std::make_shared<StreamArguments>();
+  cmd->add_option("program", args->program, "part program: G-code, or CL data")->required();
+  cmd->add_option("--machine", args->machine, "machine file (YAML)")->required();
+  cmd->add_option("--to", args->to,
+                  "where the stream goes: - (standard output, for linuxcnc/pkm_feed.py) or a file")
+      ->capture_default_str();
+  cmd->add_option("--out", args->out,
+                  "also write the interpolation's steps.csv, steps.bin, contour.csv and summary.json here");
+  auto* period =
+      cmd->add_option("--period-ms", args->period_ms, "servo period, ms (default drives.period_ms, else 1)")
+          ->check(CLI::Range(0.1, 20.0));
+  auto* step =
+      cmd->add_option("--step-mm", args->step_mm, "drive resolution, mm per step (default drives.step_mm)")
+          ->check(CLI::PositiveNumber);
+  add_program_options(*cmd, args->program_options);
+  cmd->callback([args, period, step, &exit_code] {
+    auto machine = load_machine_or_report(args->machine);
+    if (!machine) {
+      exit_code = report_error("linuxcnc stream", machine.error());
+      return;
+    }
+    pipeline::ExecutionStreamJob job;
+    job.program_path = args->program;
+    job.program_options = args->program_options.options();
+    job.target = args->to;
+    job.out_directory = args->out;
+    if (period->count() > 0) job.period_ms = args->period_ms;
+    if (step->count() > 0) job.step = args->step_mm;
+    ProgressDisplay progress("linuxcnc stream", "reading the program");
+    job.progress = progress.sink();
+    auto result = pipeline::stream_for_execution(std::move(*machine), job);
+    progress.finish();
+    if (!result) {
+      exit_code = report_error("linuxcnc stream", result.error());
+      return;
+    }
+    // Standard output may be the stream itself: the account goes to standard error.
+    std::cerr << fmt::format(
+        "pkm linuxcnc stream: {} periods, contour error max {:.6f} mm; planned within "
+        "{:.6g}/s and {:.6g}/s² of the drives' limits for overrides up to {:.0f} %\n",
+        result->summary.periods, result->summary.contour.max_error_mm, result->headroom.nominal.speed,
+        result->headroom.nominal.accel, 100.0 * result->headroom.max_override);
+  });
+}
+
+}  // namespace
 
 void add_linuxcnc_command(CLI::App& app, int& exit_code) {
   auto* linuxcnc = app.add_subcommand("linuxcnc", "run the machine on LinuxCNC (docs/linuxcnc.md)");
   linuxcnc->require_subcommand(1);
+  add_stream_command(*linuxcnc, exit_code);
   auto* cmd = linuxcnc->add_subcommand("config", "write a simulated LinuxCNC configuration for a machine");
   auto machine_path = std::make_shared<std::string>();
   auto options = std::make_shared<LinuxcncConfigOptions>();

@@ -29,6 +29,10 @@ double discrete_stopping_distance(double v, double a_max, double h) {
 }  // namespace
 
 double OverrideLaw::advance(double target) noexcept {
+  if (settled_at(target)) {  // the usual period: nothing to change (and K = 1 stays exactly 1)
+    accel_per_s2_ = 0.0;
+    return factor_;
+  }
   const double h = period_s_;
   const double a_max = rates_.max_accel_per_s2, v_max = rates_.max_rate_per_s;
   // In the frame where the target lies ahead (distance ≥ 0), K̈ is the largest in [−a_max, a_max] (and K̇

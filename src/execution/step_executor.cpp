@@ -121,6 +121,17 @@ void StepExecutor::period(const ExecutionControls& controls, ExecutedPeriod& out
   // Not enough motion ahead to stop in, before the end of what has streamed in or before a software stop:
   // slow down now (the stream catches up, or the motion stops in time).
   const bool short_of_periods = !at_end && static_cast<double>(ahead) < stopping_distance_periods();
+  if (short_of_periods && base_ == 0 && fraction_ == 0.0) {
+    // Not begun: the drives wait at the start, K unchanged, until the stream is far enough ahead, so that a
+    // program that streams in fast enough is executed as planned from its first period. A software stop
+    // closer than the motion needs to stop refuses the program before it moves.
+    interpolate(out);
+    out.steps.fill(0);
+    out.factor = law_.factor();
+    out.tau_periods = 0.0;
+    out.state = state_ = limit_point_ >= 0 ? ExecutionState::stopped_at_limit : ExecutionState::starved;
+    return;
+  }
   if (short_of_periods) target = 0.0;
 
   // τ never passes the last point it may reach: the end of the program (where the nominal motion is at

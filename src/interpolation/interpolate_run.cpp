@@ -264,6 +264,7 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
         remainder.quantize(period, out);
       }
       actual = values_of(out.position, n, step);
+      for (int j = 0; j < n; ++j) out.ideal_steps[j] = period.target[j] / step;
     } else {
       actual = period.target;
     }
@@ -344,6 +345,7 @@ Status run_estimating(const Machine& machine, const path::Path& path, const Idea
     for (int j = 0; j < n; ++j) {
       out.position[j] = estimator.position_steps()[j];
       out.steps[j] = static_cast<std::int32_t>(out.position[j] - before[j]);
+      out.ideal_steps[j] = static_cast<double>(out.position[j]);
     }
     monitor.add(values_of(out.position, n, step), s_before, s_reached, out.time_s, options.period_s, out.line,
                 !more);

@@ -139,6 +139,37 @@ TEST(StepExecutor, ReleasesThePlannedStepsThemselvesAtFullFeed) {
   }
 }
 
+// A stream that comes in slowly at first: the drives wait at the start until it is far enough ahead, then
+// the program runs as planned, every period's steps the planned ones.
+TEST(StepExecutor, WaitsAtTheStartForTheStreamAndThenReleasesThePlannedSteps) {
+  std::mt19937 rng(18);
+  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
+  ASSERT_TRUE(headroom);
+  const auto motion = random_motion(rng, headroom->nominal, 3000);
+  StepExecutor executor(settings_for(*headroom));
+  executor.start(motion[0].position_steps);
+  Feeder feeder{motion};
+  ExecutedPeriod out;
+  std::size_t next = 1;
+  long waited = 0;
+  for (long period = 0; period < 20000 && executor.state() != ExecutionState::finished; ++period) {
+    feeder.feed(executor, period % 3 == 0 ? 2 : 1);  // 1.33 nominal periods per servo period
+    executor.period({}, out);
+    if (out.tau_periods == 0.0) {
+      ++waited;
+      ASSERT_EQ(out.position_steps, motion[0].position_steps);
+      continue;
+    }
+    ASSERT_LT(next, motion.size());
+    ASSERT_EQ(out.tau_periods, static_cast<double>(next));
+    ASSERT_EQ(out.position_steps, motion[next].position_steps) << "period " << next;
+    ++next;
+  }
+  EXPECT_GT(waited, 10);
+  EXPECT_EQ(next, motion.size());
+  EXPECT_EQ(executor.state(), ExecutionState::finished);
+}
+
 TEST(StepExecutor, HoldsAndOverridesAtRandomPeriodsWithinTheLimitsAndEndWhereThePlanEnds) {
   std::mt19937 rng(12);
   auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);

@@ -31,19 +31,23 @@ def program_path(name):
     return os.path.join(SOURCE_DIR, "examples", "programs", name)
 
 
-def ensure_module_installed():
-    """rtapi_app loads modules only from LinuxCNC's module folder (no paths in module names): the built
-    pkmkins.so must be the one installed there (`make linuxcnc`; make test does it)."""
-    installed = os.path.join(MODULES_DIR, "pkmkins.so")
-    with open(BUILT_MODULE, "rb") as f:
+def ensure_installed(built_module, name):
+    """rtapi_app loads modules only from LinuxCNC's module folder (no paths in module names): the module built
+    in `built_module` must be the one installed there as `name` (`make linuxcnc`; make test does it)."""
+    installed = os.path.join(MODULES_DIR, name)
+    with open(built_module, "rb") as f:
         built = f.read()
     if os.path.exists(installed):
         with open(installed, "rb") as f:
             if f.read() == built:
                 return
     if os.geteuid() != 0:
-        raise RuntimeError(f"{installed} is not the module built in {BUILT_MODULE}: run `sudo make linuxcnc`")
-    shutil.copyfile(BUILT_MODULE, installed)
+        raise RuntimeError(f"{installed} is not the module built in {built_module}: run `sudo make linuxcnc`")
+    shutil.copyfile(built_module, installed)
+
+
+def ensure_module_installed():
+    ensure_installed(BUILT_MODULE, "pkmkins.so")
 
 
 @dataclass

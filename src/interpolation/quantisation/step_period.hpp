@@ -19,6 +19,10 @@ struct StepPeriod {
   int line = 0;                                        ///< program line at the end of the period
   std::array<std::int32_t, kMaxActuators> steps{};     ///< signed steps in this period (sign = direction)
   std::array<std::int64_t, kMaxActuators> position{};  ///< position code at the end of the period, in steps
+  /// The ideal (continuous) actuator values the whole steps stand for at the period's end, in steps: what an
+  /// executor interpolates between when it scales time (execution/step_executor.hpp). The estimating
+  /// method, which has no continuous law, gives its positions.
+  std::array<double, kMaxActuators> ideal_steps{};
 };
 
 struct StepStreamHeader {
