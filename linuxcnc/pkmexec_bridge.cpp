@@ -11,9 +11,9 @@
 
 #include "execution/machine_headroom.hpp"
 #include "execution/step_executor.hpp"
-#include "io/machine_file.hpp"
 #include "machine/machine.hpp"
 #include "machine/mechanism.hpp"
+#include "module_machine.hpp"
 
 struct pkmexec_executor {
   pkm::Machine machine;
@@ -27,9 +27,7 @@ struct pkmexec_executor {
 
 namespace {
 
-void copy_message(const std::string& message, char* error, std::size_t size) {
-  if (error && size > 0) std::snprintf(error, size, "%s", message.c_str());
-}
+using pkm::linuxcnc::copy_message;
 
 pkm::execution::StepArray to_steps(const long long* values, int n) {
   pkm::execution::StepArray out{};
@@ -42,18 +40,11 @@ pkm::execution::StepArray to_steps(const long long* values, int n) {
 extern "C" {
 
 pkmexec_executor* pkmexec_create(const char* machine_file, double period_s, char* error, size_t error_size) {
-  if (machine_file == nullptr || machine_file[0] == '\0') {
-    copy_message("no machine file given (module parameter machine=PATH)", error, error_size);
-    return nullptr;
-  }
   try {
-    auto loaded = pkm::load_machine_file(machine_file);
-    if (!loaded) {
-      copy_message(loaded.error().message, error, error_size);
-      return nullptr;
-    }
+    auto loaded = pkm::linuxcnc::load_module_machine(machine_file, error, error_size);
+    if (!loaded) return nullptr;
     auto e = std::make_unique<pkmexec_executor>();
-    e->machine = std::move(loaded.value());
+    e->machine = std::move(*loaded);
     e->step = e->machine.drives.step.value_or(0.001);
     auto settings = pkm::execution::executor_settings(e->machine, e->step, period_s);
     if (!settings) {

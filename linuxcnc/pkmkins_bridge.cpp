@@ -16,10 +16,10 @@
 
 #include "core/pose.hpp"
 #include "core/units.hpp"
-#include "io/machine_file.hpp"
 #include "io/version.hpp"
 #include "machine/machine.hpp"
 #include "machine/mechanism.hpp"
+#include "module_machine.hpp"
 
 struct pkmkins_machine {
   pkm::Machine machine;
@@ -42,6 +42,9 @@ struct pkmkins_machine {
 };
 
 namespace {
+
+using pkm::linuxcnc::copy_message;
+using pkm::linuxcnc::load_module_machine;
 
 // LinuxCNC's world angles, whatever the machine file's own convention.
 constexpr pkm::AngleConvention kWorldConvention = pkm::AngleConvention::abc;
@@ -84,28 +87,16 @@ void world_from_pose_vector(const pkm::PoseVector& v, double world[6]) {
   for (int i = 3; i < 6; ++i) world[i] = pkm::deg_from_rad(v[i]);
 }
 
-void copy_message(const std::string& message, char* error, std::size_t error_size) {
-  if (error == nullptr || error_size == 0) return;
-  std::snprintf(error, error_size, "%s", message.c_str());
-}
-
 }  // namespace
 
 extern "C" {
 
 pkmkins_machine* pkmkins_load(const char* machine_file, char* error, size_t error_size) {
-  if (machine_file == nullptr || machine_file[0] == '\0') {
-    copy_message("no machine file given (module parameter machine=PATH)", error, error_size);
-    return nullptr;
-  }
   try {
-    auto loaded = pkm::load_machine_file(machine_file);
-    if (!loaded) {
-      copy_message(loaded.error().message, error, error_size);
-      return nullptr;
-    }
+    auto loaded = load_module_machine(machine_file, error, error_size);
+    if (!loaded) return nullptr;
     auto m = std::make_unique<pkmkins_machine>();
-    m->machine = std::move(loaded.value());
+    m->machine = std::move(*loaded);
     const pkm::Mechanism& mechanism = *m->machine.mechanism;
     if (!angles_are_gcode_angles(mechanism)) {
       copy_message(m->machine.source + ": angles: " + std::string(pkm::to_string(mechanism.convention())) +

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -115,27 +116,43 @@ struct Feeder {
   }
 };
 
+// The headroom every test plans within: overrides up to 120 %, half the acceleration for the motion.
+ExecutionHeadroom test_headroom() {
+  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
+  EXPECT_TRUE(headroom) << headroom.error().message;
+  return *headroom;
+}
+
+// One execution of a nominal motion: the executor started at its first point, its feeder, what watches it.
+struct Execution {
+  Execution(std::vector<NominalPeriod> nominal, const ExecutorSettings& settings)
+      : motion(std::move(nominal)), executor(std::make_unique<StepExecutor>(settings)), feeder{motion} {
+    executor->start(motion[0].position_steps);
+  }
+  std::vector<NominalPeriod> motion;
+  std::unique_ptr<StepExecutor> executor;
+  Feeder feeder;
+  LimitWatch watch;
+  ExecutedPeriod out;
+};
+
 TEST(StepExecutor, ReleasesThePlannedStepsThemselvesAtFullFeed) {
   std::mt19937 rng(11);
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom) << headroom.error().message;
+  const ExecutionHeadroom headroom = test_headroom();
   for (int trial = 0; trial < 5; ++trial) {
-    const auto motion = random_motion(rng, headroom->nominal, 3000);
-    StepExecutor executor(settings_for(*headroom));
-    executor.start(motion[0].position_steps);
-    Feeder feeder{motion};
-    feeder.feed(executor, StepExecutor::kWindow);  // a full window first, then one per period
-    ExecutedPeriod out;
-    StepArray before = motion[0].position_steps;
-    for (std::size_t k = 1; k < motion.size(); ++k) {
-      executor.period({}, out);
-      feeder.feed(executor, 1);
-      ASSERT_EQ(out.position_steps, motion[k].position_steps) << "period " << k;
-      for (int j = 0; j < kDrives; ++j) ASSERT_EQ(out.steps[j], motion[k].position_steps[j] - before[j]);
-      before = out.position_steps;
-      EXPECT_EQ(out.line, motion[k].line);
+    Execution run(random_motion(rng, headroom.nominal, 3000), settings_for(headroom));
+    run.feeder.feed(*run.executor, StepExecutor::kWindow);  // a full window first, then one per period
+    StepArray before = run.motion[0].position_steps;
+    for (std::size_t k = 1; k < run.motion.size(); ++k) {
+      run.executor->period({}, run.out);
+      run.feeder.feed(*run.executor, 1);
+      ASSERT_EQ(run.out.position_steps, run.motion[k].position_steps) << "period " << k;
+      for (int j = 0; j < kDrives; ++j)
+        ASSERT_EQ(run.out.steps[j], run.motion[k].position_steps[j] - before[j]);
+      before = run.out.position_steps;
+      EXPECT_EQ(run.out.line, run.motion[k].line);
     }
-    EXPECT_EQ(out.state, ExecutionState::finished);
+    EXPECT_EQ(run.out.state, ExecutionState::finished);
   }
 }
 
@@ -143,209 +160,170 @@ TEST(StepExecutor, ReleasesThePlannedStepsThemselvesAtFullFeed) {
 // the program runs as planned, every period's steps the planned ones.
 TEST(StepExecutor, WaitsAtTheStartForTheStreamAndThenReleasesThePlannedSteps) {
   std::mt19937 rng(18);
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom);
-  const auto motion = random_motion(rng, headroom->nominal, 3000);
-  StepExecutor executor(settings_for(*headroom));
-  executor.start(motion[0].position_steps);
-  Feeder feeder{motion};
-  ExecutedPeriod out;
+  const ExecutionHeadroom headroom = test_headroom();
+  Execution run(random_motion(rng, headroom.nominal, 3000), settings_for(headroom));
   std::size_t next = 1;
   long waited = 0;
-  for (long period = 0; period < 20000 && executor.state() != ExecutionState::finished; ++period) {
-    feeder.feed(executor, period % 3 == 0 ? 2 : 1);  // 1.33 nominal periods per servo period
-    executor.period({}, out);
-    if (out.tau_periods == 0.0) {
+  for (long period = 0; period < 20000 && run.executor->state() != ExecutionState::finished; ++period) {
+    run.feeder.feed(*run.executor, period % 3 == 0 ? 2 : 1);  // 1.33 nominal periods per servo period
+    run.executor->period({}, run.out);
+    if (run.out.tau_periods == 0.0) {
       ++waited;
-      ASSERT_EQ(out.position_steps, motion[0].position_steps);
+      ASSERT_EQ(run.out.position_steps, run.motion[0].position_steps);
       continue;
     }
-    ASSERT_LT(next, motion.size());
-    ASSERT_EQ(out.tau_periods, static_cast<double>(next));
-    ASSERT_EQ(out.position_steps, motion[next].position_steps) << "period " << next;
+    ASSERT_LT(next, run.motion.size());
+    ASSERT_EQ(run.out.tau_periods, static_cast<double>(next));
+    ASSERT_EQ(run.out.position_steps, run.motion[next].position_steps) << "period " << next;
     ++next;
   }
   EXPECT_GT(waited, 10);
-  EXPECT_EQ(next, motion.size());
-  EXPECT_EQ(executor.state(), ExecutionState::finished);
+  EXPECT_EQ(next, run.motion.size());
+  EXPECT_EQ(run.executor->state(), ExecutionState::finished);
 }
 
 TEST(StepExecutor, HoldsAndOverridesAtRandomPeriodsWithinTheLimitsAndEndWhereThePlanEnds) {
   std::mt19937 rng(12);
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom) << headroom.error().message;
+  const ExecutionHeadroom headroom = test_headroom();
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 20; ++trial) {
-    const auto motion = random_motion(rng, headroom->nominal, 4000);
-    StepExecutor executor(settings_for(*headroom));
-    executor.start(motion[0].position_steps);
-    Feeder feeder{motion};
-    LimitWatch watch;
+    Execution run(random_motion(rng, headroom.nominal, 4000), settings_for(headroom));
     ExecutionControls controls;
-    ExecutedPeriod out;
     long period = 0;
-    for (; period < 200000 && executor.state() != ExecutionState::finished; ++period) {
+    for (; period < 200000 && run.executor->state() != ExecutionState::finished; ++period) {
       if (unit(rng) < 0.004) controls.hold = !controls.hold;
       if (unit(rng) < 0.003) controls.override_factor = std::array{0.3, 1.0, 1.2, 0.0, 0.75}[rng() % 5];
       if (period > 150000) controls = {};  // let it end
-      feeder.feed(executor, 2);
-      executor.period(controls, out);
-      watch.add(out);
+      run.feeder.feed(*run.executor, 2);
+      run.executor->period(controls, run.out);
+      run.watch.add(run.out);
       if (testing::Test::HasFatalFailure()) return;
-      ASSERT_NE(out.state, ExecutionState::stopped_at_limit);
+      ASSERT_NE(run.out.state, ExecutionState::stopped_at_limit);
     }
-    ASSERT_EQ(executor.state(), ExecutionState::finished) << "trial " << trial;
-    EXPECT_EQ(out.position_steps, motion.back().position_steps);
-    watch.expect_within(kLimits);
+    ASSERT_EQ(run.executor->state(), ExecutionState::finished) << "trial " << trial;
+    EXPECT_EQ(run.out.position_steps, run.motion.back().position_steps);
+    run.watch.expect_within(kLimits);
   }
 }
 
 TEST(StepExecutor, OverrideStepsKeepTheLimitsAndThePath) {
   std::mt19937 rng(13);
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom);
-  const auto motion = random_motion(rng, headroom->nominal, 6000);
-  StepExecutor executor(settings_for(*headroom));
-  executor.start(motion[0].position_steps);
-  Feeder feeder{motion};
-  LimitWatch watch;
-  ExecutedPeriod out;
+  const ExecutionHeadroom headroom = test_headroom();
+  Execution run(random_motion(rng, headroom.nominal, 6000), settings_for(headroom));
   double furthest_tau = 0.0;
-  for (long period = 0; period < 50000 && executor.state() != ExecutionState::finished; ++period) {
+  for (long period = 0; period < 50000 && run.executor->state() != ExecutionState::finished; ++period) {
     const double k = period < 1500 ? 1.0 : period < 3500 ? 0.3 : 1.2;  // 100 → 30 → 120 %
-    feeder.feed(executor, 2);
-    executor.period({k, false, false}, out);
-    watch.add(out);
+    run.feeder.feed(*run.executor, 2);
+    run.executor->period({k, false, false}, run.out);
+    run.watch.add(run.out);
     // The path: the set point is the nominal motion at τ (τ only moves forward).
-    ASSERT_GE(out.tau_periods, furthest_tau);
-    furthest_tau = out.tau_periods;
-    const auto lower = static_cast<std::size_t>(std::floor(out.tau_periods));
-    const std::size_t upper = std::min(lower + 1, motion.size() - 1);
+    ASSERT_GE(run.out.tau_periods, furthest_tau);
+    furthest_tau = run.out.tau_periods;
+    const auto lower = static_cast<std::size_t>(std::floor(run.out.tau_periods));
+    const std::size_t upper = std::min(lower + 1, run.motion.size() - 1);
     for (int j = 0; j < kDrives; ++j) {
-      const double a = motion[lower].ideal_steps[j], b = motion[upper].ideal_steps[j];
-      ASSERT_GE(out.set_point_steps[j], std::min(a, b) - 1.0);
-      ASSERT_LE(out.set_point_steps[j], std::max(a, b) + 1.0);
+      const double a = run.motion[lower].ideal_steps[j], b = run.motion[upper].ideal_steps[j];
+      ASSERT_GE(run.out.set_point_steps[j], std::min(a, b) - 1.0);
+      ASSERT_LE(run.out.set_point_steps[j], std::max(a, b) + 1.0);
     }
   }
-  EXPECT_EQ(executor.state(), ExecutionState::finished);
-  EXPECT_EQ(out.position_steps, motion.back().position_steps);
-  watch.expect_within(kLimits);
+  EXPECT_EQ(run.executor->state(), ExecutionState::finished);
+  EXPECT_EQ(run.out.position_steps, run.motion.back().position_steps);
+  run.watch.expect_within(kLimits);
 }
 
 TEST(StepExecutor, AbortStopsWithinTheLimitsAndDropsTheRest) {
   std::mt19937 rng(14);
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom);
+  const ExecutionHeadroom headroom = test_headroom();
   for (int trial = 0; trial < 10; ++trial) {
-    const auto motion = random_motion(rng, headroom->nominal, 4000);
-    StepExecutor executor(settings_for(*headroom));
-    executor.start(motion[0].position_steps);
-    Feeder feeder{motion};
-    LimitWatch watch;
-    ExecutedPeriod out;
+    Execution run(random_motion(rng, headroom.nominal, 4000), settings_for(headroom));
     const long abort_at = 100 + static_cast<long>(rng() % 3000);
     long period = 0;
-    feeder.feed(executor, StepExecutor::kWindow);
-    for (; period < 20000 && executor.state() == ExecutionState::running; ++period) {
-      feeder.feed(executor, 1);
-      executor.period({1.0, false, period >= abort_at}, out);
-      watch.add(out);
+    run.feeder.feed(*run.executor, StepExecutor::kWindow);
+    for (; period < 20000 && run.executor->state() == ExecutionState::running; ++period) {
+      run.feeder.feed(*run.executor, 1);
+      run.executor->period({1.0, false, period >= abort_at}, run.out);
+      run.watch.add(run.out);
     }
-    ASSERT_EQ(executor.state(), ExecutionState::aborted) << "trial " << trial;
-    EXPECT_LT(out.tau_periods, static_cast<double>(motion.size() - 1));
-    const StepArray stopped = out.position_steps;
+    ASSERT_EQ(run.executor->state(), ExecutionState::aborted) << "trial " << trial;
+    EXPECT_LT(run.out.tau_periods, static_cast<double>(run.motion.size() - 1));
+    const StepArray stopped = run.out.position_steps;
     for (int i = 0; i < 10; ++i) {
-      executor.period({}, out);
-      EXPECT_EQ(out.position_steps, stopped);  // it stays where it stopped
+      run.executor->period({}, run.out);
+      EXPECT_EQ(run.out.position_steps, stopped);  // it stays where it stopped
     }
-    watch.expect_within(kLimits);
+    run.watch.expect_within(kLimits);
   }
 }
 
 TEST(StepExecutor, AStreamThatRunsDrySlowsWithinTheLimitsAndCatchesUp) {
   std::mt19937 rng(15);
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom);
-  const auto motion = random_motion(rng, headroom->nominal, 8000);
-  StepExecutor executor(settings_for(*headroom));
-  executor.start(motion[0].position_steps);
-  Feeder feeder{motion};
-  LimitWatch watch;
-  ExecutedPeriod out;
+  const ExecutionHeadroom headroom = test_headroom();
+  Execution run(random_motion(rng, headroom.nominal, 8000), settings_for(headroom));
   bool starved = false;
-  for (long period = 0; period < 100000 && executor.state() != ExecutionState::finished; ++period) {
+  for (long period = 0; period < 100000 && run.executor->state() != ExecutionState::finished; ++period) {
     // Bursts with dry spells: on average slower than the motion for a while, then fast again.
     const int burst = period % 400 < 300 ? 0 : period < 20000 ? 3 : 8;
-    feeder.feed(executor, burst);
-    executor.period({}, out);
-    starved = starved || out.state == ExecutionState::starved;
-    watch.add(out);
+    run.feeder.feed(*run.executor, burst);
+    run.executor->period({}, run.out);
+    starved = starved || run.out.state == ExecutionState::starved;
+    run.watch.add(run.out);
   }
   EXPECT_TRUE(starved);
-  EXPECT_EQ(executor.state(), ExecutionState::finished);
-  EXPECT_EQ(out.position_steps, motion.back().position_steps);
-  watch.expect_within(kLimits);
+  EXPECT_EQ(run.executor->state(), ExecutionState::finished);
+  EXPECT_EQ(run.out.position_steps, run.motion.back().position_steps);
+  run.watch.expect_within(kLimits);
 }
 
 TEST(StepExecutor, NeverReleasesAPositionOutsideTheSoftwareStops) {
   std::mt19937 rng(16);
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom);
+  const ExecutionHeadroom headroom = test_headroom();
   for (int trial = 0; trial < 10; ++trial) {
-    const auto motion = random_motion(rng, headroom->nominal, 4000);
+    auto motion = random_motion(rng, headroom.nominal, 4000);
     // A stop inside the motion's range of drive 3: the stream reaches past it somewhere.
-    ExecutorSettings settings = settings_for(*headroom);
+    ExecutorSettings settings = settings_for(headroom);
     std::int64_t highest = 0;
     for (const auto& p : motion) highest = std::max(highest, p.position_steps[2]);
     const std::int64_t lowest = motion[0].position_steps[2];
     if (highest - lowest < 200) continue;
     settings.max_position_steps[2] = lowest + (highest - lowest) / 2;
-    StepExecutor executor(settings);
-    executor.start(motion[0].position_steps);
-    Feeder feeder{motion};
-    LimitWatch watch;
-    ExecutedPeriod out;
-    feeder.feed(executor, StepExecutor::kWindow);
-    for (long period = 0; period < 20000 && executor.state() == ExecutionState::running; ++period) {
-      feeder.feed(executor, 1);
-      executor.period({}, out);
-      ASSERT_LE(out.position_steps[2], settings.max_position_steps[2]);
-      watch.add(out);
+    Execution run(std::move(motion), settings);
+    run.feeder.feed(*run.executor, StepExecutor::kWindow);
+    for (long period = 0; period < 20000 && run.executor->state() == ExecutionState::running; ++period) {
+      run.feeder.feed(*run.executor, 1);
+      run.executor->period({}, run.out);
+      ASSERT_LE(run.out.position_steps[2], settings.max_position_steps[2]);
+      run.watch.add(run.out);
     }
-    EXPECT_EQ(executor.state(), ExecutionState::stopped_at_limit);
-    EXPECT_GE(executor.fault_line(), 10);
-    watch.expect_within(kLimits);
+    EXPECT_EQ(run.executor->state(), ExecutionState::stopped_at_limit);
+    EXPECT_GE(run.executor->fault_line(), 10);
+    run.watch.expect_within(kLimits);
   }
 }
 
 // The sharp case of the headroom: a drive cruising at the nominal speed limit when the hold comes. Its
 // acceleration is then q'·K̇ alone, and the hold uses exactly the share (1 − η) of the limit that it has.
 TEST(StepExecutor, AHoldAtFullSpeedUsesItsShareOfTheAccelerationAndNoMore) {
-  auto headroom = execution_headroom(kLimits, 1.2, 0.5, kPeriodS);
-  ASSERT_TRUE(headroom);
+  const ExecutionHeadroom headroom = test_headroom();
   std::vector<NominalPeriod> motion(3001);
   for (std::size_t k = 0; k < motion.size(); ++k) {
     for (int j = 0; j < kDrives; ++j) {
-      motion[k].ideal_steps[j] = 500000.0 + (j % 2 ? 1.0 : -1.0) * headroom->nominal.speed * kPeriodS * k;
+      motion[k].ideal_steps[j] = 500000.0 + (j % 2 ? 1.0 : -1.0) * headroom.nominal.speed * kPeriodS * k;
       motion[k].position_steps[j] = std::llround(motion[k].ideal_steps[j]);
     }
   }
-  StepExecutor executor(settings_for(*headroom));
-  executor.start(motion[0].position_steps);
-  Feeder feeder{motion};
-  feeder.feed(executor, StepExecutor::kWindow);
-  LimitWatch watch;
-  ExecutedPeriod out;
+  Execution run(std::move(motion), settings_for(headroom));
+  run.feeder.feed(*run.executor, StepExecutor::kWindow);
   for (long period = 0; period < 1200; ++period) {
-    feeder.feed(executor, 1);
-    executor.period({1.0, period >= 500, false}, out);
-    if (period > 2) watch.add(out);  // past the start, where the cruise begins at full speed
+    run.feeder.feed(*run.executor, 1);
+    run.executor->period({1.0, period >= 500, false}, run.out);
+    if (period > 2) run.watch.add(run.out);  // past the start, where the cruise begins at full speed
   }
-  EXPECT_EQ(out.factor, 0.0);
-  const double share = (1.0 - headroom->motion_share) * kLimits.accel;
-  EXPECT_LE(watch.worst_accel, share * (1 + 1e-6));
-  EXPECT_GE(watch.worst_accel, 0.95 * share);
-  watch.expect_within(kLimits);
+  EXPECT_EQ(run.out.factor, 0.0);
+  const double share = (1.0 - headroom.motion_share) * kLimits.accel;
+  EXPECT_LE(run.watch.worst_accel, share * (1 + 1e-6));
+  EXPECT_GE(run.watch.worst_accel, 0.95 * share);
+  run.watch.expect_within(kLimits);
 }
 
 TEST(OverrideLaw, ReachesEveryTargetExactlyWithoutOvershootWithinItsRates) {
