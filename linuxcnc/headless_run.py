@@ -111,9 +111,13 @@ def main():
         command.state(linuxcnc.STATE_ON)
         command.wait_complete()
         command.home(-1)
-        wait_for(lambda s: all(s.homed[:joints]), stat, recorder, 30, "homing")
+        wait_for(lambda s: all(s.homed[:joints]), stat, recorder, 90, "homing")
         summary["homed"] = True
         summary["homed_joints"] = list(stat.joint_actual_position[:joints])
+        # joint = motor position − motor offset: what homing made of the motors' positions.
+        summary["motor_offsets"] = [float(subprocess.run(["halcmd", "getp", f"joint.{j}.motor-offset"],
+                                                         capture_output=True, text=True).stdout.strip() or "nan")
+                                    for j in range(joints)]
         summary["homed_position"] = list(stat.position[:6])
         command.mode(linuxcnc.MODE_AUTO)
         command.wait_complete()

@@ -99,6 +99,12 @@ void add_linuxcnc_command(CLI::App& app, int& exit_code) {
                   "LinuxCNC user interface ([DISPLAY] DISPLAY); without an X display linuxcncrsh (LinuxCNC's "
                   "text interface, port 5007) or pkm's linuxcnc/headless_run.py (runs one program)")
       ->capture_default_str();
+  auto homing = std::make_shared<std::string>("at-home");
+  cmd->add_option("--homing", *homing,
+                  "at-home (the joints home at once where home puts them) or switches (each strut down to a "
+                  "lower boundary switch, back off it slowly: simulated switches in the HAL file)")
+      ->check(CLI::IsMember({"at-home", "switches"}))
+      ->capture_default_str();
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
     auto machine = load_machine_or_report(*machine_path);
@@ -109,6 +115,7 @@ void add_linuxcnc_command(CLI::App& app, int& exit_code) {
     options->kinematics = *kinematics == "genhexkins" ? LinuxcncKinematics::genhexkins
                           : *kinematics == "trivkins" ? LinuxcncKinematics::trivkins
                                                       : LinuxcncKinematics::pkmkins;
+    options->homing = *homing == "switches" ? LinuxcncHoming::switches : LinuxcncHoming::at_home;
     auto written = write_linuxcnc_config(*machine, *options);
     if (!written) {
       exit_code = report_error("linuxcnc config", written.error());

@@ -139,7 +139,7 @@ void StepExecutor::period(const ExecutionControls& controls, ExecutedPeriod& out
   const double cap = static_cast<double>(base_ + std::max(0L, ahead));
   double advance = law_.advance(target);
   if (tau + advance >= cap) {
-    advance = cap - tau;
+    advance = std::max(0.0, cap - tau);
     if (!at_end) law_.reset(0.0);  // only by a fault of the stopping distance: hold where the motion is
   }
   fraction_ += advance;

@@ -2,29 +2,17 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 
 namespace pkm::formats {
 
 namespace {
 
-// Shortest decimals that read back as the same double (std::to_chars), appended without allocation once the
-// buffer has grown.
-void append_number(std::string& out, double value) {
-  char text[32];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  out.append(text, end);
-}
-
-void append_integer(std::string& out, long long value) {
-  char text[24];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  out.append(text, end);
-}
-
 constexpr std::size_t kFlushBytes = 1 << 14;
+// The widest record: "p," + a line + 6 shortest doubles + 6 integers, each with its comma.
+using RecordBuffer = std::array<char, 512>;
 
 }  // namespace
 
@@ -50,26 +38,19 @@ Status ExecutionStreamWriter::put(std::string_view text) {
 }
 
 Status ExecutionStreamWriter::write(const interpolation::StepPeriod& period) {
-  if (!started_) {
-    buffer_ += "start";
-    for (int j = 0; j < drives_; ++j) {
-      buffer_ += ',';
-      append_integer(buffer_, period.position[j] - period.steps[j]);
-    }
-    buffer_ += '\n';
+  RecordBuffer record;
+  char* out = record.data();
+  if (!started_) {  // the drives' positions before the first period
+    out = fmt::format_to(out, "start");
+    for (int j = 0; j < drives_; ++j) out = fmt::format_to(out, ",{}", period.position[j] - period.steps[j]);
+    *out++ = '\n';
     started_ = true;
   }
-  buffer_ += "p,";
-  append_integer(buffer_, period.line);
-  for (int j = 0; j < drives_; ++j) {
-    buffer_ += ',';
-    append_number(buffer_, period.ideal_steps[j]);
-  }
-  for (int j = 0; j < drives_; ++j) {
-    buffer_ += ',';
-    append_integer(buffer_, period.position[j]);
-  }
-  buffer_ += '\n';
+  out = fmt::format_to(out, "p,{}", period.line);
+  for (int j = 0; j < drives_; ++j) out = fmt::format_to(out, ",{}", period.ideal_steps[j]);
+  for (int j = 0; j < drives_; ++j) out = fmt::format_to(out, ",{}", period.position[j]);
+  *out++ = '\n';
+  buffer_.append(record.data(), static_cast<std::size_t>(out - record.data()));
   if (buffer_.size() < kFlushBytes) return ok_status();
   Status written = put(buffer_);
   buffer_.clear();

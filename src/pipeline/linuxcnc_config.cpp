@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "core/units.hpp"
 #include "io/input_file.hpp"
@@ -67,13 +68,24 @@ struct JointSection {
   bool angular = false;
   JointSettings limits;
   double home = 0.0;
+  std::optional<LinuxcncHomingSwitch> homing;  ///< none: homes at once, at `home`
 };
+
+// The textbook's homing for a joint with the limits `s`: the switch 1 % of the range below the lower software
+// stop, the search at a quarter of the speed limit, the latch fifty times slower (v1 ≫ v2).
+LinuxcncHomingSwitch homing_switch(const JointSettings& s) {
+  const double search = 0.25 * s.speed;
+  return {s.min - 0.01 * (s.max - s.min), search, search / 50.0};
+}
 
 // The machine's actuators as LinuxCNC joints, at their home positions.
 std::vector<JointSection> actuator_joints(const Machine& machine, const JointSettings& s,
-                                          const std::vector<double>& home) {
+                                          const LinuxcncConfig& config) {
   std::vector<JointSection> joints;
-  for (double h : home) joints.push_back({machine.mechanism->actuators_are_angles(), s, h});
+  for (std::size_t j = 0; j < config.home_joints.size(); ++j) {
+    joints.push_back({machine.mechanism->actuators_are_angles(), s, config.home_joints[j], std::nullopt});
+    if (!config.homing_switches.empty()) joints.back().homing = config.homing_switches[j];
+  }
   return joints;
 }
 
@@ -96,7 +108,7 @@ std::vector<JointSection> coordinate_joints(const Machine& machine, const PoseVe
         centre - reach, centre + reach,
         linear ? machine.motion.rapid_mm_min / 60.0 : machine.motion.angular_feed_deg_min / 60.0,
         linear ? machine.motion.path_accel_mm_s2 : angular_accel};
-    joints.push_back({!linear, limits, centre});
+    joints.push_back({!linear, limits, centre, std::nullopt});
   }
   return joints;
 }
@@ -119,17 +131,30 @@ std::string axis_sections(const Machine& machine, const PoseVector& home, const 
   return out;
 }
 
+std::string homing_lines(const JointSection& s) {
+  if (!s.homing) {
+    // No home switches in a simulated machine: homing takes the joint's position as HOME_OFFSET (search and
+    // latch speeds 0), and every joint homes at once, where the machine file's home pose puts it.
+    return fmt::format("HOME = {0}\nHOME_OFFSET = {0}\nHOME_SEARCH_VEL = 0\nHOME_LATCH_VEL = 0\n",
+                       number(s.home));
+  }
+  // Down to the lower boundary switch at v1, back off it at v2 until it releases: that edge is HOME_OFFSET
+  // (the joint's coordinate there); then to HOME at the joint's speed limit.
+  return fmt::format(
+      "HOME = {}\nHOME_OFFSET = {}\nHOME_SEARCH_VEL = {}\nHOME_LATCH_VEL = {}\nHOME_USE_INDEX = NO\n",
+      number(s.home), number(s.homing->switch_position), number(-s.homing->search_speed),
+      number(s.homing->latch_speed));
+}
+
 std::string joint_sections(const std::vector<JointSection>& joints) {
   std::string out;
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const JointSection& s = joints[j];
-    // No home switches in a simulated machine: homing takes the joint's position as HOME_OFFSET (search and
-    // latch speeds 0), and every joint homes at once, where the machine file's home pose puts it.
     out += fmt::format(
-        "[JOINT_{}]\nTYPE = {}\nMIN_LIMIT = {}\nMAX_LIMIT = {}\nMAX_VELOCITY = {}\nMAX_ACCELERATION = {}\n"
-        "HOME = {}\nHOME_OFFSET = {}\nHOME_SEARCH_VEL = 0\nHOME_LATCH_VEL = 0\nHOME_SEQUENCE = 0\n\n",
+        "[JOINT_{}]\nTYPE = {}\nMIN_LIMIT = {}\nMAX_LIMIT = {}\nMAX_VELOCITY = {}\nMAX_ACCELERATION = {}\n{}"
+        "HOME_SEQUENCE = 0\n\n",
         j, s.angular ? "ANGULAR" : "LINEAR", number(s.limits.min), number(s.limits.max),
-        number(s.limits.speed), number(s.limits.accel), number(s.home), number(s.home));
+        number(s.limits.speed), number(s.limits.accel), homing_lines(s));
   }
   return out;
 }
@@ -153,7 +178,7 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
   }
   const std::vector<JointSection> joint_list = options.kinematics == LinuxcncKinematics::trivkins
                                                    ? coordinate_joints(machine, home, joints)
-                                                   : actuator_joints(machine, joints, config.home_joints);
+                                                   : actuator_joints(machine, joints, config);
   std::string hal_files = "HALFILE = machine.hal\n";
   if (options.kinematics == LinuxcncKinematics::genhexkins) hal_files += "HALFILE = genhexkins.hal\n";
   return fmt::format(
@@ -195,6 +220,26 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
       fmt::arg("kinematics", kinematics), fmt::arg("joints", joint_list.size()),
       fmt::arg("joint_sections", joint_sections(joint_list)),
       fmt::arg("axis_sections", axis_sections(machine, home, joints)));
+}
+
+// A home switch per joint, LinuxCNC's sim_home_switch: the simulated strut starts at its home length when
+// LinuxCNC's motor position is 0 (it knows nothing of where the strut is before homing), so the switch trips
+// at the motor position (switch − home); a negative position makes sim_home_switch trip below it.
+std::string home_switch_hal(const LinuxcncConfig& config) {
+  const std::size_t n = config.homing_switches.size();
+  std::string out = fmt::format(
+      "\n# The lower boundary switches (simulated: a real machine wires its switches to "
+      "joint.N.home-sw-in).\n"
+      "loadrt sim_home_switch count={}\n",
+      n);
+  for (std::size_t j = 0; j < n; ++j) {
+    out += fmt::format(
+        "addf sim-home-switch.{0} servo-thread\nsetp sim-home-switch.{0}.home-pos {1}\n"
+        "setp sim-home-switch.{0}.hysteresis 0.000001\nnet j{0}-pos => sim-home-switch.{0}.cur-pos\n"
+        "net j{0}-home-sw sim-home-switch.{0}.home-sw => joint.{0}.home-sw-in\n",
+        j, number(config.homing_switches[j].switch_position - config.home_joints[j]));
+  }
+  return out;
 }
 
 std::string hal_text(const Machine& machine, int joints) {
@@ -299,6 +344,15 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
   for (int i = 0; i < 6; ++i)
     if (axes.controlled[static_cast<std::size_t>(i)]) config.coordinates += kAxisLetters[i];
   config.servo_period_ns = static_cast<int>(std::lround(machine.drives.period_ms.value_or(1.0) * 1e6));
+  if (options.homing == LinuxcncHoming::switches) {
+    if (options.kinematics == LinuxcncKinematics::trivkins || !machine.limits.min || !machine.limits.max) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: homing on switches needs the joints' range (limits.actuator_min and "
+                                    "actuator_max) and actuators as joints (not trivkins)",
+                                    machine.source));
+    }
+    config.homing_switches.assign(config.home_joints.size(), homing_switch(*settings));
+  }
 
   std::error_code ec;
   const std::string directory =
@@ -337,7 +391,8 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
       {"machine.ini", ini_text(machine, options, kinematics, config, *settings, home)},
       {"machine.hal",
        hal_text(machine, options.kinematics == LinuxcncKinematics::trivkins ? m.controlled_axes().count()
-                                                                            : m.actuator_count())},
+                                                                            : m.actuator_count()) +
+           (config.homing_switches.empty() ? std::string() : home_switch_hal(config))},
       {"machine.yaml", *machine_text},
       {"tool.tbl", "T1 P1 D0 Z0 ;no tool length: programs run at pkm's tool point\n"}};
   if (!genhexkins.empty()) files.emplace_back("genhexkins.hal", genhexkins);

@@ -23,11 +23,27 @@ namespace pkm {
 /// comparison).
 enum class LinuxcncKinematics { pkmkins, genhexkins, trivkins };
 
+/// How the joints home: at once where the machine file's home puts them (a simulated machine without
+/// switches), or the textbook's search: each strut at speed v1 to its lower boundary switch, back off it at
+/// v2 ≪ v1 until it releases (the origin, to within v2·h), then to home. The simulated configuration then has
+/// a switch per joint (LinuxCNC's sim_home_switch) where a real machine wires its own.
+enum class LinuxcncHoming { at_home, switches };
+
+/// Where each joint's lower boundary switch is, and the speeds of the search (v1) and the latch (v2), in
+/// LinuxCNC's joint units: a percent of the range below actuator_min (outside the software stops, as the
+/// textbook places the boundary sensors), v1 a quarter of the drive's speed limit, v2 = v1 / 50.
+struct LinuxcncHomingSwitch {
+  double switch_position = 0.0;
+  double search_speed = 0.0;
+  double latch_speed = 0.0;
+};
+
 struct LinuxcncConfigOptions {
   std::string out_directory;
   LinuxcncKinematics kinematics = LinuxcncKinematics::pkmkins;
   /// LinuxCNC's user interface ([DISPLAY] DISPLAY): a GUI such as axis, or a program run instead (headless).
   std::string display = "axis";
+  LinuxcncHoming homing = LinuxcncHoming::at_home;
 };
 
 struct LinuxcncConfig {
@@ -36,6 +52,7 @@ struct LinuxcncConfig {
   std::string coordinates;          ///< LinuxCNC axis letters of the controlled coordinates, e.g. "XYZABC"
   std::vector<double> home_joints;  ///< joint positions at home, LinuxCNC units (mm, or deg)
   int servo_period_ns = 0;
+  std::vector<LinuxcncHomingSwitch> homing_switches;  ///< per joint, with LinuxcncHoming::switches
 };
 
 /// Writes the configuration into options.out_directory, all files or none. Fails, naming the machine file

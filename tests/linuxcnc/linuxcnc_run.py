@@ -71,9 +71,9 @@ class Run:
         return np.column_stack([self.column(f"joint_{j}_{kind}") for j in range(n)])
 
 
-def write_config(machine, out_dir, kinematics="pkmkins"):
+def write_config(machine, out_dir, kinematics="pkmkins", extra_args=()):
     subprocess.run([PKM, "linuxcnc", "config", "--machine", machine, "--out", out_dir, "--kinematics", kinematics,
-                    "--display", DRIVER], check=True, capture_output=True, text=True)
+                    "--display", DRIVER, *extra_args], check=True, capture_output=True, text=True)
 
 
 def _environment(work_dir, program, record, timeout_s):
@@ -95,14 +95,14 @@ def _tear_down(env):
         os.remove(lock)
 
 
-def run_linuxcnc(machine, program, kinematics="pkmkins", edit_config=None, timeout_s=120):
+def run_linuxcnc(machine, program, kinematics="pkmkins", edit_config=None, timeout_s=120, config_args=()):
     """Writes the configuration, runs `program` on it and returns the recorded run. `edit_config(dir)` may
     change the written files first (the tests of bad machines)."""
     ensure_module_installed()
     work_dir = tempfile.mkdtemp(prefix="pkm-linuxcnc-", dir="/tmp")
     os.chmod(work_dir, 0o777)
     config_dir = os.path.join(work_dir, "config")
-    write_config(machine, config_dir, kinematics)
+    write_config(machine, config_dir, kinematics, config_args)
     if edit_config:
         edit_config(config_dir)
     os.chmod(config_dir, 0o777)

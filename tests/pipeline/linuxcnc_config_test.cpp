@@ -415,6 +415,45 @@ TEST(LinuxcncConfig, TripodOutsideAbcIsRefused) {
   EXPECT_FALSE(fs::exists(tmp.root() / "config"));
 }
 
+// Homing on switches (the textbook's search): each joint searches down at v1 to its lower boundary switch, 1
+// % of the range below the software stop, latches backing off at v2 = v1 / 50, and its switch is simulated
+// where the strut's length (home length at motor position 0) reaches it.
+TEST(LinuxcncConfig, HomingOnSwitchesSearchesDownAndLatchesBackingOff) {
+  const LinuxcncTempDir tmp("homing");
+  const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  LinuxcncConfigOptions options;
+  options.out_directory = (tmp.root() / "config").string();
+  options.homing = LinuxcncHoming::switches;
+  const auto config = write_linuxcnc_config(machine, options);
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  const LinuxcncIni ini = linuxcnc_parse_ini(linuxcnc_read_text(tmp.root() / "config" / "machine.ini"));
+  const std::string hal = linuxcnc_read_text(tmp.root() / "config" / "machine.hal");
+  const double min = *machine.limits.min, max = *machine.limits.max, speed = *machine.limits.speed;
+  ASSERT_EQ(config->homing_switches.size(), 6u);
+  for (int j = 0; j < 6; ++j) {
+    const std::string joint = fmt::format("JOINT_{}", j);
+    const double switch_at = linuxcnc_number(linuxcnc_ini_value(ini, joint, "HOME_OFFSET"));
+    EXPECT_NEAR(switch_at, min - 0.01 * (max - min), 1e-9);
+    EXPECT_LT(switch_at, linuxcnc_number(linuxcnc_ini_value(ini, joint, "MIN_LIMIT")));
+    const double search = linuxcnc_number(linuxcnc_ini_value(ini, joint, "HOME_SEARCH_VEL"));
+    const double latch = linuxcnc_number(linuxcnc_ini_value(ini, joint, "HOME_LATCH_VEL"));
+    EXPECT_DOUBLE_EQ(search, -0.25 * speed);       // down, towards the lower switch
+    EXPECT_DOUBLE_EQ(latch, 0.25 * speed / 50.0);  // up, off it: v1 ≫ v2
+    EXPECT_DOUBLE_EQ(linuxcnc_number(linuxcnc_ini_value(ini, joint, "HOME")), config->home_joints[j]);
+    // The simulated switch at the motor position where the strut (home length at 0) reaches it.
+    EXPECT_NE(hal.find(fmt::format("setp sim-home-switch.{}.home-pos {:.17g}", j,
+                                   switch_at - config->home_joints[j])),
+              std::string::npos);
+    EXPECT_NE(
+        hal.find(fmt::format("net j{0}-home-sw sim-home-switch.{0}.home-sw => joint.{0}.home-sw-in", j)),
+        std::string::npos);
+  }
+  // trivkins has no actuators as joints: homing on switches is refused.
+  options.kinematics = LinuxcncKinematics::trivkins;
+  options.out_directory = (tmp.root() / "trivkins").string();
+  EXPECT_FALSE(write_linuxcnc_config(machine, options).ok());
+}
+
 TEST(LinuxcncConfig, MachineWithoutActuatorLimitsIsRefused) {
   const LinuxcncTempDir tmp("no_limits");
   fs::create_directories(tmp.root());
