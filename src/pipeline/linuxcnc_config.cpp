@@ -179,7 +179,7 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
   const std::vector<JointSection> joint_list = options.kinematics == LinuxcncKinematics::trivkins
                                                    ? coordinate_joints(machine, home, joints)
                                                    : actuator_joints(machine, joints, config);
-  std::string hal_files = "HALFILE = machine.hal\n";
+  std::string hal_files = "HALFILE = machine.hal\nHALFILE = drives.hal\n";
   if (options.kinematics == LinuxcncKinematics::genhexkins) hal_files += "HALFILE = genhexkins.hal\n";
   return fmt::format(
       "# LinuxCNC configuration of {name}, written by `pkm linuxcnc config` from {source}.\n"
@@ -242,21 +242,75 @@ std::string home_switch_hal(const LinuxcncConfig& config) {
   return out;
 }
 
-std::string hal_text(const Machine& machine, int joints) {
-  std::string out = fmt::format(
-      "# Servo loop of a simulated {}: motion runs in the servo thread through the [KINS] kinematics, and "
-      "every\n"
-      "# joint is where it is commanded (a real machine connects its drives here instead).\n"
+std::string hal_text(const Machine& machine) {
+  return fmt::format(
+      "# Motion of {}: the motion controller runs in the servo thread through the [KINS] kinematics; the "
+      "drives\n"
+      "# are in drives.hal.\n"
       "loadrt [KINS]KINEMATICS\n"
       "loadrt [EMCMOT]EMCMOT servo_period_nsec=[EMCMOT]SERVO_PERIOD num_joints=[KINS]JOINTS\n"
-      "addf motion-command-handler servo-thread\naddf motion-controller servo-thread\n\n",
-      machine.name.empty() ? std::string("machine") : machine.name);
+      "addf motion-command-handler servo-thread\naddf motion-controller servo-thread\n\n"
+      "net estop-loop iocontrol.0.user-enable-out => iocontrol.0.emc-enable-in\n"
+      "net tool-prepare-loop iocontrol.0.tool-prepare => iocontrol.0.tool-prepared\n"
+      "net tool-change-loop iocontrol.0.tool-change => iocontrol.0.tool-changed\n",
+      machine.name.empty() ? std::string("the machine") : machine.name);
+}
+
+// Where real drives go, as comments with this machine's numbers: step/dir through a Mesa card (hostmot2),
+// step/dir through the parallel port with LinuxCNC's software step generator, EtherCAT servo drives.
+std::string drive_examples(double steps_per_unit, const std::string& unit) {
+  return fmt::format(
+      "# Real drives replace the simulation below, joint by joint (N = 0 … joints − 1; one step is "
+      "1/{0:.10g} {1}):\n"
+      "#\n"
+      "# Step/dir through a Mesa card (LinuxCNC's hostmot2; read first and write last in the servo thread):\n"
+      "#   loadrt hostmot2\n"
+      "#   loadrt hm2_eth board_ip=10.10.10.10 config=\"num_encoders=0 num_stepgens=6\"\n"
+      "#   addf hm2_7i76e.0.read servo-thread 1\n"
+      "#   addf hm2_7i76e.0.write servo-thread -1\n"
+      "#   setp hm2_7i76e.0.stepgen.0N.position-scale {0:.10g}\n"
+      "#   net jN-pos-cmd joint.N.motor-pos-cmd => hm2_7i76e.0.stepgen.0N.position-cmd\n"
+      "#   net jN-pos-fb hm2_7i76e.0.stepgen.0N.position-fb => joint.N.motor-pos-fb\n"
+      "#   net jN-enable joint.N.amp-enable-out => hm2_7i76e.0.stepgen.0N.enable\n"
+      "#\n"
+      "# Step/dir through the parallel port (LinuxCNC's software stepgen; needs [EMCMOT]BASE_PERIOD, a fast "
+      "thread):\n"
+      "#   loadrt hal_parport cfg=\"0x378 out\"\n"
+      "#   loadrt stepgen step_type=0,0,0,0,0,0\n"
+      "#   addf parport.0.read base-thread 1\n"
+      "#   addf stepgen.make-pulses base-thread\n"
+      "#   addf parport.0.write base-thread -1\n"
+      "#   addf stepgen.capture-position servo-thread 1\n"
+      "#   addf stepgen.update-freq servo-thread -1\n"
+      "#   setp stepgen.N.position-scale {0:.10g}\n"
+      "#   net jN-pos-cmd joint.N.motor-pos-cmd => stepgen.N.position-cmd\n"
+      "#   net jN-pos-fb stepgen.N.position-fb => joint.N.motor-pos-fb\n"
+      "#   net jN-step stepgen.N.step => parport.0.pin-02-out   (and dir to the next pin)\n"
+      "#\n"
+      "# EtherCAT servo drives in cyclic synchronous position mode (linuxcnc-ethercat's lcec, where "
+      "installed):\n"
+      "#   loadusr -W lcec_conf ethercat.xml\n"
+      "#   loadrt lcec\n"
+      "#   addf lcec.read-all servo-thread 1\n"
+      "#   addf lcec.write-all servo-thread -1\n"
+      "#   net jN-pos-cmd joint.N.motor-pos-cmd => lcec.0.driveN.pos-cmd\n"
+      "#   net jN-pos-fb lcec.0.driveN.pos-fb => joint.N.motor-pos-fb\n"
+      "#   net jN-enable joint.N.amp-enable-out => lcec.0.driveN.enable\n"
+      "#\n"
+      "# Home switches go to joint.N.home-sw-in (with pkm linuxcnc config --homing switches).\n\n",
+      steps_per_unit, unit);
+}
+
+// The drives: simulated, each joint where it is commanded, with the lower boundary switches when homing on
+// them; real drives replace these lines (drive_examples).
+std::string drives_text(const Machine& machine, const LinuxcncConfig& config, int joints) {
+  const bool angles = machine.mechanism->actuators_are_angles();
+  const double step = machine.drives.step.value_or(0.001);
+  std::string out = "# The drives, simulated: every joint is where it is commanded.\n" +
+                    drive_examples(1.0 / step, angles ? "deg" : "mm");
   for (int j = 0; j < joints; ++j)
     out += fmt::format("net j{0}-pos joint.{0}.motor-pos-cmd => joint.{0}.motor-pos-fb\n", j);
-  out +=
-      "\nnet estop-loop iocontrol.0.user-enable-out => iocontrol.0.emc-enable-in\n"
-      "net tool-prepare-loop iocontrol.0.tool-prepare => iocontrol.0.tool-prepared\n"
-      "net tool-change-loop iocontrol.0.tool-change => iocontrol.0.tool-changed\n";
+  if (!config.homing_switches.empty()) out += home_switch_hal(config);
   return out;
 }
 
@@ -389,10 +443,11 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
   const PoseVector home = vector_from_pose(AngleConvention::abc, m.home());
   std::vector<std::pair<std::string, std::string>> files = {
       {"machine.ini", ini_text(machine, options, kinematics, config, *settings, home)},
-      {"machine.hal",
-       hal_text(machine, options.kinematics == LinuxcncKinematics::trivkins ? m.controlled_axes().count()
-                                                                            : m.actuator_count()) +
-           (config.homing_switches.empty() ? std::string() : home_switch_hal(config))},
+      {"machine.hal", hal_text(machine)},
+      {"drives.hal",
+       drives_text(machine, config,
+                   options.kinematics == LinuxcncKinematics::trivkins ? m.controlled_axes().count()
+                                                                      : m.actuator_count())},
       {"machine.yaml", *machine_text},
       {"tool.tbl", "T1 P1 D0 Z0 ;no tool length: programs run at pkm's tool point\n"}};
   if (!genhexkins.empty()) files.emplace_back("genhexkins.hal", genhexkins);

@@ -151,9 +151,9 @@ TEST(LinuxcncConfig, HexapodIniCarriesTheMachineFile) {
   const auto config = write_linuxcnc_config(machine, options);
   ASSERT_TRUE(config.ok()) << config.error().message;
 
-  EXPECT_EQ(linuxcnc_entries(dir),
-            (std::vector<std::string>{"machine.hal", "machine.ini", "machine.yaml", "tool.tbl"}));
-  EXPECT_EQ(config->files.size(), 4u);
+  EXPECT_EQ(linuxcnc_entries(dir), (std::vector<std::string>{"drives.hal", "machine.hal", "machine.ini",
+                                                             "machine.yaml", "tool.tbl"}));
+  EXPECT_EQ(config->files.size(), 5u);
   EXPECT_EQ(config->coordinates, "XYZABC");
   EXPECT_EQ(config->servo_period_ns, 1000000);  // drives: period_ms: 1
 
@@ -169,7 +169,6 @@ TEST(LinuxcncConfig, HexapodIniCarriesTheMachineFile) {
   EXPECT_EQ(linuxcnc_ini_value(ini, "TRAJ", "COORDINATES"), "X Y Z A B C");
   EXPECT_EQ(linuxcnc_ini_value(ini, "EMCMOT", "SERVO_PERIOD"), "1000000");
   EXPECT_EQ(linuxcnc_ini_value(ini, "EMCIO", "TOOL_TABLE"), "tool.tbl");
-  EXPECT_EQ(linuxcnc_ini_value(ini, "HAL", "HALFILE"), "machine.hal");
   EXPECT_TRUE(fs::is_regular_file(dir / "tool.tbl"));
 
   // Every joint: pkm's home strut length, the machine's limits.
@@ -209,9 +208,17 @@ TEST(LinuxcncConfig, HexapodIniCarriesTheMachineFile) {
   EXPECT_EQ(origin['Y'], expected_origin.y());
   EXPECT_EQ(origin['Z'], expected_origin.z());
 
-  // The HAL file loops every joint's command back as its feedback.
-  const std::string hal = linuxcnc_read_text(dir / "machine.hal");
-  EXPECT_NE(hal.find("loadrt [KINS]KINEMATICS"), std::string::npos);
+  // machine.hal loads the kinematics and motion; drives.hal loops every joint's command back as its feedback,
+  // and shows where real drives go, with this machine's steps per mm (drives.step_mm 0.001).
+  EXPECT_NE(linuxcnc_read_text(dir / "machine.hal").find("loadrt [KINS]KINEMATICS"), std::string::npos);
+  std::vector<std::string> hal_files;
+  for (const auto& [k, v] : ini.at("HAL")) {
+    if (k == "HALFILE") hal_files.push_back(v);
+  }
+  EXPECT_EQ(hal_files, (std::vector<std::string>{"machine.hal", "drives.hal"}));
+  const std::string hal = linuxcnc_read_text(dir / "drives.hal");
+  EXPECT_NE(hal.find("#   setp hm2_7i76e.0.stepgen.0N.position-scale 1000\n"), std::string::npos) << hal;
+  EXPECT_NE(hal.find("#   net jN-pos-cmd joint.N.motor-pos-cmd => lcec.0.driveN.pos-cmd"), std::string::npos);
   for (int j = 0; j < 6; ++j) {
     EXPECT_NE(hal.find(fmt::format("joint.{0}.motor-pos-cmd => joint.{0}.motor-pos-fb", j)),
               std::string::npos);
@@ -221,8 +228,8 @@ TEST(LinuxcncConfig, HexapodIniCarriesTheMachineFile) {
   // Writing again over the same directory replaces the set and leaves no staging folder behind.
   const auto again = write_linuxcnc_config(machine, options);
   ASSERT_TRUE(again.ok()) << again.error().message;
-  EXPECT_EQ(linuxcnc_entries(dir),
-            (std::vector<std::string>{"machine.hal", "machine.ini", "machine.yaml", "tool.tbl"}));
+  EXPECT_EQ(linuxcnc_entries(dir), (std::vector<std::string>{"drives.hal", "machine.hal", "machine.ini",
+                                                             "machine.yaml", "tool.tbl"}));
 
   // After LinuxCNC ran it, its parameter file (the INI's PARAMETER_FILE) is beside the configuration: writing
   // the configuration again keeps it and is not refused; a file of anyone else's still is.
@@ -230,8 +237,9 @@ TEST(LinuxcncConfig, HexapodIniCarriesTheMachineFile) {
   std::ofstream(dir / "pkm.var.bak") << "5220\t1.000000\n";
   const auto after_run = write_linuxcnc_config(machine, options);
   ASSERT_TRUE(after_run.ok()) << after_run.error().message;
-  EXPECT_EQ(linuxcnc_entries(dir), (std::vector<std::string>{"machine.hal", "machine.ini", "machine.yaml",
-                                                             "pkm.var", "pkm.var.bak", "tool.tbl"}));
+  EXPECT_EQ(linuxcnc_entries(dir),
+            (std::vector<std::string>{"drives.hal", "machine.hal", "machine.ini", "machine.yaml", "pkm.var",
+                                      "pkm.var.bak", "tool.tbl"}));
   std::ofstream(dir / "notes.txt") << "mine\n";
   const auto foreign = write_linuxcnc_config(machine, options);
   ASSERT_FALSE(foreign.ok());
@@ -280,15 +288,15 @@ void check_genhexkins_config(const std::string& file) {
   options.kinematics = LinuxcncKinematics::genhexkins;
   const auto config = write_linuxcnc_config(machine, options);
   ASSERT_TRUE(config.ok()) << config.error().message;
-  EXPECT_EQ(linuxcnc_entries(dir), (std::vector<std::string>{"genhexkins.hal", "machine.hal", "machine.ini",
-                                                             "machine.yaml", "tool.tbl"}));
+  EXPECT_EQ(linuxcnc_entries(dir), (std::vector<std::string>{"drives.hal", "genhexkins.hal", "machine.hal",
+                                                             "machine.ini", "machine.yaml", "tool.tbl"}));
   const LinuxcncIni ini = linuxcnc_parse_ini(linuxcnc_read_text(dir / "machine.ini"));
   EXPECT_EQ(linuxcnc_ini_value(ini, "KINS", "KINEMATICS"), "genhexkins");
   std::vector<std::string> hal_files;
   for (const auto& [k, v] : ini.at("HAL")) {
     if (k == "HALFILE") hal_files.push_back(v);
   }
-  EXPECT_EQ(hal_files, (std::vector<std::string>{"machine.hal", "genhexkins.hal"}));
+  EXPECT_EQ(hal_files, (std::vector<std::string>{"machine.hal", "drives.hal", "genhexkins.hal"}));
 
   std::array<Eigen::Vector3d, 6> base, platform;
   std::array<std::array<bool, 3>, 6> base_set{}, platform_set{};
@@ -427,7 +435,7 @@ TEST(LinuxcncConfig, HomingOnSwitchesSearchesDownAndLatchesBackingOff) {
   const auto config = write_linuxcnc_config(machine, options);
   ASSERT_TRUE(config.ok()) << config.error().message;
   const LinuxcncIni ini = linuxcnc_parse_ini(linuxcnc_read_text(tmp.root() / "config" / "machine.ini"));
-  const std::string hal = linuxcnc_read_text(tmp.root() / "config" / "machine.hal");
+  const std::string hal = linuxcnc_read_text(tmp.root() / "config" / "drives.hal");
   const double min = *machine.limits.min, max = *machine.limits.max, speed = *machine.limits.speed;
   ASSERT_EQ(config->homing_switches.size(), 6u);
   for (int j = 0; j < 6; ++j) {
