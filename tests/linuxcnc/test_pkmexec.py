@@ -109,6 +109,52 @@ def test_feed_holds_at_random_periods_keep_the_limits_and_end_where_planned(work
     assert final == list(positions[-1])
 
 
+def random_program(path, seed):
+    """A short CAM-like program: G1 lines and G2/G3 arcs at changing feeds, small tilts, within ±40 mm."""
+    rng = random.Random(seed)
+    x = y = 0.0
+    lines = ["G21 G90 G17 G94", "G1 X0 Y0 Z0 F1500"]
+    for _ in range(10):
+        feed = rng.choice([1800, 3000, 4800])
+        nx, ny = (max(-40.0, min(40.0, v + rng.uniform(-15, 15))) for v in (x, y))
+        if rng.random() < 0.3:
+            radius = max(abs(nx - x), abs(ny - y)) + rng.uniform(2, 10)
+            lines.append(f"{rng.choice(['G2', 'G3'])} X{nx:.3f} Y{ny:.3f} R{radius:.3f} F{feed}")
+        else:
+            tilt = f" A{rng.uniform(-4, 4):.2f} B{rng.uniform(-4, 4):.2f}" if rng.random() < 0.3 else ""
+            lines.append(f"G1 X{nx:.3f} Y{ny:.3f} Z{rng.uniform(-5, 5):.3f}{tilt} F{feed}")
+        x, y = nx, ny
+    lines += ["G1 X0 Y0 Z0 A0 B0 F3000", "M2"]
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_holds_and_overrides_at_random_periods_of_random_programs_keep_the_limits(work, seed):
+    program = os.path.join(work, f"random{seed}.ngc")
+    random_program(program, seed)
+    path = os.path.join(work, f"random{seed}.stream")
+    made = write_stream(MACHINE, program, path)
+    assert made.returncode == 0, made.stderr
+    _, positions, _, _ = stream_periods(path)
+    rng = random.Random(100 + seed)
+    plan = {"next": 0.0}
+
+    def operator(session):
+        now = len(session.rows) * PERIOD_S
+        if now >= plan["next"] and session.rows and session.rows[-1][12] != FINISHED:
+            session.setp("pkmexec.feed-hold", int(rng.random() < 0.3))
+            session.setp("pkmexec.feed-override", rng.choice([0.3, 0.7, 1.0, 1.2]))
+            plan["next"] = now + rng.uniform(0.1, 0.8)
+
+    with HalSession(MACHINE) as session:
+        feeder = session.feed(path)
+        table = session.record_until(lambda rows: ended(rows, (FINISHED,)), timeout_s=120, every=operator)
+        assert feeder.wait(timeout=30) == 0
+    assert_within_limits(table)
+    assert [table[f"counts_{j}"][-1] for j in range(6)] == list(positions[-1])
+
+
 def test_override_100_30_120_keeps_the_limits_and_the_path(work):
     path = streamed(work, "ch5_line.ngc")
     _, positions, ideal, _ = stream_periods(path)
