@@ -129,7 +129,10 @@ void StepExecutor::period(const ExecutionControls& controls, ExecutedPeriod& out
     out.steps.fill(0);
     out.factor = law_.factor();
     out.tau_periods = 0.0;
-    out.state = state_ = limit_point_ >= 0 ? ExecutionState::stopped_at_limit : ExecutionState::starved;
+    out.state = state_ = controls.abort      ? ExecutionState::aborted
+                         : limit_point_ >= 0 ? ExecutionState::stopped_at_limit
+                                             : ExecutionState::starved;
+    if (controls.abort) stream_ended_ = true;  // nothing moved: the whole program is dropped
     return;
   }
   if (short_of_periods) target = 0.0;

@@ -156,6 +156,20 @@ TEST(StepExecutor, ReleasesThePlannedStepsThemselvesAtFullFeed) {
   }
 }
 
+// An abort before the program has begun (the stream not yet far enough ahead) drops it without a step.
+TEST(StepExecutor, AnAbortBeforeTheStartDropsTheProgramWithoutMoving) {
+  std::mt19937 rng(19);
+  const ExecutionHeadroom headroom = test_headroom();
+  Execution run(random_motion(rng, headroom.nominal, 3000), settings_for(headroom));
+  run.feeder.feed(*run.executor, 5);
+  run.executor->period({1.0, false, true}, run.out);
+  EXPECT_EQ(run.out.state, ExecutionState::aborted);
+  EXPECT_EQ(run.out.position_steps, run.motion[0].position_steps);
+  EXPECT_FALSE(run.executor->has_room());
+  run.executor->period({}, run.out);
+  EXPECT_EQ(run.out.position_steps, run.motion[0].position_steps);
+}
+
 // A stream that comes in slowly at first: the drives wait at the start until it is far enough ahead, then
 // the program runs as planned, every period's steps the planned ones.
 TEST(StepExecutor, WaitsAtTheStartForTheStreamAndThenReleasesThePlannedSteps) {
