@@ -85,10 +85,6 @@ void pkmexec_home_steps(const pkmexec_executor* executor, long long* steps) {
   for (int j = 0; j < executor->drives; ++j) steps[j] = executor->home[j];
 }
 
-void pkmexec_position(const pkmexec_executor* executor, long long* steps) {
-  for (int j = 0; j < executor->drives; ++j) steps[j] = executor->position[j];
-}
-
 int pkmexec_start(pkmexec_executor* executor, const long long* start) {
   const pkm::execution::StepArray wanted = to_steps(start, executor->drives);
   // Within one step: the interpolator's discreteness correction may start a program on the step next to the

@@ -50,8 +50,6 @@ int pkmexec_drive_count(const pkmexec_executor* executor);
 double pkmexec_step(const pkmexec_executor* executor);
 /* The drives' positions at the machine file's home, in whole steps. */
 void pkmexec_home_steps(const pkmexec_executor* executor, long long* steps);
-/* Where the drives are now (the last released positions; home before any program). */
-void pkmexec_position(const pkmexec_executor* executor, long long* steps);
 
 /* A new program starting from `start` (whole steps). 0; -1 when the drives are more than one step from it
  * (the program is then refused: state PKMEXEC_REFUSED until the next start). */

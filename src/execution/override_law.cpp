@@ -11,7 +11,6 @@ OverrideLaw::OverrideLaw(const OverrideRates& rates, double period_s, double ini
 void OverrideLaw::reset(double factor) noexcept {
   factor_ = factor;
   rate_per_s_ = 0.0;
-  accel_per_s2_ = 0.0;
 }
 
 namespace {
@@ -29,10 +28,7 @@ double discrete_stopping_distance(double v, double a_max, double h) {
 }  // namespace
 
 double OverrideLaw::advance(double target) noexcept {
-  if (settled_at(target)) {  // the usual period: nothing to change (and K = 1 stays exactly 1)
-    accel_per_s2_ = 0.0;
-    return factor_;
-  }
+  if (settled_at(target)) return factor_;  // the usual period: nothing to change (K = 1 stays exactly 1)
   const double h = period_s_;
   const double a_max = rates_.max_accel_per_s2, v_max = rates_.max_rate_per_s;
   // In the frame where the target lies ahead (distance ≥ 0), K̈ is the largest in [−a_max, a_max] (and K̇
@@ -60,7 +56,6 @@ double OverrideLaw::advance(double target) noexcept {
   const double advance_periods = factor_ + sign * (0.5 * v * h + u * h * h / 6.0);
   factor_ += sign * (v * h + 0.5 * u * h * h);
   rate_per_s_ = sign * (v + u * h);
-  accel_per_s2_ = sign * u;
   // At the target to rounding: settle on it exactly (K = 1 is then exactly 1).
   if (std::abs(target - factor_) <= 1e-12 && std::abs(rate_per_s_) <= 1e-6 * a_max * h) {
     factor_ = target;

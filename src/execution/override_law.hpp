@@ -26,8 +26,6 @@ class OverrideLaw {
   double advance(double target) noexcept;
   double factor() const noexcept { return factor_; }          ///< K at the end of the last period
   double rate_per_s() const noexcept { return rate_per_s_; }  ///< K̇ there
-  /// K̈ over the last period.
-  double accel_per_s2() const noexcept { return accel_per_s2_; }
   /// At `target` and no longer changing.
   bool settled_at(double target) const noexcept { return factor_ == target && rate_per_s_ == 0.0; }
   void reset(double factor) noexcept;
@@ -37,7 +35,6 @@ class OverrideLaw {
   double period_s_;
   double factor_;
   double rate_per_s_ = 0.0;
-  double accel_per_s2_ = 0.0;
 };
 
 }  // namespace pkm::execution
