@@ -13,12 +13,17 @@
  *   in  float pkmexec.feed-override   K the operator asks for (1 = 100 %; 0 … 1.2)
  *   in  bit   pkmexec.feed-hold       stop along the path; resume when released
  *   in  bit   pkmexec.abort           stop along the path and drop the rest of the program
+ *   in  bit   pkmexec.enable          the drives are handed over: a program may start (default true)
+ *   in  float pkmexec.J.pos-fb        where the drive is, in the joints' unit, while pkmexec does not move it
+ *   out bit   pkmexec.active          pkmexec commands the drives: a program running, held or waiting, and
+ *                                     after it until the drives reach its last command (1 s at most)
  *   out s32   pkmexec.J.counts        the drive's position, whole steps
  *   out s32   pkmexec.J.steps         its steps in this period
  *   out float pkmexec.J.pos-cmd       counts × step (mm, or degrees): a position command for a drive
  *   out float pkmexec.J.set-point     the continuous set point the counts are rounded from (same unit)
  *   out s32   pkmexec.state           0 idle, 1 running, 2 starved, 3 finished, 4 aborted, 5 stopped at a
- *                                     software stop, 6 refused (the program starts elsewhere)
+ *                                     software stop, 6 refused (the program starts elsewhere), 7 not
+ *                                     handed over (a program came while enable was false)
  *   out s32   pkmexec.line            program line being executed; pkmexec.fault-line: the software stop's
  *   out float pkmexec.factor          K now; pkmexec.tau: nominal periods executed
  *   out s32   pkmexec.periods-ahead   nominal periods waiting; pkmexec.programs: programs started
@@ -52,12 +57,15 @@ struct drive_pins {
     hal_s32_t* steps;
     hal_float_t* pos_cmd;
     hal_float_t* set_point;
+    hal_float_t* pos_fb;
 };
 
 struct pkmexec_pins {
     hal_float_t* feed_override;
     hal_bit_t* feed_hold;
     hal_bit_t* abort;
+    hal_bit_t* enable;
+    hal_bit_t* active;
     hal_s32_t* state;
     hal_s32_t* line;
     hal_s32_t* fault_line;
@@ -78,6 +86,10 @@ static int stream_created = 0;
 static int drives = 0;
 static double step = 0.001;
 static int discarding = 0; /* dropping the rest of a program that was aborted, stopped or refused */
+/* Periods left holding the last command of a program that has ended, until the drives reach it (servo drives
+ * lag their command): pkmexec hands the drives back only where it left them, or after a second at most. */
+static int holding = 0;
+static int settle_periods = 1000;
 
 static int may_take_row(void) {
     int state = pkmexec_state(executor);
@@ -95,7 +107,7 @@ static void take_row(const union hal_stream_data* row) {
     }
     switch (row[0].s) {
     case PKMEXEC_ROW_START:
-        discarding = pkmexec_start(executor, position) != 0;
+        discarding = pkmexec_start(executor, position, *pins->enable) != 0;
         *pins->programs += 1;
         break;
     case PKMEXEC_ROW_PERIOD:
@@ -110,19 +122,45 @@ static void take_row(const union hal_stream_data* row) {
     }
 }
 
+/* Where the drives are while something else commands them. */
+static void follow_drives(void) {
+    double position[PKMEXEC_MAX_DRIVES];
+    int j;
+    for (j = 0; j < drives; ++j) position[j] = *pins->drive[j].pos_fb;
+    pkmexec_follow(executor, position);
+}
+
+/* Every drive within half a step of pkmexec's command. */
+static int drives_at_command(void) {
+    int j;
+    for (j = 0; j < drives; ++j) {
+        double error = *pins->drive[j].pos_fb - *pins->drive[j].pos_cmd;
+        if (error > 0.5 * step || error < -0.5 * step) return 0;
+    }
+    return 1;
+}
+
 static void update(void* arg, long period) {
     union hal_stream_data row[HAL_STREAM_MAX_PINS];
     struct pkmexec_period_out out;
     long long started = rtapi_get_time(), elapsed;
-    int taken = 0, j;
+    int taken = 0, was_active, j;
     (void)arg;
     (void)period;
+    if (!pkmexec_active(executor) && !holding) follow_drives();
     while (taken < PKMEXEC_ROWS_PER_PERIOD && may_take_row() && hal_stream_readable(&stream) &&
            hal_stream_read(&stream, row, 0) == 0) {
         take_row(row);
         ++taken;
     }
+    was_active = pkmexec_active(executor);
     pkmexec_period(executor, *pins->feed_override, *pins->feed_hold, *pins->abort, &out);
+    if (pkmexec_active(executor))
+        holding = 0;
+    else if (was_active)
+        holding = settle_periods; /* the last period's command goes out; the drives then have to reach it */
+    else if (holding && (drives_at_command() || --holding == 0))
+        holding = 0;
     if (out.state == PKMEXEC_ABORTED || out.state == PKMEXEC_STOPPED_AT_LIMIT) discarding = 1;
     for (j = 0; j < drives; ++j) {
         *pins->drive[j].counts = (hal_s32_t)out.position[j];
@@ -131,6 +169,7 @@ static void update(void* arg, long period) {
         *pins->drive[j].set_point = out.set_point[j] * step;
     }
     *pins->state = out.state;
+    *pins->active = pkmexec_active(executor) || holding;
     *pins->line = out.line;
     *pins->fault_line = pkmexec_fault_line(executor);
     *pins->factor = out.factor;
@@ -146,6 +185,8 @@ static int export_pins(void) {
     res += hal_pin_float_newf(HAL_IN, &pins->feed_override, comp_id, "pkmexec.feed-override");
     res += hal_pin_bit_newf(HAL_IN, &pins->feed_hold, comp_id, "pkmexec.feed-hold");
     res += hal_pin_bit_newf(HAL_IN, &pins->abort, comp_id, "pkmexec.abort");
+    res += hal_pin_bit_newf(HAL_IN, &pins->enable, comp_id, "pkmexec.enable");
+    res += hal_pin_bit_newf(HAL_OUT, &pins->active, comp_id, "pkmexec.active");
     res += hal_pin_s32_newf(HAL_OUT, &pins->state, comp_id, "pkmexec.state");
     res += hal_pin_s32_newf(HAL_OUT, &pins->line, comp_id, "pkmexec.line");
     res += hal_pin_s32_newf(HAL_OUT, &pins->fault_line, comp_id, "pkmexec.fault-line");
@@ -160,6 +201,7 @@ static int export_pins(void) {
         res += hal_pin_s32_newf(HAL_OUT, &pins->drive[j].steps, comp_id, "pkmexec.%d.steps", j);
         res += hal_pin_float_newf(HAL_OUT, &pins->drive[j].pos_cmd, comp_id, "pkmexec.%d.pos-cmd", j);
         res += hal_pin_float_newf(HAL_OUT, &pins->drive[j].set_point, comp_id, "pkmexec.%d.set-point", j);
+        res += hal_pin_float_newf(HAL_IN, &pins->drive[j].pos_fb, comp_id, "pkmexec.%d.pos-fb", j);
     }
     return res;
 }
@@ -183,6 +225,7 @@ int rtapi_app_main(void) {
         return -1;
     }
     drives = pkmexec_drive_count(executor);
+    settle_periods = period_ns > 0 ? 1000000000 / period_ns : 1000;
     step = pkmexec_step(executor);
     comp_id = hal_init("pkmexec");
     if (comp_id < 0) {
@@ -207,11 +250,13 @@ int rtapi_app_main(void) {
         return -1;
     }
     *pins->feed_override = 1.0;
+    *pins->enable = 1;
     pkmexec_home_steps(executor, home);
     for (j = 0; j < drives; ++j) {
         *pins->drive[j].counts = (hal_s32_t)home[j];
         *pins->drive[j].pos_cmd = (double)home[j] * step;
         *pins->drive[j].set_point = (double)home[j] * step;
+        *pins->drive[j].pos_fb = (double)home[j] * step;
     }
     rtapi_print_msg(RTAPI_MSG_INFO, "pkmexec: %s, %d drives, step %g\n", machine, drives, step);
     hal_ready(comp_id);

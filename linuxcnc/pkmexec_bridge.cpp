@@ -22,7 +22,7 @@ struct pkmexec_executor {
   double step = 0.001;  ///< joints' unit per step (mm or deg)
   pkm::execution::StepArray home{};
   pkm::execution::StepArray position{};
-  bool refused = false;
+  int refused = 0;  ///< 0, PKMEXEC_REFUSED or PKMEXEC_NOT_HANDED_OVER
 };
 
 namespace {
@@ -85,20 +85,35 @@ void pkmexec_home_steps(const pkmexec_executor* executor, long long* steps) {
   for (int j = 0; j < executor->drives; ++j) steps[j] = executor->home[j];
 }
 
-int pkmexec_start(pkmexec_executor* executor, const long long* start) {
+int pkmexec_start(pkmexec_executor* executor, const long long* start, int handed_over) {
   const pkm::execution::StepArray wanted = to_steps(start, executor->drives);
   // Within one step: the interpolator's discreteness correction may start a program on the step next to the
   // nearest one (the drives then make that step in the first period).
-  executor->refused = false;
+  bool elsewhere = false;
   for (int j = 0; j < executor->drives; ++j)
-    executor->refused = executor->refused || std::llabs(wanted[j] - executor->position[j]) > 1;
-  if (executor->refused) return -1;
+    elsewhere = elsewhere || std::llabs(wanted[j] - executor->position[j]) > 1;
+  executor->refused = !handed_over ? PKMEXEC_NOT_HANDED_OVER : elsewhere ? PKMEXEC_REFUSED : 0;
+  if (executor->refused != 0) return -1;
   executor->executor->start(wanted);
   return 0;
 }
 
+int pkmexec_active(const pkmexec_executor* executor) {
+  const pkm::execution::ExecutionState state = executor->executor->state();
+  return executor->refused == 0 && (state == pkm::execution::ExecutionState::running ||
+                                    state == pkm::execution::ExecutionState::starved)
+             ? 1
+             : 0;
+}
+
+void pkmexec_follow(pkmexec_executor* executor, const double* position) {
+  if (pkmexec_active(executor)) return;
+  for (int j = 0; j < executor->drives; ++j)
+    executor->position[j] = std::llround(position[j] / executor->step);
+}
+
 int pkmexec_has_room(const pkmexec_executor* executor) {
-  return !executor->refused && executor->executor->has_room() ? 1 : 0;
+  return executor->refused == 0 && executor->executor->has_room() ? 1 : 0;
 }
 
 int pkmexec_push(pkmexec_executor* executor, int line, const double* ideal, const long long* position) {
@@ -116,23 +131,21 @@ void pkmexec_end_of_program(pkmexec_executor* executor) {
 }
 
 int pkmexec_state(const pkmexec_executor* executor) {
-  return executor->refused ? PKMEXEC_REFUSED : static_cast<int>(executor->executor->state());
+  return executor->refused != 0 ? executor->refused : static_cast<int>(executor->executor->state());
 }
 
 void pkmexec_period(pkmexec_executor* executor, double override_factor, int hold, int abort,
                     struct pkmexec_period_out* out) {
   pkm::execution::ExecutedPeriod period;
+  // Only a program that moves the drives sets where they are; otherwise they stay where they were followed.
+  const bool moving = pkmexec_active(executor) != 0;
   executor->executor->period({override_factor, hold != 0, abort != 0}, period);
   const pkm::execution::StepArray before = executor->position;
-  if (executor->executor->state() != pkm::execution::ExecutionState::idle)
-    executor->position = period.position_steps;
+  if (moving) executor->position = period.position_steps;
   for (int j = 0; j < executor->drives; ++j) {
     out->position[j] = executor->position[j];
     out->steps[j] = executor->position[j] - before[j];  // the drives' own steps, a start's step included
-    out->set_point[j] = period.set_point_steps[j];
-  }
-  if (executor->executor->state() == pkm::execution::ExecutionState::idle) {
-    for (int j = 0; j < executor->drives; ++j) out->set_point[j] = static_cast<double>(executor->position[j]);
+    out->set_point[j] = moving ? period.set_point_steps[j] : static_cast<double>(executor->position[j]);
   }
   out->line = period.line;
   out->factor = period.factor;

@@ -27,7 +27,9 @@ enum pkmexec_state {
     PKMEXEC_FINISHED = 3,         /* the program's last period has been released */
     PKMEXEC_ABORTED = 4,          /* stopped by an abort, the rest of the program dropped */
     PKMEXEC_STOPPED_AT_LIMIT = 5, /* stopped before a position outside the drives' software stops */
-    PKMEXEC_REFUSED = 6           /* a program that does not start where the drives are */
+    PKMEXEC_REFUSED = 6,          /* a program that does not start where the drives are */
+    PKMEXEC_NOT_HANDED_OVER = 7   /* a program that came while the drives were not handed over (the enable
+                                     pin false: LinuxCNC off, not homed, or moving) */
 };
 
 struct pkmexec_period_out {
@@ -51,9 +53,16 @@ double pkmexec_step(const pkmexec_executor* executor);
 /* The drives' positions at the machine file's home, in whole steps. */
 void pkmexec_home_steps(const pkmexec_executor* executor, long long* steps);
 
-/* A new program starting from `start` (whole steps). 0; -1 when the drives are more than one step from it
- * (the program is then refused: state PKMEXEC_REFUSED until the next start). */
-int pkmexec_start(pkmexec_executor* executor, const long long* start);
+/* A new program starting from `start` (whole steps), the drives handed over to the executor or not. 0; -1
+ * when they were not (state PKMEXEC_NOT_HANDED_OVER) or are more than one step from `start` (state
+ * PKMEXEC_REFUSED), until the next start. */
+int pkmexec_start(pkmexec_executor* executor, const long long* start, int handed_over);
+/* The executor commands the drives: a program is running, held, or waiting for its stream. */
+int pkmexec_active(const pkmexec_executor* executor);
+/* While it is not active, the drives are where something else put them (LinuxCNC's motion controller jogs
+ * and homes them): the executor follows them (positions in the joints' unit, taken to the nearest step), and
+ * the next program must start there. */
+void pkmexec_follow(pkmexec_executor* executor, const double* position);
 /* Room for another nominal period. */
 int pkmexec_has_room(const pkmexec_executor* executor);
 /* One nominal period (call with room). 0; -1 when it is outside the software stops (the executor stops

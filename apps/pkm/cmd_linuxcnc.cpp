@@ -1,5 +1,6 @@
-// pkm linuxcnc config --machine M.yaml --out DIR [--kinematics pkmkins|genhexkins] [--display PROGRAM]
-// [--json]: a simulated LinuxCNC configuration of the machine (pipeline/linuxcnc_config.hpp,
+// pkm linuxcnc config --machine M.yaml --out DIR [--kinematics pkmkins|genhexkins|trivkins]
+// [--display PROGRAM] [--homing at-home|switches] [--drives steps|servo] [--execute] [--json]: a simulated
+// LinuxCNC configuration of the machine, with pkm's executor when --execute (pipeline/linuxcnc_config.hpp,
 // docs/linuxcnc.md).
 // pkm linuxcnc stream PROGRAM --machine M.yaml [--to -|FILE] [--out DIR] [--period-ms H] [--step-mm D]: the
 // program planned for execution and interpolated to whole steps, streamed period by period for pkm's HAL
@@ -105,6 +106,15 @@ void add_linuxcnc_command(CLI::App& app, int& exit_code) {
                   "lower boundary switch, back off it slowly: simulated switches in the HAL file)")
       ->check(CLI::IsMember({"at-home", "switches"}))
       ->capture_default_str();
+  auto drives = std::make_shared<std::string>("steps");
+  cmd->add_option("--drives", *drives,
+                  "the drives simulated (and shown as real examples): steps (each where it is commanded) or "
+                  "servo (a position loop on a motor)")
+      ->check(CLI::IsMember({"steps", "servo"}))
+      ->capture_default_str();
+  cmd->add_flag("--execute", options->execute,
+                "also load pkm's executor pkmexec: programs planned by `pkm linuxcnc stream` run with their "
+                "exact drive steps, LinuxCNC homes, jogs and runs G-code in between");
   cmd->add_flag("--json", *json, "print JSON");
   cmd->callback([=, &exit_code] {
     auto machine = load_machine_or_report(*machine_path);
@@ -116,6 +126,7 @@ void add_linuxcnc_command(CLI::App& app, int& exit_code) {
                           : *kinematics == "trivkins" ? LinuxcncKinematics::trivkins
                                                       : LinuxcncKinematics::pkmkins;
     options->homing = *homing == "switches" ? LinuxcncHoming::switches : LinuxcncHoming::at_home;
+    options->drives = *drives == "servo" ? LinuxcncDrives::servo : LinuxcncDrives::steps;
     auto written = write_linuxcnc_config(*machine, *options);
     if (!written) {
       exit_code = report_error("linuxcnc config", written.error());
@@ -127,18 +138,25 @@ void add_linuxcnc_command(CLI::App& app, int& exit_code) {
                   {"kinematics", std::string(to_string(options->kinematics))},
                   {"coordinates", written->coordinates},
                   {"home_joints", written->home_joints},
-                  {"servo_period_ns", written->servo_period_ns}});
+                  {"servo_period_ns", written->servo_period_ns},
+                  {"drives", *drives},
+                  {"execute", options->execute}});
       return;
     }
-    std::cout << fmt::format("wrote {}/machine.ini ({}, {} joints, coordinates {}, servo period {} ns)\n",
-                             options->out_directory, to_string(options->kinematics),
-                             written->home_joints.size(), written->coordinates, written->servo_period_ns);
+    std::cout << fmt::format(
+        "wrote {}/machine.ini ({}, {} joints, coordinates {}, servo period {} ns, {} drives{})\n",
+        options->out_directory, to_string(options->kinematics), written->home_joints.size(),
+        written->coordinates, written->servo_period_ns, *drives == "servo" ? "servo" : "step",
+        options->execute ? ", pkm's executor pkmexec" : "");
     // As it would run here: as root rtapi_app needs a user and a socket path; a GUI needs an X display.
     const bool as_root = ::geteuid() == 0;
     const char* x_display = std::getenv("DISPLAY");
     std::cout << "run it with: " << linuxcnc_start_command(options->out_directory, as_root);
-    if (options->kinematics == LinuxcncKinematics::pkmkins)
-      std::cout << " (pkmkins.so installed in LinuxCNC's modules: make linuxcnc)";
+    if (options->kinematics == LinuxcncKinematics::pkmkins || options->execute)
+      std::cout << fmt::format(" ({} installed in LinuxCNC's modules: make linuxcnc)",
+                               options->kinematics == LinuxcncKinematics::pkmkins
+                                   ? (options->execute ? "pkmkins.so and pkmexec.so" : "pkmkins.so")
+                                   : "pkmexec.so");
     std::cout << "\n";
     for (const std::string& problem : linuxcnc_start_problems(
              options->out_directory, options->display, as_root, x_display != nullptr && x_display[0] != '\0'))

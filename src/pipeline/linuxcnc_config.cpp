@@ -10,6 +10,7 @@
 #include "core/units.hpp"
 #include "io/input_file.hpp"
 #include "io/output_set.hpp"
+#include "pipeline/linuxcnc_hal_files.hpp"
 #include "pipeline/linuxcnc_launch.hpp"
 
 namespace pkm {
@@ -179,7 +180,12 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
   const std::vector<JointSection> joint_list = options.kinematics == LinuxcncKinematics::trivkins
                                                    ? coordinate_joints(machine, home, joints)
                                                    : actuator_joints(machine, joints, config);
-  std::string hal_files = "HALFILE = machine.hal\nHALFILE = drives.hal\n";
+  // halui (LinuxCNC's HAL user interface, started before the HAL files) gives execute.hal the operator's feed
+  // override and E-stop; pkmexec's override goes to 120 % (execution/machine_headroom.hpp), LinuxCNC's slider
+  // too then.
+  std::string hal_files =
+      options.execute ? "HALUI = halui\nHALFILE = machine.hal\nHALFILE = execute.hal\nHALFILE = drives.hal\n"
+                      : "HALFILE = machine.hal\nHALFILE = drives.hal\n";
   if (options.kinematics == LinuxcncKinematics::genhexkins) hal_files += "HALFILE = genhexkins.hal\n";
   return fmt::format(
       "# LinuxCNC configuration of {name}, written by `pkm linuxcnc config` from {source}.\n"
@@ -197,7 +203,7 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
       "#   {start}\n\n"
       "[EMC]\nVERSION = 1.1\nMACHINE = {name}\n\n"
       "[DISPLAY]\nDISPLAY = {display}\nPOSITION_OFFSET = RELATIVE\nPOSITION_FEEDBACK = COMMANDED\n"
-      "MAX_FEED_OVERRIDE = 1.5\n\n"
+      "MAX_FEED_OVERRIDE = {max_override}\n\n"
       "[RS274NGC]\nPARAMETER_FILE = pkm.var\nRS274NGC_STARTUP_CODE = G21 G90 G10 L2 P1{origin}\n\n"
       "[EMCMOT]\nEMCMOT = motmod\nCOMM_TIMEOUT = 1.0\nSERVO_PERIOD = {period}\n\n"
       "[TASK]\nTASK = milltask\nCYCLE_TIME = 0.010\n\n"
@@ -211,7 +217,8 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
       fmt::arg("name", machine.name.empty() ? std::string("pkm machine") : machine.name),
       fmt::arg("source", machine.source), fmt::arg("conv", to_string(m.convention())),
       fmt::arg("start", linuxcnc_start_command(config.directory, true)), fmt::arg("display", options.display),
-      fmt::arg("origin", origin), fmt::arg("period", config.servo_period_ns), fmt::arg("hal", hal_files),
+      fmt::arg("max_override", options.execute ? "1.2" : "1.5"), fmt::arg("origin", origin),
+      fmt::arg("period", config.servo_period_ns), fmt::arg("hal", hal_files),
       fmt::arg("coordinates", coordinates), fmt::arg("home", home_text),
       fmt::arg("feed", number(machine.motion.max_feed_mm_min / 60.0)),
       fmt::arg("rapid", number(machine.motion.rapid_mm_min / 60.0)),
@@ -220,26 +227,6 @@ std::string ini_text(const Machine& machine, const LinuxcncConfigOptions& option
       fmt::arg("kinematics", kinematics), fmt::arg("joints", joint_list.size()),
       fmt::arg("joint_sections", joint_sections(joint_list)),
       fmt::arg("axis_sections", axis_sections(machine, home, joints)));
-}
-
-// A home switch per joint, LinuxCNC's sim_home_switch: the simulated strut starts at its home length when
-// LinuxCNC's motor position is 0 (it knows nothing of where the strut is before homing), so the switch trips
-// at the motor position (switch − home); a negative position makes sim_home_switch trip below it.
-std::string home_switch_hal(const LinuxcncConfig& config) {
-  const std::size_t n = config.homing_switches.size();
-  std::string out = fmt::format(
-      "\n# The lower boundary switches (simulated: a real machine wires its switches to "
-      "joint.N.home-sw-in).\n"
-      "loadrt sim_home_switch count={}\n",
-      n);
-  for (std::size_t j = 0; j < n; ++j) {
-    out += fmt::format(
-        "addf sim-home-switch.{0} servo-thread\nsetp sim-home-switch.{0}.home-pos {1}\n"
-        "setp sim-home-switch.{0}.hysteresis 0.000001\nnet j{0}-pos => sim-home-switch.{0}.cur-pos\n"
-        "net j{0}-home-sw sim-home-switch.{0}.home-sw => joint.{0}.home-sw-in\n",
-        j, number(config.homing_switches[j].switch_position - config.home_joints[j]));
-  }
-  return out;
 }
 
 std::string hal_text(const Machine& machine) {
@@ -254,64 +241,6 @@ std::string hal_text(const Machine& machine) {
       "net tool-prepare-loop iocontrol.0.tool-prepare => iocontrol.0.tool-prepared\n"
       "net tool-change-loop iocontrol.0.tool-change => iocontrol.0.tool-changed\n",
       machine.name.empty() ? std::string("the machine") : machine.name);
-}
-
-// Where real drives go, as comments with this machine's numbers: step/dir through a Mesa card (hostmot2),
-// step/dir through the parallel port with LinuxCNC's software step generator, EtherCAT servo drives.
-std::string drive_examples(double steps_per_unit, const std::string& unit) {
-  return fmt::format(
-      "# Real drives replace the simulation below, joint by joint (N = 0 … joints − 1; one step is "
-      "1/{0:.10g} {1}):\n"
-      "#\n"
-      "# Step/dir through a Mesa card (LinuxCNC's hostmot2; read first and write last in the servo thread):\n"
-      "#   loadrt hostmot2\n"
-      "#   loadrt hm2_eth board_ip=10.10.10.10 config=\"num_encoders=0 num_stepgens=6\"\n"
-      "#   addf hm2_7i76e.0.read servo-thread 1\n"
-      "#   addf hm2_7i76e.0.write servo-thread -1\n"
-      "#   setp hm2_7i76e.0.stepgen.0N.position-scale {0:.10g}\n"
-      "#   net jN-pos-cmd joint.N.motor-pos-cmd => hm2_7i76e.0.stepgen.0N.position-cmd\n"
-      "#   net jN-pos-fb hm2_7i76e.0.stepgen.0N.position-fb => joint.N.motor-pos-fb\n"
-      "#   net jN-enable joint.N.amp-enable-out => hm2_7i76e.0.stepgen.0N.enable\n"
-      "#\n"
-      "# Step/dir through the parallel port (LinuxCNC's software stepgen; needs [EMCMOT]BASE_PERIOD, a fast "
-      "thread):\n"
-      "#   loadrt hal_parport cfg=\"0x378 out\"\n"
-      "#   loadrt stepgen step_type=0,0,0,0,0,0\n"
-      "#   addf parport.0.read base-thread 1\n"
-      "#   addf stepgen.make-pulses base-thread\n"
-      "#   addf parport.0.write base-thread -1\n"
-      "#   addf stepgen.capture-position servo-thread 1\n"
-      "#   addf stepgen.update-freq servo-thread -1\n"
-      "#   setp stepgen.N.position-scale {0:.10g}\n"
-      "#   net jN-pos-cmd joint.N.motor-pos-cmd => stepgen.N.position-cmd\n"
-      "#   net jN-pos-fb stepgen.N.position-fb => joint.N.motor-pos-fb\n"
-      "#   net jN-step stepgen.N.step => parport.0.pin-02-out   (and dir to the next pin)\n"
-      "#\n"
-      "# EtherCAT servo drives in cyclic synchronous position mode (linuxcnc-ethercat's lcec, where "
-      "installed):\n"
-      "#   loadusr -W lcec_conf ethercat.xml\n"
-      "#   loadrt lcec\n"
-      "#   addf lcec.read-all servo-thread 1\n"
-      "#   addf lcec.write-all servo-thread -1\n"
-      "#   net jN-pos-cmd joint.N.motor-pos-cmd => lcec.0.driveN.pos-cmd\n"
-      "#   net jN-pos-fb lcec.0.driveN.pos-fb => joint.N.motor-pos-fb\n"
-      "#   net jN-enable joint.N.amp-enable-out => lcec.0.driveN.enable\n"
-      "#\n"
-      "# Home switches go to joint.N.home-sw-in (with pkm linuxcnc config --homing switches).\n\n",
-      steps_per_unit, unit);
-}
-
-// The drives: simulated, each joint where it is commanded, with the lower boundary switches when homing on
-// them; real drives replace these lines (drive_examples).
-std::string drives_text(const Machine& machine, const LinuxcncConfig& config, int joints) {
-  const bool angles = machine.mechanism->actuators_are_angles();
-  const double step = machine.drives.step.value_or(0.001);
-  std::string out = "# The drives, simulated: every joint is where it is commanded.\n" +
-                    drive_examples(1.0 / step, angles ? "deg" : "mm");
-  for (int j = 0; j < joints; ++j)
-    out += fmt::format("net j{0}-pos joint.{0}.motor-pos-cmd => joint.{0}.motor-pos-fb\n", j);
-  if (!config.homing_switches.empty()) out += home_switch_hal(config);
-  return out;
 }
 
 // genhexkins' joint coordinates: base joints in the base frame and platform joints in the frame of LinuxCNC's
@@ -381,6 +310,45 @@ void open_to_read(const std::string& directory, const std::vector<std::string>& 
                     ignored);
 }
 
+// Homing on switches and pkm's executor need the machine's actuators as LinuxCNC's joints (not trivkins'
+// coordinates); the switches need the joints' range too.
+Status check_options(const Machine& machine, const LinuxcncConfigOptions& options) {
+  const bool actuators_as_joints = options.kinematics != LinuxcncKinematics::trivkins;
+  if (options.homing == LinuxcncHoming::switches &&
+      (!actuators_as_joints || !machine.limits.min || !machine.limits.max)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("{}: homing on switches needs the joints' range (limits.actuator_min and "
+                                  "actuator_max) and actuators as joints (not trivkins)",
+                                  machine.source));
+  }
+  if (options.execute && !actuators_as_joints) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("{}: pkm's executor moves the machine's actuators, which are not LinuxCNC's "
+                    "joints with trivkins: use pkmkins (or genhexkins) with --execute",
+                    machine.source));
+  }
+  return ok_status();
+}
+
+// What drives.hal needs: the drives' resolution, speed and period, and where homing puts each joint.
+LinuxcncDrivesHal drives_hal(const Machine& machine, const LinuxcncConfigOptions& options,
+                             const LinuxcncConfig& config, const JointSettings& settings) {
+  const Mechanism& m = *machine.mechanism;
+  LinuxcncDrivesHal d;
+  d.joints =
+      options.kinematics == LinuxcncKinematics::trivkins ? m.controlled_axes().count() : m.actuator_count();
+  d.step = machine.drives.step.value_or(0.001);
+  d.angles = m.actuators_are_angles();
+  d.speed = settings.speed;
+  d.period_s = config.servo_period_ns * 1e-9;
+  d.kind = options.drives;
+  d.execute = options.execute;
+  d.homing_switches = config.homing_switches;
+  d.home_joints = config.home_joints;
+  return d;
+}
+
 }  // namespace
 
 Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const LinuxcncConfigOptions& options) {
@@ -398,15 +366,9 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
   for (int i = 0; i < 6; ++i)
     if (axes.controlled[static_cast<std::size_t>(i)]) config.coordinates += kAxisLetters[i];
   config.servo_period_ns = static_cast<int>(std::lround(machine.drives.period_ms.value_or(1.0) * 1e6));
-  if (options.homing == LinuxcncHoming::switches) {
-    if (options.kinematics == LinuxcncKinematics::trivkins || !machine.limits.min || !machine.limits.max) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("{}: homing on switches needs the joints' range (limits.actuator_min and "
-                                    "actuator_max) and actuators as joints (not trivkins)",
-                                    machine.source));
-    }
+  if (auto checked = check_options(machine, options); !checked) return checked.error();
+  if (options.homing == LinuxcncHoming::switches)
     config.homing_switches.assign(config.home_joints.size(), homing_switch(*settings));
-  }
 
   std::error_code ec;
   const std::string directory =
@@ -444,13 +406,14 @@ Result<LinuxcncConfig> write_linuxcnc_config(const Machine& machine, const Linux
   std::vector<std::pair<std::string, std::string>> files = {
       {"machine.ini", ini_text(machine, options, kinematics, config, *settings, home)},
       {"machine.hal", hal_text(machine)},
-      {"drives.hal",
-       drives_text(machine, config,
-                   options.kinematics == LinuxcncKinematics::trivkins ? m.controlled_axes().count()
-                                                                      : m.actuator_count())},
+      {"drives.hal", linuxcnc_drives_hal(drives_hal(machine, options, config, *settings))},
       {"machine.yaml", *machine_text},
       {"tool.tbl", "T1 P1 D0 Z0 ;no tool length: programs run at pkm's tool point\n"}};
   if (!genhexkins.empty()) files.emplace_back("genhexkins.hal", genhexkins);
+  if (options.execute) {
+    files.emplace_back("execute.hal", linuxcnc_execute_hal(m.actuator_count(), directory + "/machine.yaml",
+                                                           config.servo_period_ns));
+  }
   for (const auto& [name, text] : files) {
     std::ofstream out(outputs.staged_path(name), std::ios::binary);
     out << text;

@@ -8,6 +8,9 @@
 // LinuxCNC's A B C are G-code's, R = Rz(C)·Ry(B)·Rx(A), whatever the machine file's convention (pkmkins
 // converts; docs/part-programs.md, "What A, B and C mean"): the INI's home and axis limits are in them too.
 //
+// With --execute the configuration also loads pkm's executor (linuxcnc_hal_files.hpp): LinuxCNC homes, jogs
+// and runs G-code as usual, and programs that pkm plans run through pkmexec with their exact drive steps.
+//
 // With LinuxCNC's own genhexkins instead of pkmkins (for comparing the two), the HAL file sets genhexkins'
 // joint coordinates from the machine; that needs six strut-length actuators.
 #include <string>
@@ -38,12 +41,21 @@ struct LinuxcncHomingSwitch {
   double latch_speed = 0.0;
 };
 
+/// The drives the configuration simulates (and shows real examples of): step drives, each where it is
+/// commanded, or servo drives, a position loop on a motor.
+enum class LinuxcncDrives { steps, servo };
+
 struct LinuxcncConfigOptions {
   std::string out_directory;
   LinuxcncKinematics kinematics = LinuxcncKinematics::pkmkins;
   /// LinuxCNC's user interface ([DISPLAY] DISPLAY): a GUI such as axis, or a program run instead (headless).
   std::string display = "axis";
   LinuxcncHoming homing = LinuxcncHoming::at_home;
+  LinuxcncDrives drives = LinuxcncDrives::steps;
+  /// pkm's executor pkmexec between LinuxCNC's motion controller and the drives (execute.hal): programs
+  /// planned by pkm (`pkm linuxcnc stream`) run with their exact drive steps, LinuxCNC homes and jogs in
+  /// between.
+  bool execute = false;
 };
 
 struct LinuxcncConfig {

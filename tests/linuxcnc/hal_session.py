@@ -74,6 +74,8 @@ class HalSession:
                  f"loadrt sampler depth=100000 cfg={TYPES}",
                  "addf pkmexec.update servo-thread", "addf sampler.0 servo-thread"]
         lines += [f"net pkm-record-{i} {pin} => sampler.0.pin.{i}" for i, pin in enumerate(PINS)]
+        # Simulated drives: each is where pkmexec commands it, and pkmexec follows it between programs.
+        lines += [f"net pkm-drive-{j} pkmexec.{j}.pos-cmd => pkmexec.{j}.pos-fb" for j in range(DRIVES)]
         return "\n".join(lines + ["start"]) + "\n"
 
     def __enter__(self):

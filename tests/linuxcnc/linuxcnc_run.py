@@ -76,7 +76,7 @@ def write_config(machine, out_dir, kinematics="pkmkins", extra_args=()):
                     "--display", DRIVER, *extra_args], check=True, capture_output=True, text=True)
 
 
-def _environment(work_dir, program, record, timeout_s):
+def _environment(work_dir, program, record, timeout_s, operator=""):
     env = dict(os.environ)
     if os.geteuid() == 0:
         env["RTAPI_UID"] = NOBODY_UID  # rtapi_app refuses to run as root without a fallback uid
@@ -84,6 +84,7 @@ def _environment(work_dir, program, record, timeout_s):
     env["PKM_LINUXCNC_PROGRAM"] = program
     env["PKM_LINUXCNC_RECORD"] = record
     env["PKM_LINUXCNC_TIMEOUT_S"] = str(timeout_s)
+    env["PKM_LINUXCNC_OPERATOR"] = operator
     env.pop("DISPLAY", None)
     return env
 
@@ -95,10 +96,14 @@ def _tear_down(env):
         os.remove(lock)
 
 
-def run_linuxcnc(machine, program, kinematics="pkmkins", edit_config=None, timeout_s=120, config_args=()):
-    """Writes the configuration, runs `program` on it and returns the recorded run. `edit_config(dir)` may
-    change the written files first (the tests of bad machines)."""
+def run_linuxcnc(machine, program, kinematics="pkmkins", edit_config=None, timeout_s=120, config_args=(),
+                 operator=""):
+    """Writes the configuration, runs `program` on it (or several, ':'-separated: G-code, and pkm execution
+    streams with `--execute`) and returns the recorded run. `edit_config(dir)` may change the written files
+    first (the tests of bad machines); `operator` is headless_run.py's PKM_LINUXCNC_OPERATOR."""
     ensure_module_installed()
+    if "--execute" in config_args:
+        ensure_installed(os.environ["PKM_EXEC_MODULE"], "pkmexec.so")
     work_dir = tempfile.mkdtemp(prefix="pkm-linuxcnc-", dir="/tmp")
     os.chmod(work_dir, 0o777)
     config_dir = os.path.join(work_dir, "config")
@@ -109,7 +114,7 @@ def run_linuxcnc(machine, program, kinematics="pkmkins", edit_config=None, timeo
     for name in os.listdir(config_dir):
         os.chmod(os.path.join(config_dir, name), 0o644)
     record = os.path.join(work_dir, "record.csv")
-    env = _environment(work_dir, program, record, timeout_s)
+    env = _environment(work_dir, program, record, timeout_s, operator)
     _tear_down(env)  # a run killed earlier must not block this one
     process = subprocess.Popen(["linuxcnc", "-r", os.path.join(config_dir, "machine.ini")], env=env, cwd=config_dir,
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)

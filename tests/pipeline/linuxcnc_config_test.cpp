@@ -519,5 +519,95 @@ TEST(LinuxcncConfig, FailedWritePlacesNoFile) {
   EXPECT_TRUE(fs::is_regular_file(dir / "machine.ini" / "keep"));
 }
 
+// The `net` lines of a HAL text as (signal, pins) with the pins' arrows dropped.
+std::map<std::string, std::vector<std::string>> linuxcnc_nets(const std::string& hal) {
+  std::map<std::string, std::vector<std::string>> nets;
+  std::istringstream lines(hal);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string word, signal;
+    if (!(words >> word) || word != "net" || !(words >> signal)) continue;
+    auto& pins = nets[signal];
+    while (words >> word)
+      if (word != "=>" && word != "<=") pins.push_back(word);
+  }
+  return nets;
+}
+
+// With --execute, pkm's executor sits between LinuxCNC's motion and the drives: each drive's command is
+// LinuxCNC's or pkmexec's (a mux on pkmexec.active, pkmexec's in motor units with LinuxCNC's homing offset),
+// LinuxCNC's motion is disabled while pkmexec has the drives, pkmexec takes a program only when LinuxCNC
+// hands them over and follows LinuxCNC's joints in between; the drives (step or servo) read the one command
+// signal.
+TEST(LinuxcncConfig, ExecuteHandsTheDrivesOverThroughPkmexec) {
+  const LinuxcncTempDir tmp("execute");
+  const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+  for (const LinuxcncDrives kind : {LinuxcncDrives::steps, LinuxcncDrives::servo}) {
+    const fs::path dir = tmp.root() / (kind == LinuxcncDrives::steps ? "steps" : "servo");
+    LinuxcncConfigOptions options;
+    options.out_directory = dir.string();
+    options.execute = true;
+    options.drives = kind;
+    const auto config = write_linuxcnc_config(machine, options);
+    ASSERT_TRUE(config.ok()) << config.error().message;
+    EXPECT_EQ(linuxcnc_entries(dir), (std::vector<std::string>{"drives.hal", "execute.hal", "machine.hal",
+                                                               "machine.ini", "machine.yaml", "tool.tbl"}));
+    const LinuxcncIni ini = linuxcnc_parse_ini(linuxcnc_read_text(dir / "machine.ini"));
+    std::vector<std::string> hal_files;
+    for (const auto& [k, v] : ini.at("HAL"))
+      if (k == "HALFILE") hal_files.push_back(v);
+    EXPECT_EQ(hal_files, (std::vector<std::string>{"machine.hal", "execute.hal", "drives.hal"}));
+    EXPECT_EQ(linuxcnc_ini_value(ini, "HAL", "HALUI"), "halui");
+    EXPECT_EQ(linuxcnc_ini_value(ini, "DISPLAY", "MAX_FEED_OVERRIDE"), "1.2");
+
+    const std::string execute = linuxcnc_read_text(dir / "execute.hal");
+    EXPECT_NE(execute.find(fmt::format("loadrt pkmexec machine={}/machine.yaml period_ns=1000000",
+                                       fs::absolute(dir).lexically_normal().string())),
+              std::string::npos)
+        << execute;
+    const std::string drives = linuxcnc_read_text(dir / "drives.hal");
+    const auto nets = linuxcnc_nets(linuxcnc_read_text(dir / "machine.hal") + execute + drives);
+    const auto has = [&](const std::string& signal, const std::string& pin) {
+      const auto it = nets.find(signal);
+      return it != nets.end() && std::find(it->second.begin(), it->second.end(), pin) != it->second.end();
+    };
+    EXPECT_TRUE(has("pkm-active", "pkmexec.active"));
+    EXPECT_TRUE(has("pkm-active", "pkm-motion-off.in"));
+    EXPECT_TRUE(has("pkm-motion-allowed", "motion.enable"));
+    EXPECT_TRUE(has("pkm-handed-over", "pkmexec.enable"));
+    EXPECT_TRUE(has("pkm-feed-override", "halui.feed-override.value"));
+    EXPECT_TRUE(has("pkm-stop-now", "pkmexec.abort"));
+    for (int j = 0; j < 6; ++j) {
+      const std::string cmd = fmt::format("j{}-pos-cmd", j);
+      EXPECT_TRUE(has(cmd, fmt::format("pkm-drive-cmd-{}.out", j))) << cmd;
+      EXPECT_TRUE(has("pkm-active", fmt::format("pkm-drive-cmd-{}.sel", j)));
+      EXPECT_TRUE(has(fmt::format("j{}-motion-cmd", j), fmt::format("joint.{}.motor-pos-cmd", j)));
+      EXPECT_TRUE(has(fmt::format("j{}-motor-offset", j), fmt::format("joint.{}.motor-offset", j)));
+      EXPECT_TRUE(has(fmt::format("j{}-joint-pos", j), fmt::format("pkmexec.{}.pos-fb", j)));
+      // The drive reads the one command; LinuxCNC's motor-pos-cmd reaches it only through the mux.
+      const std::string fb_signal = kind == LinuxcncDrives::steps ? cmd : fmt::format("j{}-pos-fb", j);
+      EXPECT_TRUE(has(fb_signal, fmt::format("joint.{}.motor-pos-fb", j))) << drives;
+      if (kind == LinuxcncDrives::servo) {
+        EXPECT_TRUE(has(cmd, fmt::format("pkm-servo-{}.command", j)));
+      }
+    }
+    EXPECT_EQ(nets.count("j6-pos-cmd"), 0u);
+    // Every pin in one signal at most (HAL refuses a second link).
+    std::map<std::string, int> links;
+    for (const auto& [signal, pins] : nets)
+      for (const std::string& pin : pins) EXPECT_EQ(++links[pin], 1) << pin << " in " << signal;
+  }
+  // trivkins' joints are not the actuators pkmexec moves.
+  LinuxcncConfigOptions trivkins;
+  trivkins.out_directory = (tmp.root() / "trivkins").string();
+  trivkins.execute = true;
+  trivkins.kinematics = LinuxcncKinematics::trivkins;
+  const auto refused = write_linuxcnc_config(machine, trivkins);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("--execute"), std::string::npos) << refused.error().message;
+  EXPECT_FALSE(fs::exists(tmp.root() / "trivkins"));
+}
+
 }  // namespace
 }  // namespace pkm
