@@ -119,7 +119,8 @@ std::string servo_drives(const LinuxcncDrivesHal& d) {
         "net j{0}-pos-fb pkm-motor-{0}.out => pkm-servo-{0}.feedback joint.{0}.motor-pos-fb\n"
         "net j{0}-vel-cmd pkm-servo-{0}.output => pkm-motor-{0}.in\n"
         "net {4} => pkm-servo-{0}.enable\n",
-        j, hal_number(p_gain), hal_number(2.0 * d.speed), d.execute ? "" : fmt::format(" joint.{}.motor-pos-cmd", j),
+        j, hal_number(p_gain), hal_number(2.0 * d.speed),
+        d.execute ? "" : fmt::format(" joint.{}.motor-pos-cmd", j),
         d.execute ? std::string("pkm-drives-enable")
                   : fmt::format("j{0}-enable joint.{0}.amp-enable-out", j));
   }
