@@ -4,8 +4,11 @@
 // step response and margins (src/pipeline/servo_program.hpp, docs/servo.md); --report writes the plan's HTML
 // report with the servo plots (report/servo_plots.hpp).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <iostream>
+#include <vector>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -15,6 +18,38 @@
 namespace pkm::cli {
 
 namespace {
+
+// The drives' imperfections the run had, if any: once for every drive when they are alike.
+void print_imperfections(const servo::LoopDesign& design, bool angular) {
+  const double shown = angular ? 180.0 / 3.14159265358979323846 : 1.0;
+  const char* length = angular ? "deg" : "mm";
+  const char* force = angular ? "N·mm" : "N";
+  std::vector<std::string> drives;
+  for (int j = 0; j < design.drives; ++j) {
+    const servo::ChannelGains& g = design.channels[j];
+    std::vector<std::string> parts;
+    if (g.friction_static > 0.0 || g.friction_viscous > 0.0)
+      parts.push_back(fmt::format("friction F_c {:g} {}, F_s {:g} {}, viscous {:g}", g.friction_coulomb,
+                                  force, g.friction_static, force, g.friction_viscous / shown));
+    if (g.backlash > 0.0) parts.push_back(fmt::format("backlash {:g} {}", g.backlash * shown, length));
+    if (g.encoder_resolution > 0.0)
+      parts.push_back(fmt::format("encoder count {:g} {}", g.encoder_resolution * shown, length));
+    drives.push_back(fmt::format("{}", fmt::join(parts, "; ")));
+  }
+  std::string text;
+  const bool alike = std::all_of(drives.begin(), drives.end(), [&](const auto& d) { return d == drives[0]; });
+  if (alike && !drives.empty() && !drives[0].empty()) {
+    text = "every drive: " + drives[0];
+  } else if (!alike) {
+    for (std::size_t j = 0; j < drives.size(); ++j)
+      if (!drives[j].empty())
+        text += fmt::format("{}drive {}: {}", text.empty() ? "" : "; ", j + 1, drives[j]);
+  }
+  if (design.sample_delay_periods > 0)
+    text +=
+        fmt::format("{}sample delay {} loop periods", text.empty() ? "" : "; ", design.sample_delay_periods);
+  if (!text.empty()) std::cout << "  imperfections   " << text << "\n";
+}
 
 void print_servo_summary(const Machine& machine, const pipeline::ServoJob& job,
                          const pipeline::ServoProgramResult& r) {
@@ -51,6 +86,7 @@ void print_servo_summary(const Machine& machine, const pipeline::ServoJob& job,
         a.speed_sampled.step.overshoot_pct, a.speed_sampled.margins.phase_margin_deg,
         a.position_sampled.step.overshoot_pct, a.position_sampled.margins.phase_margin_deg, clamps);
   }
+  print_imperfections(r.design, angular);
   if (!s.worst_lines.empty()) {
     std::string lines;
     for (const auto& [line, error] : s.worst_lines) lines += fmt::format(" {} ({:.4f})", line, error);

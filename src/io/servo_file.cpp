@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/units.hpp"
 #include "io/machine_file_sections.hpp"
@@ -18,6 +19,9 @@ namespace pkm {
 namespace {
 
 enum class ServoFileBound { positive, non_negative, fraction };
+
+// The most loop periods between sampling and acting (servo/loop_design.hpp's kMaxSampleDelay).
+constexpr double kServoFileMaxDelay = 8;
 
 // The keys whose unit depends on the actuators' kind, in the same order for both kinds.
 struct ServoFileUnitKeys {
@@ -31,6 +35,25 @@ constexpr ServoFileUnitKeys kServoFileLinearKeys{"base_speed_mm_s", "base_force_
                                                  "error_max_mm"};
 constexpr ServoFileUnitKeys kServoFileAngularKeys{"base_speed_deg_s", "base_torque_Nmm", "gear_ratio",
                                                   "error_max_deg"};
+
+// The imperfections' keys (machine/servo_parameters.hpp), whose unit depends on the actuators' kind too.
+struct ServoFileImperfectionKeys {
+  const char* coulomb;
+  const char* static_friction;
+  const char* stribeck_speed;
+  const char* viscous;
+  const char* backlash;
+  const char* encoder;
+  std::array<const char*, 6> all() const {
+    return {coulomb, static_friction, stribeck_speed, viscous, backlash, encoder};
+  }
+};
+constexpr ServoFileImperfectionKeys kServoFileLinearImperfections{
+    "friction_coulomb_N",          "friction_static_N", "stribeck_speed_mm_s",
+    "friction_viscous_N_s_per_mm", "backlash_mm",       "encoder_resolution_mm"};
+constexpr ServoFileImperfectionKeys kServoFileAngularImperfections{
+    "friction_coulomb_Nmm",           "friction_static_Nmm", "stribeck_speed_deg_s",
+    "friction_viscous_Nmm_s_per_deg", "backlash_deg",        "encoder_resolution_deg"};
 
 // What every drive's mapping is read with.
 struct ServoFileContext {
@@ -139,6 +162,39 @@ Status servo_file_gains(const ServoFileContext& c, const YAML::Node& node, const
   return ok_status();
 }
 
+// The drive's imperfections, each ≥ 0 where given; the static friction at least the Coulomb friction, and
+// above it with the Stribeck speed over which it falls. Inside, angles in radians.
+Status servo_file_imperfections(const ServoFileContext& c, const YAML::Node& node, const std::string& path,
+                                DriveServo& drive) {
+  const ServoFileImperfectionKeys& keys =
+      c.angular ? kServoFileAngularImperfections : kServoFileLinearImperfections;
+  const auto keys_all = keys.all();
+  std::array<double, 6> values{};
+  for (std::size_t i = 0; i < keys_all.size(); ++i) {
+    auto value = servo_file_number(c.reader, node, path, keys_all[i], ServoFileBound::non_negative);
+    if (!value) return value.error();
+    values[i] = value->value_or(0.0);
+  }
+  const double angle = c.angular ? rad_from_deg(1.0) : 1.0;  // radians per degree, or 1
+  drive.friction_coulomb = values[0];
+  drive.friction_static = node[keys.static_friction] ? values[1] : values[0];
+  drive.stribeck_speed = values[2] * angle;
+  drive.friction_viscous = values[3] / angle;  // per deg/s → per rad/s
+  drive.backlash = values[4] * angle;
+  drive.encoder_resolution = values[5] * angle;
+  if (drive.friction_static < drive.friction_coulomb) {
+    return c.reader.error_at(node[keys.static_friction], path + "." + keys.static_friction,
+                             fmt::format("must be at least {} (the Coulomb friction, {}), got {}",
+                                         keys.coulomb, values[0], values[1]));
+  }
+  if (drive.friction_static > drive.friction_coulomb && !(drive.stribeck_speed > 0.0)) {
+    return c.reader.error_missing(node, path + "." + keys.stribeck_speed,
+                                  "the Stribeck speed over which the static friction falls to the Coulomb "
+                                  "friction (positive), with a static friction above it");
+  }
+  return ok_status();
+}
+
 // One drive's mapping (`path`: servo.drives or servo.drives[j]).
 Result<DriveServo> servo_file_drive(const ServoFileContext& c, const YAML::Node& node,
                                     const std::string& path) {
@@ -146,21 +202,32 @@ Result<DriveServo> servo_file_drive(const ServoFileContext& c, const YAML::Node&
   if (!node.IsMap()) return reader.error_at(node, path, "expected a mapping (current_time_constant_ms: …)");
   const ServoFileUnitKeys& units = c.angular ? kServoFileAngularKeys : kServoFileLinearKeys;
   const ServoFileUnitKeys& other = c.angular ? kServoFileLinearKeys : kServoFileAngularKeys;
+  const ServoFileImperfectionKeys& imperfections =
+      c.angular ? kServoFileAngularImperfections : kServoFileLinearImperfections;
+  const ServoFileImperfectionKeys& other_imperfections =
+      c.angular ? kServoFileLinearImperfections : kServoFileAngularImperfections;
   // The other kind's unit key first: "unknown key" would not say which one to give.
+  std::vector<const char*> theirs, ours;
+  for (const char* k : other.all()) theirs.push_back(k);
+  for (const char* k : other_imperfections.all()) theirs.push_back(k);
+  for (const char* k : units.all()) ours.push_back(k);
+  for (const char* k : imperfections.all()) ours.push_back(k);
   for (const auto& item : node) {
     const std::string key = item.first.Scalar();  // a scalar: parse_yaml_document checked every key
-    for (std::size_t i = 0; i < other.all().size(); ++i) {
-      if (key != other.all()[i]) continue;
+    for (std::size_t i = 0; i < theirs.size(); ++i) {
+      if (key != theirs[i]) continue;
       return reader.error_at(item.first, path + "." + key,
                              fmt::format("the {}'s actuators are {}: give {}", to_string(c.mechanism.type()),
-                                         c.angular ? "angles" : "lengths", units.all()[i]));
+                                         c.angular ? "angles" : "lengths", ours[i]));
     }
   }
   if (auto keys =
           reader.check_keys(node, path,
                             {"current_time_constant_ms", "current_gain", units.speed, units.force,
                              "motor_inertia_kg_cm2", units.transmission, units.error_max, "command_max",
-                             "position_gain_per_s", "speed_gain", "speed_integral_ms"});
+                             "position_gain_per_s", "speed_gain", "speed_integral_ms", imperfections.coulomb,
+                             imperfections.static_friction, imperfections.stribeck_speed,
+                             imperfections.viscous, imperfections.backlash, imperfections.encoder});
       !keys)
     return keys.error();
 
@@ -207,6 +274,7 @@ Result<DriveServo> servo_file_drive(const ServoFileContext& c, const YAML::Node&
   if (*command_max) drive.command_max = **command_max;
 
   if (auto gains = servo_file_gains(c, node, path, drive); !gains) return gains.error();
+  if (auto imperfect = servo_file_imperfections(c, node, path, drive); !imperfect) return imperfect.error();
   return drive;
 }
 
@@ -246,8 +314,9 @@ Result<ServoParameters> read_servo(const YAML::Node& root, const YamlReader& rea
   const YAML::Node node = root["servo"];
   if (!node) return out;
   if (!node.IsMap()) return reader.error_at_value(root, "servo", "expected a mapping (drives: …)");
-  if (auto keys =
-          reader.check_keys(node, "servo", {"tuning", "loop_period_ms", "velocity_feedforward", "drives"});
+  if (auto keys = reader.check_keys(
+          node, "servo",
+          {"tuning", "loop_period_ms", "velocity_feedforward", "sample_delay_periods", "drives"});
       !keys)
     return keys.error();
   out.line = yaml_key_line(root, "servo");
@@ -274,6 +343,16 @@ Result<ServoParameters> read_servo(const YAML::Node& root, const YamlReader& rea
       servo_file_number(reader, node, "servo", "velocity_feedforward", ServoFileBound::fraction);
   if (!feedforward) return feedforward.error();
   out.velocity_feedforward = feedforward->value_or(0.0);
+  auto delay = servo_file_number(reader, node, "servo", "sample_delay_periods", ServoFileBound::non_negative);
+  if (!delay) return delay.error();
+  if (*delay) {
+    if (**delay != std::floor(**delay) || **delay > kServoFileMaxDelay) {
+      return reader.error_at(
+          node["sample_delay_periods"], "servo.sample_delay_periods",
+          fmt::format("must be a whole number of loop periods, 0 … {}, got {}", kServoFileMaxDelay, **delay));
+    }
+    out.sample_delay_periods = static_cast<int>(**delay);
+  }
 
   const ServoFileContext context{reader, mechanism, mechanism.actuators_are_angles(), out.tuning};
   if (auto drives = servo_file_drives(context, node, out); !drives) return drives.error();

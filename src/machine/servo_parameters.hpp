@@ -47,6 +47,15 @@ struct DriveServo {
   double position_gain_per_s = 0.0;
   double speed_gain = 0.0;
   double speed_integral_s = 0.0;
+  /// The drive's imperfections (docs/servo.md, "Drive imperfections"), 0 where not given. Friction on the
+  /// actuator coordinate, N (N·mm): Coulomb F_c, static (breakaway) F_s ≥ F_c falling to F_c over the
+  /// Stribeck speed w_s, viscous b in N per mm/s (N·mm per rad/s).
+  double friction_coulomb = 0.0;
+  double friction_static = 0.0;
+  double stribeck_speed = 0.0;  ///< mm/s (rad/s)
+  double friction_viscous = 0.0;
+  double backlash = 0.0;            ///< lost motion between the motor and the actuator, mm (rad)
+  double encoder_resolution = 0.0;  ///< one count of the motor's encoder, mm (rad)
   /// Lines of the keys in the machine file, for messages (0 = not given).
   int line = 0;
   int time_constant_line = 0;
@@ -63,6 +72,8 @@ struct ServoParameters {
   /// Fraction (0…1) of the set point's speed fed forward into the speed loop's reference (0 in the
   /// textbook: the ramp's following error is then 4 T_μ v under the technical optimum).
   double velocity_feedforward = 0.0;
+  /// Loop periods between sampling the drives' positions and speeds and acting on them (0 … 8).
+  int sample_delay_periods = 0;
   int drive_count = 0;
   std::array<DriveServo, kMaxActuators> drives{};
   int line = 0;  ///< line of `servo:` in the file (0 = no servo section)

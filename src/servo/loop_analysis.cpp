@@ -113,11 +113,14 @@ StabilityMargins margins_of(const std::function<Complex(double)>& open, double w
 }
 
 // Step response of one channel alone, simulated at period h: the speed loop (a unit speed reference) or the
-// position loop (a unit position step).
+// position loop (a unit position step). The loops' own response: no limits, no friction, backlash or
+// encoder counts (their effects are the run's, not the tuning's).
 StepMetrics step_of(const ChannelGains& gains, double h, bool speed_loop, double horizon_s) {
   ChannelGains g = gains;
   g.error_max = std::numeric_limits<double>::infinity();
   g.command_max = std::numeric_limits<double>::infinity();
+  g.friction_coulomb = g.friction_static = g.friction_viscous = 0.0;
+  g.backlash = g.encoder_resolution = 0.0;
   if (speed_loop) {
     g.position_gain_per_s = 0.0;
     g.velocity_feedforward = 1.0;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -33,6 +34,7 @@ Result<LoopDesign> design_loops(const Machine& machine, const ActuatorVector& in
   LoopDesign design;
   design.tuning = parameters.tuning;
   design.drives = static_cast<int>(inertia.size());
+  design.sample_delay_periods = parameters.sample_delay_periods;
   for (int j = 0; j < design.drives; ++j) {
     const DriveServo& d = parameters.drives[j];
     if (!(inertia[j] > 0.0) || !std::isfinite(inertia[j])) {
@@ -53,6 +55,12 @@ Result<LoopDesign> design_loops(const Machine& machine, const ActuatorVector& in
     c.error_max = d.error_max;
     c.velocity_feedforward = parameters.velocity_feedforward;
     c.inertia = inertia[j];
+    c.friction_coulomb = d.friction_coulomb;
+    c.friction_static = std::max(d.friction_static, d.friction_coulomb);
+    c.stribeck_speed = d.stribeck_speed;
+    c.friction_viscous = d.friction_viscous;
+    c.backlash = d.backlash;
+    c.encoder_resolution = d.encoder_resolution;
     switch (parameters.tuning) {
       case ServoTuning::technical_optimum:
         // K = T0/(2 k_μ T_μ) per unit, i.e. a/(2 T_μ) in force per speed (eq. 2.49's regulator).

@@ -31,11 +31,19 @@ struct ChannelGains {
   double reference_filter_s = 0.0;    ///< T_f of the speed reference's filter (0: none)
   double velocity_feedforward = 0.0;  ///< fraction of the set point's speed added to the speed reference
   double inertia = 0.0;               ///< a: the inertia the tuning assumed, N/(mm/s²) (N·mm/(rad/s²))
+  /// The drive's imperfections (machine/servo_parameters.hpp), 0: none.
+  double friction_coulomb = 0.0, friction_static = 0.0, stribeck_speed = 0.0, friction_viscous = 0.0;
+  double backlash = 0.0;
+  double encoder_resolution = 0.0;
 };
+
+/// The most loop periods a measurement may wait before the regulators act on it.
+inline constexpr int kMaxSampleDelay = 8;
 
 struct LoopDesign {
   ServoTuning tuning = ServoTuning::technical_optimum;
   int drives = 0;
+  int sample_delay_periods = 0;  ///< ≤ kMaxSampleDelay
   std::array<ChannelGains, kMaxActuators> channels{};
 };
 

@@ -101,10 +101,16 @@ Result<int> loop_steps_per_period(const Machine& machine, double period_s) {
 
 Status check_stability(const Machine& machine, const LoopDesign& design, const ServoPlant& plant,
                        const ServoRunInput& input, int steps_per_period, const ServoRunOptions& options) {
-  LoopDesign linear = design;  // the limits off: the loop period's map is then linear in the state
+  // The limits and the drives' non-linear imperfections off (friction, backlash, the encoder's counts): the
+  // loop period's map is then linear in the state. A sampling delay stays: it is linear, and it is what most
+  // often makes a loop unstable.
+  LoopDesign linear = design;
   for (int j = 0; j < design.drives; ++j) {
-    linear.channels[j].error_max = std::numeric_limits<double>::infinity();
-    linear.channels[j].command_max = std::numeric_limits<double>::infinity();
+    ChannelGains& g = linear.channels[j];
+    g.error_max = std::numeric_limits<double>::infinity();
+    g.command_max = std::numeric_limits<double>::infinity();
+    g.friction_coulomb = g.friction_static = g.friction_viscous = 0.0;
+    g.backlash = g.encoder_resolution = 0.0;
   }
   const double period_s = input.period_s / steps_per_period;
   ServoSimulator simulator(linear, period_s);
@@ -119,6 +125,13 @@ Status check_stability(const Machine& machine, const LoopDesign& design, const S
       if ((kind == 3 && !(g.speed_integral_s > 0.0)) || (kind == 4 && !(g.reference_filter_s > 0.0)))
         continue;
       states.push_back(kind * kMaxActuators + j);
+    }
+  }
+  // The samples waiting out the delay.
+  for (int age = 0; age < std::min(design.sample_delay_periods, kMaxSampleDelay); ++age) {
+    for (int j = 0; j < design.drives; ++j) {
+      states.push_back(ServoSimulator::kDelayedPositionState + age * kMaxActuators + j);
+      states.push_back(ServoSimulator::kDelayedSpeedState + age * kMaxActuators + j);
     }
   }
   const int n = static_cast<int>(states.size());
@@ -155,12 +168,15 @@ Status check_stability(const Machine& machine, const LoopDesign& design, const S
       }
       const DriveServo& d = machine.servo.drives[drive];
       const int line = machine.servo.tuning == ServoTuning::explicit_gains ? d.speed_gain_line : d.line;
+      const int delay = design.sample_delay_periods;
       return Error{ErrorCode::bad_input,
                    fmt::format("{}:{}: servo.drives[{}]: the loops are unstable at program line {} (spectral "
-                               "radius {:.4f} of the {} ms loop period; {} tuning): lower the gains or the "
-                               "loop period",
+                               "radius {:.4f} of the {} ms loop period; {} tuning{}): lower the gains or the "
+                               "loop period{}",
                                machine.source, line, drive, input.line[tick], radius, period_s * 1e3,
-                               to_string(machine.servo.tuning)),
+                               to_string(machine.servo.tuning),
+                               delay > 0 ? fmt::format(", a sample delay of {} periods", delay) : "",
+                               delay > 0 ? ", or the delay (servo.sample_delay_periods)" : ""),
                    ErrorLocation{machine.source, line, 0, fmt::format("servo.drives[{}]", drive)}};
     }
   }
@@ -307,7 +323,8 @@ class ContourMeasure {
 };
 
 // One servo period of the loops from `previous` to `setpoint`: the loop steps with the reference ramped
-// between them, the limits that acted counted; returns the drives' positions at mid-period.
+// between them, the limits that acted counted; returns the actuators' positions at mid-period (the motors'
+// less any backlash not taken up: what moves the machine).
 DriveVector run_period(ServoSimulator& simulator, const DriveVector& previous, const DriveVector& setpoint,
                        double period_s, int steps_per_period, ServoTick& tick, ServoSummary& summary) {
   const DriveVector speed = (setpoint - previous) / period_s;
@@ -322,8 +339,8 @@ DriveVector run_period(ServoSimulator& simulator, const DriveVector& previous, c
       if (simulator.clamps().error & (1u << j)) ++summary.drive[j].error_clamps;
       if (simulator.clamps().command & (1u << j)) ++summary.drive[j].command_clamps;
     }
-    if (2 * i + 1 == steps_per_period) mid = simulator.mid_position();
-    if (2 * (i + 1) == steps_per_period) mid = simulator.position();
+    if (2 * i + 1 == steps_per_period) mid = simulator.mid_actuator_position();
+    if (2 * (i + 1) == steps_per_period) mid = simulator.actuator_position();
   }
   return mid;
 }
@@ -333,7 +350,7 @@ void record_following(const ServoTick& tick, const ServoSimulator& simulator, st
                       ServoSummary& summary) {
   for (int j = 0; j < summary.drives; ++j) {
     DriveServoSummary& d = summary.drive[j];
-    const double error = (*tick.setpoint)[j] - simulator.position()[j];
+    const double error = (*tick.setpoint)[j] - simulator.actuator_position()[j];
     squares[j] += error * error;
     if (std::abs(error) > d.max_following_error) {
       d.max_following_error = std::abs(error);
@@ -401,10 +418,10 @@ Result<ServoSummary> run_servo(const Machine& machine, const LoopDesign& design,
     tick.line = input.line[k];
     tick.drives = m;
     tick.setpoint = &setpoint;
-    tick.position = &simulator.position();
+    tick.position = &simulator.actuator_position();
     tick.force = &simulator.force();
     tick.command = &simulator.command();
-    tick.contour_error_mm = contour.measure(simulator.position(), k, tick.time_s, tick.lag_s);
+    tick.contour_error_mm = contour.measure(simulator.actuator_position(), k, tick.time_s, tick.lag_s);
     contour.record(tick.contour_error_mm, tick.lag_s, tick.time_s, tick.line);
     record_following(tick, simulator, squares, summary);
     if (on_tick) {

@@ -1,16 +1,41 @@
 #include "servo/servo_simulator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pkm::servo {
 
+namespace {
+
+// Sub-steps of each half period in which friction is held (it changes with the speed within the period).
+constexpr int kFrictionSubsteps = 8;
+// Below this speed a drive under friction counts as at rest (mm/s or rad/s): where the zero-crossing clamp
+// leaves it.
+constexpr double kRestSpeed = 1e-12;
+
+}  // namespace
+
+ServoSimulator::LagStep ServoSimulator::lag_step(const LoopDesign& design, double duration_s) {
+  LagStep step;
+  step.duration_s = duration_s;
+  for (int j = 0; j < design.drives; ++j) {
+    // F(t) = F_cmd + (F0 − F_cmd) e^(−t/T_μ): ∫₀ʰ F = F_cmd h + (F0 − F_cmd) c1 with c1 = T_μ(1 − α), and
+    // ∫₀ʰ∫₀ᵗ F = F_cmd h²/2 + (F0 − F_cmd) c2 with c2 = T_μ (h − c1).
+    const double lag = design.channels[j].lag_s;
+    const double alpha = std::exp(-duration_s / lag);
+    step.keep[j] = alpha;
+    step.first[j] = lag * (1.0 - alpha);
+    step.second[j] = lag * (duration_s - step.first[j]);
+  }
+  return step;
+}
+
 ServoSimulator::ServoSimulator(const LoopDesign& design, double loop_period_s)
     : drives_(design.drives), period_s_(loop_period_s), half_s_(0.5 * loop_period_s) {
-  for (DriveVector* v :
-       {&position_gain_, &speed_gain_, &integral_gain_, &filter_keep_, &feedforward_, &error_max_,
-        &command_max_, &force_per_command_, &lag_keep_, &lag_first_, &lag_second_})
+  for (DriveVector* v : {&position_gain_, &speed_gain_, &integral_gain_, &filter_keep_, &feedforward_,
+                         &error_max_, &command_max_, &force_per_command_, &coulomb_, &static_friction_,
+                         &stribeck_, &viscous_, &backlash_, &resolution_})
     v->setZero();
-  const double h = half_s_;
   for (int j = 0; j < drives_; ++j) {
     const ChannelGains& c = design.channels[j];
     position_gain_[j] = c.position_gain_per_s;
@@ -22,23 +47,36 @@ ServoSimulator::ServoSimulator(const LoopDesign& design, double loop_period_s)
     error_max_[j] = c.error_max;
     command_max_[j] = c.command_max;
     force_per_command_[j] = c.force_per_command;
-    // F(t) = F_cmd + (F0 − F_cmd) e^(−t/T_μ): ∫₀ʰ F = F_cmd h + (F0 − F_cmd) c1 with c1 = T_μ(1 − α), and
-    // ∫₀ʰ∫₀ᵗ F = F_cmd h²/2 + (F0 − F_cmd) c2 with c2 = T_μ (h − c1).
-    const double alpha = std::exp(-h / c.lag_s);
-    lag_keep_[j] = alpha;
-    lag_first_[j] = c.lag_s * (1.0 - alpha);
-    lag_second_[j] = c.lag_s * (h - lag_first_[j]);
     inverse_inertia_(j, j) = 1.0 / c.inertia;
+    coulomb_[j] = c.friction_coulomb;
+    static_friction_[j] = std::max(c.friction_static, c.friction_coulomb);
+    stribeck_[j] = c.stribeck_speed;
+    viscous_[j] = c.friction_viscous;
+    backlash_[j] = c.backlash;
+    resolution_[j] = c.encoder_resolution;
+    friction_ = friction_ || static_friction_[j] > 0.0 || viscous_[j] > 0.0;
+    backlash_on_ = backlash_on_ || backlash_[j] > 0.0;
+    encoder_ = encoder_ || resolution_[j] > 0.0;
   }
+  delay_ = std::clamp(design.sample_delay_periods, 0, kMaxSampleDelay);
+  half_step_ = lag_step(design, half_s_);
+  sub_step_ = lag_step(design, half_s_ / kFrictionSubsteps);
 }
 
 void ServoSimulator::reset(const DriveVector& position) {
   position_ = position;
+  actuator_ = mid_actuator_ = position;  // the backlash's gap centred
   speed_.setZero();
   force_ = load_;
   filtered_.setZero();
   command_.setZero();
   mid_position_ = position;
+  for (int j = 0; j < kMaxActuators; ++j)
+    counted_[j] = resolution_[j] > 0.0 ? std::round(position[j] / resolution_[j]) : position[j];
+  for (int k = 0; k < kMaxSampleDelay; ++k) {
+    delayed_position_[k] = position;
+    delayed_speed_[k].setZero();
+  }
   // The integral that holds the load without a speed error (symmetric optimum); P-only drives hold it with
   // a small speed error instead, reached within the first transient.
   for (int j = 0; j < kMaxActuators; ++j)
@@ -46,30 +84,124 @@ void ServoSimulator::reset(const DriveVector& position) {
   clamps_ = {};
 }
 
-void ServoSimulator::advance_plant(const DriveVector& force_command) {
-  const double h = half_s_;
-  // Force impulse and its second integral of the lag over the half step, less the load's.
+void ServoSimulator::advance(const DriveVector& force_command, const DriveVector& load, const LagStep& step) {
+  const double h = step.duration_s;
+  // Force impulse and its second integral of the lag over the step, less the load's.
   const DriveVector change = force_ - force_command;
-  const DriveVector impulse = force_command * h + change.cwiseProduct(lag_first_) - load_ * h;
+  const DriveVector impulse = force_command * h + change.cwiseProduct(step.first) - load * h;
   const DriveVector second =
-      force_command * (0.5 * h * h) + change.cwiseProduct(lag_second_) - load_ * (0.5 * h * h);
+      force_command * (0.5 * h * h) + change.cwiseProduct(step.second) - load * (0.5 * h * h);
   position_ += speed_ * h + inverse_inertia_ * second;
   speed_ += inverse_inertia_ * impulse;
-  force_ = force_command + change.cwiseProduct(lag_keep_);
+  force_ = force_command + change.cwiseProduct(step.keep);
+}
+
+void ServoSimulator::advance_plant(const DriveVector& force_command) {
+  if (friction_) {
+    advance_with_friction(force_command);
+  } else {
+    advance(force_command, load_, half_step_);
+  }
+}
+
+// The friction force on each drive at `speed` (Stribeck curve plus viscous), or, for a drive at rest, the
+// force that keeps it there as long as the net force on it is within the static friction (its bit in
+// `stuck`); a drive at rest pushed harder breaks away against F_s.
+DriveVector ServoSimulator::friction_on(const DriveVector& speed, const DriveVector& net_force,
+                                        std::uint32_t& stuck) const {
+  DriveVector friction = DriveVector::Zero();
+  stuck = 0;
+  for (int j = 0; j < drives_; ++j) {
+    const double w = speed[j];
+    if (std::abs(w) <= kRestSpeed) {
+      if (std::abs(net_force[j]) <= static_friction_[j]) {
+        friction[j] = net_force[j];
+        stuck |= 1u << j;
+      } else {
+        friction[j] = std::copysign(static_friction_[j], net_force[j]);
+      }
+      continue;
+    }
+    const double ratio = stribeck_[j] > 0.0 ? w / stribeck_[j] : 0.0;
+    const double dry = stribeck_[j] > 0.0
+                           ? coulomb_[j] + (static_friction_[j] - coulomb_[j]) * std::exp(-ratio * ratio)
+                           : coulomb_[j];
+    friction[j] = std::copysign(dry, w) + viscous_[j] * w;
+  }
+  return friction;
+}
+
+void ServoSimulator::advance_with_friction(const DriveVector& force_command) {
+  for (int k = 0; k < kFrictionSubsteps; ++k) {
+    std::uint32_t stuck = 0;
+    const DriveVector friction = friction_on(speed_, force_ - load_, stuck);
+    const DriveVector before_position = position_, before_speed = speed_;
+    advance(force_command, load_ + friction, sub_step_);
+    for (int j = 0; j < drives_; ++j) {
+      // A drive held by static friction stays; one whose speed friction would reverse stops (it then sticks
+      // or breaks away at the next sub-step).
+      const bool reversed = before_speed[j] != 0.0 && before_speed[j] * speed_[j] < 0.0 &&
+                            std::abs(friction[j]) > 0.0 && friction[j] * before_speed[j] > 0.0;
+      if ((stuck & (1u << j)) != 0) {
+        position_[j] = before_position[j];
+        speed_[j] = 0.0;
+      } else if (reversed) {
+        speed_[j] = 0.0;
+      }
+    }
+  }
+}
+
+// The actuator follows the motor through its gap: it moves only when the motor pushes on one side.
+void ServoSimulator::take_up_backlash(DriveVector& actuator) const {
+  for (int j = 0; j < drives_; ++j) {
+    const double half = 0.5 * backlash_[j];
+    actuator[j] = std::clamp(actuator[j], position_[j] - half, position_[j] + half);
+  }
+}
+
+// What the regulators see this period: the encoder's counts (and their difference as the speed) or the
+// state itself, as sampled `delay_` periods ago.
+void ServoSimulator::sample(DriveVector& position, DriveVector& speed) {
+  DriveVector measured_position = position_, measured_speed = speed_;
+  if (encoder_) {
+    for (int j = 0; j < drives_; ++j) {
+      if (!(resolution_[j] > 0.0)) continue;
+      const double counts = std::round(position_[j] / resolution_[j]);
+      measured_position[j] = counts * resolution_[j];
+      measured_speed[j] = (counts - counted_[j]) * resolution_[j] / period_s_;
+      counted_[j] = counts;
+    }
+  }
+  if (delay_ == 0) {
+    position = measured_position;
+    speed = measured_speed;
+    return;
+  }
+  position = delayed_position_[delay_ - 1];
+  speed = delayed_speed_[delay_ - 1];
+  for (int k = delay_ - 1; k > 0; --k) {
+    delayed_position_[k] = delayed_position_[k - 1];
+    delayed_speed_[k] = delayed_speed_[k - 1];
+  }
+  delayed_position_[0] = measured_position;
+  delayed_speed_[0] = measured_speed;
 }
 
 void ServoSimulator::step(const DriveVector& reference, const DriveVector& reference_speed) {
   clamps_ = {};
+  DriveVector measured_position, measured_speed;
+  sample(measured_position, measured_speed);
   DriveVector force_command = DriveVector::Zero();
   for (int j = 0; j < drives_; ++j) {
-    double error = reference[j] - position_[j];
+    double error = reference[j] - measured_position[j];
     if (std::abs(error) > error_max_[j]) {
       error = std::copysign(error_max_[j], error);
       clamps_.error |= 1u << j;
     }
     const double speed_reference = position_gain_[j] * error + feedforward_[j] * reference_speed[j];
     filtered_[j] = filter_keep_[j] * filtered_[j] + (1.0 - filter_keep_[j]) * speed_reference;
-    const double speed_error = filtered_[j] - speed_[j];
+    const double speed_error = filtered_[j] - measured_speed[j];
     double command = speed_gain_[j] * speed_error + integral_gain_[j] * integral_[j];
     if (std::abs(command) > command_max_[j]) {
       command = std::copysign(command_max_[j], command);
@@ -82,12 +214,23 @@ void ServoSimulator::step(const DriveVector& reference, const DriveVector& refer
   }
   advance_plant(force_command);
   mid_position_ = position_;
+  if (backlash_on_) take_up_backlash(actuator_);
+  mid_actuator_ = backlash_on_ ? actuator_ : position_;
   advance_plant(force_command);
+  if (backlash_on_) {
+    take_up_backlash(actuator_);
+  } else {
+    actuator_ = position_;
+  }
 }
 
 ServoSimulator::StateVector ServoSimulator::state() const {
   StateVector out;
-  out << position_, speed_, force_, integral_, filtered_;
+  out.head<5 * kMaxActuators>() << position_, speed_, force_, integral_, filtered_;
+  for (int k = 0; k < kMaxSampleDelay; ++k) {
+    out.segment<kMaxActuators>(kDelayedPositionState + k * kMaxActuators) = delayed_position_[k];
+    out.segment<kMaxActuators>(kDelayedSpeedState + k * kMaxActuators) = delayed_speed_[k];
+  }
   return out;
 }
 
@@ -97,6 +240,11 @@ void ServoSimulator::set_state(const StateVector& state) {
   force_ = state.segment<kMaxActuators>(2 * kMaxActuators);
   integral_ = state.segment<kMaxActuators>(3 * kMaxActuators);
   filtered_ = state.segment<kMaxActuators>(4 * kMaxActuators);
+  for (int k = 0; k < kMaxSampleDelay; ++k) {
+    delayed_position_[k] = state.segment<kMaxActuators>(kDelayedPositionState + k * kMaxActuators);
+    delayed_speed_[k] = state.segment<kMaxActuators>(kDelayedSpeedState + k * kMaxActuators);
+  }
+  actuator_ = mid_actuator_ = position_;
 }
 
 bool ServoSimulator::finite() const {

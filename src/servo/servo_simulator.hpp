@@ -11,8 +11,20 @@
 // motion). With A and d constant over a step, the step is integrated exactly (the lag's closed form and its
 // first two integrals), in two halves so that the state at mid-period is known too.
 //
+// The drives' imperfections (docs/servo.md, "Drive imperfections"), each off where its value is 0:
+//   sampling delay   the regulators act on the positions and speeds sampled d loop periods before;
+//   encoder          the position is measured in whole counts of the motor's encoder, and the speed as the
+//                    counts' difference over the loop period;
+//   friction         F_f = sign(w)·(F_c + (F_s − F_c)·e^(−(w/w_s)²)) + b·w on each actuator; a drive at rest
+//                    sticks while the force on it is within F_s (Karnopp). The plant then advances in eight
+//                    sub-steps per half period with the friction held over each, and a drive whose speed
+//                    friction would reverse stops instead;
+//   backlash         the actuator follows the motor through a gap of width b_l (the motor's side carries the
+//                    encoder): it stays where it is until the motor has crossed the gap.
+//
 // The hot path: step() neither allocates nor branches on the mechanism; states are fixed-size.
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 
 #include "servo/loop_design.hpp"
@@ -45,7 +57,11 @@ class ServoSimulator {
   void step(const DriveVector& reference, const DriveVector& reference_speed);
 
   double loop_period_s() const { return period_s_; }
+  /// The motors' positions (on the actuator coordinate), and the actuators' (the motors' less the backlash
+  /// they have not taken up; the same without backlash), at the end and the middle of the last step.
   const DriveVector& position() const { return position_; }
+  const DriveVector& actuator_position() const { return actuator_; }
+  const DriveVector& mid_actuator_position() const { return mid_actuator_; }
   const DriveVector& speed() const { return speed_; }
   const DriveVector& force() const { return force_; }
   /// The positions at the middle of the last step.
@@ -53,8 +69,12 @@ class ServoSimulator {
   /// The force commands of the last step, in units of k_μ F_base (the per-unit command u).
   const DriveVector& command() const { return command_; }
   const ClampFlags& clamps() const { return clamps_; }
-  /// Every state (positions, speeds, forces, speed integrals, filtered references), for the stability check.
-  static constexpr int kStateSize = 5 * kMaxActuators;
+  /// Every state (positions, speeds, forces, speed integrals, filtered references, then the delayed
+  /// positions and speeds, newest first), for the stability check.
+  static constexpr int kStateSize = (5 + 2 * kMaxSampleDelay) * kMaxActuators;
+  /// Where the delayed samples start in the state, and the stride between their ages.
+  static constexpr int kDelayedPositionState = 5 * kMaxActuators;
+  static constexpr int kDelayedSpeedState = (5 + kMaxSampleDelay) * kMaxActuators;
   using StateVector = Eigen::Matrix<double, kStateSize, 1>;
   StateVector state() const;
   void set_state(const StateVector& state);
@@ -62,7 +82,18 @@ class ServoSimulator {
   bool finite() const;
 
  private:
+  // The plant's lag over a time step: F's closed form and its first two integrals (see the .cpp).
+  struct LagStep {
+    double duration_s = 0.0;
+    DriveVector keep = DriveVector::Zero(), first = DriveVector::Zero(), second = DriveVector::Zero();
+  };
+  static LagStep lag_step(const LoopDesign& design, double duration_s);
+  void advance(const DriveVector& force_command, const DriveVector& load, const LagStep& step);
   void advance_plant(const DriveVector& force_command);
+  void advance_with_friction(const DriveVector& force_command);
+  DriveVector friction_on(const DriveVector& speed, const DriveVector& net_force, std::uint32_t& stuck) const;
+  void sample(DriveVector& position, DriveVector& speed);
+  void take_up_backlash(DriveVector& actuator) const;
 
   int drives_;
   double period_s_;
@@ -70,7 +101,14 @@ class ServoSimulator {
   // Per drive: gains, and the lag's closed form over a half step (α = e^(−h/2T_μ), c1, c2).
   DriveVector position_gain_, speed_gain_, integral_gain_, filter_keep_, feedforward_;
   DriveVector error_max_, command_max_, force_per_command_;
-  DriveVector lag_keep_, lag_first_, lag_second_;
+  LagStep half_step_, sub_step_;
+  // Imperfections (0: none), per drive.
+  DriveVector coulomb_, static_friction_, stribeck_, viscous_, backlash_, resolution_;
+  bool friction_ = false, backlash_on_ = false, encoder_ = false;
+  int delay_ = 0;
+  std::array<DriveVector, kMaxSampleDelay> delayed_position_{}, delayed_speed_{};
+  DriveVector counted_ = DriveVector::Zero();  ///< the encoder's last position, whole counts
+  DriveVector actuator_ = DriveVector::Zero(), mid_actuator_ = DriveVector::Zero();
   DriveMatrix inverse_inertia_ = DriveMatrix::Zero();
   DriveVector load_ = DriveVector::Zero();
   DriveVector position_ = DriveVector::Zero(), speed_ = DriveVector::Zero(), force_ = DriveVector::Zero();

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -55,6 +56,60 @@ TEST(ServoCli, PrintsTheSummaryAndWritesTheFilesBesideThePlan) {
     EXPECT_GT(drive["max_following_error"].get<double>(), 0.0);
   }
   EXPECT_GT(summary["max_contour_error_mm"].get<double>(), 0.0);
+}
+
+// The shipped ch5 hexapod's file with the drives' imperfections added to its servo: section.
+std::string servo_cli_imperfect_machine(const std::string& name, const std::string& extra_keys, int delay) {
+  std::ifstream in(servo_cli_machine("hexapod_ch5.yaml"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string drives = "  drives: {current_time_constant_ms: 1.0";
+  const std::size_t at = text.find(drives);
+  EXPECT_NE(at, std::string::npos);
+  const std::size_t end = text.find('}', at);
+  text.insert(end, ", " + extra_keys);
+  text.insert(at, "  sample_delay_periods: " + std::to_string(delay) + "\n");
+  const fs::path path = fs::temp_directory_path() / ("pkm_servo_cli_" + name + ".yaml");
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+// Friction, backlash and an encoder's counts make the tool's contour error on a circle larger than the ideal
+// drives'; a sampling delay the loops cannot take is refused naming the delay, and nothing is written.
+TEST(ServoCli, DriveImperfectionsGrowTheContourErrorAndADelayTooLongIsRefused) {
+  // Two circles of 30 mm at 50 mm/s: every drive reverses, where friction and backlash show.
+  const fs::path dir = fs::temp_directory_path() / "pkm_servo_cli_circle";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "circle.ngc") << "G21 G90 G17 G94\nG0 X30 Y0 Z0\nG3 X30 Y0 I-30 J0 F3000\n"
+                                       "G3 X30 Y0 I-30 J0\nM2\n";
+  const std::string plan = (dir / "plan").string();
+  const auto planned = test::run_pkm("plan " + (dir / "circle.ngc").string() + " --machine " +
+                                     servo_cli_machine("hexapod_ch5.yaml") + " --tables csv --out " + plan);
+  ASSERT_EQ(planned.exit_code, 0) << planned.out;
+  const auto ideal = test::run_pkm(
+      "servo " + plan + " --machine " + servo_cli_machine("hexapod_ch5.yaml") + " --json", false);
+  ASSERT_EQ(ideal.exit_code, 0) << ideal.out;
+  const std::string imperfect_machine = servo_cli_imperfect_machine(
+      "imperfect",
+      "friction_coulomb_N: 60, friction_static_N: 80, stribeck_speed_mm_s: 1, backlash_mm: 0.003, "
+      "encoder_resolution_mm: 0.0002",
+      0);
+  const auto imperfect =
+      test::run_pkm("servo " + plan + " --machine " + imperfect_machine + " --json", false);
+  ASSERT_EQ(imperfect.exit_code, 0) << imperfect.out;
+  const double ideal_error = nlohmann::json::parse(ideal.out)["max_contour_error_mm"].get<double>();
+  const double imperfect_error = nlohmann::json::parse(imperfect.out)["max_contour_error_mm"].get<double>();
+  EXPECT_GT(imperfect_error, ideal_error + 0.001) << ideal_error << " " << imperfect_error;
+
+  const fs::path out = fs::temp_directory_path() / "pkm_servo_cli_delayed_out";
+  fs::remove_all(out);
+  const std::string delayed = servo_cli_imperfect_machine("delayed", "backlash_mm: 0", 4);
+  const auto refused = test::run_pkm("servo " + plan + " --machine " + delayed + " --out " + out.string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.out;
+  EXPECT_NE(refused.out.find("unstable"), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("a sample delay of 4 periods"), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("servo.sample_delay_periods"), std::string::npos) << refused.out;
+  EXPECT_FALSE(fs::exists(out / "servo.csv"));
 }
 
 TEST(ServoCli, RefusesAMachineWithoutServoAPlanlessDirectoryAndADamagedRunWritingNothing) {

@@ -187,6 +187,64 @@ TEST(ServoFile, AngularActuatorsGiveDegreesTorqueAndAGearRatio) {
   }
 }
 
+// The drives' imperfections: friction (Coulomb, static with its Stribeck speed, viscous), backlash and the
+// encoder's count, in the actuators' units (degrees for a rotopod's carriages, radians inside), and the
+// sampling delay; each refused with its place and key where it cannot hold.
+TEST(ServoFile, ImperfectionsReadBackInTheUnitsKeptInside) {
+  const Machine hexapod = test::machine_from_text(
+      kCh5HexapodText + "servo:\n  sample_delay_periods: 2\n  drives: {" + kServoDrive +
+      ", friction_coulomb_N: 40, friction_static_N: 60, stribeck_speed_mm_s: 2, friction_viscous_N_s_per_mm: "
+      "0.5, backlash_mm: 0.01, encoder_resolution_mm: 0.0005}\n");
+  EXPECT_EQ(hexapod.servo.sample_delay_periods, 2);
+  for (int j = 0; j < 6; ++j) {
+    const DriveServo& d = hexapod.servo.drives[j];
+    EXPECT_DOUBLE_EQ(d.friction_coulomb, 40.0);
+    EXPECT_DOUBLE_EQ(d.friction_static, 60.0);
+    EXPECT_DOUBLE_EQ(d.stribeck_speed, 2.0);
+    EXPECT_DOUBLE_EQ(d.friction_viscous, 0.5);
+    EXPECT_DOUBLE_EQ(d.backlash, 0.01);
+    EXPECT_DOUBLE_EQ(d.encoder_resolution, 0.0005);
+  }
+  // The static friction defaults to the Coulomb friction (no Stribeck speed needed then); nothing given: 0.
+  const Machine coulomb_only = test::machine_from_text(kCh5HexapodText + "servo:\n  drives: {" + kServoDrive +
+                                                       ", friction_coulomb_N: 25}\n");
+  EXPECT_DOUBLE_EQ(coulomb_only.servo.drives[0].friction_static, 25.0);
+  EXPECT_EQ(coulomb_only.servo.drives[0].backlash, 0.0);
+  EXPECT_EQ(coulomb_only.servo.sample_delay_periods, 0);
+  const Machine rotopod = test::machine_from_text(
+      kServoRotopodText +
+      "servo:\n  drives: {current_time_constant_ms: 0.8, base_speed_deg_s: 180, base_torque_Nmm: 20000, "
+      "friction_coulomb_Nmm: 300, friction_static_Nmm: 400, stribeck_speed_deg_s: 1, "
+      "friction_viscous_Nmm_s_per_deg: 2, backlash_deg: 0.05, encoder_resolution_deg: 0.001}\n");
+  const DriveServo& r = rotopod.servo.drives[3];
+  EXPECT_DOUBLE_EQ(r.friction_coulomb, 300.0);
+  EXPECT_DOUBLE_EQ(r.friction_static, 400.0);
+  EXPECT_DOUBLE_EQ(r.stribeck_speed, rad_from_deg(1.0));
+  EXPECT_DOUBLE_EQ(r.friction_viscous, 2.0 / rad_from_deg(1.0));  // N·mm per rad/s
+  EXPECT_DOUBLE_EQ(r.backlash, rad_from_deg(0.05));
+  EXPECT_DOUBLE_EQ(r.encoder_resolution, rad_from_deg(0.001));
+}
+
+TEST(ServoFile, ImperfectionsThatCannotHoldAreNamedByPlaceAndKey) {
+  const std::string d = "servo:\n  drives: {" + kServoDrive;
+  expect_servo_refused(d + ", backlash_mm: -0.01}\n", "-0.01",
+                       "servo.drives.backlash_mm: must be ≥ 0, got -0.01");
+  expect_servo_refused(d + ", friction_coulomb_N: 50, friction_static_N: 30}\n", "30}",
+                       "servo.drives.friction_static_N: must be at least friction_coulomb_N (the Coulomb "
+                       "friction, 50), got 30");
+  expect_servo_refused(d + ", friction_coulomb_N: 50, friction_static_N: 80}\n", "{current",
+                       "servo.drives.stribeck_speed_mm_s: missing");
+  expect_servo_refused(d + ", backlash_deg: 0.1}\n", "backlash_deg",
+                       "servo.drives.backlash_deg: the hexapod's actuators are lengths: give backlash_mm");
+  expect_servo_refused(d + ", encoder_resolution_deg: 0.1}\n", "encoder_resolution_deg",
+                       "servo.drives.encoder_resolution_deg: the hexapod's actuators are lengths: give "
+                       "encoder_resolution_mm");
+  expect_servo_refused("servo:\n  sample_delay_periods: 1.5\n  drives: {" + kServoDrive + "}\n", "1.5",
+                       "servo.sample_delay_periods: must be a whole number of loop periods, 0 … 8, got 1.5");
+  expect_servo_refused("servo:\n  sample_delay_periods: 9\n  drives: {" + kServoDrive + "}\n", "9",
+                       "servo.sample_delay_periods: must be a whole number of loop periods, 0 … 8, got 9");
+}
+
 TEST(ServoFile, TheShippedMachinesHaveServoSections) {
   const Machine hexapod = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   ASSERT_TRUE(hexapod.servo.given());
@@ -331,7 +389,7 @@ TEST(ServoFile, ListsOfTheWrongLengthAndUnknownKeysAreRefused) {
   expect_servo_refused(
       "servo:\n  tunning: explicit\n  drives: {" + kServoDrive + "}\n", "tunning",
       "servo.tunning: unknown key (allowed here: tuning, loop_period_ms, velocity_feedforward, "
-      "drives)");
+      "sample_delay_periods, drives)");
   expect_servo_refused("servo:\n  drives: {" + kServoDrive + ", speed_gian: 0.5}\n", "speed_gian",
                        "servo.drives.speed_gian: unknown key");
   std::string list = "servo:\n  drives:\n";
