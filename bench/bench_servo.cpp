@@ -3,7 +3,8 @@
 // optimum from its servo: section, on the coupled inertia of the machine at home with the motors, follow the
 // planned helix's set points (one loop step per 1 ms period, the set point's speed fed forward as the
 // simulator's input). One iteration is one period of all six drives, timed on its own into a fixed histogram
-// (p50_us, p99_9_us, max_us beside the mean). BM_ServoRunPerTick is the whole `pkm servo` simulation per
+// (p50_us, p99_9_us, max_us beside the mean), with the ideal drives and with every imperfection (friction,
+// backlash, encoder counts, a sample delay). BM_ServoRunPerTick is the whole `pkm servo` simulation per
 // tick: the same plus the contour error by forward kinematics at the tick and at mid-period.
 #include <benchmark/benchmark.h>
 
@@ -53,6 +54,16 @@ void BM_ServoPeriodSixDrives(benchmark::State& state) {
     state.SkipWithError(design.error().message.c_str());
     return;
   }
+  if (state.range(0) == 1) {
+    // Every imperfection on (docs/servo.md): friction with its eight sub-steps per half period, backlash, the
+    // encoder's counts and a one-period delay.
+    for (int j = 0; j < m; ++j) {
+      servo::ChannelGains& g = design->channels[j];
+      g.friction_coulomb = 60.0, g.friction_static = 80.0, g.stribeck_speed = 1.0, g.friction_viscous = 0.2;
+      g.backlash = 0.003, g.encoder_resolution = 0.0002;
+    }
+    design->sample_delay_periods = 1;
+  }
   servo::ServoSimulator simulator(*design, input.period_s);
   servo::DriveMatrix inverse = servo::DriveMatrix::Zero();
   inverse.topLeftCorner(m, m) = inertia.topLeftCorner(m, m).inverse();
@@ -79,7 +90,8 @@ void BM_ServoPeriodSixDrives(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   bench::record_distribution(state, time);
 }
-BENCHMARK(BM_ServoPeriodSixDrives)->Unit(benchmark::kNanosecond);
+// Arg 0: the ideal drives; 1: with every imperfection.
+BENCHMARK(BM_ServoPeriodSixDrives)->Arg(0)->Arg(1)->Unit(benchmark::kNanosecond);
 
 void BM_ServoRunPerTick(benchmark::State& state) {
   const Machine& machine = bench::ch5_hexapod();

@@ -107,8 +107,11 @@ def test_linuxcnc_hands_the_drives_to_pkm_and_takes_them_back(work):
         assert np.abs(drives[first:last + 1] - (executed * STEP_MM + offsets)).max() <= 1e-9
         # ... and LinuxCNC's motion is off meanwhile (one period after pkmexec takes them).
         assert not enabled[first + 2:last].any()
-    # Between the two executions LinuxCNC had the drives again, from where pkm left them, and brought them home.
-    assert enabled[stretches[0][1] + 50:stretches[1][0]].all()
+    # Between the two executions LinuxCNC had the drives again, from where pkm left them, and brought them home;
+    # it was on when it handed them over the second time.
+    between = slice(stretches[0][1], stretches[1][0])
+    assert enabled[between].any() and enabled[stretches[1][0] - 5:stretches[1][0]].all()
+    assert np.abs(np.diff(drives[between], axis=0)).max() > 0.01  # LinuxCNC moved them (G-code back home)
     assert_no_jump(run, offsets)
     # LinuxCNC's own view of the joints at the end is pkm's last position; its forward kinematics followed.
     assert np.allclose(summary["final_joints"], planned[-1] * STEP_MM, atol=1e-9)
