@@ -34,6 +34,8 @@ void print_imperfections(const servo::LoopDesign& design, bool angular) {
     if (g.backlash > 0.0) parts.push_back(fmt::format("backlash {:g} {}", g.backlash * shown, length));
     if (g.encoder_resolution > 0.0)
       parts.push_back(fmt::format("encoder count {:g} {}", g.encoder_resolution * shown, length));
+    if (g.characteristic_points > 1)
+      parts.push_back(fmt::format("static characteristic of {} points", g.characteristic_points));
     drives.push_back(fmt::format("{}", fmt::join(parts, "; ")));
   }
   std::string text;

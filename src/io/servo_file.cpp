@@ -195,6 +195,42 @@ Status servo_file_imperfections(const ServoFileContext& c, const YAML::Node& nod
   return ok_status();
 }
 
+// `characteristic:`, when given: 2 … 16 points [u, F/F_base] from [0, 0], u rising, F not falling.
+Status servo_file_characteristic(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                                 DriveServo& drive) {
+  const YAML::Node list = node["characteristic"];
+  if (!list) return ok_status();
+  const std::string name = path + ".characteristic";
+  const int most = DriveServo::kMaxCharacteristicPoints;
+  if (!list.IsSequence() || list.size() < 2 || static_cast<int>(list.size()) > most) {
+    return reader.error_at(
+        list, name,
+        fmt::format("expected a list of 2 … {} points [command u, force/F_base] from [0, 0]", most));
+  }
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string item = fmt::format("{}[{}]", name, k);
+    const YAML::Node point = list[k];
+    if (!point.IsSequence() || point.size() != 2)
+      return reader.error_at(point, item, "expected a point [command u, force/F_base]");
+    for (int i = 0; i < 2; ++i) {
+      auto value = reader.number(point[i], item);
+      if (!value) return value.error();
+      if (!std::isfinite(*value) || *value < 0.0)
+        return reader.error_at(point[i], item, fmt::format("must be finite and ≥ 0, got {}", *value));
+      drive.characteristic[k][static_cast<std::size_t>(i)] = *value;
+    }
+    const auto& p = drive.characteristic[k];
+    if (k == 0 && (p[0] != 0.0 || p[1] != 0.0))
+      return reader.error_at(point, item, "the characteristic starts at [0, 0] (no force without a command)");
+    if (k > 0 && !(p[0] > drive.characteristic[k - 1][0]))
+      return reader.error_at(point[0], item, "the commands must rise from point to point");
+    if (k > 0 && p[1] < drive.characteristic[k - 1][1])
+      return reader.error_at(point[1], item, "the force must not fall as the command rises");
+  }
+  drive.characteristic_points = static_cast<int>(list.size());
+  return ok_status();
+}
+
 // One drive's mapping (`path`: servo.drives or servo.drives[j]).
 Result<DriveServo> servo_file_drive(const ServoFileContext& c, const YAML::Node& node,
                                     const std::string& path) {
@@ -221,13 +257,13 @@ Result<DriveServo> servo_file_drive(const ServoFileContext& c, const YAML::Node&
                                          c.angular ? "angles" : "lengths", ours[i]));
     }
   }
-  if (auto keys =
-          reader.check_keys(node, path,
-                            {"current_time_constant_ms", "current_gain", units.speed, units.force,
-                             "motor_inertia_kg_cm2", units.transmission, units.error_max, "command_max",
-                             "position_gain_per_s", "speed_gain", "speed_integral_ms", imperfections.coulomb,
-                             imperfections.static_friction, imperfections.stribeck_speed,
-                             imperfections.viscous, imperfections.backlash, imperfections.encoder});
+  if (auto keys = reader.check_keys(
+          node, path,
+          {"current_time_constant_ms", "current_gain", units.speed, units.force, "motor_inertia_kg_cm2",
+           units.transmission, units.error_max, "command_max", "position_gain_per_s", "speed_gain",
+           "speed_integral_ms", imperfections.coulomb, imperfections.static_friction,
+           imperfections.stribeck_speed, imperfections.viscous, imperfections.backlash, imperfections.encoder,
+           "characteristic"});
       !keys)
     return keys.error();
 
@@ -275,6 +311,7 @@ Result<DriveServo> servo_file_drive(const ServoFileContext& c, const YAML::Node&
 
   if (auto gains = servo_file_gains(c, node, path, drive); !gains) return gains.error();
   if (auto imperfect = servo_file_imperfections(c, node, path, drive); !imperfect) return imperfect.error();
+  if (auto law = servo_file_characteristic(reader, node, path, drive); !law) return law.error();
   return drive;
 }
 

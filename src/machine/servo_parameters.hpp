@@ -56,6 +56,12 @@ struct DriveServo {
   double friction_viscous = 0.0;
   double backlash = 0.0;            ///< lost motion between the motor and the actuator, mm (rad)
   double encoder_resolution = 0.0;  ///< one count of the motor's encoder, mm (rad)
+  /// The drive's static characteristic: the steady force for a command, as points (u, F/F_base) from (0, 0)
+  /// with u rising and F not falling, the same for −u (odd); past the last point F stays (saturation). None
+  /// given (0 points): F = k_μ F_base u.
+  static constexpr int kMaxCharacteristicPoints = 16;
+  std::array<std::array<double, 2>, kMaxCharacteristicPoints> characteristic{};
+  int characteristic_points = 0;
   /// Lines of the keys in the machine file, for messages (0 = not given).
   int line = 0;
   int time_constant_line = 0;

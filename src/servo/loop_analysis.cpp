@@ -121,6 +121,7 @@ StepMetrics step_of(const ChannelGains& gains, double h, bool speed_loop, double
   g.command_max = std::numeric_limits<double>::infinity();
   g.friction_coulomb = g.friction_static = g.friction_viscous = 0.0;
   g.backlash = g.encoder_resolution = 0.0;
+  g.characteristic_points = 0;
   if (speed_loop) {
     g.position_gain_per_s = 0.0;
     g.velocity_feedforward = 1.0;

@@ -61,6 +61,9 @@ Result<LoopDesign> design_loops(const Machine& machine, const ActuatorVector& in
     c.friction_viscous = d.friction_viscous;
     c.backlash = d.backlash;
     c.encoder_resolution = d.encoder_resolution;
+    c.characteristic_points = d.characteristic_points;
+    for (int k = 0; k < d.characteristic_points; ++k)
+      c.characteristic[k] = {d.characteristic[k][0], d.characteristic[k][1] * d.base_force};
     switch (parameters.tuning) {
       case ServoTuning::technical_optimum:
         // K = T0/(2 k_μ T_μ) per unit, i.e. a/(2 T_μ) in force per speed (eq. 2.49's regulator).

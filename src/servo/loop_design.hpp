@@ -35,6 +35,9 @@ struct ChannelGains {
   double friction_coulomb = 0.0, friction_static = 0.0, stribeck_speed = 0.0, friction_viscous = 0.0;
   double backlash = 0.0;
   double encoder_resolution = 0.0;
+  /// The static characteristic (servo_parameters.hpp) as (u, F in N or N·mm) points; 0 points: linear.
+  std::array<std::array<double, 2>, DriveServo::kMaxCharacteristicPoints> characteristic{};
+  int characteristic_points = 0;
 };
 
 /// The most loop periods a measurement may wait before the regulators act on it.

@@ -101,9 +101,9 @@ Result<int> loop_steps_per_period(const Machine& machine, double period_s) {
 
 Status check_stability(const Machine& machine, const LoopDesign& design, const ServoPlant& plant,
                        const ServoRunInput& input, int steps_per_period, const ServoRunOptions& options) {
-  // The limits and the drives' non-linear imperfections off (friction, backlash, the encoder's counts): the
-  // loop period's map is then linear in the state. A sampling delay stays: it is linear, and it is what most
-  // often makes a loop unstable.
+  // The limits and the drives' non-linear imperfections off (friction, backlash, the encoder's counts, the
+  // static characteristic): the loop period's map is then linear in the state. A sampling delay stays: it is
+  // linear, and it is what most often makes a loop unstable.
   LoopDesign linear = design;
   for (int j = 0; j < design.drives; ++j) {
     ChannelGains& g = linear.channels[j];
@@ -111,6 +111,7 @@ Status check_stability(const Machine& machine, const LoopDesign& design, const S
     g.command_max = std::numeric_limits<double>::infinity();
     g.friction_coulomb = g.friction_static = g.friction_viscous = 0.0;
     g.backlash = g.encoder_resolution = 0.0;
+    g.characteristic_points = 0;
   }
   const double period_s = input.period_s / steps_per_period;
   ServoSimulator simulator(linear, period_s);

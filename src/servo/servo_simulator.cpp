@@ -13,6 +13,23 @@ constexpr int kFrictionSubsteps = 8;
 // leaves it.
 constexpr double kRestSpeed = 1e-12;
 
+// The force of a static characteristic for the command u: piecewise linear through the points (u rising
+// from 0), odd in u, constant past the last point.
+double characteristic_force(
+    const std::array<std::array<double, 2>, DriveServo::kMaxCharacteristicPoints>& points, int count,
+    double u) {
+  const double magnitude = std::abs(u);
+  double force = points[count - 1][1];
+  for (int k = 1; k < count; ++k) {
+    if (magnitude <= points[k][0]) {
+      const double t = (magnitude - points[k - 1][0]) / (points[k][0] - points[k - 1][0]);
+      force = points[k - 1][1] + t * (points[k][1] - points[k - 1][1]);
+      break;
+    }
+  }
+  return std::copysign(force, u);
+}
+
 }  // namespace
 
 ServoSimulator::LagStep ServoSimulator::lag_step(const LoopDesign& design, double duration_s) {
@@ -57,6 +74,8 @@ ServoSimulator::ServoSimulator(const LoopDesign& design, double loop_period_s)
     friction_ = friction_ || static_friction_[j] > 0.0 || viscous_[j] > 0.0;
     backlash_on_ = backlash_on_ || backlash_[j] > 0.0;
     encoder_ = encoder_ || resolution_[j] > 0.0;
+    characteristic_[j] = c.characteristic;
+    characteristic_points_[j] = c.characteristic_points;
   }
   delay_ = std::clamp(design.sample_delay_periods, 0, kMaxSampleDelay);
   half_step_ = lag_step(design, half_s_);
@@ -209,8 +228,10 @@ void ServoSimulator::step(const DriveVector& reference, const DriveVector& refer
     } else if (integral_gain_[j] > 0.0) {
       integral_[j] += speed_error * period_s_;  // no integration while limited (anti-windup)
     }
-    force_command[j] = command;
     command_[j] = command / force_per_command_[j];
+    force_command[j] = characteristic_points_[j] > 1
+                           ? characteristic_force(characteristic_[j], characteristic_points_[j], command_[j])
+                           : command;
   }
   advance_plant(force_command);
   mid_position_ = position_;

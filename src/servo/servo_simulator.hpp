@@ -20,7 +20,9 @@
 //                    sub-steps per half period with the friction held over each, and a drive whose speed
 //                    friction would reverse stops instead;
 //   backlash         the actuator follows the motor through a gap of width b_l (the motor's side carries the
-//                    encoder): it stays where it is until the motor has crossed the gap.
+//                    encoder): it stays where it is until the motor has crossed the gap;
+//   characteristic   the current loop settles on the force of the drive's static characteristic for the
+//                    command, F = f(u) (piecewise linear, odd), instead of k_μ F_base u.
 //
 // The hot path: step() neither allocates nor branches on the mechanism; states are fixed-size.
 #include <Eigen/Core>
@@ -106,6 +108,9 @@ class ServoSimulator {
   DriveVector coulomb_, static_friction_, stribeck_, viscous_, backlash_, resolution_;
   bool friction_ = false, backlash_on_ = false, encoder_ = false;
   int delay_ = 0;
+  std::array<std::array<std::array<double, 2>, DriveServo::kMaxCharacteristicPoints>, kMaxActuators>
+      characteristic_{};
+  std::array<int, kMaxActuators> characteristic_points_{};
   std::array<DriveVector, kMaxSampleDelay> delayed_position_{}, delayed_speed_{};
   DriveVector counted_ = DriveVector::Zero();  ///< the encoder's last position, whole counts
   DriveVector actuator_ = DriveVector::Zero(), mid_actuator_ = DriveVector::Zero();

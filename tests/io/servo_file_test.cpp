@@ -245,6 +245,27 @@ TEST(ServoFile, ImperfectionsThatCannotHoldAreNamedByPlaceAndKey) {
                        "servo.sample_delay_periods: must be a whole number of loop periods, 0 … 8, got 9");
 }
 
+TEST(ServoFile, TheStaticCharacteristicIsAPiecewiseLinearTableFromZero) {
+  const Machine m = test::machine_from_text(kCh5HexapodText + "servo:\n  drives: {" + kServoDrive +
+                                            ", characteristic: [[0, 0], [0.05, 0], [1, 0.95], [3, 2]]}\n");
+  const DriveServo& d = m.servo.drives[2];
+  ASSERT_EQ(d.characteristic_points, 4);
+  EXPECT_EQ(d.characteristic[1][0], 0.05);
+  EXPECT_EQ(d.characteristic[3][1], 2.0);
+  const std::string c = "servo:\n  drives: {" + kServoDrive + ", characteristic: ";
+  expect_servo_refused(c + "[[0.1, 0], [1, 1]]}\n", "[0.1",
+                       "servo.drives.characteristic[0]: the characteristic starts at [0, 0]");
+  expect_servo_refused(c + "[[0, 0], [1, 1], [1, 2]]}\n", "1, 2]",
+                       "servo.drives.characteristic[2]: the commands must rise from point to point");
+  expect_servo_refused(c + "[[0, 0], [1, 1], [2, 0.5]]}\n", "0.5]",
+                       "servo.drives.characteristic[2]: the force must not fall as the command rises");
+  expect_servo_refused(c + "[[0, 0]]}\n", "[[0, 0]]",
+                       "servo.drives.characteristic: expected a list of 2 … 16 points");
+  expect_servo_refused(c + "[[0, 0], [1]]}\n", "[1]", "servo.drives.characteristic[1]: expected a point");
+  expect_servo_refused(c + "[[0, 0], [1, -1]]}\n", "-1",
+                       "servo.drives.characteristic[1]: must be finite and ≥ 0");
+}
+
 TEST(ServoFile, TheShippedMachinesHaveServoSections) {
   const Machine hexapod = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
   ASSERT_TRUE(hexapod.servo.given());

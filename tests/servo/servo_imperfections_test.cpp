@@ -2,7 +2,8 @@
 // signature it leaves: Coulomb friction a dead zone where P loops stop short and a glitch in the following
 // error where a drive reverses (growing with the friction); backlash a lost motion of exactly its width at
 // every reversal; the encoder's counts a noise floor in the error that grows with the count; a sampling delay
-// a step's overshoot growing with it, and past some delay an unstable loop. Without any, the simulator is the
+// a step's overshoot growing with it, and past some delay an unstable loop; the static characteristic its
+// dead zone and its saturation. Without any, the simulator is the
 // same bit for bit.
 #include <gtest/gtest.h>
 
@@ -237,6 +238,57 @@ TEST(ServoImperfections, ASamplingDelayGrowsTheOvershootAndFinallyDestabilises) 
   LoopDesign fast_now = one_drive(2.0 * kLoopS);
   const Trace stable = follow_sine(fast_now, 1.0, 2.0, 0.5);
   EXPECT_LT(max_abs_error(stable, stable.reference.size() - 100, stable.reference.size()), 0.1);
+}
+
+// The static characteristic: a table that is the linear law changes nothing; a dead zone in it stops P loops
+// short as friction does; a flat top caps the force however large the command.
+TEST(ServoImperfections, TheStaticCharacteristicsDeadZoneAndSaturationShow) {
+  const LoopDesign ideal = one_drive();
+  const double unit = ideal.channels[0].force_per_command;  // k_μ F_base: the linear law's force for u = 1
+  auto with = [&](std::initializer_list<std::array<double, 2>> points) {
+    LoopDesign design = one_drive();
+    int k = 0;
+    for (const auto& p : points) design.channels[0].characteristic[k++] = {p[0], p[1] * unit};
+    design.channels[0].characteristic_points = k;
+    return design;
+  };
+  const Trace linear_law = follow_sine(with({{0.0, 0.0}, {100.0, 100.0}}), 5.0, 2.0, 0.6);
+  const Trace none = follow_sine(ideal, 5.0, 2.0, 0.6);
+  for (std::size_t k = 0; k < none.actuator.size(); ++k)
+    ASSERT_NEAR(linear_law.actuator[k], none.actuator[k], 1e-9);
+
+  // A dead zone of 0.02 in u: the loops stop where K_w·k_p·e < 0.02·k_μ F_base.
+  const double target = 1.0;
+  auto reference = [&](double t) {
+    const double u = std::min(1.0, t / 0.1);
+    return target * u * u * (3.0 - 2.0 * u);
+  };
+  auto speed = [&](double t) {
+    const double u = std::min(1.0, t / 0.1);
+    return target * 6.0 * u * (1.0 - u) / 0.1;
+  };
+  const ChannelGains& g = ideal.channels[0];
+  const Trace dead = follow(with({{0.0, 0.0}, {0.02, 0.0}, {100.0, 99.98}}), reference, speed, 0.5);
+  const double zone = 0.02 * unit / (g.speed_gain * g.position_gain_per_s);
+  EXPECT_LE(std::abs(target - dead.actuator.back()), zone * (1.0 + 1e-6));
+  EXPECT_GT(std::abs(target - dead.actuator.back()), 0.01 * zone);
+
+  // Saturation at u = 0.01: a fast move takes longer, the force never past the cap.
+  const double cap = 0.01 * unit;
+  LoopDesign flat = with({{0.0, 0.0}, {0.01, 0.01}, {100.0, 0.01}});
+  ServoSimulator simulator(flat, kLoopS);
+  simulator.reset(DriveVector::Zero());
+  DriveVector r = DriveVector::Zero(), v = DriveVector::Zero();
+  double peak_force = 0.0, worst_error = 0.0;
+  for (int k = 1; k <= 2000; ++k) {
+    r[0] = reference(k * kLoopS);
+    v[0] = speed(k * kLoopS);
+    simulator.step(r, v);
+    peak_force = std::max(peak_force, std::abs(simulator.force()[0]));
+    worst_error = std::max(worst_error, std::abs(r[0] - simulator.actuator_position()[0]));
+  }
+  EXPECT_LE(peak_force, cap * (1.0 + 1e-12));
+  EXPECT_GT(worst_error, 10.0 * max_abs_error(follow(ideal, reference, speed, 0.5), 0, 2000));
 }
 
 }  // namespace
