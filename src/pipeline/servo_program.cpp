@@ -333,6 +333,9 @@ Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob&
         if (ticks_done++ % 4096 == 0 && run_s > 0.0)
           report_progress(job.progress, "running the servo loops", t.time_s / run_s, t.line);
         append_servo_csv_row(ticks_csv.buffer, t, shown);
+        if (job.listener) {
+          if (Status told = job.listener(t); !told) return told;
+        }
         return ticks_csv.flush_if_large();
       });
   if (!summary) return summary.error();

@@ -5,6 +5,7 @@
 // coupled plant, and writes servo.csv (per tick: following error, force and command per drive, contour error
 // and lag), servo_bode.csv (each drive's loops, continuous and sampled) and servo_summary.json, as one output
 // set, into the run's directory (or another).
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -25,6 +26,8 @@ struct ServoJob {
   int bode_points = 120;
   std::string report_path;  ///< the HTML report of the run with the servo plots ("": none)
   ProgressSink progress;    ///< told the phase, how far the run is and its program line, now and then
+  /// Also told every servo tick, after servo.csv (e.g. the circle test's measurement).
+  std::function<Status(const servo::ServoTick&)> listener;
 };
 
 struct ServoProgramResult {

@@ -112,6 +112,61 @@ TEST(ServoCli, DriveImperfectionsGrowTheContourErrorAndADelayTooLongIsRefused) {
   EXPECT_FALSE(fs::exists(out / "servo.csv"));
 }
 
+// pkm circle: the circular test through the drives' loops. Ideal drives keep the circle round to a fraction
+// of a µm (a lag along the path does not change the radius) and the directions alike; friction and backlash
+// leave the reversal glitches: a circular deviation and a hysteresis many times larger. The plot, the
+// deviations and the summary join the plan's folder; bad requests write nothing.
+TEST(CircleCli, TheCircularTestShowsTheDrivesImperfections) {
+  const fs::path root = fs::temp_directory_path() / "pkm_circle_cli";
+  fs::remove_all(root);
+  const auto ideal = test::run_pkm("circle --machine " + servo_cli_machine("hexapod_ch5.yaml") + " --out " +
+                                       (root / "ideal").string() + " --json",
+                                   false);
+  ASSERT_EQ(ideal.exit_code, 0) << ideal.out;
+  const nlohmann::json a = nlohmann::json::parse(ideal.out);
+  EXPECT_EQ(a["kind"], "circle");
+  EXPECT_LT(a["circular_deviation_ccw_um"].get<double>(), 1.0);
+  EXPECT_LT(a["hysteresis_um"].get<double>(), 0.5);
+  for (const char* file :
+       {"circle.svg", "circle.csv", "circle_summary.json", "circle.ngc", "servo.csv", "summary.json"})
+    EXPECT_TRUE(fs::exists(root / "ideal" / file)) << file;
+
+  const std::string imperfect = servo_cli_imperfect_machine(
+      "circle", "friction_coulomb_N: 60, friction_static_N: 80, stribeck_speed_mm_s: 1, backlash_mm: 0.003",
+      0);
+  const auto run = test::run_pkm("circle --machine " + imperfect + " --out " + (root / "imperfect").string() +
+                                     " --radius-mm 25 --feed-mm-min 2400 --json",
+                                 false);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const nlohmann::json b = nlohmann::json::parse(run.out);
+  EXPECT_EQ(b["radius_mm"], 25.0);
+  EXPECT_GT(b["circular_deviation_ccw_um"].get<double>(),
+            10.0 * a["circular_deviation_ccw_um"].get<double>());
+  EXPECT_GT(b["circular_deviation_cw_um"].get<double>(), 10.0 * a["circular_deviation_cw_um"].get<double>());
+  EXPECT_GT(b["hysteresis_um"].get<double>(), 1.0);
+  // The deviations as written: one row per measured tick, both directions, within G of each other.
+  std::ifstream csv(root / "imperfect" / "circle.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "direction,angle_deg,radial_deviation_um");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_GT(rows, 2 * 1500);  // a turn of 157 mm at 40 mm/s: about 3.9 s at 1 kHz, each way
+
+  const auto no_servo = test::run_pkm("circle --machine " + servo_cli_machine("hexapod_ch3.yaml") +
+                                      " --out " + (root / "none").string());
+  EXPECT_EQ(no_servo.exit_code, 2) << no_servo.out;
+  EXPECT_NE(no_servo.out.find("servo:"), std::string::npos) << no_servo.out;
+  const auto zero = test::run_pkm("circle --machine " + servo_cli_machine("hexapod_ch5.yaml") +
+                                  " --radius-mm 0 --out " + (root / "zero").string());
+  EXPECT_EQ(zero.exit_code, 2) << zero.out;
+  const auto far = test::run_pkm("circle --machine " + servo_cli_machine("hexapod_ch5.yaml") +
+                                 " --radius-mm 2000 --out " + (root / "far").string());
+  EXPECT_EQ(far.exit_code, 3) << far.out;
+  EXPECT_NE(far.out.find("circle.ngc:3:"), std::string::npos) << far.out;  // the program's G0 to the circle
+  for (const char* dir : {"none", "zero", "far"}) EXPECT_FALSE(fs::exists(root / dir / "circle.svg")) << dir;
+}
+
 TEST(ServoCli, RefusesAMachineWithoutServoAPlanlessDirectoryAndADamagedRunWritingNothing) {
   const std::string plan = servo_cli_plan("bad");
   const auto no_servo =
