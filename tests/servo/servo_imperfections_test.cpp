@@ -36,6 +36,19 @@ LoopDesign one_drive(double lag_s = 1e-3, double inertia = 0.5) {
   return design;
 }
 
+// A smooth move from 0 to `target` in 0.1 s (a cubic with zero speed at both ends), then rest.
+struct SmoothMove {
+  double target = 0.0;
+  double position(double t) const {
+    const double u = std::min(1.0, t / 0.1);
+    return target * u * u * (3.0 - 2.0 * u);
+  }
+  double speed(double t) const {
+    const double u = std::min(1.0, t / 0.1);
+    return target * 6.0 * u * (1.0 - u) / 0.1;
+  }
+};
+
 struct Trace {
   std::vector<double> reference, motor, actuator, speed;
 };
@@ -98,15 +111,9 @@ TEST(ServoImperfections, CoulombFrictionLeavesADeadZoneThatPLoopsStopIn) {
     ChannelGains& g = design.channels[0];
     g.friction_coulomb = g.friction_static = friction(random);
     const double target = move(random);
-    // A smooth move to `target` in 0.1 s, then rest.
-    auto reference = [&](double t) {
-      const double u = std::min(1.0, t / 0.1);
-      return target * u * u * (3.0 - 2.0 * u);
-    };
-    auto speed = [&](double t) {
-      const double u = std::min(1.0, t / 0.1);
-      return target * 6.0 * u * (1.0 - u) / 0.1;
-    };
+    const SmoothMove move_to{target};
+    auto reference = [&](double t) { return move_to.position(t); };
+    auto speed = [&](double t) { return move_to.speed(t); };
     const Trace trace = follow(design, reference, speed, 0.5);
     const double dead_zone = g.friction_static / (g.speed_gain * g.position_gain_per_s);
     const double rest_error = std::abs(target - trace.actuator.back());
@@ -259,14 +266,9 @@ TEST(ServoImperfections, TheStaticCharacteristicsDeadZoneAndSaturationShow) {
 
   // A dead zone of 0.02 in u: the loops stop where K_w·k_p·e < 0.02·k_μ F_base.
   const double target = 1.0;
-  auto reference = [&](double t) {
-    const double u = std::min(1.0, t / 0.1);
-    return target * u * u * (3.0 - 2.0 * u);
-  };
-  auto speed = [&](double t) {
-    const double u = std::min(1.0, t / 0.1);
-    return target * 6.0 * u * (1.0 - u) / 0.1;
-  };
+  const SmoothMove move_to{target};
+  auto reference = [&](double t) { return move_to.position(t); };
+  auto speed = [&](double t) { return move_to.speed(t); };
   const ChannelGains& g = ideal.channels[0];
   const Trace dead = follow(with({{0.0, 0.0}, {0.02, 0.0}, {100.0, 99.98}}), reference, speed, 0.5);
   const double zone = 0.02 * unit / (g.speed_gain * g.position_gain_per_s);
