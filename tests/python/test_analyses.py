@@ -141,3 +141,20 @@ def test_servo_matches_cli(tmp_path, ch5):
     ticks = result["ticks"]
     assert len(ticks["time_s"]) == len(np.loadtxt(tmp_path / "plan" / "actuators.csv", delimiter=",", skiprows=1))
     assert "contour_error_mm" in ticks and "e1_mm" in ticks
+
+
+def test_circle_matches_cli(tmp_path, ch5):
+    """pkm.circle is `pkm circle`: the same summary and deviations; the ideal drives keep the circle round."""
+    result = pkm.circle(ch5, radius_mm=20.0, feed_mm_min=2400.0, out_dir=tmp_path / "py")
+    cli_json("circle", "--machine", CH5, "--radius-mm", "20", "--feed-mm-min", "2400", "--out", tmp_path / "cli")
+    written = json.loads((tmp_path / "cli" / "circle_summary.json").read_text())
+    for key in ("circular_deviation_ccw_um", "circular_deviation_cw_um", "hysteresis_um", "radius_ccw_mm"):
+        assert result["summary"][key] == written[key], key
+    assert result["summary"]["radius_mm"] == 20.0
+    table = np.genfromtxt(tmp_path / "cli" / "circle.csv", delimiter=",", names=True, dtype=None, encoding=None)
+    ccw = result["deviations"]["ccw"]
+    assert len(ccw["angle_deg"]) == int(np.sum(table["direction"] == "ccw"))
+    assert np.all((ccw["angle_deg"] >= 0.0) & (ccw["angle_deg"] < 360.0))
+    # The band of the deviations about the common centre holds G about the turn's own centre, nearly.
+    band_um = (ccw["radial_deviation_mm"].max() - ccw["radial_deviation_mm"].min()) * 1e3
+    assert band_um < 1.0 and result["summary"]["circular_deviation_ccw_um"] < 1.0
