@@ -30,6 +30,51 @@ py::dict csv_columns(const std::string& path) {
   return columns;
 }
 
+// pkm.circle: the circular test (pipeline/circle_test.hpp).
+void bind_circle(py::module_& m) {
+  m.def(
+      "circle",
+      [](const Machine& machine, double radius_mm, double feed_mm_min, const std::string& plane,
+         std::array<double, 3> centre_mm, const py::object& out_dir) {
+        if (plane != "XY" && plane != "ZX" && plane != "YZ")
+          throw py::value_error("plane: expected XY, ZX or YZ");
+        pipeline::CircleTestJob job;
+        job.radius_mm = radius_mm;
+        job.feed_mm_min = feed_mm_min;
+        job.plane = plane;
+        job.centre_mm = Eigen::Vector3d(centre_mm[0], centre_mm[1], centre_mm[2]);
+        const RunDirectory directory(out_dir);
+        job.out_directory = directory.path();
+        const pipeline::CircleTestResult r =
+            unwrap_released([&] { return pipeline::circle_test(machine, job); });
+        py::dict out;
+        out["summary"] = python_from_json(r.json);
+        py::dict deviations;
+        const py::object numpy = py::module_::import("numpy");
+        for (const auto& [name, trace] :
+             {std::pair{"ccw", &r.counter_clockwise}, std::pair{"cw", &r.clockwise}}) {
+          py::dict one;
+          one["angle_deg"] = numpy.attr("array")(trace->angle_deg);
+          one["radial_deviation_mm"] = numpy.attr("array")(trace->deviation_mm);
+          deviations[name] = one;
+        }
+        out["deviations"] = deviations;
+        return out;
+      },
+      py::arg("machine"), py::kw_only(), py::arg("radius_mm") = 30.0, py::arg("feed_mm_min") = 3000.0,
+      py::arg("plane") = "XY", py::arg("centre_mm") = std::array<double, 3>{0.0, 0.0, 0.0},
+      py::arg("out_dir") = py::none(),
+      R"doc(The circular test of ISO 230-4 through the drives' servo loops and their imperfections, as
+`pkm circle`.
+
+radius_mm, feed_mm_min: the circle; plane: 'XY', 'ZX' or 'YZ'; centre_mm: its centre in program coordinates;
+out_dir: keep the plan, the servo run, circle.svg, circle.csv and circle_summary.json there (default: a
+temporary directory).
+
+Returns a dict: summary (circle_summary.json: circular_deviation_ccw_um, circular_deviation_cw_um,
+hysteresis_um, ...) and deviations: for 'ccw' and 'cw' the measured turn's angle_deg and radial_deviation_mm
+(about the common least-squares centre) as float64 arrays.)doc");
+}
 }  // namespace
 
 void bind_file_runs(py::module_& m) {
@@ -104,49 +149,7 @@ out_dir: keep servo.csv, servo_bode.csv and servo_summary.json there (default: a
 
 Returns a dict: summary (servo_summary.json as a dict) and ticks: the columns of servo.csv by name (time_s,
 line, e1_mm ... following errors, f1_N ... forces, u1 ... commands, contour_error_mm, lag_ms, ...).)doc");
-
-  m.def(
-      "circle",
-      [](const Machine& machine, double radius_mm, double feed_mm_min, const std::string& plane,
-         std::array<double, 3> centre_mm, const py::object& out_dir) {
-        if (plane != "XY" && plane != "ZX" && plane != "YZ")
-          throw py::value_error("plane: expected XY, ZX or YZ");
-        pipeline::CircleTestJob job;
-        job.radius_mm = radius_mm;
-        job.feed_mm_min = feed_mm_min;
-        job.plane = plane;
-        job.centre_mm = Eigen::Vector3d(centre_mm[0], centre_mm[1], centre_mm[2]);
-        const RunDirectory directory(out_dir);
-        job.out_directory = directory.path();
-        const pipeline::CircleTestResult r =
-            unwrap_released([&] { return pipeline::circle_test(machine, job); });
-        py::dict out;
-        out["summary"] = python_from_json(r.json);
-        py::dict deviations;
-        const py::object numpy = py::module_::import("numpy");
-        for (const auto& [name, trace] :
-             {std::pair{"ccw", &r.counter_clockwise}, std::pair{"cw", &r.clockwise}}) {
-          py::dict one;
-          one["angle_deg"] = numpy.attr("array")(trace->angle_deg);
-          one["radial_deviation_mm"] = numpy.attr("array")(trace->deviation_mm);
-          deviations[name] = one;
-        }
-        out["deviations"] = deviations;
-        return out;
-      },
-      py::arg("machine"), py::kw_only(), py::arg("radius_mm") = 30.0, py::arg("feed_mm_min") = 3000.0,
-      py::arg("plane") = "XY", py::arg("centre_mm") = std::array<double, 3>{0.0, 0.0, 0.0},
-      py::arg("out_dir") = py::none(),
-      R"doc(The circular test of ISO 230-4 through the drives' servo loops and their imperfections, as
-`pkm circle`.
-
-radius_mm, feed_mm_min: the circle; plane: 'XY', 'ZX' or 'YZ'; centre_mm: its centre in program coordinates;
-out_dir: keep the plan, the servo run, circle.svg, circle.csv and circle_summary.json there (default: a
-temporary directory).
-
-Returns a dict: summary (circle_summary.json: circular_deviation_ccw_um, circular_deviation_cw_um,
-hysteresis_um, ...) and deviations: for 'ccw' and 'cw' the measured turn's angle_deg and radial_deviation_mm
-(about the common least-squares centre) as float64 arrays.)doc");
+  bind_circle(m);
 }
 
 }  // namespace pkm::python
