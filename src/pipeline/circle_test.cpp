@@ -1,6 +1,7 @@
 #include "pipeline/circle_test.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -205,7 +206,7 @@ Result<CircleTestResult> circle_test(const Machine& machine, const CircleTestJob
   const std::string program = circle_program(job, *plane);
   // The program is planned from a file of its own; the set keeps a copy as circle.ngc.
   const std::filesystem::path scratch = std::filesystem::temp_directory_path() /
-                                        fmt::format("pkm-circle-{}.ngc", static_cast<const void*>(&job));
+                                        fmt::format("pkm-circle-{}-{}.ngc", ::getpid(), static_cast<const void*>(&job));
   if (Status written = write_file_atomically(scratch.string(), program); !written) return written.error();
   struct Remove {
     std::filesystem::path path;
