@@ -98,15 +98,22 @@ struct PlaneFrame {
   }
 };
 
-// The plane of the commanded circle (its points' best plane), its axes in the program's sense.
-PlaneFrame commanded_plane(const std::vector<Sample>& samples) {
+// The plane of the commanded circle (its points' best plane), with the plane's first and second program axes
+// (XY: X and Y) projected into it as its axes, so that angles count from the first axis towards the second as
+// G3 turns, and the plot is not mirrored.
+PlaneFrame commanded_plane(const std::vector<Sample>& samples, const PlaneWords& plane) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const Sample& s : samples) mean += s.commanded;
   mean /= static_cast<double>(samples.size());
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const Sample& s : samples) scatter += (s.commanded - mean) * (s.commanded - mean).transpose();
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(scatter, Eigen::ComputeFullU);
-  return {mean, svd.matrixU().col(0), svd.matrixU().col(1)};
+  const Eigen::Vector3d normal = svd.matrixU().col(2);
+  const Eigen::Vector3d first = Eigen::Vector3d::Unit(plane.first),
+                        second = Eigen::Vector3d::Unit(plane.second);
+  const Eigen::Vector3d u = (first - first.dot(normal) * normal).normalized();
+  const Eigen::Vector3d v = (second - second.dot(normal) * normal - second.dot(u) * u).normalized();
+  return {mean, u, v};
 }
 
 CircleTrace measure(const std::vector<const Sample*>& turn, const PlaneFrame& plane,
@@ -205,8 +212,9 @@ Result<CircleTestResult> circle_test(const Machine& machine, const CircleTestJob
   if (!plane) return plane.error();
   const std::string program = circle_program(job, *plane);
   // The program is planned from a file of its own; the set keeps a copy as circle.ngc.
-  const std::filesystem::path scratch = std::filesystem::temp_directory_path() /
-                                        fmt::format("pkm-circle-{}-{}.ngc", ::getpid(), static_cast<const void*>(&job));
+  const std::filesystem::path scratch =
+      std::filesystem::temp_directory_path() /
+      fmt::format("pkm-circle-{}-{}.ngc", ::getpid(), static_cast<const void*>(&job));
   if (Status written = write_file_atomically(scratch.string(), program); !written) return written.error();
   struct Remove {
     std::filesystem::path path;
@@ -254,7 +262,7 @@ Result<CircleTestResult> circle_test(const Machine& machine, const CircleTestJob
                                    cw = middle_turn(samples, kClockwiseLine);
   if (ccw.size() < 8 || cw.size() < 8)
     return make_error(ErrorCode::bad_input, "the circle is too short for the servo period: raise its radius");
-  const PlaneFrame frame = commanded_plane(samples);
+  const PlaneFrame frame = commanded_plane(samples, *plane);
   std::vector<Eigen::Vector2d> both;
   for (const Sample* s : ccw) both.push_back(frame.project(s->actual));
   for (const Sample* s : cw) both.push_back(frame.project(s->actual));

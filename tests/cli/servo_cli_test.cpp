@@ -4,9 +4,11 @@
 // ticks.h5 gives the servo run of its CSV tables.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -150,8 +152,23 @@ TEST(CircleCli, TheCircularTestShowsTheDrivesImperfections) {
   std::getline(csv, line);
   EXPECT_EQ(line, "direction,angle_deg,radial_deviation_um");
   int rows = 0;
-  while (std::getline(csv, line)) ++rows;
+  // Angles from the plane's first axis towards its second: G3's rows turn positive, G2's negative.
+  std::map<std::string, std::pair<int, int>> turns;  // direction: (steps forward, steps back)
+  std::string last_direction;
+  double last_angle = 0.0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    const std::string direction = line.substr(0, line.find(','));
+    const double angle = std::stod(line.substr(line.find(',') + 1));
+    if (direction == last_direction) {
+      const double step = std::remainder(angle - last_angle, 360.0);
+      (step > 0.0 ? turns[direction].first : turns[direction].second)++;
+    }
+    last_direction = direction, last_angle = angle;
+  }
   EXPECT_GT(rows, 2 * 1500);  // a turn of 157 mm at 40 mm/s: about 3.9 s at 1 kHz, each way
+  EXPECT_EQ(turns["ccw"].second, 0) << turns["ccw"].first;
+  EXPECT_EQ(turns["cw"].first, 0) << turns["cw"].second;
 
   const auto no_servo = test::run_pkm("circle --machine " + servo_cli_machine("hexapod_ch3.yaml") +
                                       " --out " + (root / "none").string());
