@@ -13,23 +13,6 @@ constexpr int kFrictionSubsteps = 8;
 // leaves it.
 constexpr double kRestSpeed = 1e-12;
 
-// The force of a static characteristic for the command u: piecewise linear through the points (u rising
-// from 0), odd in u, constant past the last point.
-double characteristic_force(
-    const std::array<std::array<double, 2>, DriveServo::kMaxCharacteristicPoints>& points, int count,
-    double u) {
-  const double magnitude = std::abs(u);
-  double force = points[count - 1][1];
-  for (int k = 1; k < count; ++k) {
-    if (magnitude <= points[k][0]) {
-      const double t = (magnitude - points[k - 1][0]) / (points[k][0] - points[k - 1][0]);
-      force = points[k - 1][1] + t * (points[k][1] - points[k - 1][1]);
-      break;
-    }
-  }
-  return std::copysign(force, u);
-}
-
 }  // namespace
 
 ServoSimulator::LagStep ServoSimulator::lag_step(const LoopDesign& design, double duration_s) {
@@ -48,36 +31,22 @@ ServoSimulator::LagStep ServoSimulator::lag_step(const LoopDesign& design, doubl
 }
 
 ServoSimulator::ServoSimulator(const LoopDesign& design, double loop_period_s)
-    : drives_(design.drives), period_s_(loop_period_s), half_s_(0.5 * loop_period_s) {
-  for (DriveVector* v : {&position_gain_, &speed_gain_, &integral_gain_, &filter_keep_, &feedforward_,
-                         &error_max_, &command_max_, &force_per_command_, &coulomb_, &static_friction_,
-                         &stribeck_, &viscous_, &backlash_, &resolution_})
-    v->setZero();
+    : drives_(design.drives),
+      period_s_(loop_period_s),
+      half_s_(0.5 * loop_period_s),
+      regulators_(design, loop_period_s) {
+  for (DriveVector* v : {&coulomb_, &static_friction_, &stribeck_, &viscous_, &backlash_}) v->setZero();
   for (int j = 0; j < drives_; ++j) {
     const ChannelGains& c = design.channels[j];
-    position_gain_[j] = c.position_gain_per_s;
-    speed_gain_[j] = c.speed_gain;
-    integral_gain_[j] = c.speed_integral_s > 0.0 ? c.speed_gain / c.speed_integral_s : 0.0;
-    // The reference filter's exact discrete form for a reference held over the period.
-    filter_keep_[j] = c.reference_filter_s > 0.0 ? std::exp(-period_s_ / c.reference_filter_s) : 0.0;
-    feedforward_[j] = c.velocity_feedforward;
-    error_max_[j] = c.error_max;
-    command_max_[j] = c.command_max;
-    force_per_command_[j] = c.force_per_command;
     inverse_inertia_(j, j) = 1.0 / c.inertia;
     coulomb_[j] = c.friction_coulomb;
     static_friction_[j] = std::max(c.friction_static, c.friction_coulomb);
     stribeck_[j] = c.stribeck_speed;
     viscous_[j] = c.friction_viscous;
     backlash_[j] = c.backlash;
-    resolution_[j] = c.encoder_resolution;
     friction_ = friction_ || static_friction_[j] > 0.0 || viscous_[j] > 0.0;
     backlash_on_ = backlash_on_ || backlash_[j] > 0.0;
-    encoder_ = encoder_ || resolution_[j] > 0.0;
-    characteristic_[j] = c.characteristic;
-    characteristic_points_[j] = c.characteristic_points;
   }
-  delay_ = std::clamp(design.sample_delay_periods, 0, kMaxSampleDelay);
   half_step_ = lag_step(design, half_s_);
   sub_step_ = lag_step(design, half_s_ / kFrictionSubsteps);
 }
@@ -87,20 +56,8 @@ void ServoSimulator::reset(const DriveVector& position) {
   actuator_ = mid_actuator_ = position;  // the backlash's gap centred
   speed_.setZero();
   force_ = load_;
-  filtered_.setZero();
-  command_.setZero();
   mid_position_ = position;
-  for (int j = 0; j < kMaxActuators; ++j)
-    counted_[j] = resolution_[j] > 0.0 ? std::round(position[j] / resolution_[j]) : position[j];
-  for (int k = 0; k < kMaxSampleDelay; ++k) {
-    delayed_position_[k] = position;
-    delayed_speed_[k].setZero();
-  }
-  // The integral that holds the load without a speed error (symmetric optimum); P-only drives hold it with
-  // a small speed error instead, reached within the first transient.
-  for (int j = 0; j < kMaxActuators; ++j)
-    integral_[j] = integral_gain_[j] > 0.0 ? load_[j] / integral_gain_[j] : 0.0;
-  clamps_ = {};
+  regulators_.reset(position, load_);
 }
 
 void ServoSimulator::advance(const DriveVector& force_command, const DriveVector& load, const LagStep& step) {
@@ -179,60 +136,8 @@ void ServoSimulator::take_up_backlash(DriveVector& actuator) const {
   }
 }
 
-// What the regulators see this period: the encoder's counts (and their difference as the speed) or the
-// state itself, as sampled `delay_` periods ago.
-void ServoSimulator::sample(DriveVector& position, DriveVector& speed) {
-  DriveVector measured_position = position_, measured_speed = speed_;
-  if (encoder_) {
-    for (int j = 0; j < drives_; ++j) {
-      if (!(resolution_[j] > 0.0)) continue;
-      const double counts = std::round(position_[j] / resolution_[j]);
-      measured_position[j] = counts * resolution_[j];
-      measured_speed[j] = (counts - counted_[j]) * resolution_[j] / period_s_;
-      counted_[j] = counts;
-    }
-  }
-  if (delay_ == 0) {
-    position = measured_position;
-    speed = measured_speed;
-    return;
-  }
-  position = delayed_position_[delay_ - 1];
-  speed = delayed_speed_[delay_ - 1];
-  for (int k = delay_ - 1; k > 0; --k) {
-    delayed_position_[k] = delayed_position_[k - 1];
-    delayed_speed_[k] = delayed_speed_[k - 1];
-  }
-  delayed_position_[0] = measured_position;
-  delayed_speed_[0] = measured_speed;
-}
-
 void ServoSimulator::step(const DriveVector& reference, const DriveVector& reference_speed) {
-  clamps_ = {};
-  DriveVector measured_position, measured_speed;
-  sample(measured_position, measured_speed);
-  DriveVector force_command = DriveVector::Zero();
-  for (int j = 0; j < drives_; ++j) {
-    double error = reference[j] - measured_position[j];
-    if (std::abs(error) > error_max_[j]) {
-      error = std::copysign(error_max_[j], error);
-      clamps_.error |= 1u << j;
-    }
-    const double speed_reference = position_gain_[j] * error + feedforward_[j] * reference_speed[j];
-    filtered_[j] = filter_keep_[j] * filtered_[j] + (1.0 - filter_keep_[j]) * speed_reference;
-    const double speed_error = filtered_[j] - measured_speed[j];
-    double command = speed_gain_[j] * speed_error + integral_gain_[j] * integral_[j];
-    if (std::abs(command) > command_max_[j]) {
-      command = std::copysign(command_max_[j], command);
-      clamps_.command |= 1u << j;
-    } else if (integral_gain_[j] > 0.0) {
-      integral_[j] += speed_error * period_s_;  // no integration while limited (anti-windup)
-    }
-    command_[j] = command / force_per_command_[j];
-    force_command[j] = characteristic_points_[j] > 1
-                           ? characteristic_force(characteristic_[j], characteristic_points_[j], command_[j])
-                           : command;
-  }
+  const DriveVector force_command = regulators_.regulate(reference, reference_speed, position_, speed_);
   advance_plant(force_command);
   mid_position_ = position_;
   if (backlash_on_) take_up_backlash(actuator_);
@@ -247,10 +152,11 @@ void ServoSimulator::step(const DriveVector& reference, const DriveVector& refer
 
 ServoSimulator::StateVector ServoSimulator::state() const {
   StateVector out;
-  out.head<5 * kMaxActuators>() << position_, speed_, force_, integral_, filtered_;
+  const RegulatorState& r = regulators_.state();
+  out.head<5 * kMaxActuators>() << position_, speed_, force_, r.integral, r.filtered;
   for (int k = 0; k < kMaxSampleDelay; ++k) {
-    out.segment<kMaxActuators>(kDelayedPositionState + k * kMaxActuators) = delayed_position_[k];
-    out.segment<kMaxActuators>(kDelayedSpeedState + k * kMaxActuators) = delayed_speed_[k];
+    out.segment<kMaxActuators>(kDelayedPositionState + k * kMaxActuators) = r.delayed_position[k];
+    out.segment<kMaxActuators>(kDelayedSpeedState + k * kMaxActuators) = r.delayed_speed[k];
   }
   return out;
 }
@@ -259,17 +165,18 @@ void ServoSimulator::set_state(const StateVector& state) {
   position_ = state.segment<kMaxActuators>(0);
   speed_ = state.segment<kMaxActuators>(kMaxActuators);
   force_ = state.segment<kMaxActuators>(2 * kMaxActuators);
-  integral_ = state.segment<kMaxActuators>(3 * kMaxActuators);
-  filtered_ = state.segment<kMaxActuators>(4 * kMaxActuators);
+  RegulatorState& r = regulators_.state();
+  r.integral = state.segment<kMaxActuators>(3 * kMaxActuators);
+  r.filtered = state.segment<kMaxActuators>(4 * kMaxActuators);
   for (int k = 0; k < kMaxSampleDelay; ++k) {
-    delayed_position_[k] = state.segment<kMaxActuators>(kDelayedPositionState + k * kMaxActuators);
-    delayed_speed_[k] = state.segment<kMaxActuators>(kDelayedSpeedState + k * kMaxActuators);
+    r.delayed_position[k] = state.segment<kMaxActuators>(kDelayedPositionState + k * kMaxActuators);
+    r.delayed_speed[k] = state.segment<kMaxActuators>(kDelayedSpeedState + k * kMaxActuators);
   }
   actuator_ = mid_actuator_ = position_;
 }
 
 bool ServoSimulator::finite() const {
-  return position_.allFinite() && speed_.allFinite() && force_.allFinite() && integral_.allFinite();
+  return position_.allFinite() && speed_.allFinite() && force_.allFinite() && regulators_.finite();
 }
 
 }  // namespace pkm::servo

@@ -1,9 +1,8 @@
 #pragma once
-// All drives' cascades in discrete time (motion-control textbook, §2.7.4, Fig. 2.31): every loop
-// period h each drive samples its position q and speed w, limits the position error to e_max, forms the
-// speed reference k_p e (+ the set point's speed fed forward), filters it (symmetric optimum), and its
-// speed regulator gives the force command K_w (e_w + ∫e_w/T_i), limited to u_max; the command is held over
-// the period (zero-order hold). Each limit that acts is flagged for the protection-and-diagnostics system.
+// All drives' cascades in discrete time on the rigid plant (motion-control textbook, §2.7.4, Fig. 2.31):
+// every loop period h the regulators of drive_regulators.hpp sample each drive's position q and speed w and
+// give its force command, held over the period (zero-order hold). Each limit that acts is flagged for the
+// protection-and-diagnostics system.
 //
 // Plant, with the command held: each drive's current loop is the lag T_μ Ḟ + F = F_cmd, and the machine is
 // A ẇ = F − d (eq. 2.43: A the inertia matrix in actuator coordinates, Coriolis terms neglected as §2.7.1
@@ -29,18 +28,9 @@
 #include <array>
 #include <cstdint>
 
-#include "servo/loop_design.hpp"
+#include "servo/drive_regulators.hpp"
 
 namespace pkm::servo {
-
-using DriveVector = Eigen::Matrix<double, kMaxActuators, 1>;
-using DriveMatrix = Eigen::Matrix<double, kMaxActuators, kMaxActuators>;
-
-/// What the limits did in the last step, one bit per drive.
-struct ClampFlags {
-  std::uint32_t error = 0;    ///< |e| > e_max: the position error was limited
-  std::uint32_t command = 0;  ///< |u| > u_max: the force command was limited
-};
 
 class ServoSimulator {
  public:
@@ -69,8 +59,8 @@ class ServoSimulator {
   /// The positions at the middle of the last step.
   const DriveVector& mid_position() const { return mid_position_; }
   /// The force commands of the last step, in units of k_μ F_base (the per-unit command u).
-  const DriveVector& command() const { return command_; }
-  const ClampFlags& clamps() const { return clamps_; }
+  const DriveVector& command() const { return regulators_.command(); }
+  const ClampFlags& clamps() const { return regulators_.clamps(); }
   /// Every state (positions, speeds, forces, speed integrals, filtered references, then the delayed
   /// positions and speeds, newest first), for the stability check.
   static constexpr int kStateSize = (5 + 2 * kMaxSampleDelay) * kMaxActuators;
@@ -94,32 +84,22 @@ class ServoSimulator {
   void advance_plant(const DriveVector& force_command);
   void advance_with_friction(const DriveVector& force_command);
   DriveVector friction_on(const DriveVector& speed, const DriveVector& net_force, std::uint32_t& stuck) const;
-  void sample(DriveVector& position, DriveVector& speed);
   void take_up_backlash(DriveVector& actuator) const;
 
   int drives_;
   double period_s_;
   double half_s_;
-  // Per drive: gains, and the lag's closed form over a half step (α = e^(−h/2T_μ), c1, c2).
-  DriveVector position_gain_, speed_gain_, integral_gain_, filter_keep_, feedforward_;
-  DriveVector error_max_, command_max_, force_per_command_;
+  DriveRegulators regulators_;
+  // The lag's closed form over a half step (α = e^(−h/2T_μ), c1, c2) and over a friction sub-step.
   LagStep half_step_, sub_step_;
-  // Imperfections (0: none), per drive.
-  DriveVector coulomb_, static_friction_, stribeck_, viscous_, backlash_, resolution_;
-  bool friction_ = false, backlash_on_ = false, encoder_ = false;
-  int delay_ = 0;
-  std::array<std::array<std::array<double, 2>, DriveServo::kMaxCharacteristicPoints>, kMaxActuators>
-      characteristic_{};
-  std::array<int, kMaxActuators> characteristic_points_{};
-  std::array<DriveVector, kMaxSampleDelay> delayed_position_{}, delayed_speed_{};
-  DriveVector counted_ = DriveVector::Zero();  ///< the encoder's last position, whole counts
+  // The plant's imperfections (0: none), per drive.
+  DriveVector coulomb_, static_friction_, stribeck_, viscous_, backlash_;
+  bool friction_ = false, backlash_on_ = false;
   DriveVector actuator_ = DriveVector::Zero(), mid_actuator_ = DriveVector::Zero();
   DriveMatrix inverse_inertia_ = DriveMatrix::Zero();
   DriveVector load_ = DriveVector::Zero();
   DriveVector position_ = DriveVector::Zero(), speed_ = DriveVector::Zero(), force_ = DriveVector::Zero();
-  DriveVector integral_ = DriveVector::Zero(), filtered_ = DriveVector::Zero();
-  DriveVector mid_position_ = DriveVector::Zero(), command_ = DriveVector::Zero();
-  ClampFlags clamps_;
+  DriveVector mid_position_ = DriveVector::Zero();
 };
 
 }  // namespace pkm::servo
