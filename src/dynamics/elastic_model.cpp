@@ -94,6 +94,13 @@ double damping_force_N(const StrutDynamics& strut, double rate_mm_s, const Elast
 
 namespace {
 
+// The element's elongation past the lost motion (half the gap either way), and whether it is engaged.
+double engaged_elongation_mm(double elongation_mm, double gap_mm, bool& engaged) {
+  const double half = 0.5 * gap_mm;
+  engaged = std::abs(elongation_mm) > half;
+  return engaged ? elongation_mm - std::copysign(half, elongation_mm) : 0.0;
+}
+
 // The elastic elements' forces (kg·mm/s², tension positive) from the actuators' rates; fills `forces` when
 // given.
 template <class Rates, class Forces>
@@ -108,10 +115,13 @@ void element_forces(const ElasticModel& model, const MechanismState& state, cons
   }
   for (int j = 0; j < n; ++j) {
     const StrutDynamics& strut = parameters.struts[j];
-    const double elongation = state.actuators[j] - drives.position_mm[j];
-    const double elongation_rate = actuator_rates[j] - drives.rate_mm_s[j];
-    const double force_N =
-        strut.stiffness_N_mm * elongation + damping_force_N(strut, elongation_rate, model.options);
+    bool engaged = true;
+    const double elongation = engaged_elongation_mm(state.actuators[j] - drives.position_mm[j],
+                                                    model.options.lost_motion_mm[j], engaged);
+    const double elongation_rate = engaged ? actuator_rates[j] - drives.rate_mm_s[j] : 0.0;
+    const double force_N = strut.stiffness_N_mm * elongation +
+                           damping_force_N(strut, elongation_rate, model.options) +
+                           model.options.series_damping_N_s_per_mm[j] * elongation_rate;
     force_kg_mm_s2[j] = force_N * kKgMmS2PerN;
     if (forces) {
       forces->elongation_mm[j] = elongation;
@@ -199,7 +209,9 @@ Result<ElasticEnergy> elastic_energy(const ElasticModel& model, const Pose& pose
                 kJoulePerKgMm2S2;
   e.gravity_J = gravity_potential(state, *model.parameters) * kJoulePerKgMm2S2;
   for (int j = 0; j < model.struts; ++j) {
-    const double elongation = state.actuators[j] - drive_position_mm[j];
+    bool engaged = true;
+    const double elongation = engaged_elongation_mm(state.actuators[j] - drive_position_mm[j],
+                                                    model.options.lost_motion_mm[j], engaged);
     // ½ c δl², N/mm · mm² = N·mm = 10⁻³ J.
     e.elastic_J += 0.5 * model.parameters->struts[j].stiffness_N_mm * elongation * elongation * 1e-3;
   }

@@ -19,6 +19,7 @@
 // body_motion.hpp: each strut's parts move with its joints A_j and B_j (docs/dynamics_elastic.md says what
 // this lumps relative to S2's twelve coordinates). Units: mm, kg, s; forces leave in N, energies in J.
 #include <Eigen/Core>
+#include <array>
 
 #include "core/result.hpp"
 #include "dynamics/body_motion.hpp"
@@ -43,6 +44,12 @@ struct ElasticModelOptions {
   /// Coulomb friction β·sign(ẋ) is smoothed to β·tanh(ẋ / v_ε): a discontinuous force would stall an
   /// adaptive integrator at every reversal. Below v_ε the element acts as a viscous one of β / v_ε.
   double coulomb_smoothing_mm_s = 0.01;
+  /// Lost motion in each drive's transmission (backlash), mm: the element carries no force while its
+  /// elongation is within half the gap either way, and is stretched by what exceeds it (0: none).
+  std::array<double, kMaxActuators> lost_motion_mm{};
+  /// Viscous damping in series with each drive (its transmission's), N·s/mm, added to the element's own
+  /// friction D (0: none).
+  std::array<double, kMaxActuators> series_damping_N_s_per_mm{};
 };
 
 /// The immutable model: the free platform (free_platform.hpp) with the elastic model's settings.
@@ -69,7 +76,7 @@ struct ElasticWorkspace {
 
 /// The elastic elements' state at a pose moving with rates ċ under a drive setpoint.
 struct StrutForces {
-  ActuatorVector elongation_mm;         ///< a_j − q_j
+  ActuatorVector elongation_mm;         ///< a_j − q_j, less the lost motion taken up
   ActuatorVector elongation_rate_mm_s;  ///< ȧ_j − q̇_j = (J_B ċ)_j − q̇_j
   ActuatorVector force_N;               ///< c (a − q) + D(ȧ − q̇), positive in tension
 };

@@ -19,9 +19,10 @@ namespace {
 
 namespace odeint = boost::numeric::odeint;
 
-// Tool point 3 + quaternion 4 + up to six coordinate rates + up to six auxiliary states: fixed size, so that
+// Tool point 3 + quaternion 4 + up to six coordinate rates + the auxiliary states: fixed size, so that
 // stepping never allocates (unused components stay zero and cost no error).
-constexpr int kPositionAt = 0, kQuaternionAt = 3, kRatesAt = 7, kAuxiliaryAt = 13, kStateSize = 19;
+constexpr int kPositionAt = 0, kQuaternionAt = 3, kRatesAt = 7, kAuxiliaryAt = 13,
+              kStateSize = kAuxiliaryAt + kMaxAuxiliaryStates;
 using State = std::array<double, kStateSize>;
 using Stepper = odeint::runge_kutta_dopri5<State>;
 using ErrorChecker = odeint::default_error_checker<double, Stepper::algebra_type, Stepper::operations_type>;
@@ -108,6 +109,54 @@ struct PlatformIntegrator::Impl {
     for (int k = 0; k < auxiliary_count; ++k)
       ds[kAuxiliaryAt + k] = auxiliary_rates[k] * scales.auxiliary_mm_per_unit[k];
   }
+
+  // advance_to / advance_exactly_to: steps until `time_s` is covered; `exact`: the last step shortened to end
+  // on it and the stepper restarted there.
+  Status advance(double time_s, PlatformRightHandSide& rhs, bool exact) {
+    if (time_s < t) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("{}: asked for {:.6f} s, before {:.6f} s", name, time_s, t));
+    }
+    equations = &rhs;
+    failure = ok_status();
+    auto system = [this](const State& state, State& rate, double at) { derivative(state, rate, at); };
+    // Within this much of `time_s` a step counts as ending on it (rounding of the time sum).
+    const double close_s = 1e-12 * std::max(1.0, std::abs(time_s));
+    double proposed_s = stepper.current_time_step();
+    long steps = 0;
+    try {
+      while (stepper.current_time() < time_s - (exact ? close_s : 0.0)) {
+        if (++steps > integration.max_steps_per_advance) {
+          return make_error(ErrorCode::not_converged,
+                            fmt::format("{}: more than {} steps from {:.6f} s to {:.6f} s", name,
+                                        integration.max_steps_per_advance, t, time_s));
+        }
+        if (exact && stepper.current_time() + stepper.current_time_step() > time_s) {
+          proposed_s = stepper.current_time_step();
+          stepper.initialize(stepper.current_state(), stepper.current_time(),
+                             time_s - stepper.current_time());
+        }
+        stepper.do_step(std::ref(system));
+        if (!failure) {
+          return Error{failure.error().code, fmt::format("{} at {:.6f} s: {}", name, stepper.current_time(),
+                                                         failure.error().message)};
+        }
+        ++counters.accepted_steps;
+      }
+    } catch (const std::exception& e) {  // Odeint's step-size control gave up: the step size collapsed
+      return make_error(ErrorCode::not_converged,
+                        fmt::format("{} near {:.6f} s: {}", name, stepper.current_time(), e.what()));
+    }
+    if (exact) {
+      x = stepper.current_state();
+      t = time_s;
+      stepper.initialize(x, t, std::max(proposed_s, stepper.current_time_step()));
+      return ok_status();
+    }
+    stepper.calc_state(time_s, x);  // Dormand–Prince's own interpolant within the last step
+    t = time_s;
+    return ok_status();
+  }
 };
 
 PlatformIntegrator::PlatformIntegrator(const FreePlatformModel& model, const PlatformIntegration& integration,
@@ -151,37 +200,11 @@ void PlatformIntegrator::restart() {
 }
 
 Status PlatformIntegrator::advance_to(double time_s, PlatformRightHandSide& equations) {
-  Impl& s = *impl_;
-  if (time_s < s.t) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("{}: asked for {:.6f} s, before {:.6f} s", s.name, time_s, s.t));
-  }
-  s.equations = &equations;
-  s.failure = ok_status();
-  auto system = [&s](const State& x, State& dx, double t) { s.derivative(x, dx, t); };
-  long steps = 0;
-  try {
-    while (s.stepper.current_time() < time_s) {
-      if (++steps > s.integration.max_steps_per_advance) {
-        return make_error(ErrorCode::not_converged,
-                          fmt::format("{}: more than {} steps from {:.6f} s to {:.6f} s", s.name,
-                                      s.integration.max_steps_per_advance, s.t, time_s));
-      }
-      s.stepper.do_step(std::ref(system));
-      if (!s.failure) {
-        return Error{
-            s.failure.error().code,
-            fmt::format("{} at {:.6f} s: {}", s.name, s.stepper.current_time(), s.failure.error().message)};
-      }
-      ++s.counters.accepted_steps;
-    }
-  } catch (const std::exception& e) {  // Odeint's step-size control gave up: the step size collapsed
-    return make_error(ErrorCode::not_converged,
-                      fmt::format("{} near {:.6f} s: {}", s.name, s.stepper.current_time(), e.what()));
-  }
-  s.stepper.calc_state(time_s, s.x);  // Dormand–Prince's own interpolant within the last step
-  s.t = time_s;
-  return ok_status();
+  return impl_->advance(time_s, equations, false);
+}
+
+Status PlatformIntegrator::advance_exactly_to(double time_s, PlatformRightHandSide& equations) {
+  return impl_->advance(time_s, equations, true);
 }
 
 double PlatformIntegrator::time_s() const {

@@ -1,6 +1,7 @@
 #pragma once
 // Time integration of a free platform (free_platform.hpp): its pose and basis-coordinate rates, plus up to
-// six auxiliary states of the model driving it (the drives' forces under a first-order lag). Boost.Odeint's
+// twenty auxiliary states of the model driving it (the drives' forces under a first-order lag; the drives'
+// positions, speeds and forces of the machine in the servo loops). Boost.Odeint's
 // Dormand–Prince 5(4) with step-size control by a PI controller (pi_step_adjuster.hpp; Smirnov 2019 names no
 // integrator, no step and no tolerance, so both tolerances are parameters here).
 //
@@ -19,8 +20,11 @@
 
 namespace pkm::dynamics {
 
-/// The auxiliary states of a model (at most six).
-using AuxiliaryVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+/// The most auxiliary states a model may have: each of six drives' position, speed and force, and two
+/// energy accounts.
+inline constexpr int kMaxAuxiliaryStates = 20;
+/// The auxiliary states of a model.
+using AuxiliaryVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxAuxiliaryStates, 1>;
 
 struct PlatformIntegration {
   /// Absolute tolerance of each length-scaled state component (see above), mm.
@@ -83,6 +87,9 @@ class PlatformIntegrator {
   /// Dormand–Prince's dense output within the step. Fails where the right-hand side fails or the step size
   /// collapses.
   Status advance_to(double time_s, PlatformRightHandSide& equations);
+  /// The same, but no step ends past `time_s` (the last one is shortened onto it), so that the right-hand
+  /// side may change there (a command held over a loop period); the stepper restarts at `time_s`.
+  Status advance_exactly_to(double time_s, PlatformRightHandSide& equations);
 
   double time_s() const;
   Pose pose() const;

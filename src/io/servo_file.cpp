@@ -44,16 +44,29 @@ struct ServoFileImperfectionKeys {
   const char* viscous;
   const char* backlash;
   const char* encoder;
-  std::array<const char*, 6> all() const {
-    return {coulomb, static_friction, stribeck_speed, viscous, backlash, encoder};
+  const char* transmission_stiffness;
+  const char* transmission_damping;
+  std::array<const char*, 8> all() const {
+    return {coulomb,  static_friction, stribeck_speed,         viscous,
+            backlash, encoder,         transmission_stiffness, transmission_damping};
   }
 };
-constexpr ServoFileImperfectionKeys kServoFileLinearImperfections{
-    "friction_coulomb_N",          "friction_static_N", "stribeck_speed_mm_s",
-    "friction_viscous_N_s_per_mm", "backlash_mm",       "encoder_resolution_mm"};
-constexpr ServoFileImperfectionKeys kServoFileAngularImperfections{
-    "friction_coulomb_Nmm",           "friction_static_Nmm", "stribeck_speed_deg_s",
-    "friction_viscous_Nmm_s_per_deg", "backlash_deg",        "encoder_resolution_deg"};
+constexpr ServoFileImperfectionKeys kServoFileLinearImperfections{"friction_coulomb_N",
+                                                                  "friction_static_N",
+                                                                  "stribeck_speed_mm_s",
+                                                                  "friction_viscous_N_s_per_mm",
+                                                                  "backlash_mm",
+                                                                  "encoder_resolution_mm",
+                                                                  "transmission_stiffness_N_mm",
+                                                                  "transmission_damping_N_s_per_mm"};
+constexpr ServoFileImperfectionKeys kServoFileAngularImperfections{"friction_coulomb_Nmm",
+                                                                   "friction_static_Nmm",
+                                                                   "stribeck_speed_deg_s",
+                                                                   "friction_viscous_Nmm_s_per_deg",
+                                                                   "backlash_deg",
+                                                                   "encoder_resolution_deg",
+                                                                   "transmission_stiffness_Nmm_per_deg",
+                                                                   "transmission_damping_Nmm_s_per_deg"};
 
 // What every drive's mapping is read with.
 struct ServoFileContext {
@@ -169,7 +182,7 @@ Status servo_file_imperfections(const ServoFileContext& c, const YAML::Node& nod
   const ServoFileImperfectionKeys& keys =
       c.angular ? kServoFileAngularImperfections : kServoFileLinearImperfections;
   const auto keys_all = keys.all();
-  std::array<double, 6> values{};
+  std::array<double, 8> values{};
   for (std::size_t i = 0; i < keys_all.size(); ++i) {
     auto value = servo_file_number(c.reader, node, path, keys_all[i], ServoFileBound::non_negative);
     if (!value) return value.error();
@@ -182,6 +195,8 @@ Status servo_file_imperfections(const ServoFileContext& c, const YAML::Node& nod
   drive.friction_viscous = values[3] / angle;  // per deg/s → per rad/s
   drive.backlash = values[4] * angle;
   drive.encoder_resolution = values[5] * angle;
+  drive.transmission_stiffness = values[6] / angle;  // per deg → per rad
+  drive.transmission_damping = values[7] / angle;
   if (drive.friction_static < drive.friction_coulomb) {
     return c.reader.error_at(node[keys.static_friction], path + "." + keys.static_friction,
                              fmt::format("must be at least {} (the Coulomb friction, {}), got {}",
@@ -257,13 +272,27 @@ Result<DriveServo> servo_file_drive(const ServoFileContext& c, const YAML::Node&
                                          c.angular ? "angles" : "lengths", ours[i]));
     }
   }
-  if (auto keys = reader.check_keys(
-          node, path,
-          {"current_time_constant_ms", "current_gain", units.speed, units.force, "motor_inertia_kg_cm2",
-           units.transmission, units.error_max, "command_max", "position_gain_per_s", "speed_gain",
-           "speed_integral_ms", imperfections.coulomb, imperfections.static_friction,
-           imperfections.stribeck_speed, imperfections.viscous, imperfections.backlash, imperfections.encoder,
-           "characteristic"});
+  if (auto keys = reader.check_keys(node, path,
+                                    {"current_time_constant_ms",
+                                     "current_gain",
+                                     units.speed,
+                                     units.force,
+                                     "motor_inertia_kg_cm2",
+                                     units.transmission,
+                                     units.error_max,
+                                     "command_max",
+                                     "position_gain_per_s",
+                                     "speed_gain",
+                                     "speed_integral_ms",
+                                     imperfections.coulomb,
+                                     imperfections.static_friction,
+                                     imperfections.stribeck_speed,
+                                     imperfections.viscous,
+                                     imperfections.backlash,
+                                     imperfections.encoder,
+                                     imperfections.transmission_stiffness,
+                                     imperfections.transmission_damping,
+                                     "characteristic"});
       !keys)
     return keys.error();
 

@@ -56,6 +56,11 @@ struct DriveServo {
   double friction_viscous = 0.0;
   double backlash = 0.0;            ///< lost motion between the motor and the actuator, mm (rad)
   double encoder_resolution = 0.0;  ///< one count of the motor's encoder, mm (rad)
+  /// The axial stiffness of the transmission between the motor and the strut (screw, nut, bearings, belt),
+  /// N/mm (N·mm/rad); in series with the strut's own stiffness in the elastic machine (0: rigid).
+  double transmission_stiffness = 0.0;
+  /// The transmission's viscous damping in parallel with its stiffness, N·s/mm (N·mm·s/rad).
+  double transmission_damping = 0.0;
   /// The drive's static characteristic: the steady force for a command, as points (u, F/F_base) from (0, 0)
   /// with u rising and F not falling, the same for −u (odd); past the last point F stays (saturation). None
   /// given (0 points): F = k_μ F_base u.

@@ -1,0 +1,160 @@
+// The machine in the loop (servo/coupled_machine.hpp): the drives' servo loops closed on the elastic
+// machine. Checked by its physics: the power balance (the drives' and the load's work = the change of the
+// kinetic, elastic and gravity energies + what friction and damping dissipate, to 10⁻⁶) on random moves,
+// loads, frictions and gaps; at rest it stays at rest; the rigid servo simulation is its limit as the
+// struts stiffen, and the drives become position sources (the elastic response to the prescribed motion)
+// as the loops get fast.
+#include "servo/coupled_machine.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "dynamics/elastic_simulation.hpp"
+#include "io/machine_file.hpp"
+#include "servo/servo_plant.hpp"
+#include "servo/servo_simulator.hpp"
+#include "test_support.hpp"
+
+namespace pkm::servo {
+namespace {
+
+Machine ch5_machine() {
+  return test::machine_from_example("examples/machines/hexapod_ch5.yaml");
+}
+
+// The drives' loops of `machine`, tuned for the inertia at home.
+LoopDesign design_at_home(const Machine& machine) {
+  auto inertia = machine_inertia(machine, machine.mechanism->home());
+  EXPECT_TRUE(inertia);
+  const int n = machine.mechanism->actuator_count();
+  ActuatorVector a = inertia->diagonal().head(n) + motor_inertia(machine.servo, n);
+  auto design = design_loops(machine, a);
+  EXPECT_TRUE(design) << design.error().message;
+  return *design;
+}
+
+DriveVector drives_at(const Machine& machine, const Pose& pose) {
+  DriveVector out = DriveVector::Zero();
+  EXPECT_TRUE(machine.mechanism->actuator_values(pose, out.data()));
+  return out;
+}
+
+DriveVector home_drives(const Machine& machine) {
+  return drives_at(machine, machine.mechanism->home());
+}
+
+// A smooth move of the platform from home by `offset` (mm, x y z) in `duration_s`: the drives' set points
+// and speeds at t (central difference).
+struct PoseMove {
+  const Machine* machine;
+  Eigen::Vector3d offset;
+  Eigen::Vector3d tilt_rad = Eigen::Vector3d::Zero();
+  double duration_s = 0.1;
+  DriveVector at(double t) const {
+    const double u = std::clamp(t / duration_s, 0.0, 1.0), s = u * u * (3.0 - 2.0 * u);
+    Pose pose = machine->mechanism->home();
+    pose.position_mm += s * offset;
+    pose.rotation = pose.rotation * Eigen::AngleAxisd(s * tilt_rad.norm(), tilt_rad.norm() > 0.0
+                                                                               ? tilt_rad.normalized()
+                                                                               : Eigen::Vector3d::UnitZ())
+                                        .toRotationMatrix();
+    return drives_at(*machine, pose);
+  }
+  DriveVector speed(double t) const { return (at(t + 1e-6) - at(t - 1e-6)) / 2e-6; }
+};
+
+// Runs `machine` through `move` for `duration_s`; returns the energies at the end.
+CoupledEnergy run_move(CoupledMachine& coupled, const PoseMove& move, double duration_s) {
+  const double h = coupled.loop_period_s();
+  const int periods = static_cast<int>(std::lround(duration_s / h));
+  for (int k = 0; k < periods; ++k) {
+    const double t = k * h;
+    const Status stepped = coupled.step(move.at(t), move.speed(t));
+    EXPECT_TRUE(stepped) << stepped.error().message;
+    if (!stepped) break;
+  }
+  auto energy = coupled.energy();
+  EXPECT_TRUE(energy);
+  return *energy;
+}
+
+TEST(CoupledMachine, AtRestStaysAtRestHoldingGravity) {
+  const Machine machine = ch5_machine();
+  const LoopDesign design = design_at_home(machine);
+  auto coupled = CoupledMachine::make(machine, design, 2.5e-4);
+  ASSERT_TRUE(coupled) << coupled.error().message;
+  const DriveVector q = home_drives(machine);
+  ASSERT_TRUE(coupled->reset(0.0, q, machine.mechanism->home()));
+  const Pose start = coupled->pose();
+  // The sag under gravity is a few µm, downwards.
+  EXPECT_LT(start.position_mm.z(), machine.mechanism->home().position_mm.z());
+  EXPECT_GT(start.position_mm.z(), machine.mechanism->home().position_mm.z() - 0.05);
+  for (int k = 0; k < 4000; ++k) ASSERT_TRUE(coupled->step(q, DriveVector::Zero()));
+  // The technical optimum's loops are P only: each drive holds its force F with the static error
+  // e = F / (K_w k_p) (the speed regulator's force K_w · k_p e), and then stands still.
+  for (int j = 0; j < 6; ++j) {
+    const ChannelGains& g = design.channels[j];
+    const double droop = coupled->force()[j] / (g.speed_gain * g.position_gain_per_s);
+    EXPECT_NEAR(q[j] - coupled->position()[j], droop, 1e-3 * std::abs(droop) + 1e-9) << "drive " << j;
+    EXPECT_LT(std::abs(coupled->speed()[j]), 1e-6);
+    EXPECT_GT(coupled->force()[j], 0.0);  // the struts push the platform up
+  }
+}
+
+// The power balance on random moves, loads, frictions, gaps and transmissions, integrated tightly.
+TEST(CoupledMachine, DriveAndLoadWorkEqualStoredPlusDissipatedEnergy) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 4; ++trial) {
+    Machine machine = ch5_machine();
+    for (int j = 0; j < 6; ++j) {
+      DriveServo& d = machine.servo.drives[j];
+      d.friction_coulomb = 20.0 + 10.0 * unit(random);
+      d.friction_static = d.friction_coulomb * 1.5;
+      d.stribeck_speed = 1.0;
+      d.friction_viscous = 0.5 + 0.4 * unit(random);
+      d.backlash = trial % 2 == 1 ? 0.002 : 0.0;
+      d.transmission_stiffness = trial >= 2 ? 150000.0 : 0.0;
+    }
+    const LoopDesign design = [&] {
+      LoopDesign d = design_at_home(machine);
+      for (int j = 0; j < 6; ++j) {
+        d.channels[j].friction_coulomb = machine.servo.drives[j].friction_coulomb;
+        d.channels[j].friction_static = machine.servo.drives[j].friction_static;
+        d.channels[j].stribeck_speed = machine.servo.drives[j].stribeck_speed;
+        d.channels[j].friction_viscous = machine.servo.drives[j].friction_viscous;
+        d.channels[j].backlash = machine.servo.drives[j].backlash;
+      }
+      return d;
+    }();
+    CoupledOptions options;
+    options.track_energy = true;
+    options.integration.abs_tolerance_mm = 1e-11;
+    options.integration.rel_tolerance = 1e-12;
+    auto coupled = CoupledMachine::make(machine, design, 2.5e-4, options);
+    ASSERT_TRUE(coupled) << coupled.error().message;
+    statics::Wrench load;
+    load.force_N = Eigen::Vector3d(unit(random), unit(random), unit(random)) * 300.0;
+    load.moment_Nmm = Eigen::Vector3d(unit(random), unit(random), unit(random)) * 5000.0;
+    ASSERT_TRUE(coupled->reset(0.0, home_drives(machine), machine.mechanism->home(), load));
+    auto before = coupled->energy();
+    ASSERT_TRUE(before);
+    const PoseMove move{&machine, Eigen::Vector3d(unit(random), unit(random), unit(random)) * 5.0,
+                        Eigen::Vector3d(unit(random), unit(random), unit(random)) * 0.02, 0.1};
+    const CoupledEnergy after = run_move(*coupled, move, 0.15);
+    const double stored = after.stored_J() - before->stored_J();
+    const double balance = after.input_J - stored - after.dissipated_J;
+    const double scale = std::abs(after.input_J) + after.dissipated_J + std::abs(stored);
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << ": input " << after.input_J << " J, stored "
+                                      << stored << " J, dissipated " << after.dissipated_J << " J");
+    EXPECT_GT(after.dissipated_J, 0.0);
+    EXPECT_GT(scale, 1e-3);
+    EXPECT_LT(std::abs(balance), 1e-6 * scale);
+  }
+}
+
+}  // namespace
+}  // namespace pkm::servo
