@@ -10,6 +10,8 @@
 #include <map>
 #include <set>
 
+#include "servo/commanded_path.hpp"
+
 namespace pkm::servo {
 namespace {
 
@@ -32,34 +34,6 @@ void servo_add_line(std::vector<int>& lines, int line) {
   if (std::find(lines.begin(), lines.end(), line) != lines.end()) return;
   if (lines.size() < kServoListedLines)
     lines.insert(std::upper_bound(lines.begin(), lines.end(), line), line);
-}
-
-// The tool point with the coordinates the mechanism does not control set to zero: they follow, and are no
-// contour error (as the plan's own path error).
-Eigen::Vector3d servo_controlled_point(const Eigen::Vector3d& point, const AxisMask& axes) {
-  Eigen::Vector3d out = point;
-  for (int c = 0; c < 3; ++c) {
-    if (!axes.controlled[c]) out[c] = 0.0;
-  }
-  return out;
-}
-
-// Nearest point of the commanded polyline (ticks first … last) to `point`: distance and the time there.
-std::pair<double, double> servo_nearest_on_path(const std::vector<Eigen::Vector3d>& path,
-                                                const std::vector<double>& time_s, std::size_t first,
-                                                std::size_t last, const Eigen::Vector3d& point) {
-  double best = (point - path[first]).norm(), best_time = time_s[first];
-  for (std::size_t j = first + 1; j <= last; ++j) {
-    const Eigen::Vector3d a = path[j - 1], chord = path[j] - a;
-    const double length2 = chord.squaredNorm();
-    const double f = length2 > 0.0 ? std::clamp((point - a).dot(chord) / length2, 0.0, 1.0) : 0.0;
-    const double d = (point - (a + f * chord)).norm();
-    if (d <= best) {  // the latest of equally near points: where the path stands still, no lag
-      best = d;
-      best_time = time_s[j - 1] + f * (time_s[j] - time_s[j - 1]);
-    }
-  }
-  return {best, best_time};
 }
 
 // Balances `map` by a diagonal similarity (Parlett–Reinsch): the loop's states span many decades (positions
@@ -205,50 +179,6 @@ void check_coupling(const Machine& machine, const ServoPlant& plant, const Servo
   }
 }
 
-// The commanded path: the ticks, and between each two the cubic through the four around them at mid-period
-// ((−p0 + 9p1 + 9p2 − p3)/16), so that the polyline's chords leave out 1/16 of a curve's sagitta v²T²/8R and
-// a perfect servo's contour error is the plan's own path error; with the commanded speed at every tick.
-struct CommandedPath {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<double> time_s;
-  std::vector<double> speed;  ///< per tick, by central differences
-  double fastest = 0.0;
-};
-
-CommandedPath commanded_path(const ServoRunInput& input, const AxisMask& axes) {
-  const std::size_t ticks = input.time_s.size();
-  std::vector<Eigen::Vector3d> tick_points(ticks);
-  for (std::size_t k = 0; k < ticks; ++k)
-    tick_points[k] = servo_controlled_point(input.pose[k].position_mm, axes);
-  CommandedPath path{std::vector<Eigen::Vector3d>(2 * ticks - 1), std::vector<double>(2 * ticks - 1),
-                     std::vector<double>(ticks, 0.0), 0.0};
-  for (std::size_t k = 0; k < ticks; ++k) {
-    path.points[2 * k] = tick_points[k];
-    path.time_s[2 * k] = input.time_s[k];
-    if (k + 1 == ticks) break;
-    const Eigen::Vector3d& before = tick_points[k > 0 ? k - 1 : k];
-    const Eigen::Vector3d& after = tick_points[k + 2 < ticks ? k + 2 : k + 1];
-    path.points[2 * k + 1] = (9.0 * (tick_points[k] + tick_points[k + 1]) - before - after) / 16.0;
-    path.time_s[2 * k + 1] = 0.5 * (input.time_s[k] + input.time_s[k + 1]);
-  }
-  for (std::size_t k = 1; k + 1 < ticks; ++k) {
-    path.speed[k] = (tick_points[k + 1] - tick_points[k - 1]).norm() / (2.0 * input.period_s);
-    path.fastest = std::max(path.fastest, path.speed[k]);
-  }
-  return path;
-}
-
-// How far back (in ticks) the nearest path point can be: a few times the position loop's time constant.
-std::size_t search_window(const LoopDesign& design, const ServoRunInput& input) {
-  double slowest_s = input.period_s;
-  for (int j = 0; j < design.drives; ++j) {
-    const ChannelGains& c = design.channels[j];
-    const double loop_s = c.position_gain_per_s > 0.0 ? 1.0 / c.position_gain_per_s : 0.0;
-    slowest_s = std::max(slowest_s, 4.0 * loop_s + 4.0 * c.lag_s + c.reference_filter_s);
-  }
-  return static_cast<std::size_t>(std::min(5000.0, std::ceil(slowest_s / input.period_s) + 2.0));
-}
-
 // The contour error of simulated drive positions (FK, then the nearest point of the commanded path) and its
 // statistics in the summary.
 class ContourMeasure {
@@ -277,8 +207,9 @@ class ContourMeasure {
     guess_ = fk->pose;
     const std::size_t first = k > window_ ? 2 * (k - window_) : 0;
     const std::size_t last = 2 * std::min(k + 1, ticks_ - 1);
-    const auto [distance, at_s] = servo_nearest_on_path(path_.points, path_.time_s, first, last,
-                                                        servo_controlled_point(fk->pose.position_mm, axes_));
+    const NearestOnPath nearest =
+        nearest_on_path(path_, first, last, controlled_point(fk->pose.position_mm, axes_));
+    const double distance = nearest.distance_mm, at_s = nearest.time_s;
     // Where the path nearly stands still a tiny error (a static one under gravity, say) is a long time: the
     // lag is given only where the commanded speed is at least a quarter of the run's fastest.
     lag_s = path_.speed[k] >= 0.25 * path_.fastest ? time_s - at_s : std::numeric_limits<double>::quiet_NaN();
