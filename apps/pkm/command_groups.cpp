@@ -19,7 +19,7 @@ struct CommandGroup {
 
 constexpr std::array<CommandGroup, 5> kCommandGroups{{
     {"Plan and run",
-     {"plan", "interpret", "interpolate", "play", "servo", "optimize", "report", nullptr},
+     {"plan", "interpret", "interpolate", "play", "servo", "simulate", "optimize", "report", nullptr},
      "pkm plan part.ngc --machine m.yaml --out run/ --report run/report.html"},
     {"Analyse",
      {"stiffness", "compliance", "modes", "modes-margin", "workspace", "strategies", "jacobian", "circle",

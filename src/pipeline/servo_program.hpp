@@ -41,6 +41,9 @@ struct ServoProgramResult {
 /// Errors name the file, its line and column.
 Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std::string& plan_directory);
 
+/// Whether two paths name the same folder (an output set joins its plan's folder then).
+bool same_folder(const std::string& a, const std::string& b);
+
 Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob& job);
 
 }  // namespace pkm::pipeline
