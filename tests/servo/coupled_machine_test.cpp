@@ -158,3 +158,123 @@ TEST(CoupledMachine, DriveAndLoadWorkEqualStoredPlusDissipatedEnergy) {
 
 }  // namespace
 }  // namespace pkm::servo
+
+namespace pkm::servo {
+namespace {
+
+// The largest difference between the drives' positions of two runs of the same move, and the largest
+// following error of the first.
+struct RunDifference {
+  double drives_mm = 0.0;
+  double following_mm = 0.0;
+};
+
+// Every strut's stiffness (and no transmission in series) set to `stiffness_N_mm`.
+Machine ch5_with_stiffness(double stiffness_N_mm) {
+  Machine machine = ch5_machine();
+  for (int j = 0; j < 6; ++j) {
+    machine.dynamics.struts[j].stiffness_N_mm = stiffness_N_mm;
+    machine.servo.drives[j].transmission_stiffness = machine.servo.drives[j].transmission_damping = 0.0;
+  }
+  return machine;
+}
+
+// The coupled machine against the rigid plant (servo_simulator.hpp: the machine's inertia at home and the
+// motors', the load the drives hold at rest) on the same move, ideal drives.
+RunDifference coupled_against_rigid(double stiffness_N_mm) {
+  const Machine machine = ch5_with_stiffness(stiffness_N_mm);
+  const LoopDesign design = design_at_home(machine);
+  const double h = 2.5e-4;
+  auto coupled = CoupledMachine::make(machine, design, h);
+  EXPECT_TRUE(coupled);
+  const DriveVector start = home_drives(machine);
+  EXPECT_TRUE(coupled->reset(0.0, start, machine.mechanism->home()));
+  ServoSimulator rigid(design, h);
+  auto inertia = machine_inertia(machine, machine.mechanism->home());
+  EXPECT_TRUE(inertia);
+  DriveMatrix a = *inertia;
+  a.diagonal().head(6) += motor_inertia(machine.servo, 6);
+  DriveMatrix inverse = DriveMatrix::Zero();
+  inverse.topLeftCorner(6, 6) = a.topLeftCorner(6, 6).inverse();
+  rigid.set_inverse_inertia(inverse);
+  rigid.set_load(coupled->force());
+  rigid.reset(start);
+  // A short move: the rigid plant holds the inertia and the load of home, which a long one would leave.
+  const PoseMove move{&machine, Eigen::Vector3d(0.6, -0.4, 0.2), Eigen::Vector3d::Zero(), 0.1};
+  RunDifference out;
+  for (int k = 0; k < 600; ++k) {
+    const double t = k * h;
+    EXPECT_TRUE(coupled->step(move.at(t), move.speed(t)));
+    rigid.step(move.at(t), move.speed(t));
+    out.drives_mm = std::max(out.drives_mm, (coupled->position() - rigid.position()).cwiseAbs().maxCoeff());
+    out.following_mm = std::max(out.following_mm, (move.at(t + h) - rigid.position()).cwiseAbs().maxCoeff());
+  }
+  return out;
+}
+
+TEST(CoupledMachine, StifferStrutsTendToTheRigidServoSimulation) {
+  const RunDifference soft = coupled_against_rigid(2e5), stiff = coupled_against_rigid(2e6),
+                      stiffest = coupled_against_rigid(2e7);
+  SCOPED_TRACE(::testing::Message() << soft.drives_mm << " " << stiff.drives_mm << " " << stiffest.drives_mm
+                                    << " mm; following " << soft.following_mm << " mm");
+  // What is left at 2·10⁷ N/mm is the rigid plant's own simplification (the inertia and the load of home,
+  // no velocity terms): a fifth of a percent of the following error.
+  EXPECT_LT(stiff.drives_mm, 0.5 * soft.drives_mm);
+  EXPECT_LT(stiffest.drives_mm, 0.7 * stiff.drives_mm);
+  EXPECT_LT(stiffest.drives_mm, 0.005 * stiffest.following_mm);
+}
+
+// The platform's largest distance from the elastic response to the prescribed motion (the drives as
+// position sources, dynamics/elastic_simulation.hpp) when the loops' current lag is `lag_s`.
+double coupled_against_prescribed(double lag_s) {
+  Machine machine = ch5_machine();
+  for (int j = 0; j < 6; ++j) {
+    machine.servo.drives[j].current_time_constant_s = lag_s;
+    // The prescribed motion's model has the struts alone.
+    machine.servo.drives[j].transmission_stiffness = machine.servo.drives[j].transmission_damping = 0.0;
+  }
+  machine.servo.velocity_feedforward = 1.0;
+  const LoopDesign design = design_at_home(machine);
+  const double h = lag_s / 4.0;
+  auto coupled = CoupledMachine::make(machine, design, h);
+  EXPECT_TRUE(coupled);
+  EXPECT_TRUE(coupled->reset(0.0, home_drives(machine), machine.mechanism->home()));
+  auto model = dynamics::make_elastic_model(machine);
+  EXPECT_TRUE(model);
+  // The prescribed run starts where the coupled one rests (its drives sag with the P loops' static error).
+  struct Prescribed final : dynamics::DriveMotion {
+    PoseMove move;
+    DriveVector offset;
+    void setpoint(double t, dynamics::DriveSetpoint& out) const override {
+      out.position_mm = (move.at(t) - offset).head(6);
+      out.rate_mm_s = move.speed(t).head(6);
+    }
+  } prescribed;
+  prescribed.move = PoseMove{&machine, Eigen::Vector3d(3.0, -2.0, 1.0), Eigen::Vector3d::Zero(), 0.1};
+  prescribed.offset = home_drives(machine) - coupled->position();
+  dynamics::ElasticSimulator elastic(*model);
+  EXPECT_TRUE(elastic.start(0.0, coupled->pose(), dynamics::CoordinateVector::Zero(6)));
+  double largest = 0.0;
+  const int periods = static_cast<int>(std::lround(0.15 / h));
+  for (int k = 0; k < periods; ++k) {
+    const double t = k * h;
+    EXPECT_TRUE(coupled->step(prescribed.move.at(t), prescribed.move.speed(t)));
+    EXPECT_TRUE(elastic.advance_to(t + h, prescribed));
+    largest = std::max(largest, (coupled->pose().position_mm - elastic.pose().position_mm).norm());
+  }
+  return largest;
+}
+
+TEST(CoupledMachine, FasterLoopsTendToTheElasticResponseToThePrescribedMotion) {
+  // The loops hold the motors' masses still against the struts' vibration (556 Hz) only once their
+  // bandwidth is well above it.
+  const double slow = coupled_against_prescribed(1e-3), fast = coupled_against_prescribed(1e-4),
+               fastest = coupled_against_prescribed(1e-5);
+  SCOPED_TRACE(::testing::Message() << slow << " " << fast << " " << fastest << " mm");
+  EXPECT_LT(fast, 0.5 * slow);
+  EXPECT_LT(fastest, 0.3 * fast);
+  EXPECT_LT(fastest, 0.02 * slow);
+}
+
+}  // namespace
+}  // namespace pkm::servo
