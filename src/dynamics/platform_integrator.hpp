@@ -15,6 +15,7 @@
 //
 // Integrating never allocates after start(); the right-hand side runs 6 times per accepted step (FSAL).
 #include <memory>
+#include <string>
 
 #include "dynamics/free_platform.hpp"
 
@@ -98,8 +99,13 @@ class PlatformIntegrator {
   const IntegrationCounters& counters() const;
   const PlatformScales& scales() const;
 
- private:
   struct Impl;
+
+ private:
+  const FreePlatformModel* model_;
+  PlatformIntegration integration_;
+  std::string name_;
+  bool large_ = false;  // the state holds kMaxAuxiliaryStates auxiliary states (else six)
   std::unique_ptr<Impl> impl_;
 };
 
