@@ -1,5 +1,6 @@
-// pkm.stiffness, pkm.servo and pkm.circle: the library runs that write an output set
-// (pipeline/stiffness_program.hpp, pipeline/servo_program.hpp, pipeline/circle_test.hpp), run into `out_dir`
+// pkm.stiffness, pkm.servo, pkm.simulate and pkm.circle: the library runs that write an output set
+// (pipeline/stiffness_program.hpp, pipeline/servo_program.hpp, pipeline/simulate_program.hpp,
+// pipeline/circle_test.hpp), run into `out_dir`
 // or a temporary directory; their summary comes back as a dict and their per-point / per-tick CSV as a dict
 // of numpy columns (numpy.genfromtxt; empty fields are NaN).
 #include <array>
@@ -10,6 +11,7 @@
 #include "json_to_python.hpp"
 #include "pipeline/circle_test.hpp"
 #include "pipeline/servo_program.hpp"
+#include "pipeline/simulate_program.hpp"
 #include "pipeline/stiffness_program.hpp"
 #include "pipeline_law_options.hpp"
 #include "pipeline_support.hpp"
@@ -74,6 +76,40 @@ temporary directory).
 Returns a dict: summary (circle_summary.json: circular_deviation_ccw_um, circular_deviation_cw_um,
 hysteresis_um, ...) and deviations: for 'ccw' and 'cw' the measured turn's angle_deg and radial_deviation_mm
 (about the common least-squares centre) as float64 arrays.)doc");
+}
+
+// pkm.simulate: the machine in the loop (pipeline/simulate_program.hpp).
+void bind_simulate(py::module_& m) {
+  m.def(
+      "simulate",
+      [](const Machine& machine, const py::object& plan_dir, const std::string& load, bool split,
+         const py::object& out_dir) {
+        pipeline::SimulateJob job;
+        job.plan_directory = optional_path(plan_dir);
+        if (!load.empty()) job.load = unwrap(load_model(load));
+        job.split = split;
+        const RunDirectory directory(out_dir);
+        job.out_directory = directory.path();
+        const pipeline::SimulateResult r =
+            unwrap_released([&] { return pipeline::simulate_program(machine, job); });
+        py::dict out;
+        out["summary"] = python_from_json(r.json);
+        out["ticks"] = csv_columns(directory.file("simulate.csv"));
+        return out;
+      },
+      py::arg("machine"), py::arg("plan_dir"), py::kw_only(), py::arg("load") = "", py::arg("split") = true,
+      py::arg("out_dir") = py::none(),
+      R"doc(A planned run on the machine in simulation, as `pkm simulate PLAN_DIR`: the drives' servo loops
+closed on the elastic machine under the process load, with the drives' imperfections.
+
+plan_dir: the directory pkm.plan(..., out_dir=...) or `pkm plan --out` wrote; load: the CLI's --load text
+(e.g. 'tangential=300,normal=100', or '@FILE'; '' for none); split: also the runs that split the contour error
+into its servo, elastic, load and drives parts; out_dir: keep simulate.csv, simulate_summary.json and
+simulate.svg there (default: a temporary directory).
+
+Returns a dict: summary (simulate_summary.json as a dict) and ticks: the columns of simulate.csv by name
+(time_s, line, x_program_mm ... commanded, x_actual_mm ... the tool's actual point, contour_error_mm,
+servo_mm, elastic_mm, load_mm, drives_mm), float64 arrays.)doc");
 }
 }  // namespace
 
@@ -150,6 +186,7 @@ out_dir: keep servo.csv, servo_bode.csv and servo_summary.json there (default: a
 Returns a dict: summary (servo_summary.json as a dict) and ticks: the columns of servo.csv by name (time_s,
 line, e1_mm ... following errors, f1_N ... forces, u1 ... commands, contour_error_mm, lag_ms, ...).)doc");
   bind_circle(m);
+  bind_simulate(m);
 }
 
 }  // namespace pkm::python

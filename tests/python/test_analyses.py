@@ -143,6 +143,22 @@ def test_servo_matches_cli(tmp_path, ch5):
     assert "contour_error_mm" in ticks and "e1_mm" in ticks
 
 
+def test_simulate_matches_cli(tmp_path, ch5):
+    """pkm.simulate is `pkm simulate`: the same summary; the error's parts add up along the run."""
+    program = str(SOURCE / "examples" / "programs" / "ch5_line.ngc")
+    pkm.plan(ch5, program, out_dir=tmp_path / "plan", tables="csv")
+    result = pkm.simulate(ch5, tmp_path / "plan", load="tangential=200", out_dir=tmp_path / "py")
+    cli_json("simulate", tmp_path / "plan", "--machine", CH5, "--load", "tangential=200", "--out", tmp_path / "cli")
+    written = json.loads((tmp_path / "cli" / "simulate_summary.json").read_text())
+    assert json.dumps(result["summary"], sort_keys=True) == json.dumps(written, sort_keys=True)
+    ticks = result["ticks"]
+    assert len(ticks["time_s"]) == written["ticks"]
+    # Each part is at most the sum of the magnitudes of the others and the total (a vector sum).
+    parts = np.stack([ticks[name] for name in ("servo_mm", "elastic_mm", "load_mm", "drives_mm")])
+    assert np.all(ticks["contour_error_mm"] <= parts.sum(axis=0) * (1 + 1e-3) + 1e-9)
+    assert written["parts"]["load"]["max_mm"] > 0.0
+
+
 def test_circle_matches_cli(tmp_path, ch5):
     """pkm.circle is `pkm circle`: the same summary and deviations; the ideal drives keep the circle round."""
     result = pkm.circle(ch5, radius_mm=20.0, feed_mm_min=2400.0, out_dir=tmp_path / "py")
