@@ -72,7 +72,7 @@ std::string path_panel(const servo::ServoRunInput& input, const std::vector<Eige
     Eigen::Vector3d a = c + magnify * contour_mm[k];
     if (!a.allFinite()) a = c;
     const auto xy = [&](const Eigen::Vector3d& p) {
-      return std::pair{kMargin + (p.x() - low.x()) * scale, top + kMargin + plot - (p.y() - low.y()) * scale};
+      return std::pair{kMargin + (p.x() - low.x()) * scale, top + kMargin + (high.y() - p.y()) * scale};
     };
     const auto [cx, cy] = xy(c);
     const auto [ax, ay] = xy(a);
