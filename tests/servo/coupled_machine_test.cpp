@@ -10,7 +10,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "dynamics/elastic_simulation.hpp"
 #include "io/machine_file.hpp"
@@ -274,6 +279,99 @@ TEST(CoupledMachine, FasterLoopsTendToTheElasticResponseToThePrescribedMotion) {
   EXPECT_LT(fast, 0.5 * slow);
   EXPECT_LT(fastest, 0.3 * fast);
   EXPECT_LT(fastest, 0.02 * slow);
+}
+
+}  // namespace
+}  // namespace pkm::servo
+
+namespace pkm::servo {
+namespace {
+
+std::string example_text(const std::string& file) {
+  std::ifstream in(test::source_path("examples/machines/" + file));
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+constexpr const char* kServoSection = R"(
+servo:
+  tuning: technical_optimum
+  loop_period_ms: 0.25
+  drives: {current_time_constant_ms: 1.0, base_speed_mm_s: 500, base_force_N: 3000, motor_inertia_kg_cm2: 0.8,
+           screw_lead_mm: 10, transmission_stiffness_N_mm: 300000, transmission_damping_N_s_per_mm: 3,
+           friction_coulomb_N: 15, friction_static_N: 20, stribeck_speed_mm_s: 2, friction_viscous_N_s_per_mm: 0.3}
+)";
+
+// The other kinds of machine the elastic model moves: a planar one and a glide machine (constant struts on
+// carriages), each with drives added; the power balance holds on random moves of each.
+TEST(CoupledMachine, PlanarAndGlideMachinesBalanceTheirPowerToo) {
+  const std::string glide_dynamics = R"(
+dynamics:
+  platform: {mass_kg: 40, com_mm: [0, 0, 100], inertia_kg_m2: [0.4, 0.4, 0.4]}
+  struts:
+    lower: {mass_kg: 6, com_mm: 400, inertia_kg_m2: 0.3}
+    stiffness_N_mm: 150000
+    damping: {model: viscous, coefficient: 5}
+    carriage_kg: 10
+)";
+  const std::vector<std::pair<Machine, Eigen::Vector3d>> machines = [&] {
+    std::vector<std::pair<Machine, Eigen::Vector3d>> out;
+    out.emplace_back(test::machine_from_text(example_text("planar2.yaml") + kServoSection, "planar2.yaml"),
+                     Eigen::Vector3d(1.0, 1.0, 0.0));
+    out.emplace_back(test::machine_from_text(example_text("hexaglide.yaml") + glide_dynamics + kServoSection,
+                                             "glide.yaml"),
+                     Eigen::Vector3d(1.0, 1.0, 1.0));
+    return out;
+  }();
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const auto& [machine, axes] : machines) {
+    SCOPED_TRACE(machine.source);
+    const int n = machine.mechanism->actuator_count();
+    auto inertia = machine_inertia(machine, machine.mechanism->home());
+    ASSERT_TRUE(inertia) << inertia.error().message;
+    auto design = design_loops(machine, inertia->diagonal().head(n) + motor_inertia(machine.servo, n));
+    ASSERT_TRUE(design) << design.error().message;
+    CoupledOptions options;
+    options.track_energy = true;
+    options.integration.abs_tolerance_mm = 1e-11;
+    options.integration.rel_tolerance = 1e-12;
+    auto coupled = CoupledMachine::make(machine, *design, 2.5e-4, options);
+    ASSERT_TRUE(coupled) << coupled.error().message;
+    for (int trial = 0; trial < 2; ++trial) {
+      ASSERT_TRUE(coupled->reset(0.0, home_drives(machine), machine.mechanism->home()));
+      auto before = coupled->energy();
+      ASSERT_TRUE(before);
+      const PoseMove move{&machine,
+                          Eigen::Vector3d(unit(random), unit(random), unit(random)).cwiseProduct(axes) * 4.0,
+                          Eigen::Vector3d::Zero(), 0.1};
+      const CoupledEnergy after = run_move(*coupled, move, 0.15);
+      const double stored = after.stored_J() - before->stored_J();
+      const double scale = std::abs(after.input_J) + after.dissipated_J + std::abs(stored);
+      EXPECT_GT(after.dissipated_J, 0.0);
+      EXPECT_LT(std::abs(after.input_J - stored - after.dissipated_J), 1e-6 * scale);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pkm::servo
+
+namespace pkm::servo {
+namespace {
+
+// The tripod's platform is not free (its twist basis is constrained) and the rotopod's drives are angular:
+// both are refused, saying why and naming the machine file.
+TEST(CoupledMachine, MachinesWithoutAFreePlatformModelAreRefusedSayingWhy) {
+  for (const char* file : {"tripod.yaml", "rotopod.yaml"}) {
+    const Machine machine = test::machine_from_example(std::string("examples/machines/") + file);
+    ASSERT_TRUE(machine.servo.given()) << file;
+    LoopDesign design;
+    design.drives = machine.mechanism->actuator_count();
+    for (int j = 0; j < design.drives; ++j) design.channels[j].lag_s = 1e-3;
+    auto coupled = CoupledMachine::make(machine, design, 2.5e-4);
+    ASSERT_FALSE(coupled) << file;
+    EXPECT_NE(coupled.error().message.find(file), std::string::npos) << coupled.error().message;
+  }
 }
 
 }  // namespace
