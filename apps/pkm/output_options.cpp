@@ -11,9 +11,17 @@ namespace pkm::cli {
 namespace {
 
 // The commands whose --out is a folder holding one output set.
-constexpr std::array<std::string_view, 10> kFolderWriters{
-    "plan",           "interpolate",        "stiffness",          "servo",          "workspace", "strategies",
-    "calibrate plan", "calibrate simulate", "calibrate identify", "linuxcnc config"};
+constexpr std::array<std::string_view, 11> kFolderWriters{"plan",
+                                                          "interpolate",
+                                                          "stiffness",
+                                                          "servo",
+                                                          "simulate",
+                                                          "workspace",
+                                                          "strategies",
+                                                          "calibrate plan",
+                                                          "calibrate simulate",
+                                                          "calibrate identify",
+                                                          "linuxcnc config"};
 
 void add_force_flags(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
