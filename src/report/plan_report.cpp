@@ -18,6 +18,7 @@
 #include "report/run_reports.hpp"
 #include "report/scene.hpp"
 #include "report/servo_plots.hpp"
+#include "report/simulate_plots.hpp"
 #include "report/table_rows.hpp"
 
 namespace pkm::report {
@@ -238,17 +239,20 @@ namespace {
 // The document of a plan run: its charts with the analyses', the table, the limits reached and the scene.
 Result<nlohmann::json> plan_document(const Machine& machine, const RunFiles& files, const std::string& unit,
                                      nlohmann::json charts, const ActuatorTrack& track,
-                                     DynamicsTrace& dynamics, ServoTrace& servo, SceneBuilder& scene) {
+                                     DynamicsTrace& dynamics, ServoTrace& servo,
+                                     const SimulateTrace& simulate, SceneBuilder& scene) {
   // The force limit is in N; angular drives give N·mm, so no line is drawn for them.
   const std::optional<double> force_limit =
       machine.mechanism->actuators_are_angles() ? std::nullopt : machine.limits.force_N;
   for (auto& chart : dynamics.charts(force_limit)) charts.push_back(std::move(chart));
   for (auto& chart : servo.charts(machine)) charts.push_back(std::move(chart));
+  for (auto& chart : simulate.charts()) charts.push_back(std::move(chart));
 
   const nlohmann::json& sm = files.summary;
   const std::string u = unit;
   nlohmann::json table = plan_table(sm, u);
   for (auto& row : servo.table_rows()) table.push_back(std::move(row));
+  for (auto& row : simulate.table_rows()) table.push_back(std::move(row));
   table.push_back(table_row("Program", files.program));
   table.push_back(table_row("Machine file", machine.source));
 
@@ -341,6 +345,9 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
                                  options.chart_buckets);
       !opened)
     return opened.error();
+  SimulateTrace simulate;
+  if (Status opened = simulate.open(files.directory, files.summary, expected, options.chart_buckets); !opened)
+    return opened.error();
 
   std::vector<double> prow, arow;
   ActuatorTrack track(n, limits);
@@ -370,6 +377,7 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
     plots.path_error.add(t, s, &error);
     if (Status read = dynamics.next(t, s); !read) return read.error();
     if (Status read = servo.next(t, s); !read) return read.error();
+    if (Status read = simulate.next(t, s); !read) return read.error();
 
     pose.position_mm =
         Eigen::Vector3d(prow[static_cast<std::size_t>(column[3])], prow[static_cast<std::size_t>(column[4])],
@@ -399,11 +407,12 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
   }
   if (Status finished = dynamics.finish(); !finished) return finished.error();
   if (Status finished = servo.finish(); !finished) return finished.error();
+  if (Status finished = simulate.finish(); !finished) return finished.error();
   scene.set_force_scale(dynamics.peak_force(), dynamics.force_unit());
   plots.finish_all();
   nlohmann::json charts = plots.json(n, unit, limits, column[kPathErrorColumn] >= 0);
 
-  return plan_document(machine, files, unit, std::move(charts), track, dynamics, servo, scene);
+  return plan_document(machine, files, unit, std::move(charts), track, dynamics, servo, simulate, scene);
 }
 
 }  // namespace pkm::report

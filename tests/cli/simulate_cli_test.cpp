@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli/cli_support.hpp"
+#include "report/report_data.hpp"
 
 namespace pkm {
 namespace {
@@ -159,6 +160,45 @@ TEST(SimulateCli, FrictionPeaksWhereADriveReversesAndALoadHasItsPart) {
   for (double t : reversals_s)
     if (peak_s >= t) nearest = std::min(nearest, peak_s - t);
   EXPECT_LT(nearest, 0.03) << "the drives' part peaks at " << peak_s << " s";
+}
+
+// The plan's report after `pkm simulate`: the contour error with its parts and the actual point less the
+// commanded one over time, their peaks those of simulate.csv, and the summary's rows in the table.
+TEST(SimulateCli, ThePlansReportShowsTheSimulation) {
+  const std::string plan = simulate_cli_circle_plan(fs::temp_directory_path() / "pkm_simulate_cli_report");
+  const auto run = test::run_pkm("simulate " + plan + " --machine " +
+                                 simulate_cli_machine("hexapod_ch5.yaml") + " --load tangential=200");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  auto report = report::report_from_directory(plan);
+  ASSERT_TRUE(report) << report.error().message;
+  const SimulateCsv csv = read_simulate_csv(fs::path(plan) / "simulate.csv");
+  std::ifstream in(fs::path(plan) / "simulate_summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  const nlohmann::json* contour = nullptr;
+  const nlohmann::json* deviation = nullptr;
+  for (const auto& chart : (*report)["charts"]) {
+    if (chart["id"] == "simulate_contour_error") contour = &chart;
+    if (chart["id"] == "simulate_deviation") deviation = &chart;
+  }
+  ASSERT_NE(contour, nullptr);
+  ASSERT_NE(deviation, nullptr);
+  ASSERT_EQ((*contour)["series"].size(), 5u);
+  ASSERT_EQ((*deviation)["series"].size(), 3u);
+  double chart_peak = 0.0;
+  for (const auto& v : (*contour)["series"][0]["values"])
+    if (v.is_number()) chart_peak = std::max(chart_peak, v.get<double>());
+  EXPECT_NEAR(chart_peak, summary["contour_error"]["max_mm"].get<double>(), 1e-4 * chart_peak);
+  // The deviation's x: the actual x less the commanded x of the file.
+  double file_x = 0.0, chart_x = 0.0;
+  for (const auto& row : csv.rows)
+    file_x = std::max(file_x, std::abs(row[csv.column("x_actual_mm")] - row[csv.column("x_program_mm")]));
+  for (const auto& v : (*deviation)["series"][0]["values"])
+    if (v.is_number()) chart_x = std::max(chart_x, std::abs(v.get<double>()));
+  EXPECT_NEAR(chart_x, file_x, 1e-5 + 1e-4 * file_x);
+  bool row_found = false;
+  for (const auto& row : (*report)["table"])
+    row_found = row_found || row.dump().find("Max contour error (simulate)") != std::string::npos;
+  EXPECT_TRUE(row_found);
 }
 
 TEST(SimulateCli, MachinesItCannotTakeAndBadLoadsAreRefusedWritingNothing) {
