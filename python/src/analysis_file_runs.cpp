@@ -37,7 +37,7 @@ void bind_circle(py::module_& m) {
   m.def(
       "circle",
       [](const Machine& machine, double radius_mm, double feed_mm_min, const std::string& plane,
-         std::array<double, 3> centre_mm, const py::object& out_dir) {
+         std::array<double, 3> centre_mm, bool elastic, const std::string& load, const py::object& out_dir) {
         if (plane != "XY" && plane != "ZX" && plane != "YZ")
           throw py::value_error("plane: expected XY, ZX or YZ");
         pipeline::CircleTestJob job;
@@ -45,6 +45,11 @@ void bind_circle(py::module_& m) {
         job.feed_mm_min = feed_mm_min;
         job.plane = plane;
         job.centre_mm = Eigen::Vector3d(centre_mm[0], centre_mm[1], centre_mm[2]);
+        job.elastic = elastic;
+        if (!load.empty()) {
+          if (!elastic) throw py::value_error("load needs elastic=True: the rigid machine takes no load");
+          job.load = unwrap(load_model(load));
+        }
         const RunDirectory directory(out_dir);
         job.out_directory = directory.path();
         const pipeline::CircleTestResult r =
@@ -65,12 +70,13 @@ void bind_circle(py::module_& m) {
       },
       py::arg("machine"), py::kw_only(), py::arg("radius_mm") = 30.0, py::arg("feed_mm_min") = 3000.0,
       py::arg("plane") = "XY", py::arg("centre_mm") = std::array<double, 3>{0.0, 0.0, 0.0},
-      py::arg("out_dir") = py::none(),
+      py::arg("elastic") = false, py::arg("load") = "", py::arg("out_dir") = py::none(),
       R"doc(The circular test of ISO 230-4 through the drives' servo loops and their imperfections, as
 `pkm circle`.
 
 radius_mm, feed_mm_min: the circle; plane: 'XY', 'ZX' or 'YZ'; centre_mm: its centre in program coordinates;
-out_dir: keep the plan, the servo run, circle.svg, circle.csv and circle_summary.json there (default: a
+elastic: the machine in the loop (`pkm circle --elastic`: the loops on the elastic machine), under `load` (the
+CLI's --load text); out_dir: keep the plan, the servo run, circle.svg, circle.csv and circle_summary.json there (default: a
 temporary directory).
 
 Returns a dict: summary (circle_summary.json: circular_deviation_ccw_um, circular_deviation_cw_um,

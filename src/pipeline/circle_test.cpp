@@ -17,6 +17,7 @@
 #include "pipeline/circle_plot.hpp"
 #include "pipeline/plan_program.hpp"
 #include "pipeline/servo_program.hpp"
+#include "pipeline/simulate_program.hpp"
 
 namespace pkm::pipeline {
 
@@ -183,7 +184,8 @@ nlohmann::json circle_json(const Machine& machine, const CircleTestJob& job, con
            {{"program", "circle.ngc"},
             {"deviations", "circle.csv"},
             {"plot", "circle.svg"},
-            {"servo", "servo.csv"}}}};
+            {job.elastic ? "simulate" : "servo", job.elastic ? "simulate.csv" : "servo.csv"}}},
+          {"machine_in_the_loop", job.elastic}};
 }
 
 Status check_job(const Machine& machine, const CircleTestJob& job) {
@@ -202,6 +204,49 @@ Status check_job(const Machine& machine, const CircleTestJob& job) {
                       fmt::format("circle feed {} mm/min must be positive", job.feed_mm_min));
   if (job.out_directory.empty()) return make_error(ErrorCode::bad_input, "the circle test needs --out DIR");
   return ok_status();
+}
+
+// The circle's ticks through the drives' loops on the rigid machine (pkm servo): the commanded and the actual
+// tool point by forward kinematics of the set points and of the drives' positions. Returns the run's largest
+// contour error.
+Result<double> circle_on_rigid(const Machine& machine, const CircleTestJob& job,
+                               std::vector<Sample>& samples) {
+  const Mechanism& m = *machine.mechanism;
+  const int drives = m.actuator_count();
+  Pose commanded_guess = m.home(), actual_guess = m.home();
+  ServoJob servo;
+  servo.plan_directory = job.out_directory;
+  servo.progress = job.progress;
+  servo.listener = [&](const servo::ServoTick& t) -> Status {
+    if (t.line != kCounterLine && t.line != kClockwiseLine) return ok_status();
+    auto commanded = m.forward(ActuatorVector(t.setpoint->head(drives)), commanded_guess);
+    auto actual = m.forward(ActuatorVector(t.position->head(drives)), actual_guess);
+    if (!commanded || !actual) return ok_status();  // counted by the servo run's own contour error
+    commanded_guess = commanded->pose, actual_guess = actual->pose;
+    samples.push_back({t.time_s, t.line, commanded->pose.position_mm, actual->pose.position_mm});
+    return ok_status();
+  };
+  auto ran = servo_program(machine, servo);
+  if (!ran) return ran.error();
+  return ran->summary.max_contour_error_mm;
+}
+
+// The same on the machine in the loop (pkm simulate): the actual tool point is the elastic platform's.
+Result<double> circle_in_the_loop(const Machine& machine, const CircleTestJob& job,
+                                  std::vector<Sample>& samples) {
+  SimulateJob simulate;
+  simulate.plan_directory = job.out_directory;
+  simulate.load = job.load;
+  simulate.split = false;
+  simulate.progress = job.progress;
+  simulate.listener = [&](const servo::MachineRunTick& t) -> Status {
+    if ((t.line == kCounterLine || t.line == kClockwiseLine) && t.actual_mm.allFinite())
+      samples.push_back({t.time_s, t.line, t.commanded_mm, t.actual_mm});
+    return ok_status();
+  };
+  auto ran = simulate_program(machine, simulate);
+  if (!ran) return ran.error();
+  return ran->total.max_mm;
 }
 
 }  // namespace
@@ -238,26 +283,12 @@ Result<CircleTestResult> circle_test(const Machine& machine, const CircleTestJob
   }
 
   std::vector<Sample> samples;
-  const Mechanism& m = *machine.mechanism;
-  const int drives = m.actuator_count();
-  Pose commanded_guess = m.home(), actual_guess = m.home();
-  ServoJob servo;
-  servo.plan_directory = job.out_directory;
-  servo.progress = job.progress;
-  servo.listener = [&](const servo::ServoTick& t) -> Status {
-    if (t.line != kCounterLine && t.line != kClockwiseLine) return ok_status();
-    auto commanded = m.forward(ActuatorVector(t.setpoint->head(drives)), commanded_guess);
-    auto actual = m.forward(ActuatorVector(t.position->head(drives)), actual_guess);
-    if (!commanded || !actual) return ok_status();  // counted by the servo run's own contour error
-    commanded_guess = commanded->pose, actual_guess = actual->pose;
-    samples.push_back({t.time_s, t.line, commanded->pose.position_mm, actual->pose.position_mm});
-    return ok_status();
-  };
-  auto ran = servo_program(machine, servo);
-  if (!ran) return ran.error();
+  auto largest =
+      job.elastic ? circle_in_the_loop(machine, job, samples) : circle_on_rigid(machine, job, samples);
+  if (!largest) return largest.error();
 
   CircleTestResult result;
-  result.max_contour_error_mm = ran->summary.max_contour_error_mm;
+  result.max_contour_error_mm = *largest;
   const std::vector<const Sample*> ccw = middle_turn(samples, kCounterLine),
                                    cw = middle_turn(samples, kClockwiseLine);
   if (ccw.size() < 8 || cw.size() < 8)

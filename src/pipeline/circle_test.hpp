@@ -16,6 +16,7 @@
 #include "core/progress.hpp"
 #include "core/result.hpp"
 #include "machine/machine.hpp"
+#include "statics/load_model.hpp"
 
 namespace pkm::pipeline {
 
@@ -25,6 +26,10 @@ struct CircleTestJob {
   std::string plane = "XY";                             ///< XY (G17), ZX (G18) or YZ (G19)
   Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();  ///< in program coordinates
   std::string out_directory;
+  /// The machine in the loop (pipeline/simulate_program.hpp: the loops on the elastic machine, under `load`)
+  /// instead of the loops on the rigid machine (pkm servo).
+  bool elastic = false;
+  statics::LoadModel load;
   ProgressSink progress;
 };
 

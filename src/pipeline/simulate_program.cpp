@@ -111,12 +111,11 @@ Status run_traces(const servo::MachineRunInputs& inputs, const SimulateJob& job,
     if (run == 3) trace.actual_mm.resize(ticks);
     statuses[run] = servo::run_machine(inputs, kSimulateRuns[run], [&](const servo::MachineRunTick& t) {
       trace.contour_mm[t.index] = t.contour_mm;
-      if (run == 3) {
-        trace.actual_mm[t.index] = t.actual_mm;
-        if (t.index % 1024 == 0 && run_s > 0.0)
-          report_progress(job.progress, "simulating the machine", t.time_s / run_s, t.line);
-      }
-      return ok_status();
+      if (run != 3) return ok_status();
+      trace.actual_mm[t.index] = t.actual_mm;
+      if (t.index % 1024 == 0 && run_s > 0.0)
+        report_progress(job.progress, "simulating the machine", t.time_s / run_s, t.line);
+      return job.listener ? job.listener(t) : ok_status();
     });
   });
   for (const Status& s : statuses)

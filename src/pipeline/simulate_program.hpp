@@ -9,6 +9,7 @@
 // vectors at every tick. Written, as one output set beside the plan or into --out: simulate.csv,
 // simulate_summary.json and simulate.svg.
 #include <array>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -17,7 +18,7 @@
 #include "core/progress.hpp"
 #include "core/result.hpp"
 #include "machine/machine.hpp"
-#include "servo/coupled_machine.hpp"
+#include "servo/machine_run.hpp"
 #include "statics/load_model.hpp"
 
 namespace pkm::pipeline {
@@ -30,6 +31,9 @@ struct SimulateJob {
   int inertia_stride = 10;     ///< the rigid plant's inertia every this many servo ticks
   servo::CoupledOptions coupled;
   ProgressSink progress;
+  /// Also told every servo tick of the full machine's run (e.g. the circle test's measurement), from the
+  /// thread running it.
+  std::function<Status(const servo::MachineRunTick&)> listener;
 };
 
 /// One cause's share of the contour error, over the run.

@@ -103,7 +103,7 @@ Status run_rigid(const MachineRunInputs& in, const LoopDesign& design, bool with
                        speed);
       if (!simulator.finite()) return machine_run_error(input, k, "the servo loops diverged");
     }
-    MachineRunTick tick{k, input.time_s[k], input.line[k]};
+    MachineRunTick tick{k, input.time_s[k], input.line[k], input.pose[k].position_mm};
     actuators = simulator.actuator_position().head(m);
     if (auto fk = mechanism.forward_warm(actuators, guess, FkOptions{}, *fk_workspace)) {
       guess = fk->pose;
@@ -149,7 +149,7 @@ Status run_elastic(const MachineRunInputs& in, const LoopDesign& design, bool wi
       }
       if (!coupled->position().allFinite()) return machine_run_error(input, k, "the servo loops diverged");
     }
-    MachineRunTick tick{k, input.time_s[k], input.line[k]};
+    MachineRunTick tick{k, input.time_s[k], input.line[k], input.pose[k].position_mm};
     tick.actual_mm = coupled->pose().position_mm;
     tick.contour_mm = contour.at(tick.actual_mm, k);
     tick.position = &coupled->position();

@@ -40,10 +40,11 @@ struct MachineRunTick {
   std::size_t index = 0;
   double time_s = 0.0;
   int line = 0;
-  Eigen::Vector3d actual_mm = Eigen::Vector3d::Zero();   ///< the tool point, base frame (NaN: FK failed)
-  Eigen::Vector3d contour_mm = Eigen::Vector3d::Zero();  ///< actual − the nearest commanded point
-  const DriveVector* position = nullptr;                 ///< the drives' (actuator side), mm
-  const DriveVector* force = nullptr;                    ///< N
+  Eigen::Vector3d commanded_mm = Eigen::Vector3d::Zero();  ///< the plan's tool point, base frame
+  Eigen::Vector3d actual_mm = Eigen::Vector3d::Zero();     ///< the tool point, base frame (NaN: FK failed)
+  Eigen::Vector3d contour_mm = Eigen::Vector3d::Zero();    ///< actual − the nearest commanded point
+  const DriveVector* position = nullptr;                   ///< the drives' (actuator side), mm
+  const DriveVector* force = nullptr;                      ///< N
 };
 
 /// `design` without the drives' imperfections.

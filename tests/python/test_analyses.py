@@ -159,6 +159,20 @@ def test_simulate_matches_cli(tmp_path, ch5):
     assert written["parts"]["load"]["max_mm"] > 0.0
 
 
+def test_circle_on_the_machine_in_the_loop_matches_cli(tmp_path, ch5):
+    """pkm.circle(elastic=True) is `pkm circle --elastic`; a load needs elastic=True."""
+    result = pkm.circle(ch5, radius_mm=20.0, feed_mm_min=2400.0, elastic=True, load="tangential=50",
+                        out_dir=tmp_path / "py")
+    cli_json("circle", "--machine", CH5, "--radius-mm", "20", "--feed-mm-min", "2400", "--elastic", "--load",
+             "tangential=50", "--out", tmp_path / "cli")
+    written = json.loads((tmp_path / "cli" / "circle_summary.json").read_text())
+    assert result["summary"]["machine_in_the_loop"] is True
+    for key in ("circular_deviation_ccw_um", "circular_deviation_cw_um", "hysteresis_um"):
+        assert result["summary"][key] == written[key], key
+    with pytest.raises(ValueError, match="elastic"):
+        pkm.circle(ch5, load="tangential=50", out_dir=tmp_path / "refused")
+
+
 def test_circle_matches_cli(tmp_path, ch5):
     """pkm.circle is `pkm circle`: the same summary and deviations; the ideal drives keep the circle round."""
     result = pkm.circle(ch5, radius_mm=20.0, feed_mm_min=2400.0, out_dir=tmp_path / "py")
