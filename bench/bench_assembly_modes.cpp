@@ -1,10 +1,11 @@
 // Time per all-assembly-modes solve of a hexapod (Mechanism::assembly_modes, polished and
 // labelled), on random general 6-6 geometries (goal ≤ 1.25 ms, 10× fkSGP's 12.5 ms), on random 3-fold
 // symmetric machine layouts, on Dietmaier's 40-real instance, and on the shipped machines (6-3 and 3-6: the
-// 1-D scan). Each benchmark cycles through a fixed set of instances made once; the worst single solve is
-// reported beside the mean (docs/PERFORMANCE.md). The *_every_core variants let one solve follow its paths on
-// every core (FkOptions::threads = 0; wall-clock time); BM_StewartAllModesKernels compares the tracker's
-// baseline and AVX2/FMA kernels.
+// 1-D scan), and on the shipped carriage machines (hexaglide, rotopod: their carriage joints' Gough–Stewart
+// platform; triglide: three spheres). Each benchmark cycles through a fixed set of instances made once; the
+// worst single solve is reported beside the mean (docs/PERFORMANCE.md). The *_every_core variants let one
+// solve follow its paths on every core (FkOptions::threads = 0; wall-clock time); BM_StewartAllModesKernels
+// compares the tracker's baseline and AVX2/FMA kernels.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
@@ -195,6 +196,17 @@ std::vector<Instance> genhexkins_instances() {
 std::vector<Instance> delta30_instances() {
   return shipped_instances("hexapod_ch3_delta30.yaml");
 }
+// The carriage machines: the Gough–Stewart platform of their carriage joints
+// (machine/carriage_assembly_modes).
+std::vector<Instance> hexaglide_instances() {
+  return shipped_instances("hexaglide.yaml");
+}
+std::vector<Instance> rotopod_instances() {
+  return shipped_instances("rotopod.yaml");
+}
+std::vector<Instance> triglide_instances() {
+  return shipped_instances("triglide.yaml");
+}
 
 BENCHMARK_CAPTURE(BM_AssemblyModes, general_6_6, general_instances, 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AssemblyModes, general_6_6_every_core, general_instances, 0)
@@ -210,6 +222,9 @@ BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_ch3_delta30_6_6, delta30_instances, 
 BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_ch5_6_3_scan, ch5_instances, 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_genhexkins_3_6_scan, genhexkins_instances, 1)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_hexaglide, hexaglide_instances, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_rotopod, rotopod_instances, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AssemblyModes, shipped_triglide, triglide_instances, 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_StewartAllModesKernels, general_baseline, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_StewartAllModesKernels, general_avx2_fma, true)->Unit(benchmark::kMillisecond);
 

@@ -43,6 +43,12 @@ class Glide final : public Mechanism {
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
+  /// Every assembly mode at these carriage positions (machine/carriage_assembly_modes.hpp;
+  /// glide_assembly_modes.cpp), the machine's own labelled 0.
+  Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
+                                              const FkOptions& options = {}) const override;
+  Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
+                                       const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// Carriage joints C_j (on the branch's root) and platform joints; −1 when a strut cannot reach its guide.
   int strut_joints(const Pose& pose, StrutJointPoints& out) const override;

@@ -46,6 +46,12 @@ class Rotopod final : public Mechanism {
   bool actuator_values(const Pose& pose, double* out) const noexcept override;
   Result<FkSolution> forward(const ActuatorVector& actuators, const Pose& guess,
                              const FkOptions& options = {}) const override;
+  /// Every assembly mode at these carriage positions (machine/carriage_assembly_modes.hpp;
+  /// rotopod_assembly_modes.cpp), the machine's own labelled 0.
+  Result<std::vector<FkSolution>> forward_all(const ActuatorVector& actuators,
+                                              const FkOptions& options = {}) const override;
+  Result<AssemblyModes> assembly_modes(const ActuatorVector& actuators,
+                                       const FkOptions& options = {}) const override;
   Result<JacobianMatrix> jacobian(const Pose& pose) const override;
   /// Carriage joints A_j(φ_j) and platform joints; the carriages turn with φ_j (mount_yaw_rad = φ_j); −1 when
   /// a strut cannot reach the circle.

@@ -168,10 +168,11 @@ def test_errors_argument_is_checked(hexapod):
         hexapod.ik(hexapod.home, errors="ignore")
 
 
-def test_fk_all_unsupported_and_guess_checked(hexapod):
-    hexaglide = pkm.Machine.load(HEXAPOD_CH5.parent / "hexaglide.yaml")  # a glide: no enumeration of its modes
-    with pytest.raises(pkm.UnsupportedError):
-        hexaglide.fk_all(hexaglide.ik(hexaglide.home))
+def test_fk_all_of_a_carriage_machine_and_guess_checked(hexapod):
+    hexaglide = pkm.Machine.load(HEXAPOD_CH5.parent / "hexaglide.yaml")  # its carriages' Gough-Stewart platform
+    modes = hexaglide.fk_all(hexaglide.ik(hexaglide.home))
+    assert len(modes) >= 2
+    assert modes[0]["branch"] == 0 and np.allclose(modes[0]["pose"][:3], np.asarray(hexaglide.home)[:3], atol=1e-6)
     genhexkins = pkm.Machine.load(HEXAPOD_CH5.parent / "hexapod_genhexkins.yaml")  # every hexapod enumerates
     assert len(genhexkins.fk_all(genhexkins.ik(genhexkins.home))) >= 2
     with pytest.raises(ValueError, match="guess"):
