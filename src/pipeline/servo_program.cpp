@@ -280,32 +280,43 @@ Status stage_servo_report(OutputSet& outputs, const Machine& machine, const Serv
 
 }  // namespace
 
-Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob& job) {
+Result<PlannedServoRun> prepare_planned_servo_run(const Machine& machine, const std::string& plan_directory,
+                                                  int inertia_stride, bool coupled,
+                                                  const ProgressSink& progress) {
   if (!machine.servo.given()) {
     return make_error(ErrorCode::bad_input,
                       fmt::format("{}: the machine file has no servo: section (the drives' loops; see "
                                   "docs/machine-file.md)",
                                   machine.source));
   }
-  report_progress(job.progress, "reading the plan");
-  auto input = read_planned_run(machine, job.plan_directory);
+  report_progress(progress, "reading the plan");
+  auto input = read_planned_run(machine, plan_directory);
   if (!input) return input.error();
   // Its files first (a damaged file is named as such), then that they are one plan's and nothing else.
-  if (Status checked = check_output_set(job.plan_directory, {"plan"}); !checked) return checked.error();
+  if (Status checked = check_output_set(plan_directory, {"plan"}); !checked) return checked.error();
   auto steps = servo::loop_steps_per_period(machine, input->period_s);
   if (!steps) return steps.error();
-  report_progress(job.progress, "the drives' inertia along the run");
-  auto plant = servo::plant_along_run(machine, *input, job.inertia_stride);
+  report_progress(progress, "the drives' inertia along the run");
+  auto plant = servo::plant_along_run(machine, *input, inertia_stride);
   if (!plant) return plant.error();
   const int m = machine.mechanism->actuator_count();
-  // The drives are tuned once, for the inertia at the run's start (as a drive is commissioned).
-  const servo::DriveMatrix& start = plant->inertia.front();
-  report_progress(job.progress, "designing the loops");
-  auto design = servo::design_loops(machine, start.diagonal().head(m));
+  report_progress(progress, "designing the loops");
+  auto design = servo::design_loops(machine, plant->inertia.front().diagonal().head(m));
   if (!design) return design.error();
-  if (Status stable = servo::check_stability(machine, *design, *plant, *input, *steps, {job.coupled});
-      !stable)
+  if (Status stable = servo::check_stability(machine, *design, *plant, *input, *steps, {coupled}); !stable)
     return stable.error();
+  return PlannedServoRun{std::move(*input), *steps, std::move(*plant), std::move(*design)};
+}
+
+Result<ServoProgramResult> servo_program(const Machine& machine, const ServoJob& job) {
+  auto prepared =
+      prepare_planned_servo_run(machine, job.plan_directory, job.inertia_stride, job.coupled, job.progress);
+  if (!prepared) return prepared.error();
+  const servo::ServoRunInput* input = &prepared->input;
+  const int* steps = &prepared->steps_per_period;
+  const servo::ServoPlant* plant = &prepared->plant;
+  const servo::LoopDesign* design = &prepared->design;
+  const int m = machine.mechanism->actuator_count();
 
   ServoProgramResult result;
   result.design = *design;

@@ -41,6 +41,22 @@ struct ServoProgramResult {
 /// Errors name the file, its line and column.
 Result<servo::ServoRunInput> read_planned_run(const Machine& machine, const std::string& plan_directory);
 
+/// What a run through the drives' loops starts from: the plan read back, the drives' loop steps per servo
+/// period, the rigid plant along the run and the loops, tuned once for the inertia at the run's start (as a
+/// drive is commissioned) and checked stable on the plant (coupled, or each drive on its own inertia).
+struct PlannedServoRun {
+  servo::ServoRunInput input;
+  int steps_per_period = 1;
+  servo::ServoPlant plant;
+  servo::LoopDesign design;
+};
+
+/// Fails where the machine has no servo: section, the plan cannot be read or is not one plan's set, the loop
+/// period does not divide the servo period, the plant cannot be evaluated or the loops are unstable.
+Result<PlannedServoRun> prepare_planned_servo_run(const Machine& machine, const std::string& plan_directory,
+                                                  int inertia_stride, bool coupled,
+                                                  const ProgressSink& progress);
+
 /// Whether two paths name the same folder (an output set joins its plan's folder then).
 bool same_folder(const std::string& a, const std::string& b);
 

@@ -189,28 +189,13 @@ Status write_simulate_outputs(const SimulateJob& job, const std::string& csv, co
 }  // namespace
 
 Result<SimulateResult> simulate_program(const Machine& machine, const SimulateJob& job) {
-  if (!machine.servo.given()) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("{}: the machine file has no servo: section (the drives' loops; see "
-                                  "docs/machine-file.md)",
-                                  machine.source));
-  }
-  report_progress(job.progress, "reading the plan");
-  auto input = read_planned_run(machine, job.plan_directory);
-  if (!input) return input.error();
-  if (Status checked = check_output_set(job.plan_directory, {"plan"}); !checked) return checked.error();
-  auto steps = servo::loop_steps_per_period(machine, input->period_s);
-  if (!steps) return steps.error();
-  report_progress(job.progress, "the drives' inertia along the run");
-  auto plant = servo::plant_along_run(machine, *input, job.inertia_stride);
-  if (!plant) return plant.error();
-  const int m = machine.mechanism->actuator_count();
-  auto design = servo::design_loops(machine, plant->inertia.front().diagonal().head(m));
-  if (!design) return design.error();
-  for (const servo::LoopDesign* d : {&*design}) {
-    if (Status stable = servo::check_stability(machine, *d, *plant, *input, *steps, {true}); !stable)
-      return stable.error();
-  }
+  auto prepared =
+      prepare_planned_servo_run(machine, job.plan_directory, job.inertia_stride, true, job.progress);
+  if (!prepared) return prepared.error();
+  const servo::ServoRunInput* input = &prepared->input;
+  const int* steps = &prepared->steps_per_period;
+  const servo::ServoPlant* plant = &prepared->plant;
+  const servo::LoopDesign* design = &prepared->design;
   const std::vector<statics::Wrench> loads = simulate_loads(machine, *input, job.load);
   const servo::CommandedPath path = servo::commanded_path(*input, machine.mechanism->controlled_axes());
   servo::MachineRunInputs inputs{
