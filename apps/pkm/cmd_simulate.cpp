@@ -1,7 +1,7 @@
-// pkm simulate PLAN_DIR --machine M.yaml [--load LOAD] [--out DIR] [--no-split] [--json]: a planned run on
-// the machine in simulation, the drives' servo loops closed on the elastic machine under the process load
-// with the drives' imperfections; the tool's actual path, its contour error and the error's parts
-// (src/pipeline/simulate_program.hpp, docs/simulate.md).
+// pkm simulate PLAN_DIR --machine M.yaml [--load LOAD] [--out DIR] [--report FILE] [--no-split] [--json]: a
+// planned run on the machine in simulation, the drives' servo loops closed on the elastic machine under the
+// process load with the drives' imperfections; the tool's actual path, its contour error and the error's
+// parts (src/pipeline/simulate_program.hpp, docs/simulate.md).
 #include <fmt/format.h>
 
 #include <iostream>
@@ -31,8 +31,9 @@ void print_simulate_summary(const pipeline::SimulateJob& job, const pipeline::Si
     for (const auto& [line, error] : r.worst_lines) lines += fmt::format(" {} ({:.4f})", line, error);
     std::cout << "  worst lines    " << lines << "\n";
   }
-  std::cout << fmt::format("  written         {}/simulate.csv, simulate_summary.json, simulate.svg\n",
-                           job.out_directory.empty() ? job.plan_directory : job.out_directory);
+  std::cout << fmt::format("  written         {}/simulate.csv, simulate_summary.json, simulate.svg{}\n",
+                           job.out_directory.empty() ? job.plan_directory : job.out_directory,
+                           job.report_path.empty() ? std::string() : "; " + job.report_path);
 }
 
 }  // namespace
@@ -59,6 +60,8 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", job->out_directory,
                   "where to write simulate.csv, simulate_summary.json, simulate.svg (default: the plan "
                   "directory)");
+  cmd->add_option("--report", job->report_path,
+                  "also write the plan's HTML report with the simulation's charts to this file");
   cmd->add_flag("--no-split", *no_split, "only the full machine: do not split the error into its causes");
   cmd->add_flag("--json", *json, "print the summary as JSON");
   cmd->callback([=, &exit_code] {

@@ -15,6 +15,8 @@
 #include "io/version.hpp"
 #include "pipeline/servo_program.hpp"
 #include "pipeline/simulate_plot.hpp"
+#include "report/report_data.hpp"
+#include "report/report_html.hpp"
 #include "servo/machine_run.hpp"
 
 namespace pkm::pipeline {
@@ -167,8 +169,22 @@ std::string simulate_csv(const Machine& machine, const servo::ServoRunInput& inp
   return fmt::to_string(b);
 }
 
-Status write_simulate_outputs(const SimulateJob& job, const std::string& csv, const std::string& svg,
-                              const SimulateResult& result) {
+// --report: the plan's report with the simulation's charts, one more member of the output set, the
+// simulation's files read back from the staging folder as `pkm report` reads them.
+Status stage_simulate_report(OutputSet& outputs, const Machine& machine, const SimulateJob& job) {
+  report_progress(job.progress, "writing the report");
+  auto staged = outputs.stage_file(job.report_path);
+  if (!staged) return staged.error();
+  report::ReportOptions options;
+  options.machine_file = machine.source;
+  options.simulate_directory = outputs.staging_directory();
+  auto data = report::report_from_directory(job.plan_directory, options);
+  if (!data) return data.error();
+  return report::write_report_html(*staged, *data);
+}
+
+Status write_simulate_outputs(const Machine& machine, const SimulateJob& job, const std::string& csv,
+                              const std::string& svg, const SimulateResult& result) {
   OutputSet outputs{"simulate"};
   if (job.out_directory.empty() || same_folder(job.out_directory, job.plan_directory)) {
     if (Status joined = outputs.join_directory(job.plan_directory, {"plan"}); !joined) return joined;
@@ -183,6 +199,9 @@ Status write_simulate_outputs(const SimulateJob& job, const std::string& csv, co
           write_file_atomically(outputs.staged_path("simulate_summary.json"), json_text(result.json) + "\n");
       !written)
     return written;
+  if (!job.report_path.empty()) {
+    if (Status written = stage_simulate_report(outputs, machine, job); !written) return written;
+  }
   return outputs.commit();
 }
 
@@ -211,7 +230,8 @@ Result<SimulateResult> simulate_program(const Machine& machine, const SimulateJo
   const std::string csv = simulate_csv(machine, *input, traces, job.split, result);
   result.json = simulate_json(machine, job, result);
   const std::string svg = simulate_plot_svg(*input, traces[3].contour_mm, result);
-  if (Status written = write_simulate_outputs(job, csv, svg, result); !written) return written.error();
+  if (Status written = write_simulate_outputs(machine, job, csv, svg, result); !written)
+    return written.error();
   return result;
 }
 

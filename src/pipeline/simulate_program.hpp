@@ -29,6 +29,7 @@ struct SimulateJob {
   statics::LoadModel load;     ///< the process load along the program (none: empty)
   bool split = true;           ///< also the runs that split the error into its parts
   int inertia_stride = 10;     ///< the rigid plant's inertia every this many servo ticks
+  std::string report_path;     ///< the plan's HTML report with the simulation's charts ("": none)
   servo::CoupledOptions coupled;
   ProgressSink progress;
   /// Also told every servo tick of the full machine's run (e.g. the circle test's measurement), from the

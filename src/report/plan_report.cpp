@@ -346,7 +346,10 @@ Result<nlohmann::json> plan_report(const Machine& machine, const RunFiles& files
       !opened)
     return opened.error();
   SimulateTrace simulate;
-  if (Status opened = simulate.open(files.directory, files.summary, expected, options.chart_buckets); !opened)
+  if (Status opened =
+          simulate.open(options.simulate_directory.empty() ? files.directory : options.simulate_directory,
+                        files.summary, expected, options.chart_buckets);
+      !opened)
     return opened.error();
 
   std::vector<double> prow, arow;

@@ -25,6 +25,9 @@ struct ReportOptions {
   /// Where `pkm servo` wrote servo.csv, servo_bode.csv and servo_summary.json for a plan's report
   /// (servo_plots.hpp); "": the run's own directory.
   std::string servo_directory;
+  /// Where `pkm simulate` wrote simulate.csv and simulate_summary.json (simulate_plots.hpp); "": the run's
+  /// own directory.
+  std::string simulate_directory;
 };
 
 /// The report data of the run in `directory`.

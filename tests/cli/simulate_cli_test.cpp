@@ -199,6 +199,17 @@ TEST(SimulateCli, ThePlansReportShowsTheSimulation) {
   for (const auto& row : (*report)["table"])
     row_found = row_found || row.dump().find("Max contour error (simulate)") != std::string::npos;
   EXPECT_TRUE(row_found);
+  // --report writes that page with the simulation, also where --out puts the simulation elsewhere.
+  const fs::path elsewhere = fs::temp_directory_path() / "pkm_simulate_cli_report_out";
+  fs::remove_all(elsewhere);
+  const auto with_page =
+      test::run_pkm("simulate " + plan + " --machine " + simulate_cli_machine("hexapod_ch5.yaml") +
+                    " --out " + elsewhere.string() + " --report " + (elsewhere / "report.html").string());
+  ASSERT_EQ(with_page.exit_code, 0) << with_page.out;
+  std::ifstream page(elsewhere / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("simulate_contour_error"), std::string::npos);
+  EXPECT_NE(html.find("simulate_deviation"), std::string::npos);
 }
 
 // pkm circle --elastic: the circular test on the machine in the loop. As shipped the circle stays round to
