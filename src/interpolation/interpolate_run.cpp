@@ -7,8 +7,9 @@
 #include <cmath>
 
 #include "core/units.hpp"
+#include "interpolation/error_amplification_scan.hpp"
+#include "interpolation/plan_window_feed.hpp"
 #include "interpolation/quantisation/remainder_quantizer.hpp"
-#include "machine/conditioning.hpp"
 
 namespace pkm::interpolation {
 
@@ -72,42 +73,10 @@ Status check_interpolate_options(const InterpolateOptions& options, bool has_sin
   return ok_status();
 }
 
-// δρ_max of eq. 146 along this path: the error amplification at samples of the path (Smirnov 2019 takes the
-// maximum over a working space; the path's own maximum is the tighter, sufficient bound for this run).
-Result<std::pair<double, int>> path_error_amplification(const Machine& machine, const path::Path& path,
-                                                        double spacing, const std::string& source) {
-  double largest = 0.0;
-  int line = 0;
-  int hint = 0;
-  for (const path::Segment& segment : path.segments) {
-    const int samples = std::max(1, static_cast<int>(std::ceil(segment.length / spacing)));
-    for (int k = 0; k <= samples; ++k) {
-      const double s = segment.s_start + segment.length * k / samples;
-      const path::PathPoint point = path.evaluate(s, hint);
-      auto measures =
-          jacobian_measures(*machine.mechanism, Pose{point.position_mm, point.rotation.toRotationMatrix()});
-      if (!measures) {
-        return Error{measures.error().code, fmt::format("{}:{}: {} (δρ along the path)", source, segment.line,
-                                                        measures.error().message)};
-      }
-      if (measures->error_amplification > largest)
-        largest = measures->error_amplification, line = segment.line;
-    }
-  }
-  if (path.segments.empty()) {
-    auto measures = jacobian_measures(*machine.mechanism,
-                                      Pose{path.start.position_mm, path.start.rotation.toRotationMatrix()});
-    if (!measures)
-      return Error{measures.error().code, fmt::format("{}: {}", source, measures.error().message)};
-    largest = measures->error_amplification;
-  }
-  return std::make_pair(largest, line);
-}
-
 int line_at(const path::Path& path, double s, int& hint) {
   if (path.segments.empty()) return 0;
   hint = path.find_segment(s, hint);
-  return path.segments[hint].line;
+  return path.segment(hint).line;
 }
 
 // Per-period bookkeeping shared by the methods: sinks, step counts, compute time, progress.
@@ -203,17 +172,36 @@ CarrierSettings carrier_settings_for(const Machine& machine, const InterpolateOp
   return settings;
 }
 
-Status run_carrier(const Machine& machine, const path::Path& path, const IdealTiming& timing,
-                   const InterpolateOptions& options, double step, InterpolateSummary& summary,
-                   RunRecorder& recorder, const std::string& source) {
-  const int n = summary.actuators;
-  auto laws =
-      options.method == Method::exact
-          ? StrutLaws::exact(machine, path, source)
-          : StrutLaws::fit(machine, path, LawFitSettings{.tolerance = 0.1 * summary.strut_tolerance}, source);
-  if (!laws) return laws.error();
-  summary.laws = laws->report();
+// The strut laws of a whole path, fitted (or exact) within the run's strut tolerance.
+Result<StrutLaws> whole_laws(const Machine& machine, const path::Path& path,
+                             const InterpolateOptions& options, const InterpolateSummary& summary,
+                             const std::string& source) {
+  return options.method == Method::exact
+             ? StrutLaws::exact(machine, path, source)
+             : StrutLaws::fit(machine, path, LawFitSettings{.tolerance = 0.1 * summary.strut_tolerance},
+                              source);
+}
 
+// How far ahead of the interpolator's ideal time a streamed plan's window reaches: a second of the motion, at
+// least 100 periods, times the largest feed override (the ideal time advances by the override per period).
+double window_lead_s(const InterpolateOptions& options) {
+  double largest = std::max(1.0, options.feed_override.initial_percent / 100.0);
+  for (const OverrideChange& change : options.feed_override.changes)
+    largest = std::max(largest, change.percent / 100.0);
+  return std::max(1.0, 100.0 * options.period_s) * largest;
+}
+
+// The carrier methods along `path` with `laws` and `timing`; with a `feed`, those are the windows of a plan
+// made while it streams, kept ahead of the interpolator and released behind it.
+Status run_carrier(const Machine& machine, const path::Path& path, const IdealTiming& timing,
+                   StrutLaws& laws_held, PlanWindowFeed* feed, const InterpolateOptions& options, double step,
+                   InterpolateSummary& summary, RunRecorder& recorder, const std::string& source) {
+  const int n = summary.actuators;
+  const StrutLaws* laws = &laws_held;
+  const double lead_s = window_lead_s(options);
+  if (feed != nullptr) {
+    if (Status reached = feed->advance(0.0, lead_s); !reached) return reached;
+  }
   CarrierInterpolator carrier(*laws, timing, carrier_settings_for(machine, options, step, summary));
   std::array<double, kMaxActuators> ideal_start{};
   if (Status started = carrier.start(ideal_start); !started) {
@@ -252,6 +240,9 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
   int hint = 0;
   int trace_hint = 0;
   for (;;) {
+    if (feed != nullptr) {
+      if (Status reached = feed->advance(period.tau_end_s, lead_s); !reached) return reached;
+    }
     const auto started = Clock::now();
     if (!carrier.next(period)) break;
     if (step > 0.0) {
@@ -280,7 +271,9 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
       if (Status emitted = recorder.emit(out); !emitted) return emitted;
     }
     summary.ideal_end = period.target;
+    if (feed != nullptr) feed->release_behind(period.s_start, period.tau_start_s);
   }
+  summary.laws = laws->report();
   if (carrier.error()) {
     return Error{carrier.error()->code, fmt::format("{}:{}", source, carrier.error()->message)};
   }
@@ -371,10 +364,11 @@ Status run_estimating(const Machine& machine, const path::Path& path, const Idea
 
 }  // namespace
 
-Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path& path,
-                                       const IdealTiming& timing, const InterpolateOptions& options,
-                                       const std::vector<StepSink*>& sinks, const std::string& source) {
-  if (Status valid = check_interpolate_options(options, !sinks.empty()); !valid) return valid.error();
+namespace {
+
+// The summary's settings, δρ_max (given, or the path's) and the strut tolerance of eq. 155.
+InterpolateSummary summary_before_run(const Machine& machine, const InterpolateOptions& options,
+                                      const ErrorAmplification& amplification) {
   InterpolateSummary summary;
   summary.method = options.method;
   summary.period_s = options.period_s;
@@ -384,22 +378,99 @@ Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path&
   if (options.delta_rho_max) {
     summary.delta_rho_max = *options.delta_rho_max;
   } else {
-    auto amplification = path_error_amplification(machine, path, options.amplification_spacing, source);
-    if (!amplification) return amplification.error();
-    summary.delta_rho_max = amplification->first;
-    summary.delta_rho_max_line = amplification->second;
+    summary.delta_rho_max = amplification.largest;
+    summary.delta_rho_max_line = amplification.line;
   }
   // eq. 155: 10 % of the budget is kept for the strut laws' own approximation error.
   summary.strut_tolerance = 0.9 * options.rho_max_mm / summary.delta_rho_max;
-  // Angular actuators take their step in degrees on the command line; inside, radians.
-  const double step =
-      machine.mechanism->actuators_are_angles() ? rad_from_deg(options.step_mm) : options.step_mm;
+  return summary;
+}
+
+// Angular actuators take their step in degrees on the command line; inside, radians.
+double actuator_step(const Machine& machine, const InterpolateOptions& options) {
+  return machine.mechanism->actuators_are_angles() ? rad_from_deg(options.step_mm) : options.step_mm;
+}
+
+}  // namespace
+
+Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path& path,
+                                       const IdealTiming& timing, const InterpolateOptions& options,
+                                       const std::vector<StepSink*>& sinks, const std::string& source) {
+  if (Status valid = check_interpolate_options(options, !sinks.empty()); !valid) return valid.error();
+  ErrorAmplificationScan scan(machine, options.amplification_spacing, source);
+  if (!options.delta_rho_max) {
+    for (int k = 0; k < path.segment_end(); ++k) {
+      if (Status sampled = scan.add_segment(path, k); !sampled) return sampled.error();
+    }
+    if (Status finished = scan.finish(path); !finished) return finished.error();
+  }
+  InterpolateSummary summary = summary_before_run(machine, options, scan.result());
+  const double step = actuator_step(machine, options);
   RunRecorder recorder(sinks, summary, options, timing.duration_s());
-  const Status ran = options.method == Method::estimating
-                         ? run_estimating(machine, path, timing, options, step, summary, recorder, source)
-                         : run_carrier(machine, path, timing, options, step, summary, recorder, source);
+  Status ran = ok_status();
+  if (options.method == Method::estimating) {
+    ran = run_estimating(machine, path, timing, options, step, summary, recorder, source);
+  } else {
+    auto laws = whole_laws(machine, path, options, summary, source);
+    if (!laws) return laws.error();
+    ran = run_carrier(machine, path, timing, *laws, nullptr, options, step, summary, recorder, source);
+  }
   if (!ran) return ran.error();
   if (Status finished = recorder.finish(); !finished) return finished.error();
+  return summary;
+}
+
+Result<StreamedPlanCheck> check_streamed_plan(const Machine& machine, planning::StreamedPlan& streamed,
+                                              double amplification_spacing, const std::string& source,
+                                              const ProgressSink& progress) {
+  const path::Path& path = streamed.plan.path;
+  ErrorAmplificationScan scan(machine, amplification_spacing, source);
+  planning::ServoStream stream(streamed.plan, machine, streamed.source.get());
+  planning::ServoTick tick;
+  int scanned = 0;
+  long ticks = 0;
+  while (stream.next(tick)) {
+    // The segments before the tick's are final, and the stream forgets them only at its next tick.
+    for (; scanned < tick.segment; ++scanned) {
+      if (Status sampled = scan.add_segment(path, scanned); !sampled) return sampled.error();
+    }
+    if (progress && ++ticks % 65536 == 0) report_progress(progress, "checking the plan", -1.0, tick.line);
+  }
+  if (stream.error()) return *stream.error();
+  for (; scanned < path.segment_end(); ++scanned) {
+    if (Status sampled = scan.add_segment(path, scanned); !sampled) return sampled.error();
+  }
+  if (Status finished = scan.finish(path); !finished) return finished.error();
+  return StreamedPlanCheck{scan.result(), streamed.plan.duration_s};
+}
+
+Result<InterpolateSummary> interpolate_streamed(const Machine& machine, planning::StreamedPlan& streamed,
+                                                const StreamedPlanCheck& check,
+                                                const InterpolateOptions& options,
+                                                const std::vector<StepSink*>& sinks,
+                                                const std::string& source) {
+  if (Status valid = check_interpolate_options(options, !sinks.empty()); !valid) return valid.error();
+  if (options.method == Method::estimating) {
+    return make_error(ErrorCode::bad_input, "the estimating method needs the whole plan, not a stream");
+  }
+  InterpolateSummary summary = summary_before_run(machine, options, check.amplification);
+  const std::optional<LawFitSettings> fit =
+      options.method == Method::exact
+          ? std::nullopt
+          : std::optional<LawFitSettings>(LawFitSettings{.tolerance = 0.1 * summary.strut_tolerance});
+  auto laws = StrutLaws::window(machine, streamed.plan.path, fit, source);
+  if (!laws) return laws.error();
+  IdealTiming timing = IdealTiming::window(streamed.plan.period_s);
+  PlanWindowFeed feed(streamed, machine, timing, *laws);
+  RunRecorder recorder(sinks, summary, options, check.duration_s);
+  if (Status ran = run_carrier(machine, streamed.plan.path, timing, *laws, &feed, options,
+                               actuator_step(machine, options), summary, recorder, source);
+      !ran)
+    return ran.error();
+  if (Status finished = recorder.finish(); !finished) return finished.error();
+  summary.peak_window_ticks = feed.peak_ticks();
+  summary.peak_window_pieces = feed.peak_pieces();
+  summary.peak_window_segments = feed.peak_segments();
   return summary;
 }
 

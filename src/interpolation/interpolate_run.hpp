@@ -19,12 +19,14 @@
 #include "core/progress.hpp"
 #include "core/result.hpp"
 #include "interpolation/contour/contour_monitor.hpp"
+#include "interpolation/error_amplification_scan.hpp"
 #include "interpolation/methods/carrier_interpolator.hpp"
 #include "interpolation/methods/estimating_function.hpp"
 #include "interpolation/methods/ideal_timing.hpp"
 #include "interpolation/methods/strut_laws.hpp"
 #include "interpolation/quantisation/discreteness_corrector.hpp"
 #include "interpolation/quantisation/step_period.hpp"
+#include "planning/plan_producer.hpp"
 
 namespace pkm::interpolation {
 
@@ -88,6 +90,9 @@ struct InterpolateSummary {
   std::array<std::int64_t, kMaxActuators> end_position{};
   std::array<double, kMaxActuators> ideal_start{};
   std::array<double, kMaxActuators> ideal_end{};
+  /// Along a plan made while it streams (interpolate_streamed): the most ticks of ideal timing, strut-law
+  /// pieces and path segments held at once, bounded by the planner's window, not by the program. 0: whole.
+  std::size_t peak_window_ticks = 0, peak_window_pieces = 0, peak_window_segments = 0;
 };
 
 /// Runs the interpolation. `sinks` receive every period (none for a measurement only); a failing run
@@ -95,6 +100,27 @@ struct InterpolateSummary {
 Result<InterpolateSummary> interpolate(const Machine& machine, const path::Path& path,
                                        const IdealTiming& timing, const InterpolateOptions& options,
                                        const std::vector<StepSink*>& sinks, const std::string& source);
+
+/// What a first pass over a plan made while it streams finds before any period is interpolated: every tick
+/// within the plan's limits (the actuators' ranges: software stops in both spaces), δρ_max along the path,
+/// and the plan's duration.
+struct StreamedPlanCheck {
+  ErrorAmplification amplification;
+  double duration_s = 0.0;
+};
+/// Streams `streamed` through (its memory bounded by the planner's window). Errors name the program line.
+Result<StreamedPlanCheck> check_streamed_plan(const Machine& machine, planning::StreamedPlan& streamed,
+                                              double amplification_spacing, const std::string& source,
+                                              const ProgressSink& progress);
+
+/// interpolate() along a plan made while it streams, a second stream of the plan `check` was made on: the
+/// timing and the strut laws are windows that follow the interpolator, so memory does not grow with the
+/// program, and the periods equal those of interpolate() on the whole plan. The carrier methods and exact.
+Result<InterpolateSummary> interpolate_streamed(const Machine& machine, planning::StreamedPlan& streamed,
+                                                const StreamedPlanCheck& check,
+                                                const InterpolateOptions& options,
+                                                const std::vector<StepSink*>& sinks,
+                                                const std::string& source);
 
 /// The drives' positions before the first period, in steps: the path start's actuator values truncated to
 /// whole steps, as every method starts (§5.2.5). For the header of step files, written before the run.

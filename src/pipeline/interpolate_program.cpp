@@ -12,6 +12,7 @@
 #include "io/output_set.hpp"
 #include "io/version.hpp"
 #include "pipeline/load_program.hpp"
+#include "pipeline/program_stream.hpp"
 #include "pipeline/run_report.hpp"
 #include "planning/motion_plan.hpp"
 
@@ -51,30 +52,114 @@ Result<interpolation::InterpolateOptions> resolved_options(const Machine& machin
   return options;
 }
 
+// What the run goes along: for the carrier methods, a plan made while the program is read, streamed twice
+// (checked, then interpolated) so that memory does not grow with the program; for the estimating method, the
+// whole plan.
+struct RunInputs {
+  std::string source;
+  StreamedProgramPlan streamed;
+  interpolation::StreamedPlanCheck check;
+  std::unique_ptr<program::CanonicalProgram> program;
+  std::optional<planning::MotionPlan> whole;
+  std::optional<interpolation::IdealTiming> timing;
+
+  const planning::MotionPlan& plan() const { return whole ? *whole : streamed.plan->plan; }
+};
+
+planning::PlanOptions plan_options_for(const InterpolateJob& job,
+                                       const interpolation::InterpolateOptions& options) {
+  planning::PlanOptions plan_options;
+  plan_options.rate_hz = 1.0 / options.period_s;
+  plan_options.override_pct = job.override_pct;
+  // The linear law has no jerk limit: trapezoidal path speed.
+  plan_options.jerk_limited = job.accel != interpolation::RampShape::linear;
+  plan_options.progress = job.progress;
+  return plan_options;
+}
+
+Status prepare_whole(const Machine& machine, const InterpolateJob& job,
+                     const interpolation::InterpolateOptions& options, RunInputs& inputs) {
+  report_progress(job.progress, "reading the program");
+  auto program = load_program_for(machine, job.program_path, job.program_options);
+  if (!program) return program.error();
+  inputs.program = std::make_unique<program::CanonicalProgram>(std::move(*program));
+  inputs.source = inputs.program->source;
+  auto plan = planning::plan_motion(machine, *inputs.program, plan_options_for(job, options));
+  if (!plan) return plan.error();
+  inputs.whole = std::move(*plan);
+  auto timing = interpolation::IdealTiming::from_plan(*inputs.whole, machine);
+  if (!timing) return timing.error();
+  inputs.timing = std::move(*timing);
+  return ok_status();
+}
+
+// The first stream checks every tick of the plan (nothing moves for a program that breaks a limit) and finds
+// δρ_max along the path; the second, from a fresh read of the program, is the one interpolated.
+Status prepare_streamed(const Machine& machine, const InterpolateJob& job,
+                        const interpolation::InterpolateOptions& options, RunInputs& inputs) {
+  report_progress(job.progress, "checking the plan");
+  const planning::PlanOptions plan_options = plan_options_for(job, options);
+  {
+    auto first = start_streamed_program_plan(machine, job.program_path, job.program_options, plan_options);
+    if (!first) return first.error();
+    auto check = interpolation::check_streamed_plan(machine, *first->plan, options.amplification_spacing,
+                                                    first->program->source, job.progress);
+    if (!check) return check.error();
+    inputs.check = *check;
+  }
+  auto second = start_streamed_program_plan(machine, job.program_path, job.program_options, plan_options);
+  if (!second) return second.error();
+  inputs.streamed = std::move(*second);
+  inputs.source = inputs.streamed.program->source;
+  return ok_status();
+}
+
+// The summary (and the report) after the run, committed with its step files.
+Result<InterpolateProgramResult> finish_interpolation(const Machine& machine, const InterpolateJob& job,
+                                                      const RunInputs& inputs,
+                                                      const interpolation::InterpolateOptions& options,
+                                                      interpolation::InterpolateSummary summary,
+                                                      OutputSet& outputs) {
+  const bool files = !job.out_directory.empty();
+  InterpolateProgramResult result;
+  result.blocks = inputs.plan().statistics.blocks;
+  result.json = formats::interpolation_summary_json(summary, machine);
+  result.json["program"] = inputs.source;
+  result.json["pkm_version"] = std::string(pkm_version());
+  result.json["blocks"] = result.blocks;
+  result.json["override_pct"] = job.override_pct;
+  result.json["accel"] = job.accel == interpolation::RampShape::linear ? "linear" : "s-curve";
+  if (options.max_step_rate_hz) result.json["max_step_rate_hz"] = *options.max_step_rate_hz;
+  if (files) {
+    if (Status written =
+            write_file_atomically(outputs.staged_path("summary.json"), json_text(result.json) + "\n");
+        !written) {
+      return written.error();
+    }
+    if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
+    if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
+    if (Status committed = outputs.commit(); !committed) return committed.error();
+  }
+  result.summary = std::move(summary);
+  return result;
+}
+
 }  // namespace
 
 Result<InterpolateProgramResult> interpolate_program(const Machine& machine, const InterpolateJob& job) {
   auto options = resolved_options(machine, job);
   if (!options) return options.error();
-  report_progress(job.progress, "reading the program");
-  auto program = load_program_for(machine, job.program_path, job.program_options);
-  if (!program) return program.error();
-  planning::PlanOptions plan_options;
-  plan_options.rate_hz = 1.0 / options->period_s;
-  plan_options.override_pct = job.override_pct;
-  // The linear law has no jerk limit: trapezoidal path speed.
-  plan_options.jerk_limited = job.accel != interpolation::RampShape::linear;
-  plan_options.progress = job.progress;
-  auto plan = planning::plan_motion(machine, *program, plan_options);
-  if (!plan) return plan.error();
-  auto timing = interpolation::IdealTiming::from_plan(*plan, machine);
-  if (!timing) return timing.error();
-
-  options->progress = job.progress;
   const bool files = !job.out_directory.empty();
   if (!files && !job.report_path.empty()) {
     return make_error(ErrorCode::bad_input, "an interpolation report needs an output directory");
   }
+  RunInputs inputs;
+  const bool whole = options->method == interpolation::Method::estimating;
+  if (Status prepared = whole ? prepare_whole(machine, job, *options, inputs)
+                              : prepare_streamed(machine, job, *options, inputs);
+      !prepared)
+    return prepared.error();
+  options->progress = job.progress;
   // The step files, the contour trace, the summary and the report replace the previous run's together.
   OutputSet outputs{"interpolate"};
   interpolation::StepsCsvWriter csv;
@@ -90,7 +175,7 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
     header.step_mm =
         machine.mechanism->actuators_are_angles() ? options->step_mm * (kPi / 180.0) : options->step_mm;
     header.machine = machine.source;
-    auto start_steps = interpolation::start_positions(machine, plan->path, options->step_mm);
+    auto start_steps = interpolation::start_positions(machine, inputs.plan().path, options->step_mm);
     if (!start_steps) return start_steps.error();
     header.start_position = *start_steps;
     if (Status opened = csv.open(outputs.staged_path("steps.csv"), header); !opened) return opened.error();
@@ -104,32 +189,14 @@ Result<InterpolateProgramResult> interpolate_program(const Machine& machine, con
     if (job.on_period) job.on_period(period, contour, path_mm);
     if (files && trace_status) trace_status = trace.add(period, contour, path_mm);
   };
-  auto summary = interpolation::interpolate(machine, plan->path, *timing, *options, sinks, program->source);
+  auto summary = whole ? interpolation::interpolate(machine, inputs.whole->path, *inputs.timing, *options,
+                                                    sinks, inputs.source)
+                       : interpolation::interpolate_streamed(machine, *inputs.streamed.plan, inputs.check,
+                                                             *options, sinks, inputs.source);
   if (!summary) return summary.error();
   if (files && trace_status) trace_status = trace.finish();
   if (!trace_status) return trace_status.error();
-
-  InterpolateProgramResult result;
-  result.blocks = plan->statistics.blocks;
-  result.json = formats::interpolation_summary_json(*summary, machine);
-  result.json["program"] = program->source;
-  result.json["pkm_version"] = std::string(pkm_version());
-  result.json["blocks"] = plan->statistics.blocks;
-  result.json["override_pct"] = job.override_pct;
-  result.json["accel"] = job.accel == interpolation::RampShape::linear ? "linear" : "s-curve";
-  if (options->max_step_rate_hz) result.json["max_step_rate_hz"] = *options->max_step_rate_hz;
-  if (files) {
-    if (Status written =
-            write_file_atomically(outputs.staged_path("summary.json"), json_text(result.json) + "\n");
-        !written) {
-      return written.error();
-    }
-    if (!job.report_path.empty()) report_progress(job.progress, "writing the report");
-    if (Status written = stage_run_report(outputs, job.report_path); !written) return written.error();
-    if (Status committed = outputs.commit(); !committed) return committed.error();
-  }
-  result.summary = std::move(*summary);
-  return result;
+  return finish_interpolation(machine, job, inputs, *options, std::move(*summary), outputs);
 }
 
 }  // namespace pkm::pipeline

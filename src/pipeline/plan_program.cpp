@@ -146,21 +146,13 @@ Result<ProgramPlan> plan_whole_program(const Machine& machine, const PlanJob& jo
 Result<ProgramPlan> plan_streamed_program(const Machine& machine, const PlanJob& job,
                                           const planning::PlanOptions& options) {
   report_progress(job.progress, "reading the program");
+  auto started = start_streamed_program_plan(machine, job.program_path, job.program_options, options);
+  if (!started) return started.error();
   ProgramPlan planned;
-  planned.program = std::make_unique<program::CanonicalProgram>();
-  planned.program->source = job.program_path;
-  const planning::ProgramStart start = planning::program_start(machine);
-  planned.program->start_mm = start.start_mm;
-  planned.program->start_abc_deg = start.start_abc_deg;
-  planned.places = std::make_unique<SubroutineLines>();
-  planned.header = std::make_unique<program::CanonicalProgram>();
-  const planning::MoveSourceFactory read = [&]() -> Result<std::unique_ptr<planning::MoveSource>> {
-    return std::unique_ptr<planning::MoveSource>(std::make_unique<ProgramStream>(
-        machine, job.program_path, job.program_options, planned.places.get(), planned.header.get()));
-  };
-  auto streamed = planning::start_streamed_plan(machine, *planned.program, read, options);
-  if (!streamed) return streamed.error();
-  planned.plan = std::move(*streamed);
+  planned.program = std::move(started->program);
+  planned.places = std::move(started->places);
+  planned.header = std::move(started->header);
+  planned.plan = std::move(started->plan);
   return planned;
 }
 

@@ -131,4 +131,26 @@ Result<program::CanonicalProgram> ProgramStream::whole() const {
   return load_program_for(machine_, path_, options_);
 }
 
+Result<StreamedProgramPlan> start_streamed_program_plan(const Machine& machine,
+                                                        const std::string& program_path,
+                                                        const ProgramOptions& program_options,
+                                                        const planning::PlanOptions& options) {
+  StreamedProgramPlan started;
+  started.program = std::make_unique<program::CanonicalProgram>();
+  started.program->source = program_path;
+  const planning::ProgramStart start = planning::program_start(machine);
+  started.program->start_mm = start.start_mm;
+  started.program->start_abc_deg = start.start_abc_deg;
+  started.places = std::make_unique<SubroutineLines>();
+  started.header = std::make_unique<program::CanonicalProgram>();
+  const planning::MoveSourceFactory read = [&]() -> Result<std::unique_ptr<planning::MoveSource>> {
+    return std::unique_ptr<planning::MoveSource>(std::make_unique<ProgramStream>(
+        machine, program_path, program_options, started.places.get(), started.header.get()));
+  };
+  auto streamed = planning::start_streamed_plan(machine, *started.program, read, options);
+  if (!streamed) return streamed.error();
+  started.plan = std::move(*streamed);
+  return started;
+}
+
 }  // namespace pkm::pipeline

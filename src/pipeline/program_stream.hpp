@@ -17,6 +17,7 @@
 #include "machine/machine.hpp"
 #include "pipeline/load_program.hpp"
 #include "planning/move_source.hpp"
+#include "planning/plan_producer.hpp"
 
 namespace pkm::pipeline {
 
@@ -69,5 +70,19 @@ class ProgramStream final : public planning::MoveSource {
   std::optional<Error> error_;
   std::thread reader_;
 };
+
+/// A plan made while its program is read on a thread of its own (ProgramStream), its memory bounded by the
+/// planner's window. The members are on the heap where the plan's source reads and writes them; `plan` is
+/// last, so its reader stops before what it writes goes.
+struct StreamedProgramPlan {
+  std::unique_ptr<program::CanonicalProgram> program;  ///< the file's name and start, without its moves
+  std::unique_ptr<SubroutineLines> places;             ///< where the reader found each move
+  std::unique_ptr<program::CanonicalProgram> header;   ///< format, files, notes: whole once the plan is
+  std::unique_ptr<planning::StreamedPlan> plan;
+};
+Result<StreamedProgramPlan> start_streamed_program_plan(const Machine& machine,
+                                                        const std::string& program_path,
+                                                        const ProgramOptions& program_options,
+                                                        const planning::PlanOptions& options);
 
 }  // namespace pkm::pipeline

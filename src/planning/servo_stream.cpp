@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "planning/path_sampling.hpp"
@@ -25,7 +26,7 @@ bool ServoStream::next(ServoTick& tick) {
   if (source_ != nullptr) {
     // What the ticks passed goes (the mid-period point is still searched from the tick before's segment);
     // then the plan reaches past this tick, or to its end, which fixes the last tick.
-    source_->release(cursor_.index(), hint_);
+    source_->release(cursor_.index(), std::min(hint_, hold_segment_));
     if (Status planned = source_->extend_to(t); !planned) {
       error_ = planned.error();
       return false;

@@ -52,6 +52,9 @@ class ServoStream {
   bool next(ServoTick& tick);
   /// Also the path's point at every mid-period (ServoTick::mid_point), for the path error.
   void with_mid_points(bool wanted) { mid_points_ = wanted; }
+  /// With a source: the path from segment `segment` on stays, also behind the ticks (a consumer lagging
+  /// behind them still reads it). Default: only what the ticks still need.
+  void hold_path_from(int segment) { hold_segment_ = segment; }
   /// The ticks of the whole motion; 0 while a source is still planning (the end is not known yet).
   long tick_count() const { return last_tick_ == kUnknownEnd ? 0 : last_tick_ + 1; }
   const std::optional<Error>& error() const { return error_; }
@@ -67,6 +70,7 @@ class ServoStream {
   static constexpr long kUnknownEnd = std::numeric_limits<long>::max();
   long last_tick_ = kUnknownEnd;
   int hint_ = 0;
+  int hold_segment_ = std::numeric_limits<int>::max();
   double previous_s_ = 0.0;
   bool mid_points_ = false;
   std::optional<Error> error_;

@@ -254,4 +254,18 @@ inline double cam_workspace_scale(const Machine& machine, CamAxes axes) {
   return 0.0;
 }
 
+/// A CAM-like G-code program of `points` short moves for `machine`, its body `repeats` times over (a program
+/// `repeats` times as long, the same motion again and again).
+inline std::string cam_program(const Machine& machine, CamShape shape, int points, std::uint64_t seed,
+                               int repeats = 1) {
+  CamAxes axes = cam_axes_of(machine);
+  axes.scale = cam_workspace_scale(machine, axes);
+  std::mt19937_64 rng(seed);
+  const std::string once = cam_gcode(rng, shape, axes, points);
+  const std::string body = once.substr(0, once.rfind("M2"));
+  std::string text;
+  for (int r = 0; r < repeats; ++r) text += body;
+  return text + "M2\n";
+}
+
 }  // namespace pkm::test

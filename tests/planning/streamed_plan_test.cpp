@@ -58,18 +58,6 @@ Streamed stream_through_window(const Machine& machine, const program::CanonicalP
 }
 
 /// A CAM-like program of `points` short moves (and `repeats` times the same shape, when asked).
-std::string cam_program(const Machine& machine, CamShape shape, int points, std::uint64_t seed,
-                        int repeats = 1) {
-  test::CamAxes axes = test::cam_axes_of(machine);
-  axes.scale = test::cam_workspace_scale(machine, axes);
-  std::mt19937_64 rng(seed);
-  const std::string once = test::cam_gcode(rng, shape, axes, points);
-  const std::string body = once.substr(0, once.rfind("M2"));
-  std::string text;
-  for (int r = 0; r < repeats; ++r) text += body;
-  return text + "M2\n";
-}
-
 void expect_same_ticks(const Machine& machine, const program::CanonicalProgram& program,
                        const std::string& label) {
   const MotionPlan whole = test::plan_or_fail(machine, program);
@@ -108,7 +96,7 @@ TEST(StreamedPlan, EveryTickEqualsTheWholePlansOnGeneratedCamPrograms) {
     const Machine machine = test::machine_from_example(std::string("examples/machines/") + file);
     int n = 0;
     for (CamShape shape : {CamShape::noisy_circle, CamShape::zigzag, CamShape::mixed_arcs}) {
-      const std::string text = cam_program(machine, shape, 2500, 7000 + n++);
+      const std::string text = test::cam_program(machine, shape, 2500, 7000 + n++);
       const program::CanonicalProgram program = test::gcode_for(machine, text, "cam.ngc");
       expect_same_ticks(machine, program, std::string(file) + " " + test::cam_shape_name(shape));
     }
@@ -117,8 +105,8 @@ TEST(StreamedPlan, EveryTickEqualsTheWholePlansOnGeneratedCamPrograms) {
 
 TEST(StreamedPlan, TheWindowDoesNotGrowWithTheProgram) {
   const Machine machine = test::machine_from_example("examples/machines/hexapod_ch5.yaml");
-  const std::string once = cam_program(machine, CamShape::noisy_circle, 2000, 77, 2);
-  const std::string ten_times = cam_program(machine, CamShape::noisy_circle, 2000, 77, 20);
+  const std::string once = test::cam_program(machine, CamShape::noisy_circle, 2000, 77, 2);
+  const std::string ten_times = test::cam_program(machine, CamShape::noisy_circle, 2000, 77, 20);
   const Streamed small = stream_through_window(machine, test::gcode_for(machine, once, "cam.ngc"));
   const Streamed large = stream_through_window(machine, test::gcode_for(machine, ten_times, "cam.ngc"));
   EXPECT_GT(large.statistics.samples, 9 * small.statistics.samples);

@@ -103,6 +103,7 @@ bool CarrierInterpolator::next(CarrierPeriod& period) {
   s_ = period.s_end;
   values_ = period.target;
   done_ = period.last;
+  if (done_) statistics_.ideal_time_s = timing_.duration_s();  // a timing window knows it only now
   ++index_;
   statistics_.periods = index_;
   statistics_.real_time_s = static_cast<double>(index_) * h;

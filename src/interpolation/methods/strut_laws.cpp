@@ -73,14 +73,14 @@ class StrutLawBuilder {
   }
 
   Status fit_segment(int index) {
-    const path::Segment& segment = path_.segments[index];
+    const path::Segment& segment = path_.segment(index);
     return fit_range(index, segment.s_start, segment.s_start + segment.length, model_for(segment));
   }
 
  private:
   /// IK at s on segment `index`; errors name the source line.
   Status sample(int index, double s, double* values) const {
-    const path::Segment& segment = path_.segments[index];
+    const path::Segment& segment = path_.segment(index);
     auto ik = mechanism_.inverse(law_fit_pose(path_.evaluate(index, s)));
     if (!ik) {
       return make_error(ik.error().code,
@@ -96,7 +96,7 @@ class StrutLawBuilder {
   LawModel model_for(const path::Segment& segment) const {
     if (!closed_models_ || segment.is_blend() || segment.rotation_only || !(segment.length > 0.0))
       return LawModel::polynomial;
-    const path::Curve& curve = path_.curves[segment.curve_a];
+    const path::Curve& curve = path_.curve(segment.curve_a);
     if (curve.rotation_angle_rad > kLawFitConstantRotationRad) return LawModel::polynomial;
     if (curve.kind == path::CurveKind::line) return LawModel::sqrt_quadratic;
     if (std::abs(curve.axial_mm) <= kLawFitFlatArcMm &&
@@ -106,7 +106,7 @@ class StrutLawBuilder {
   }
 
   LawPiece make_piece(int index, double s0, double s1, LawModel model) const {
-    const path::Segment& segment = path_.segments[index];
+    const path::Segment& segment = path_.segment(index);
     LawPiece piece;
     piece.s_start = s0;
     piece.s_end = s1;
@@ -118,7 +118,7 @@ class StrutLawBuilder {
     piece.stride = piece.model == LawModel::polynomial ? (s1 > s0 ? settings_.polynomial_degree + 1 : 1) : 3;
     if (piece.model == LawModel::sqrt_fourier) {
       // The arc angle is linear in s: the segment's share of the curve's sweep over its length.
-      const path::Curve& curve = path_.curves[segment.curve_a];
+      const path::Curve& curve = path_.curve(segment.curve_a);
       const double angle_per_s = curve.sweep_rad * (segment.fa1 - segment.fa0) / segment.length;
       piece.angle_per_u = angle_per_s / piece.u_per_s;
     }
@@ -209,18 +209,7 @@ Result<StrutLaws> StrutLaws::exact(const Machine& machine, const path::Path& pat
   StrutLaws laws(machine, path);
   laws.exact_ = true;
   laws.pieces_.reserve(path.segments.size());
-  for (int k = 0; k < static_cast<int>(path.segments.size()); ++k) {
-    const path::Segment& segment = path.segments[k];
-    LawPiece piece;
-    piece.s_start = segment.s_start;
-    piece.s_end = segment.s_start + segment.length;
-    piece.s_mid = 0.5 * (piece.s_start + piece.s_end);
-    piece.model = LawModel::exact;
-    piece.segment = k;
-    piece.line = segment.line;
-    laws.pieces_.push_back(piece);
-  }
-  laws.report_.pieces = laws.report_.exact = laws.piece_count();
+  for (int k = 0; k < static_cast<int>(path.segments.size()); ++k) laws.append_exact_piece(k);
   return laws;
 }
 
@@ -229,58 +218,131 @@ Result<StrutLaws> StrutLaws::fit(const Machine& machine, const path::Path& path,
   if (Status s = law_fit_check_settings(settings); !s) return s.error();
   StrutLaws laws(machine, path);
   laws.exact_ = false;
+  laws.settings_ = settings;
+  laws.source_ = source;
+  if (Status fitted = laws.fit_through(static_cast<int>(path.segments.size())); !fitted)
+    return fitted.error();
   if (path.segments.empty()) {
-    auto ik = machine.mechanism->inverse(law_fit_pose(path.start));
-    if (!ik) {
-      return make_error(ik.error().code, fmt::format("{}: strut law: the path's start is out of reach: {}",
-                                                     source, ik.error().message));
-    }
-    for (int j = 0; j < laws.actuators_; ++j) laws.start_values_[j] = (*ik)[j];
-    return laws;
-  }
-  StrutLawBuilder builder(laws, settings, source);
-  for (int k = 0; k < static_cast<int>(path.segments.size()); ++k) {
-    if (Status s = builder.fit_segment(k); !s) return s.error();
-  }
-  LawReport& report = laws.report_;
-  report.pieces = laws.piece_count();
-  for (const LawPiece& piece : laws.pieces_) {
-    switch (piece.model) {
-      case LawModel::exact:
-        ++report.exact;
-        break;
-      case LawModel::sqrt_quadratic:
-        ++report.sqrt_quadratic;
-        break;
-      case LawModel::sqrt_fourier:
-        ++report.sqrt_fourier;
-        break;
-      case LawModel::polynomial:
-        ++report.polynomial;
-        break;
-    }
-    if (&piece == &laws.pieces_.front() || piece.fit_error > report.max_fit_error) {
-      report.max_fit_error = piece.fit_error;
-      report.max_fit_error_line = piece.line;
-    }
+    if (Status started = laws.take_start_values(); !started) return started.error();
   }
   return laws;
 }
 
+Result<StrutLaws> StrutLaws::window(const Machine& machine, const path::Path& path,
+                                    const std::optional<LawFitSettings>& settings,
+                                    const std::string& source) {
+  if (settings) {
+    if (Status s = law_fit_check_settings(*settings); !s) return s.error();
+  }
+  StrutLaws laws(machine, path);
+  laws.exact_ = !settings;
+  if (settings) laws.settings_ = *settings;
+  laws.source_ = source;
+  laws.finished_ = false;
+  laws.length_ = 0.0;
+  return laws;
+}
+
+Status StrutLaws::fit_through(int segment_end) {
+  if (exact_) {
+    for (; fitted_end_ < segment_end; ++fitted_end_) append_exact_piece(fitted_end_);
+  } else if (fitted_end_ < segment_end) {
+    StrutLawBuilder builder(*this, settings_, source_);
+    for (; fitted_end_ < segment_end; ++fitted_end_) {
+      const std::size_t first = pieces_.size();
+      if (Status s = builder.fit_segment(fitted_end_); !s) return s;
+      for (std::size_t p = first; p < pieces_.size(); ++p) account(pieces_[p]);
+    }
+  }
+  if (!finished_ && fitted_end_ > 0) {
+    const path::Segment& last = path_->segment(fitted_end_ - 1);
+    length_ = last.s_start + last.length;
+  }
+  return ok_status();
+}
+
+Status StrutLaws::finish() {
+  if (Status fitted = fit_through(path_->segment_end()); !fitted) return fitted;
+  finished_ = true;
+  length_ = path_->length();
+  if (fitted_end_ == 0 && !exact_) return take_start_values();
+  return ok_status();
+}
+
+void StrutLaws::drop_before(int segment) {
+  std::size_t drop = 0;
+  while (drop + 1 < pieces_.size() && pieces_[drop + 1].segment < segment) ++drop;
+  if (drop == 0 || 2 * drop < pieces_.size()) return;
+  const std::size_t coefficients = static_cast<std::size_t>(pieces_[drop].offset);
+  pieces_.erase(pieces_.begin(), pieces_.begin() + static_cast<std::ptrdiff_t>(drop));
+  piece_base_ += static_cast<int>(drop);
+  coefficients_.erase(coefficients_.begin(),
+                      coefficients_.begin() + static_cast<std::ptrdiff_t>(coefficients));
+  for (LawPiece& piece : pieces_) piece.offset -= static_cast<int>(coefficients);
+}
+
+void StrutLaws::append_exact_piece(int index) {
+  const path::Segment& segment = path_->segment(index);
+  LawPiece piece;
+  piece.s_start = segment.s_start;
+  piece.s_end = segment.s_start + segment.length;
+  piece.s_mid = 0.5 * (piece.s_start + piece.s_end);
+  piece.model = LawModel::exact;
+  piece.segment = index;
+  piece.line = segment.line;
+  pieces_.push_back(piece);
+  account(piece);
+}
+
+Status StrutLaws::take_start_values() {
+  auto ik = machine_->mechanism->inverse(law_fit_pose(path_->start));
+  if (!ik) {
+    return make_error(ik.error().code, fmt::format("{}: strut law: the path's start is out of reach: {}",
+                                                   source_, ik.error().message));
+  }
+  for (int j = 0; j < actuators_; ++j) start_values_[j] = (*ik)[j];
+  return ok_status();
+}
+
+// The report counts every piece ever fitted, also those a window has forgotten since.
+void StrutLaws::account(const LawPiece& piece) {
+  LawReport& report = report_;
+  switch (piece.model) {
+    case LawModel::exact:
+      ++report.exact;
+      break;
+    case LawModel::sqrt_quadratic:
+      ++report.sqrt_quadratic;
+      break;
+    case LawModel::sqrt_fourier:
+      ++report.sqrt_fourier;
+      break;
+    case LawModel::polynomial:
+      ++report.polynomial;
+      break;
+  }
+  // Exact pieces have no fit error (and no line of the largest one, as the whole exact laws report).
+  if (piece.model != LawModel::exact && (report.pieces == 0 || piece.fit_error > report.max_fit_error)) {
+    report.max_fit_error = piece.fit_error;
+    report.max_fit_error_line = piece.line;
+  }
+  ++report.pieces;
+}
+
 int StrutLaws::find_piece(double s, int hint) const noexcept {
-  const int n = piece_count();
-  if (n == 0) return 0;
-  int i = std::clamp(hint, 0, n - 1);
+  const int n = static_cast<int>(pieces_.size());
+  if (n == 0) return piece_base_;
+  int i = std::clamp(hint - piece_base_, 0, n - 1);
   if (s >= pieces_[i].s_start) {
     // Monotone use moves at most a piece or two per call; a long jump falls through to the binary search.
     for (int step = 0; step < 4; ++step) {
-      if (i + 1 == n || s < pieces_[i + 1].s_start) return i;
+      if (i + 1 == n || s < pieces_[i + 1].s_start) return piece_base_ + i;
       ++i;
     }
   }
   const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), s,
                                    [](double value, const LawPiece& piece) { return value < piece.s_start; });
-  return std::max(0, static_cast<int>(it - pieces_.begin()) - 1);
+  return piece_base_ + std::max(0, static_cast<int>(it - pieces_.begin()) - 1);
 }
 
 bool StrutLaws::solve_inverse(const path::PathPoint& point, double* actuators) const noexcept {
@@ -297,7 +359,7 @@ bool StrutLaws::evaluate(double s, int& hint, double* actuators) const noexcept 
     return true;
   }
   hint = find_piece(s, hint);
-  const LawPiece& piece = pieces_[hint];
+  const LawPiece& piece = pieces_[hint - piece_base_];
   if (piece.model == LawModel::exact) return solve_inverse(path_->evaluate(piece.segment, s), actuators);
   evaluate_fitted_piece(piece, coefficients_.data() + piece.offset, actuators_, s, actuators);
   return true;

@@ -14,7 +14,11 @@
 // A closed model that misses the tolerance falls back to the polynomial; a polynomial that misses it is
 // split in halves, recursively, down to a minimum piece length, where a remaining error is kept and reported
 // (LawReport), not refused. The tolerance defaults to 10 % of the strut budget of eq. 155 (§5.2.2).
+//
+// Along a plan made while it streams, the laws are a window too: segments are fitted once the plan has passed
+// them (they no longer change) and forgotten behind the interpolator, piece for piece as the whole path's.
 #include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -54,22 +58,38 @@ class StrutLaws {
   static Result<StrutLaws> fit(const Machine& machine, const path::Path& path, const LawFitSettings& settings,
                                const std::string& source);
 
+  /// Laws over a path still growing (a streamed plan's window): nothing fitted yet. Fitted with `settings`,
+  /// or exact (IK at every evaluation) without.
+  static Result<StrutLaws> window(const Machine& machine, const path::Path& path,
+                                  const std::optional<LawFitSettings>& settings, const std::string& source);
+  /// Fits the segments not fitted yet before `segment_end` (whole-path index); they must be final.
+  Status fit_through(int segment_end);
+  /// The path is whole: fits the rest; length() is then the path's.
+  Status finish();
+  /// One past the last segment fitted.
+  int fitted_end() const { return fitted_end_; }
+  /// The pieces held (a window's, or all).
+  std::size_t held_pieces() const { return pieces_.size(); }
+  /// Forgets the pieces of the segments before `segment` (amortised O(1)); their report stays.
+  void drop_before(int segment);
+
   int actuator_count() const { return actuators_; }
-  double length() const { return length_; }  ///< the path's length
+  double length() const { return length_; }  ///< the path's length (a window's: as far as it is fitted)
   /// Actuator values at path parameter s (clamped to [0, length()]); `hint` is a piece index, updated
   /// (monotone use is O(1), any s works). False only when IK fails (exact model). No allocation.
   bool evaluate(double s, int& hint, double* actuators) const noexcept;
-  int piece_count() const { return static_cast<int>(pieces_.size()); }
-  LawModel model(int piece) const { return pieces_[piece].model; }
-  int line(int piece) const { return pieces_[piece].line; }  ///< source line of the piece's segment
+  /// One past the last piece's index (pieces are numbered along the whole path, also in a window).
+  int piece_count() const { return piece_base_ + static_cast<int>(pieces_.size()); }
+  LawModel model(int piece) const { return pieces_[piece - piece_base_].model; }
+  int line(int piece) const { return pieces_[piece - piece_base_].line; }  ///< the piece's source line
   const LawReport& report() const { return report_; }
 
   /// The whole piece: its span of s, segment, local variable and measured fit error.
-  const LawPiece& piece(int index) const { return pieces_[index]; }
+  const LawPiece& piece(int index) const { return pieces_[index - piece_base_]; }
   /// Actuator `actuator`'s coefficients on `piece` in the piece's basis (strut_law_piece.hpp); empty for
   /// exact pieces.
   std::span<const double> coefficients(int piece, int actuator) const {
-    const LawPiece& p = pieces_[piece];
+    const LawPiece& p = pieces_[piece - piece_base_];
     return {coefficients_.data() + p.offset + static_cast<std::size_t>(p.stride) * actuator,
             static_cast<std::size_t>(p.stride)};
   }
@@ -80,14 +100,22 @@ class StrutLaws {
   friend class StrutLawBuilder;
   StrutLaws(const Machine& machine, const path::Path& path);
   bool solve_inverse(const path::PathPoint& point, double* actuators) const noexcept;
+  void append_exact_piece(int segment);
+  Status take_start_values();
+  void account(const LawPiece& piece);
 
   const Machine* machine_ = nullptr;
   const path::Path* path_ = nullptr;
   int actuators_ = 0;
   double length_ = 0.0;
   bool exact_ = true;
-  std::vector<LawPiece> pieces_;
-  std::vector<double> coefficients_;
+  std::vector<LawPiece> pieces_;      ///< from piece piece_base_ on
+  std::vector<double> coefficients_;  ///< the pieces' offsets index this table
+  int piece_base_ = 0;
+  int fitted_end_ = 0;  ///< segments fitted: [0, fitted_end_)
+  bool finished_ = true;
+  LawFitSettings settings_;
+  std::string source_;
   std::array<double, kMaxActuators> start_values_{};  ///< fitted laws of a path without segments
   LawReport report_;
 };
