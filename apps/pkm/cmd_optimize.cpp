@@ -1,5 +1,5 @@
-// pkm optimize PROGRAM --machine M.yaml --law increment|force|energy --free spin|all [--bounds LO,HI]
-//   [--step-mm S] [--load SPEC] [--solver greedy|global] --out OUT.ngc [--json]:
+// pkm optimize PROGRAM --machine M.yaml --law increment|force|energy|rotation|potential --free spin|all
+//   [--bounds LO,HI] [--step-mm S] [--load SPEC] [--solver greedy|global] --out OUT.ngc [--json]:
 // Smirnov's post-processor (§3.6). Chooses the coordinates the operation leaves free by a drive control law
 // and writes the program with A B C; prints how much the law saves against holding them constant.
 #include <fmt/format.h>

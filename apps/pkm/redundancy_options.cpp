@@ -10,8 +10,9 @@
 namespace pkm::cli {
 
 void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, bool law_required) {
-  auto* law = command.add_option("--law", arguments.law,
-                                 "drive control law for the free coordinates: increment | force | energy");
+  auto* law = command.add_option(
+      "--law", arguments.law,
+      "drive control law for the free coordinates: increment | force | energy | rotation | potential");
   if (law_required) law->required();
   command
       .add_option("--free", arguments.free,
@@ -96,8 +97,9 @@ Result<redundancy::OptimizeOptions> redundancy_options(const RedundancyArguments
   redundancy::OptimizeOptions options;
   auto law = redundancy::law_from_string(arguments.law);
   if (!law) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("--law {}: expected increment, force or energy", arguments.law));
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("--law {}: expected increment, force, energy, rotation or potential", arguments.law));
   }
   options.law.law = *law;
   auto free = redundancy::free_set_from_string(arguments.free);

@@ -17,8 +17,9 @@ Result<redundancy::OptimizeOptions> optimize_options(const LawArguments& a) {
   redundancy::OptimizeOptions options;
   const auto law = redundancy::law_from_string(a.law);
   if (!law)
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("law '{}': expected increment, force or energy", a.law));
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("law '{}': expected increment, force, energy, rotation or potential", a.law));
   options.law.law = *law;
   const auto free = redundancy::free_set_from_string(a.free);
   if (!free) return make_error(ErrorCode::bad_input, fmt::format("free '{}': expected spin or all", a.free));

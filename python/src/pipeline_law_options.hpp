@@ -11,7 +11,7 @@
 namespace pkm::python {
 
 struct LawArguments {
-  std::string law;  ///< increment | force | energy
+  std::string law;  ///< increment | force | energy | rotation | potential
   std::string free = "spin";
   std::optional<std::array<double, 2>> bounds_deg;
   double step_mm = 1.0;

@@ -41,6 +41,8 @@ py::dict metrics_arrays(const redundancy::TrajectoryMetrics& metrics) {
   out["peak_force_N"] = metrics.peak_force_N;
   out["energy_J"] = metrics.energy_J;
   out["required_work_J"] = metrics.required_work_J;
+  out["rotation_sum_deg"] = metrics.rotation_sum_deg;
+  out["min_limit_margin"] = metrics.min_limit_margin;  // NaN without actuator limits
   out["max_increment_mm"] = numpy_from(std::vector<double>(metrics.max_increment_mm));
   out["max_force_N"] = numpy_from(std::vector<double>(metrics.max_force_N));
   out["cumulative_energy_J"] = numpy_from(std::vector<double>(metrics.cumulative_energy_J));
@@ -117,7 +119,7 @@ energies, ranges...), free_coordinates (names), and per optimised point (K point
 position_mm (K, 3) tool point (base frame), free_rad (K, F) the chosen free coordinates, actuators_mm (K, n)
 (actuators_rad for angular actuators; NaN where unreachable); chosen and constant: the metrics of the law's
 trajectory and of holding the free coordinates constant (increment_sum_mm, peak_force_N, energy_J,
-required_work_J, feasible, and per point max_increment_mm, max_force_N, cumulative_energy_J (K,));
+required_work_J, rotation_sum_deg, min_limit_margin (NaN without actuator limits), feasible, and per point max_increment_mm, max_force_N, cumulative_energy_J (K,));
 program: the rewritten program as pkm.interpret returns it.)doc");
 }
 

@@ -1,5 +1,7 @@
 #include "formats/optimize_summary.hpp"
 
+#include <cmath>
+
 #include "core/units.hpp"
 
 namespace pkm::formats {
@@ -14,6 +16,10 @@ nlohmann::json metrics_json(const redundancy::TrajectoryMetrics& metrics, int fr
   json["peak_force_N"] = metrics.peak_force_N;
   json["energy_J"] = metrics.energy_J;
   json["required_work_J"] = metrics.required_work_J;
+  json["rotation_sum_deg"] = metrics.rotation_sum_deg;
+  // null: the machine file gives no actuator range
+  json["min_limit_margin"] =
+      std::isfinite(metrics.min_limit_margin) ? nlohmann::json(metrics.min_limit_margin) : nlohmann::json();
   nlohmann::json range = nlohmann::json::array();
   for (int i = 0; i < free_count; ++i) {
     range.push_back({deg_from_rad(metrics.min_rad[i]), deg_from_rad(metrics.max_rad[i])});
@@ -57,6 +63,8 @@ nlohmann::json optimize_summary_json(const redundancy::OptimizeResult& result,
   json["energy_const_J"] = constant.energy_J;
   json["energy_opt_J"] = opt.energy_J;
   json["required_work_J"] = opt.required_work_J;
+  json["rotation_const_deg"] = constant.rotation_sum_deg;
+  json["rotation_opt_deg"] = opt.rotation_sum_deg;
   json["free_range_deg"] = metrics_json(opt, result.free_count)["range_deg"];
   json["const"] = metrics_json(constant, result.free_count);
   json["greedy"] = metrics_json(result.greedy.metrics, result.free_count);

@@ -168,7 +168,7 @@ Result<Trajectory> solve_greedy(const Problem& problem, const GreedySettings& se
   std::optional<SimplexSearch> search;
   if (free.count() > 1) search.emplace(free, settings);
   trajectory.values[0] = free.start();
-  if (law.options().law == Law::force) {
+  if (is_pointwise(law.options().law)) {
     // The force law is pointwise: the start is chosen like any other point (the leading rapid goes there).
     Node unused;
     law.evaluate(problem.points[0], problem.loads[0], free.start(), unused, false);

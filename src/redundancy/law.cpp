@@ -15,6 +15,8 @@ std::optional<Law> law_from_string(std::string_view name) {
   if (name == "increment") return Law::increment;
   if (name == "force") return Law::force;
   if (name == "energy") return Law::energy;
+  if (name == "rotation") return Law::rotation;
+  if (name == "potential") return Law::potential;
   return std::nullopt;
 }
 
@@ -26,8 +28,16 @@ std::string_view to_string(Law law) {
       return "force";
     case Law::energy:
       return "energy";
+    case Law::rotation:
+      return "rotation";
+    case Law::potential:
+      return "potential";
   }
   return "increment";
+}
+
+bool is_pointwise(Law law) {
+  return law == Law::force || law == Law::potential;
 }
 
 std::optional<EnergyAccounting> energy_accounting_from_string(std::string_view name) {
@@ -64,7 +74,8 @@ LawEvaluator::LawEvaluator(const Machine& machine, const FreeCoordinates& free, 
     : machine_(machine),
       free_(free),
       options_(options),
-      need_forces_(need_forces || options.law != Law::increment || options.force_limit_N.has_value()),
+      need_forces_(need_forces || options.law == Law::force || options.law == Law::energy ||
+                   options.force_limit_N.has_value()),
       characteristic_length_mm_(machine.mechanism->platform_size_mm()) {
   const Mechanism& mechanism = *machine.mechanism;
   JacobianMatrix twist;
@@ -113,6 +124,7 @@ bool LawEvaluator::evaluate(const PathPoint& point, const statics::Wrench& load,
                             Node& node, bool check_branch) const noexcept {
   node.valid = false;
   const Pose pose = free_.pose(point, values);
+  node.pose = pose;
   const int n = machine_.mechanism->actuator_count();
   node.lengths.resize(n);
   if (!machine_.mechanism->actuator_values(pose, node.lengths.data())) return false;
@@ -203,8 +215,28 @@ double LawEvaluator::step_cost(const Node& from, const Node& to) const noexcept 
       return to.forces.cwiseAbs().maxCoeff();
     case Law::energy:
       return step_energy_Nmm(from, to);
+    case Law::rotation:
+      return Eigen::AngleAxisd(from.pose.rotation.transpose() * to.pose.rotation).angle();
+    case Law::potential:
+      return limit_potential(to);
   }
   return 0.0;
+}
+
+// V(u) = 1/u + 1/(1 − u) − 4 per actuator, u its place in [actuator_min, actuator_max]: 0 mid-range, +∞ at
+// a limit (the barrier of the virtual-potential scenario; optimize_program checks that both limits are
+// given).
+double LawEvaluator::limit_potential(const Node& node) const noexcept {
+  const ActuatorLimits& limits = machine_.limits;
+  if (!limits.min || !limits.max || !(*limits.max > *limits.min)) return 0.0;
+  const double range = *limits.max - *limits.min;
+  double total = 0.0;
+  for (Eigen::Index j = 0; j < node.lengths.size(); ++j) {
+    const double u = (node.lengths[j] - *limits.min) / range;
+    if (!(u > 0.0 && u < 1.0)) return std::numeric_limits<double>::infinity();
+    total += 1.0 / u + 1.0 / (1.0 - u) - 4.0;
+  }
+  return total;
 }
 
 }  // namespace pkm::redundancy

@@ -1,9 +1,18 @@
 #pragma once
-// The three drive control laws of Smirnov 2019, ch. 3, and what one path point costs under them.
+// The three drive control laws of Smirnov 2019, ch. 3, the two inverse-kinematics scenarios of Rusanov et
+// al.'s glide machines (their §3), and what one path point costs under them.
 //
 //  increment (72)/(89)/(90): per step, max_j |ΔL_j| → min  (strut speed limited: step time ∝ the largest
-//  change) force     (75)/(92):      per point, max_j |P_j| → min  (lower peak drive loads) energy
-//  (76)/(88)/(93): per step, Σ_j |ΔL_j·P_j| → min, bounded below by the required work |A_ext|
+//            change)
+//  force     (75)/(92): per point, max_j |P_j| → min  (lower peak drive loads)
+//  energy    (76)/(88)/(93): per step, Σ_j |ΔL_j·P_j| → min, bounded below by the required work |A_ext|
+//  rotation  the "simple matrix" scenario: per step, the angle of the platform's rotation → min. Its least
+//            value is the minimal rotation taking one tool axis to the next (Rodrigues, about n_old × n_new):
+//            the spin about the tool axis moves only where the rest of the law asks for it
+//  potential the "virtual potential" scenario: per point, Σ_j V(u_j) → min with u_j the actuator's place in
+//  its
+//            range (0 at actuator_min, 1 at actuator_max) and V(u) = 1/u + 1/(1 − u) − 4, a barrier that is 0
+//            mid-range and grows without bound at either limit: the joints kept away from their limits
 //
 // A node is one candidate pose at one path point: its actuator positions and, when the law needs them, the
 // actuator forces that hold the platform against the load there (statics, J^T P = −w, (73)/(91)).
@@ -17,7 +26,9 @@
 
 namespace pkm::redundancy {
 
-enum class Law { increment, force, energy };
+enum class Law { increment, force, energy, rotation, potential };
+/// Whether the law's cost is that of a point alone (force, potential), which may also choose the start.
+bool is_pointwise(Law law);
 std::optional<Law> law_from_string(std::string_view name);
 std::string_view to_string(Law law);
 
@@ -59,7 +70,7 @@ struct Node {
   ActuatorVector forces;   ///< N; zero when the law needs no forces (dynamic model: the static part)
   bool valid = false;
   // Under the dynamic force model, what the step into this node needs to move the platform:
-  Pose pose;             ///< complete
+  Pose pose;             ///< the candidate pose (complete under the dynamic model)
   statics::Wrench load;  ///< the process load here
   double step_s = 0.0;   ///< the step's time at the feed (0: a rapid or the start, forces at rest)
 };
@@ -88,13 +99,15 @@ class LawEvaluator {
   /// det J normalised as LawOptions::singularity_margin says (NaN when unreachable).
   double normalized_determinant(const Pose& pose) const noexcept;
 
-  /// The law's cost of the step from → to (force law: the cost of `to` alone).
+  /// The law's cost of the step from → to (pointwise laws: the cost of `to` alone).
   double step_cost(const Node& from, const Node& to) const noexcept;
   /// Σ_j |ΔL_j P_j| in the chosen accounting, N·mm.
   double step_energy_Nmm(const Node& from, const Node& to) const noexcept;
   /// The drive forces of the step from → to (N): the statics' at `to`, or under the dynamic model those of
   /// the platform moving through the step at the feed.
   ActuatorVector step_forces(const Node& from, const Node& to) const noexcept;
+  /// The potential law's barrier at a node (0: every actuator mid-range).
+  double limit_potential(const Node& node) const noexcept;
 
  private:
   const Machine& machine_;

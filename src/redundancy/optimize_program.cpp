@@ -69,6 +69,15 @@ Result<OptimizeResult> optimize_program(const program::CanonicalProgram& program
                              machine.source),
                  ErrorLocation{machine.source, 0, 0, "dynamics"}};
   }
+  if (options.law.law == Law::potential &&
+      !(machine.limits.min && machine.limits.max && *machine.limits.max > *machine.limits.min)) {
+    return Error{
+        ErrorCode::bad_input,
+        fmt::format("{}: the potential law keeps the actuators away from their limits and needs both: "
+                    "limits.actuator_min and limits.actuator_max",
+                    machine.source),
+        ErrorLocation{machine.source, 0, 0, "limits"}};
+  }
   auto sampled = sample_program(program, machine, options.step_mm);
   if (!sampled) return sampled.error();
   OptimizeResult result;

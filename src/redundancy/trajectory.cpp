@@ -18,8 +18,8 @@ Trajectory constant_trajectory(const Problem& problem) {
 
 double law_total(const Problem& problem, const Trajectory& trajectory) {
   if (trajectory.nodes.empty() || !trajectory.nodes[0].valid) return std::numeric_limits<double>::infinity();
-  // The force law pays for every point, the start included; the step laws for every step.
-  double total = problem.law->options().law == Law::force
+  // A pointwise law pays for every point, the start included; the step laws for every step.
+  double total = is_pointwise(problem.law->options().law)
                      ? problem.law->step_cost(trajectory.nodes[0], trajectory.nodes[0])
                      : 0.0;
   for (std::size_t k = 1; k < trajectory.nodes.size(); ++k) {

@@ -1,6 +1,10 @@
 #include "redundancy/trajectory_metrics.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
+
+#include "core/units.hpp"
 
 namespace pkm::redundancy {
 
@@ -14,6 +18,9 @@ TrajectoryMetrics measure(const Problem& problem, const Trajectory& trajectory) 
   metrics.max_force_N.assign(points, 0.0);
   metrics.cumulative_energy_J.assign(points, 0.0);
   metrics.min_rad = metrics.max_rad = trajectory.values.empty() ? FreeValues::Zero() : trajectory.values[0];
+  const ActuatorLimits& limits = law.machine().limits;
+  const bool ranged = limits.min && limits.max && *limits.max > *limits.min;
+  metrics.min_limit_margin = ranged ? 0.5 : std::numeric_limits<double>::quiet_NaN();
   for (int k = 0; k < points; ++k) {
     const Node& node = trajectory.nodes[k];
     for (int i = 0; i < c; ++i) {
@@ -25,6 +32,12 @@ TrajectoryMetrics measure(const Problem& problem, const Trajectory& trajectory) 
       metrics.feasible = false;
       continue;
     }
+    if (ranged) {
+      const double range = *limits.max - *limits.min;
+      const double nearest = std::min((node.lengths.array() - *limits.min).minCoeff(),
+                                      (*limits.max - node.lengths.array()).minCoeff());
+      metrics.min_limit_margin = std::min(metrics.min_limit_margin, nearest / range);
+    }
     metrics.max_force_N[k] = node.forces.cwiseAbs().maxCoeff();
     metrics.peak_force_N = std::max(metrics.peak_force_N, metrics.max_force_N[k]);
     if (k == 0) continue;
@@ -33,6 +46,8 @@ TrajectoryMetrics measure(const Problem& problem, const Trajectory& trajectory) 
     if (!previous.valid) continue;
     const ActuatorVector change = node.lengths - previous.lengths;
     metrics.max_increment_mm[k] = change.cwiseAbs().maxCoeff();
+    metrics.rotation_sum_deg +=
+        deg_from_rad(Eigen::AngleAxisd(previous.pose.rotation.transpose() * node.pose.rotation).angle());
     metrics.increment_sum_mm += metrics.max_increment_mm[k];
     const double energy = law.step_energy_Nmm(previous, node) * kJoulePerNmm;
     metrics.energy_J += energy;

@@ -1,7 +1,8 @@
 #pragma once
 // What a choice of free coordinates does to the machine (eqs. (83), (86), (87)): the sum of the largest strut
 // increments (∝ machining time when strut speed is the limit), the peak actuator force, the drive energy and
-// the work the loads require.
+// the work the loads require; and what the glide scenarios weigh: the platform's total rotation and how close
+// the actuators come to their limits.
 #include <vector>
 
 #include "redundancy/trajectory.hpp"
@@ -15,6 +16,10 @@ struct TrajectoryMetrics {
   double peak_force_N = 0.0;      ///< max_k max_j |P_jk|
   double energy_J = 0.0;          ///< Σ_k Σ_j |ΔL_jk P_jk| in the law's accounting, (86)
   double required_work_J = 0.0;   ///< Σ_k |Σ_j ΔL_jk P_jk| = |work of the loads|, (87)
+  double rotation_sum_deg = 0.0;  ///< Σ_k the angle of the platform's rotation from point k − 1 to k
+  /// The smallest distance of any actuator from its nearer limit, as a share of its range (0.5: mid-range;
+  /// NaN when the machine file gives no actuator_min and actuator_max).
+  double min_limit_margin = 0.0;
   FreeValues min_rad = FreeValues::Zero();
   FreeValues max_rad = FreeValues::Zero();
   // Per point, for plots and reports (point 0 has zero increments).

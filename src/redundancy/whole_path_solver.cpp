@@ -50,7 +50,7 @@ double dynamic_programming(const Problem& problem, const std::vector<std::vector
       if (!law.evaluate(problem.points[k], problem.loads[k], values[s], layer.nodes[s], k > 0)) continue;
       if (k == 0) {
         // The force law also pays for the start point, which it may choose (greedy_solver).
-        layer.cost[s] = law.options().law == Law::force ? law.step_cost(layer.nodes[s], layer.nodes[s]) : 0.0;
+        layer.cost[s] = is_pointwise(law.options().law) ? law.step_cost(layer.nodes[s], layer.nodes[s]) : 0.0;
         continue;
       }
       const Layer& previous = layers[k - 1];
@@ -120,7 +120,7 @@ Result<Trajectory> solve_whole_path(const Problem& problem, const Trajectory& in
   const LawEvaluator& law = *problem.law;
   const FreeCoordinates& free = law.free();
   const int points = static_cast<int>(problem.points.size());
-  const bool free_start = law.options().law == Law::force;
+  const bool free_start = is_pointwise(law.options().law);
   std::optional<double> rate;
   if (settings.max_rate_deg_per_mm) rate = rad_from_deg(*settings.max_rate_deg_per_mm);
 

@@ -285,6 +285,22 @@ def test_optimize_matches_cli(tmp_path):
     assert (result["free_rad"] >= lo - 1e-12).all() and (result["free_rad"] <= hi + 1e-12).all()
 
 
+def test_optimize_glide_scenarios_measure_rotation_and_limit_margin(tmp_path):
+    """The rotation law turns the hexaglide's platform no more than holding the spin; the potential law keeps the
+    carriages at least as far from their limits as the increment law; both metrics are in every run's dicts."""
+    machine = pkm.Machine.load(machine_path("hexaglide"))
+    program = program_path("hexapod_tilt.ngc")
+    runs = {law: pkm.optimize(machine, program, law, solver="global") for law in ("increment", "rotation", "potential")}
+    for law, run in runs.items():
+        for metrics in (run["chosen"], run["constant"]):
+            assert metrics["rotation_sum_deg"] > 0.0, law
+            assert 0.0 < metrics["min_limit_margin"] <= 0.5, law
+        assert run["summary"]["rotation_opt_deg"] == run["chosen"]["rotation_sum_deg"]
+    assert runs["rotation"]["chosen"]["rotation_sum_deg"] <= runs["rotation"]["constant"]["rotation_sum_deg"] + 1e-9
+    assert runs["rotation"]["chosen"]["rotation_sum_deg"] <= runs["increment"]["chosen"]["rotation_sum_deg"] + 1e-9
+    assert runs["potential"]["chosen"]["min_limit_margin"] >= runs["increment"]["chosen"]["min_limit_margin"]
+
+
 def straight_then_reversal(tmp_path):
     """160 moves of 0.5 mm at the ch5 hexapod's fastest feed, then straight back (a stop)."""
     lines = ["G21 G90 G17 G94", "G0 X-40 Y0 Z0", "G1 F6000"]
