@@ -7,6 +7,7 @@
 #include "core/rotation.hpp"
 #include "core/units.hpp"
 #include "path/curve.hpp"
+#include "path/path_builder.hpp"
 #include "planning/motion_plan.hpp"
 
 namespace pkm::redundancy {
@@ -60,6 +61,24 @@ void set_orientation(CanonicalMove& move, const Eigen::Matrix3d& rotation, Eigen
   move.orientation = program::OrientationSource::abc;
 }
 
+// The moves before the points (the approach) keep their orientation; written with A B C, a tool axis becomes
+// the rotation the planner gives it (a dwell keeps the angles before it). Returns the angles at the end.
+Eigen::Vector3d approach_as_abc(std::vector<CanonicalMove>& approach, const path::PathFrame& frame,
+                                const Eigen::Vector3d& tool_axis_platform, Eigen::Vector3d abc) {
+  for (CanonicalMove& move : approach) {
+    if (move.orientation == program::OrientationSource::abc) {
+      abc = move.end_abc_deg;
+    } else if (move.kind == MoveKind::dwell) {
+      move.end_abc_deg = abc;
+      move.orientation = program::OrientationSource::abc;
+    } else {
+      set_orientation(move, path::program_rotation(move, frame).toRotationMatrix(), abc, frame.planar, false,
+                      tool_axis_platform);
+    }
+  }
+  return abc;
+}
+
 }  // namespace
 
 program::CanonicalProgram program_through_poses(const program::CanonicalProgram& program,
@@ -73,6 +92,8 @@ program::CanonicalProgram program_through_poses(const program::CanonicalProgram&
       points.frame.reference_rotation.conjugate() * Eigen::Vector3d::UnitZ();
   Eigen::Vector3d abc =
       points.first_move > 0 ? program.moves[points.first_move - 1].end_abc_deg : program.start_abc_deg;
+  if (!keep_tool_axes)
+    abc = approach_as_abc(out.moves, points.frame, tool_axis_platform, program.start_abc_deg);
   abc = continuous_abc_deg(poses[0].rotation, abc, planar);
   if (points.first_move > 0) {
     // The leading rapid ends where the points start.

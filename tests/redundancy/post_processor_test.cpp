@@ -89,5 +89,42 @@ TEST(PostProcessor, MachiningTimeDropsByTheIncrementRatio) {
       << optimized_run.summary.duration_s << " s";
 }
 
+// CL data gives the tool as an axis vector; the written G-code has A B C on every move, the approach before
+// the optimised points included, each meaning the CL's tool axis, and it plans on the machine.
+TEST(PostProcessor, AFiveAxisClProgramIsWrittenWithAnglesThatMeanItsToolAxes) {
+  for (const char* file : {"hexaglide.yaml", "hexapod_ch5.yaml"}) {
+    const Machine machine = machine_from_example(std::string("examples/machines/") + file);
+    const planning::ProgramStart start = planning::program_start(machine);
+    program::InterpretOptions interpret;
+    interpret.start_mm = start.start_mm;
+    interpret.start_abc_deg = start.start_abc_deg;
+    auto cl = program::load_part_program(source_path("examples/programs/ball_end_5axis.cl"), interpret);
+    ASSERT_TRUE(cl.ok()) << cl.error().message;
+    redundancy::OptimizeOptions options;
+    options.law.law = Law::rotation;
+    options.step_mm = 5.0;
+    const auto result = optimize_or_fail(machine, *cl, options);
+    const Eigen::Vector3d axis = machine.mechanism->home().rotation.transpose() * Eigen::Vector3d::UnitZ();
+    int approach = 0;
+    for (const program::CanonicalMove& move : result.program.moves) {
+      ASSERT_EQ(move.orientation, program::OrientationSource::abc) << file << " line " << move.line;
+    }
+    // The approach: the moves before the optimised points, kept as programmed.
+    for (int m = 0; m < result.points.first_move; ++m) {
+      const program::CanonicalMove& original = cl->moves[m];
+      const program::CanonicalMove& written = result.program.moves[m];
+      ASSERT_EQ(written.line, original.line);
+      const Eigen::Matrix3d rotation =
+          rotation_from_angles(AngleConvention::abc, written.end_abc_deg * std::numbers::pi / 180.0);
+      EXPECT_LT((rotation * axis - original.tool_axis.normalized()).norm(), 1e-9)
+          << file << " line " << original.line;
+      ++approach;
+    }
+    EXPECT_GE(approach, 1) << file;
+    const auto written = reinterpret(machine, result.program);
+    EXPECT_GT(plan_or_fail(machine, written).duration_s, 0.0) << file;
+  }
+}
+
 }  // namespace
 }  // namespace pkm::test
