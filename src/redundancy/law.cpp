@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -223,20 +224,21 @@ double LawEvaluator::step_cost(const Node& from, const Node& to) const noexcept 
   return 0.0;
 }
 
-// V(u) = 1/u + 1/(1 − u) − 4 per actuator, u its place in [actuator_min, actuator_max]: 0 mid-range, +∞ at
-// a limit (the barrier of the virtual-potential scenario; optimize_program checks that both limits are
-// given).
+// The largest V(u) = 1/u + 1/(1 − u) − 4 over the actuators, u an actuator's place in [actuator_min,
+// actuator_max]: 0 mid-range, +∞ at a limit (the barrier of the virtual-potential scenario; optimize_program
+// checks that both limits are given). The largest, not the sum: the actuator nearest its limit decides, as
+// the largest force does in the force law, so the law keeps the smallest margin as large as it can be.
 double LawEvaluator::limit_potential(const Node& node) const noexcept {
   const ActuatorLimits& limits = machine_.limits;
   if (!limits.min || !limits.max || !(*limits.max > *limits.min)) return 0.0;
   const double range = *limits.max - *limits.min;
-  double total = 0.0;
+  double largest = 0.0;
   for (Eigen::Index j = 0; j < node.lengths.size(); ++j) {
     const double u = (node.lengths[j] - *limits.min) / range;
     if (!(u > 0.0 && u < 1.0)) return std::numeric_limits<double>::infinity();
-    total += 1.0 / u + 1.0 / (1.0 - u) - 4.0;
+    largest = std::max(largest, 1.0 / u + 1.0 / (1.0 - u) - 4.0);
   }
-  return total;
+  return largest;
 }
 
 }  // namespace pkm::redundancy

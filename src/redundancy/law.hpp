@@ -9,10 +9,9 @@
 //  rotation  the "simple matrix" scenario: per step, the angle of the platform's rotation → min. Its least
 //            value is the minimal rotation taking one tool axis to the next (Rodrigues, about n_old × n_new):
 //            the spin about the tool axis moves only where the rest of the law asks for it
-//  potential the "virtual potential" scenario: per point, Σ_j V(u_j) → min with u_j the actuator's place in
-//  its
-//            range (0 at actuator_min, 1 at actuator_max) and V(u) = 1/u + 1/(1 − u) − 4, a barrier that is 0
-//            mid-range and grows without bound at either limit: the joints kept away from their limits
+//  potential the "virtual potential" scenario: per point, max_j V(u_j) → min with u_j the actuator's place in
+//            its range (0 at actuator_min, 1 at actuator_max) and V(u) = 1/u + 1/(1 − u) − 4, a barrier that
+//            is 0 mid-range and grows without bound at either limit: the joints kept away from their limits
 //
 // A node is one candidate pose at one path point: its actuator positions and, when the law needs them, the
 // actuator forces that hold the platform against the load there (statics, J^T P = −w, (73)/(91)).
@@ -106,7 +105,7 @@ class LawEvaluator {
   /// The drive forces of the step from → to (N): the statics' at `to`, or under the dynamic model those of
   /// the platform moving through the step at the feed.
   ActuatorVector step_forces(const Node& from, const Node& to) const noexcept;
-  /// The potential law's barrier at a node (0: every actuator mid-range).
+  /// The potential law's barrier at a node: its actuators' largest (0: every actuator mid-range).
   double limit_potential(const Node& node) const noexcept;
 
  private:
