@@ -138,6 +138,15 @@ def act(command, what, value):
 
 def run_stream(path, stat, command, recorder, timeout_s, actions):
     """Feeds a pkm execution stream to pkmexec and waits for its end; pkm_feed.py's exit status and words."""
+    stat.poll()
+    if stat.task_state == linuxcnc.STATE_ON:
+        # As an operator would, the stream starts once LinuxCNC has settled after what ran before (halui's idle
+        # pin and motion's in-position follow the task's own state a few of their periods later, longer on a
+        # loaded machine). A hand-over that never comes is pkm_feed's to report.
+        try:
+            wait_for(lambda s: hal.get_value("pkmexec.enable"), stat, recorder, 5, "the hand-over to pkmexec")
+        except TimeoutError:
+            pass
     feeder = subprocess.Popen(["/usr/bin/python3", FEEDER, "--machine-on", path], stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, text=True)
     started = time.monotonic()
