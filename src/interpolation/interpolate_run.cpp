@@ -194,15 +194,15 @@ double window_lead_s(const InterpolateOptions& options) {
 // The carrier methods along `path` with `laws` and `timing`; with a `feed`, those are the windows of a plan
 // made while it streams, kept ahead of the interpolator and released behind it.
 Status run_carrier(const Machine& machine, const path::Path& path, const IdealTiming& timing,
-                   StrutLaws& laws_held, PlanWindowFeed* feed, const InterpolateOptions& options, double step,
-                   InterpolateSummary& summary, RunRecorder& recorder, const std::string& source) {
+                   const StrutLaws& laws, PlanWindowFeed* feed, const InterpolateOptions& options,
+                   double step, InterpolateSummary& summary, RunRecorder& recorder,
+                   const std::string& source) {
   const int n = summary.actuators;
-  const StrutLaws* laws = &laws_held;
   const double lead_s = window_lead_s(options);
   if (feed != nullptr) {
     if (Status reached = feed->advance(0.0, lead_s); !reached) return reached;
   }
-  CarrierInterpolator carrier(*laws, timing, carrier_settings_for(machine, options, step, summary));
+  CarrierInterpolator carrier(laws, timing, carrier_settings_for(machine, options, step, summary));
   std::array<double, kMaxActuators> ideal_start{};
   if (Status started = carrier.start(ideal_start); !started) {
     return Error{started.error().code, fmt::format("{}: {}", source, started.error().message)};
@@ -249,7 +249,7 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
       if (corrected) {
         if (Status chosen = corrector.quantize(period, out); !chosen) {
           return Error{chosen.error().code,
-                       fmt::format("{}:{}: {}", source, laws->line(period.hint), chosen.error().message)};
+                       fmt::format("{}:{}: {}", source, laws.line(period.hint), chosen.error().message)};
         }
       } else {
         remainder.quantize(period, out);
@@ -273,7 +273,7 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
     summary.ideal_end = period.target;
     if (feed != nullptr) feed->release_behind(period.s_start, period.tau_start_s);
   }
-  summary.laws = laws->report();
+  summary.laws = laws.report();
   if (carrier.error()) {
     return Error{carrier.error()->code, fmt::format("{}:{}", source, carrier.error()->message)};
   }
