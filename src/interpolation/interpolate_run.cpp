@@ -191,6 +191,25 @@ double window_lead_s(const InterpolateOptions& options) {
   return std::max(1.0, 100.0 * options.period_s) * largest;
 }
 
+// What a carrier run measured, into its summary.
+void summarise_carrier_run(const CarrierInterpolator& carrier, const ContourMonitor& monitor,
+                           const DiscretenessCorrector& corrector, const RemainderQuantizer& remainder,
+                           bool corrected, InterpolateSummary& summary) {
+  summary.carrier = carrier.statistics();
+  summary.periods = summary.carrier.periods;
+  summary.ideal_time_s = summary.carrier.ideal_time_s;
+  summary.real_time_s = summary.carrier.real_time_s;
+  summary.contour = monitor.statistics();
+  summary.corrector = corrector.statistics();
+  summary.max_remainder_steps = remainder.max_remainder_steps();
+  summary.end_position = corrected ? corrector.position() : remainder.position();
+  if (summary.periods > 0 && corrected) {
+    const double periods = static_cast<double>(summary.periods);
+    summary.fk_solves_per_period = static_cast<double>(summary.corrector.fk_solves) / periods;
+    summary.jacobians_per_period = static_cast<double>(summary.corrector.jacobians) / periods;
+  }
+}
+
 // The carrier methods along `path` with `laws` and `timing`; with a `feed`, those are the windows of a plan
 // made while it streams, kept ahead of the interpolator and released behind it.
 Status run_carrier(const Machine& machine, const path::Path& path, const IdealTiming& timing,
@@ -277,21 +296,7 @@ Status run_carrier(const Machine& machine, const path::Path& path, const IdealTi
   if (carrier.error()) {
     return Error{carrier.error()->code, fmt::format("{}:{}", source, carrier.error()->message)};
   }
-  summary.carrier = carrier.statistics();
-  summary.periods = summary.carrier.periods;
-  summary.ideal_time_s = summary.carrier.ideal_time_s;
-  summary.real_time_s = summary.carrier.real_time_s;
-  summary.contour = monitor.statistics();
-  summary.corrector = corrector.statistics();
-  summary.max_remainder_steps = remainder.max_remainder_steps();
-  summary.end_position = corrected ? corrector.position() : remainder.position();
-  if (summary.periods > 0) {
-    const double periods = static_cast<double>(summary.periods);
-    if (corrected) {
-      summary.fk_solves_per_period = static_cast<double>(summary.corrector.fk_solves) / periods;
-      summary.jacobians_per_period = static_cast<double>(summary.corrector.jacobians) / periods;
-    }
-  }
+  summarise_carrier_run(carrier, monitor, corrector, remainder, corrected, summary);
   return ok_status();
 }
 
