@@ -1,5 +1,6 @@
 // pkm optimize PROGRAM --machine M.yaml --law increment|force|energy|rotation|potential --free spin|all
-//   [--bounds LO,HI] [--step-mm S] [--load SPEC] [--solver greedy|global] --out OUT.ngc [--json]:
+//   [--bounds LO,HI] [--step-mm S] [--parts fixed|adaptive] [--load SPEC] [--solver greedy|global] --out
+//   OUT.ngc [--json]:
 // Smirnov's post-processor (§3.6). Chooses the coordinates the operation leaves free by a drive control law
 // and writes the program with A B C; prints how much the law saves against holding them constant.
 #include <fmt/format.h>
@@ -28,6 +29,9 @@ void print_optimize_text(const nlohmann::json& s, const std::string& out_path) {
                            s["program"].get<std::string>(), s["law"].get<std::string>(),
                            s["solver"].get<std::string>(), fmt::join(s["free_coordinates"], ", "),
                            s["points"].get<int>(), s["step_mm"].get<double>());
+  std::cout << fmt::format("  parts       {} {} written, at most {} per block\n",
+                           s["parts_written"].get<int>(), s["parts"].get<std::string>(),
+                           s["largest_parts"].get<int>());
   std::cout << fmt::format(
       "  Σ max|ΔL|   const {:.3f} mm   law {:.3f} mm   ({:+.2f} %: machining time at strut "
       "speed limits)\n",

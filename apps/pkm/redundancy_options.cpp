@@ -20,9 +20,31 @@ void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, b
       ->capture_default_str();
   command.add_option("--bounds", arguments.bounds,
                      "LO,HI bounds of every free coordinate, degrees (default: start ± 30)");
-  command.add_option("--step-mm", arguments.step_mm, "path step between optimised points, mm")
+  command
+      .add_option("--step-mm", arguments.step_mm,
+                  "path step between optimised points, mm (adaptive parts: the step the criterion is "
+                  "measured along each part)")
       ->capture_default_str()
       ->check(number_in({0.0, 1000.0, false, true, "mm"}));
+  command
+      .add_option("--parts", arguments.parts,
+                  "fixed (every block cut into parts of --step-mm) | adaptive (each block cut into N = 1, 2, "
+                  "... parts until a finer cut no longer pays, Smirnov 2019 3.6)")
+      ->capture_default_str();
+  command
+      .add_option("--improvement", arguments.improvement,
+                  "adaptive parts: a finer cut must lower the block's criterion by more than this share")
+      ->capture_default_str()
+      ->check(number_in({0.0, 1.0, true, false, ""}));
+  command.add_option("--min-part-mm", arguments.min_part_mm, "adaptive parts: the shortest part, mm")
+      ->capture_default_str()
+      ->check(number_in({0.0, 1000.0, false, true, "mm"}));
+  command
+      .add_option("--patience", arguments.patience,
+                  "adaptive parts: finer cuts in a row that may fail to pay before a block's search stops "
+                  "(Smirnov 2019 stops at the first: 1)")
+      ->capture_default_str()
+      ->check(number_in({1.0, 1000.0, true, true, "", true}));
   command.add_option(
       "--load", arguments.load,
       "cutting load: key=value list (tangential, normal, axial, cutter_radius, contact, force, "
@@ -135,6 +157,13 @@ Result<redundancy::OptimizeOptions> redundancy_options(const RedundancyArguments
                       fmt::format("--step-mm {}: must be a positive length", arguments.step_mm));
   }
   options.step_mm = arguments.step_mm;
+  if (arguments.parts == "adaptive") {
+    options.subdivision = redundancy::SubdivisionSettings{arguments.improvement, arguments.min_part_mm};
+    options.subdivision->patience = arguments.patience;
+  } else if (arguments.parts != "fixed") {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--parts {}: expected fixed or adaptive", arguments.parts));
+  }
   if (arguments.force_limit_N < 0.0) {
     return make_error(ErrorCode::bad_input, "--force-limit must be a positive force in N (0: none)");
   }

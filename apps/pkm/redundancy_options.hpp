@@ -14,6 +14,10 @@ struct RedundancyArguments {
   std::string free = "spin";
   std::string bounds;
   double step_mm = 1.0;
+  std::string parts = "fixed";
+  double improvement = 0.01;
+  double min_part_mm = 1.0;
+  int patience = 3;
   std::string load;
   std::string solver = "greedy";
   std::string energy_accounting = "no-recovery";
@@ -22,7 +26,8 @@ struct RedundancyArguments {
   double max_rate_deg_per_mm = 0.0;
 };
 
-/// Adds --law (required when `law_required`), --free, --bounds, --step-mm, --load, --solver,
+/// Adds --law (required when `law_required`), --free, --bounds, --step-mm, --parts, --improvement,
+/// --min-part-mm, --patience, --load, --solver,
 /// --energy-accounting, --force-limit and --max-rate to a subcommand.
 void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, bool law_required);
 

@@ -176,6 +176,7 @@ def optimize(machine: Machine, program_path: str | os.PathLike[str], law: str, *
              bounds_deg: Optional[tuple[float, float]] = None, step_mm: float = 1.0, solver: str = "greedy",
              energy_accounting: str = "no-recovery", force_model: str = "statics",
              force_limit_N: Optional[float] = None, max_rate_deg_per_mm: Optional[float] = None, load: str = "",
+             parts: str = "fixed", improvement: float = 0.01, min_part_mm: float = 1.0, patience: int = 3,
              tool_table: Optional[str | os.PathLike[str]] = None,
              subroutine_path: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
              parameter_file: Optional[str | os.PathLike[str]] = None,

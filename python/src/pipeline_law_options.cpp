@@ -50,6 +50,21 @@ Result<redundancy::OptimizeOptions> optimize_options(const LawArguments& a) {
     return make_error(ErrorCode::bad_input,
                       fmt::format("step_mm {}: must be a length in (0, 1000] mm", a.step_mm));
   options.step_mm = a.step_mm;
+  if (a.parts == "adaptive") {
+    if (!(a.improvement >= 0.0 && a.improvement < 1.0))
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("improvement {}: must be a share in [0, 1)", a.improvement));
+    if (!(a.min_part_mm > 0.0 && a.min_part_mm <= 1000.0))
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("min_part_mm {}: must be a length in (0, 1000] mm", a.min_part_mm));
+    if (!(a.patience >= 1 && a.patience <= 1000))
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("patience {}: must be a count in [1, 1000]", a.patience));
+    options.subdivision = redundancy::SubdivisionSettings{a.improvement, a.min_part_mm};
+    options.subdivision->patience = a.patience;
+  } else if (a.parts != "fixed") {
+    return make_error(ErrorCode::bad_input, fmt::format("parts '{}': expected fixed or adaptive", a.parts));
+  }
   if (a.force_limit_N) {
     if (!(*a.force_limit_N > 0.0))
       return make_error(ErrorCode::bad_input, "force_limit_N must be a positive force in N");

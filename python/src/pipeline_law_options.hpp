@@ -1,6 +1,7 @@
 #pragma once
 // The redundancy-law arguments that pkm.optimize and pkm.plan(law=...) take, as the CLI's --law, --free,
-// --bounds, --step-mm, --solver, --energy-accounting, --force-model, --force-limit, --max-rate and --load.
+// --bounds, --step-mm, --parts, --improvement, --min-part-mm, --solver, --energy-accounting, --force-model,
+// --force-limit, --max-rate and --load.
 #include <array>
 #include <optional>
 #include <string>
@@ -20,7 +21,11 @@ struct LawArguments {
   std::string force_model = "statics";
   std::optional<double> force_limit_N;
   std::optional<double> max_rate_deg_per_mm;
-  std::string load;  ///< the CLI's --load text: key=value list or @FILE.yaml; empty: none
+  std::string load;             ///< the CLI's --load text: key=value list or @FILE.yaml; empty: none
+  std::string parts = "fixed";  ///< fixed | adaptive (redundancy/block_subdivision.hpp)
+  double improvement = 0.01;
+  double min_part_mm = 1.0;
+  int patience = 3;
 };
 
 /// The options, or a bad_input error naming the argument (as the Python keyword).

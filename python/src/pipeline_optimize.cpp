@@ -89,11 +89,13 @@ void bind_optimize(py::module_& m) {
          const std::string& free, std::optional<std::array<double, 2>> bounds_deg, double step_mm,
          const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
-         const std::string& load, const py::object& tool_table, const py::object& subroutine_path,
+         const std::string& load, const std::string& parts, double improvement, double min_part_mm,
+         int patience, const py::object& tool_table, const py::object& subroutine_path,
          const py::object& parameter_file, const py::object& out_path) {
         const LawArguments arguments{
             law,         free,          bounds_deg,          step_mm, solver, energy_accounting,
-            force_model, force_limit_N, max_rate_deg_per_mm, load};
+            force_model, force_limit_N, max_rate_deg_per_mm, load,    parts,  improvement,
+            min_part_mm, patience};
         const std::string path = optional_path(program_path);
         const pipeline::ProgramOptions read = program_options(tool_table, subroutine_path, parameter_file);
         const std::string out = optional_path(out_path);
@@ -104,15 +106,21 @@ void bind_optimize(py::module_& m) {
       py::arg("bounds_deg") = py::none(), py::arg("step_mm") = 1.0, py::arg("solver") = "greedy",
       py::arg("energy_accounting") = "no-recovery", py::arg("force_model") = "statics",
       py::arg("force_limit_N") = py::none(), py::arg("max_rate_deg_per_mm") = py::none(),
-      py::arg("load") = "", py::arg("tool_table") = py::none(), py::arg("subroutine_path") = py::none(),
-      py::arg("parameter_file") = py::none(), py::arg("out_path") = py::none(),
+      py::arg("load") = "", py::arg("parts") = "fixed", py::arg("improvement") = 0.01,
+      py::arg("min_part_mm") = 1.0, py::arg("patience") = 3, py::arg("tool_table") = py::none(),
+      py::arg("subroutine_path") = py::none(), py::arg("parameter_file") = py::none(),
+      py::arg("out_path") = py::none(),
       R"doc(Chooses the coordinates a program leaves free by a drive control law, as `pkm optimize`.
 
 law: 'increment' (Σ of the largest strut increments), 'force' or 'energy'; free: 'spin' (about the tool axis;
 planar: phi) or 'all'; bounds_deg (lo, hi) of every free coordinate (default start ± 30°); step_mm between
 optimised points; solver 'greedy' or 'global'; energy_accounting 'no-recovery' | 'braking-free' | 'recovery';
 force_model 'statics' | 'dynamics'; force_limit_N; max_rate_deg_per_mm (global solver); load: the CLI's
---load text (e.g. 'tangential=200,normal=50' or '@FILE.yaml'); out_path: also write the rewritten G-code.
+--load text (e.g. 'tangential=200,normal=50' or '@FILE.yaml'); parts 'fixed' (every block cut at step_mm) or
+'adaptive' (each block cut into N = 1, 2, ... parts until a finer cut lowers the criterion by at most the share
+`improvement` for `patience` cuts in a row, parts no shorter than min_part_mm; step_mm is then the step the
+criterion is measured along);
+out_path: also write the rewritten G-code.
 
 Returns a dict: summary (the JSON `pkm optimize --json` prints: const_sum_mm, opt_sum_mm, peak forces,
 energies, ranges...), free_coordinates (names), and per optimised point (K points): line (K,) int32,

@@ -53,6 +53,14 @@ nlohmann::json optimize_summary_json(const redundancy::OptimizeResult& result,
   json["bounds_deg"] = bounds;
   json["points"] = result.points.points.size();
   json["step_mm"] = options.step_mm;
+  json["parts"] = options.subdivision ? "adaptive" : "fixed";
+  if (options.subdivision) {
+    json["improvement"] = options.subdivision->improvement;
+    json["min_part_mm"] = options.subdivision->min_part_mm;
+    json["patience"] = options.subdivision->patience;
+  }
+  json["parts_written"] = result.parts_written;
+  json["largest_parts"] = result.largest_parts;
   json["const_feasible"] = constant.feasible;
   json["const_sum_mm"] = constant.increment_sum_mm;
   json["opt_sum_mm"] = opt.increment_sum_mm;

@@ -7,6 +7,7 @@
 
 #include "machine/machine.hpp"
 #include "program/canonical_program.hpp"
+#include "redundancy/block_subdivision.hpp"
 #include "redundancy/greedy_solver.hpp"
 #include "redundancy/program_points.hpp"
 #include "redundancy/trajectory_metrics.hpp"
@@ -22,7 +23,11 @@ struct OptimizeOptions {
   LawOptions law;
   FreeSet free = FreeSet::spin;
   std::optional<std::array<double, 2>> bounds_deg;
+  /// Fixed parts: every block cut into parts no longer than this. Adaptive parts (`subdivision`): the step
+  /// along which each part's criterion is measured.
   double step_mm = 1.0;
+  /// Cut each block adaptively (§3.6, block_subdivision.hpp) instead of into fixed steps; greedy solver only.
+  std::optional<SubdivisionSettings> subdivision;
   Solver solver = Solver::greedy;
   statics::LoadModel loads;
   GreedySettings greedy;
@@ -37,7 +42,11 @@ struct SolverReport {
 
 struct OptimizeResult {
   program::CanonicalProgram program;  ///< the post-processed program (A B C on every move)
+  /// The points the laws are measured at: the parts' ends (fixed parts), or the motion between them sampled
+  /// at the step (adaptive parts).
   ProgramPoints points;
+  int parts_written = 0;  ///< blocks of the output program cut from the feed moves
+  int largest_parts = 0;  ///< the most parts one block was cut into
   std::vector<std::string> free_names;
   FreeValues lower_rad = FreeValues::Zero();
   FreeValues upper_rad = FreeValues::Zero();

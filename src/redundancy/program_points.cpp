@@ -136,17 +136,15 @@ program::CanonicalProgram program_through_poses(const program::CanonicalProgram&
   return out;
 }
 
-Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, const Machine& machine,
-                                     double step_mm) {
-  if (!(step_mm > 0.0)) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("path step: must be a positive length in mm, got {}", step_mm));
-  }
-  ProgramPoints out;
-  out.frame = planning::program_frame(machine);
-  const path::PathFrame& frame = out.frame;
+Result<ProgramCurves> program_curves(const program::CanonicalProgram& program, const Machine& machine) {
+  ProgramCurves out;
+  ProgramPoints& base = out.start;
+  base.frame = planning::program_frame(machine);
+  const path::PathFrame& frame = base.frame;
   const int move_count = static_cast<int>(program.moves.size());
-  out.parts.assign(move_count, 0);
+  base.parts.assign(move_count, 0);
+  out.curves.resize(move_count);
+  out.program = &program;
   const Eigen::Vector3d tool_axis_platform = frame.reference_rotation.conjugate() * Eigen::Vector3d::UnitZ();
 
   int first_feed = -1;
@@ -170,7 +168,7 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
                                   "whose free coordinates could be chosen",
                                   program.source));
   }
-  out.first_move = first_feed;
+  base.first_move = first_feed;
 
   // Where the tool is when the leading moves are done.
   program::CanonicalMove start_move;
@@ -188,8 +186,8 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
   start.axis_rotation = axis_rotation_for(rotation * tool_axis_platform, frame);
   start.rotation = rotation.toRotationMatrix();
   start.line = program.moves[first_feed].line;
-  out.points.push_back(start);
-  out.start_rotation = rotation.toRotationMatrix();
+  base.points.push_back(start);
+  base.start_rotation = rotation.toRotationMatrix();
 
   for (int m = first_feed; m < move_count; ++m) {
     const CanonicalMove& move = program.moves[m];
@@ -197,32 +195,65 @@ Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, c
     const Eigen::Quaterniond end_rotation = path::program_rotation(move, frame);
     const path::Curve curve = points_curve(move, position, rotation, end_rotation, frame);
     rotation = end_rotation;
-    if (curve.rotation_only()) continue;  // the laws choose the orientation; a pure turn has no place here
-    int parts = std::max(1, static_cast<int>(std::ceil(curve.translation_mm / step_mm * (1.0 - 1e-9))));
-    if (move.kind == MoveKind::arc)
-      parts = std::max(parts, 2 * std::max(1, move.turns));  // sub-arcs < 1 turn
-    out.parts[m] = parts;
-    Eigen::Vector3d previous = position;
-    for (int i = 1; i <= parts; ++i) {
-      const double f = static_cast<double>(i) / parts;
-      PathPoint point;
-      point.position_mm = curve.tip(f);
-      const Eigen::Vector3d step = point.position_mm - previous;
-      point.step_mm = step.norm();
-      if (point.step_mm > 0.0) point.tangent = step / point.step_mm;
-      const Eigen::Quaterniond programmed = curve.rotation(f);
-      point.axis_rotation = axis_rotation_for(programmed * tool_axis_platform, frame);
-      point.rotation = programmed.toRotationMatrix();
-      point.line = move.line;
-      point.move_index = m;
-      point.cutting = move.kind != MoveKind::rapid;
-      point.feed_mm_s = point.cutting ? move.feed_mm_min / 60.0 : 0.0;
-      out.points.push_back(point);
-      previous = point.position_mm;
-    }
     position = curve.tip(1.0);
+    if (curve.rotation_only()) continue;  // the laws choose the orientation; a pure turn has no place here
+    out.curves[m] = curve;
   }
   return out;
+}
+
+int ProgramCurves::fewest_parts(int m) const {
+  const CanonicalMove& move = program->moves[m];
+  return move.kind == MoveKind::arc ? 2 * std::max(1, move.turns) : 1;  // sub-arcs < 1 turn
+}
+
+PathPoint ProgramCurves::point(int m, double f, const Eigen::Vector3d& previous_mm) const {
+  const CanonicalMove& move = program->moves[m];
+  const path::Curve& curve = *curves[m];
+  const path::PathFrame& frame = start.frame;
+  const Eigen::Vector3d tool_axis_platform = frame.reference_rotation.conjugate() * Eigen::Vector3d::UnitZ();
+  PathPoint point;
+  point.position_mm = curve.tip(f);
+  const Eigen::Vector3d step = point.position_mm - previous_mm;
+  point.step_mm = step.norm();
+  if (point.step_mm > 0.0) point.tangent = step / point.step_mm;
+  const Eigen::Quaterniond programmed = curve.rotation(f);
+  point.axis_rotation = axis_rotation_for(programmed * tool_axis_platform, frame);
+  point.rotation = programmed.toRotationMatrix();
+  point.line = move.line;
+  point.move_index = m;
+  point.cutting = move.kind != MoveKind::rapid;
+  point.feed_mm_s = point.cutting ? move.feed_mm_min / 60.0 : 0.0;
+  return point;
+}
+
+void ProgramCurves::append_parts(int m, int parts, std::vector<PathPoint>& points) const {
+  for (int i = 1; i <= parts; ++i)
+    points.push_back(point(m, static_cast<double>(i) / parts, points.back().position_mm));
+}
+
+ProgramPoints sample_curves(const ProgramCurves& curves, double step_mm) {
+  ProgramPoints out = curves.start;
+  for (int m = out.first_move; m < static_cast<int>(curves.curves.size()); ++m) {
+    if (!curves.curves[m]) continue;
+    const int parts = std::max(
+        curves.fewest_parts(m),
+        std::max(1, static_cast<int>(std::ceil(curves.curves[m]->translation_mm / step_mm * (1.0 - 1e-9)))));
+    out.parts[m] = parts;
+    curves.append_parts(m, parts, out.points);
+  }
+  return out;
+}
+
+Result<ProgramPoints> sample_program(const program::CanonicalProgram& program, const Machine& machine,
+                                     double step_mm) {
+  if (!(step_mm > 0.0)) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("path step: must be a positive length in mm, got {}", step_mm));
+  }
+  auto curves = program_curves(program, machine);
+  if (!curves) return curves.error();
+  return sample_curves(*curves, step_mm);
 }
 
 }  // namespace pkm::redundancy

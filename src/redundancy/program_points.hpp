@@ -6,6 +6,7 @@
 // Moves before the first feed move (the rapids that bring the tool to the part) are kept as programmed: the
 // optimisation starts where they end, with the free coordinates the program has there (`G0 X40 Y0 C15` starts
 // a planar machine at φ = 15°).
+#include <optional>
 #include <vector>
 
 #include "core/result.hpp"
@@ -25,6 +26,29 @@ struct ProgramPoints {
   Eigen::Matrix3d start_rotation = Eigen::Matrix3d::Identity();  ///< programmed rotation at points[0]
   path::PathFrame frame;
 };
+
+/// The program's motion from the first feed move on, as curves: what the points are cut from.
+struct ProgramCurves {
+  const program::CanonicalProgram* program = nullptr;
+  /// The start point alone (where the leading moves end), with the frame, first move and start rotation;
+  /// parts all 0.
+  ProgramPoints start;
+  /// Per move: its curve, or none for moves that are not cut (leading moves, dwells, pure turns).
+  std::vector<std::optional<path::Curve>> curves;
+
+  /// The fewest equal parts move m may be cut into: 1, or two per turn for arcs (a part under one turn).
+  int fewest_parts(int m) const;
+  /// The point at fraction f of move m; `previous_mm` is the point before it (for the step and tangent).
+  PathPoint point(int m, double f, const Eigen::Vector3d& previous_mm) const;
+  /// Appends the ends of move m's `parts` equal parts; `points` ends at the move's start.
+  void append_parts(int m, int parts, std::vector<PathPoint>& points) const;
+};
+
+/// The program's curves; errors as sample_program's. The program must outlive the result.
+Result<ProgramCurves> program_curves(const program::CanonicalProgram& program, const Machine& machine);
+
+/// Every cut move of `curves` in equal parts no longer than `step_mm` (> 0).
+ProgramPoints sample_curves(const ProgramCurves& curves, double step_mm);
 
 /// The machine's frame for program coordinates (origin, home rotation, planar), as the planner uses it.
 path::PathFrame program_frame(const Machine& machine);

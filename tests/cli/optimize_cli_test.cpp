@@ -65,6 +65,11 @@ TEST(OptimizeCli, BadArgumentsFailWithoutOutput) {
       {" --law increment --solver quantum", "--solver quantum"},
       {" --law energy --force-model newton", "--force-model newton"},
       {" --law energy --force-model dynamics", "dynamics: section"},  // planar3.yaml has none
+      {" --law increment --parts some", "--parts some"},
+      {" --law increment --parts adaptive --solver global", "--parts fixed"},
+      {" --law increment --parts adaptive --improvement 1.5", "--improvement"},
+      {" --law increment --parts adaptive --min-part-mm 0", "--min-part-mm"},
+      {" --law increment --parts adaptive --patience 0", "--patience"},
   };
   for (const Case& c : cases) {
     const auto run = test::run_pkm("optimize " + planar_args() + c.args + " --out " + out);
@@ -72,6 +77,38 @@ TEST(OptimizeCli, BadArgumentsFailWithoutOutput) {
     EXPECT_NE(run.out.find(c.message), std::string::npos) << c.args << ": " << run.out;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
+}
+
+// Adaptive parts on a five-axis CAM program (CL data) on the hexaglide: the same criterion measured along
+// the motion at the same step, written in fewer than half the blocks of the fixed step.
+TEST(OptimizeCli, AdaptivePartsWriteFewerBlocksForTheSameCriterion) {
+  const std::string args = test::source_path("examples/programs/ball_end_5axis.cl") + " --machine " +
+                           test::source_path("examples/machines/hexaglide.yaml") +
+                           " --law increment --step-mm 0.5 --json --out ";
+  const std::string fixed_out = fresh_path("fixed.ngc");
+  const std::string adaptive_out = fresh_path("adaptive.ngc");
+  const auto fixed = test::run_pkm("optimize " + args + fixed_out, false);
+  const auto adaptive = test::run_pkm("optimize " + args + adaptive_out + " --parts adaptive", false);
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.out;
+  ASSERT_EQ(adaptive.exit_code, 0) << adaptive.out;
+  const auto f = nlohmann::json::parse(fixed.out);
+  const auto a = nlohmann::json::parse(adaptive.out);
+  EXPECT_EQ(f["parts"], "fixed");
+  EXPECT_EQ(a["parts"], "adaptive");
+  EXPECT_EQ(a["improvement"].get<double>(), 0.01);
+  EXPECT_EQ(a["min_part_mm"].get<double>(), 1.0);
+  EXPECT_EQ(a["patience"].get<int>(), 3);
+  EXPECT_LT(2 * a["parts_written"].get<int>(), f["parts_written"].get<int>());
+  EXPECT_LT(a["opt_sum_mm"].get<double>(), 1.005 * f["opt_sum_mm"].get<double>());
+  EXPECT_LT(a["opt_sum_mm"].get<double>(), 0.8 * a["const_sum_mm"].get<double>());
+  EXPECT_NEAR(a["const_sum_mm"].get<double>(), f["const_sum_mm"].get<double>(),
+              1e-3 * f["const_sum_mm"].get<double>());
+  // The written program has one block per part after the approach, and LinuxCNC's dialect reads it back.
+  const auto interpreted = test::run_pkm("interpret " + adaptive_out + " --json", false);
+  ASSERT_EQ(interpreted.exit_code, 0) << interpreted.out;
+  const auto moves = nlohmann::json::parse(interpreted.out)["moves"];
+  EXPECT_GE(moves.size(), a["parts_written"].get<std::size_t>());
+  EXPECT_LT(moves.size(), a["parts_written"].get<std::size_t>() + 20);
 }
 
 TEST(OptimizeCli, MachinesWithoutFreeCoordinatesAreRefused) {

@@ -285,6 +285,29 @@ def test_optimize_matches_cli(tmp_path):
     assert (result["free_rad"] >= lo - 1e-12).all() and (result["free_rad"] <= hi + 1e-12).all()
 
 
+def test_optimize_adaptive_parts_match_cli(tmp_path):
+    """parts='adaptive' is `pkm optimize --parts adaptive`: the same summary and program; the arrays hold the
+    motion between the written parts' ends, sampled at step_mm."""
+    machine = pkm.Machine.load(machine_path("planar3"))
+    out = tmp_path / "py.ngc"
+    result = pkm.optimize(machine, program_path("planar_circle.ngc"), "increment", parts="adaptive", step_mm=0.5,
+                          improvement=0.005, patience=2, out_path=out)
+    expected = json.loads(cli("optimize", program_path("planar_circle.ngc"), "--machine", machine_path("planar3"),
+                              "--law", "increment", "--parts", "adaptive", "--step-mm", "0.5", "--improvement",
+                              "0.005", "--patience", "2", "--out", tmp_path / "cli.ngc", "--json"))
+    assert_same(result["summary"], expected, skip={"seconds", "out", "machine"})
+    assert out.read_text() == (tmp_path / "cli.ngc").read_text()
+    s = result["summary"]
+    assert s["parts"] == "adaptive" and s["patience"] == 2
+    assert 2 <= s["parts_written"] < s["points"] - 1
+    assert result["free_rad"].shape == (s["points"], 1)
+    assert math.isclose(result["chosen"]["max_increment_mm"].sum(), s["opt_sum_mm"], rel_tol=1e-9)
+    steps = np.linalg.norm(np.diff(result["position_mm"], axis=0), axis=1)
+    assert steps.max() <= 0.5 + 1e-9
+    with pytest.raises(ValueError, match="parts"):
+        pkm.optimize(machine, program_path("planar_circle.ngc"), "increment", parts="some")
+
+
 def test_optimize_glide_scenarios_measure_rotation_and_limit_margin(tmp_path):
     """The rotation law turns the hexaglide's platform no more than holding the spin; the potential law keeps the
     carriages at least as far from their limits as the increment law; both metrics are in every run's dicts."""
