@@ -13,7 +13,7 @@ namespace {
 
 struct CommandGroup {
   const char* name;
-  std::array<const char*, 9> commands;  // nullptr-terminated when shorter
+  std::array<const char*, 10> commands;  // nullptr-terminated when shorter
   const char* example;
 };
 
@@ -23,7 +23,7 @@ constexpr std::array<CommandGroup, 5> kCommandGroups{{
      "pkm plan part.ngc --machine m.yaml --out run/ --report run/report.html"},
     {"Analyse",
      {"stiffness", "compliance", "modes", "modes-margin", "workspace", "strategies", "jacobian", "circle",
-      nullptr},
+      "spif", nullptr},
      "pkm stiffness part.cl --machine m.yaml --load tangential=600 --out stiffness/"},
     {"Machine",
      {"check", "ik", "fk", "demo", "linuxcnc", nullptr},

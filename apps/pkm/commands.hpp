@@ -24,6 +24,7 @@ void add_strategies_command(CLI::App& app, int& exit_code);
 void add_workspace_command(CLI::App& app, int& exit_code);
 void add_servo_command(CLI::App& app, int& exit_code);
 void add_circle_command(CLI::App& app, int& exit_code);
+void add_spif_command(CLI::App& app, int& exit_code);
 void add_simulate_command(CLI::App& app, int& exit_code);
 void add_calibrate_command(CLI::App& app, int& exit_code);
 void add_linuxcnc_command(CLI::App& app, int& exit_code);

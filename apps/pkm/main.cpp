@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   pkm::cli::add_strategies_command(app, exit_code);
   pkm::cli::add_jacobian_command(app, exit_code);
   pkm::cli::add_circle_command(app, exit_code);
+  pkm::cli::add_spif_command(app, exit_code);
   pkm::cli::add_simulate_command(app, exit_code);
   pkm::cli::add_check_command(app, exit_code);
   pkm::cli::add_ik_command(app, exit_code);

@@ -34,23 +34,6 @@ Trajectory with_forces(const Problem& report, const Trajectory& trajectory) {
   return out;
 }
 
-std::vector<statics::Wrench> point_loads(const ProgramPoints& points, const statics::LoadModel& loads,
-                                         const Eigen::Vector3d& tool_axis_platform) {
-  std::vector<statics::Wrench> wrenches(points.points.size());
-  for (std::size_t k = 0; k < points.points.size(); ++k) {
-    const PathPoint& point = points.points[k];
-    statics::LoadPoint load_point;
-    // The start point takes the direction of the first step: the load that acts as the cut begins.
-    const PathPoint& travel = k == 0 && points.points.size() > 1 ? points.points[1] : point;
-    load_point.tangent = travel.tangent;
-    load_point.tool_axis = point.axis_rotation * tool_axis_platform;
-    load_point.line = travel.line;
-    load_point.cutting = travel.cutting;
-    wrenches[k] = loads.wrench_at(load_point);
-  }
-  return wrenches;
-}
-
 }  // namespace
 
 program::CanonicalProgram rebuild_program(const program::CanonicalProgram& program,

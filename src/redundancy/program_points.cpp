@@ -232,6 +232,22 @@ void ProgramCurves::append_parts(int m, int parts, std::vector<PathPoint>& point
     points.push_back(point(m, static_cast<double>(i) / parts, points.back().position_mm));
 }
 
+std::vector<statics::Wrench> point_loads(const ProgramPoints& points, const statics::LoadModel& loads,
+                                         const Eigen::Vector3d& tool_axis_platform) {
+  std::vector<statics::Wrench> wrenches(points.points.size());
+  for (std::size_t k = 0; k < points.points.size(); ++k) {
+    const PathPoint& point = points.points[k];
+    statics::LoadPoint load_point;
+    const PathPoint& travel = k == 0 && points.points.size() > 1 ? points.points[1] : point;
+    load_point.tangent = travel.tangent;
+    load_point.tool_axis = point.axis_rotation * tool_axis_platform;
+    load_point.line = travel.line;
+    load_point.cutting = travel.cutting;
+    wrenches[k] = loads.wrench_at(load_point);
+  }
+  return wrenches;
+}
+
 ProgramPoints sample_curves(const ProgramCurves& curves, double step_mm) {
   ProgramPoints out = curves.start;
   for (int m = out.first_move; m < static_cast<int>(curves.curves.size()); ++m) {

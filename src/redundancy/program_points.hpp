@@ -14,6 +14,7 @@
 #include "path/path_builder.hpp"
 #include "program/canonical_program.hpp"
 #include "redundancy/free_coordinates.hpp"
+#include "statics/load_model.hpp"
 
 namespace pkm::redundancy {
 
@@ -46,6 +47,11 @@ struct ProgramCurves {
 
 /// The program's curves; errors as sample_program's. The program must outlive the result.
 Result<ProgramCurves> program_curves(const program::CanonicalProgram& program, const Machine& machine);
+
+/// The process load at every point (about the tool point, base frame): the start point takes the direction
+/// of the first step, the load that acts as the cut begins.
+std::vector<statics::Wrench> point_loads(const ProgramPoints& points, const statics::LoadModel& loads,
+                                         const Eigen::Vector3d& tool_axis_platform);
 
 /// Every cut move of `curves` in equal parts no longer than `step_mm` (> 0).
 ProgramPoints sample_curves(const ProgramCurves& curves, double step_mm);
