@@ -1,7 +1,7 @@
 // pkm spif program --out FILE.ngc [--radius-mm R] [--radius-step-mm D] [--planes N] [--step-down-mm S]
 //   [--direction ccw|cw] [--depth down|up] [--z1-mm Z] [--centre X,Y] [--feed-mm-min F] [--path planes|helix]
-// pkm spif placement PROGRAM --machine M --z1 FROM:TO:STEP|Z,Z,... [--load SPEC] [--step-mm S] --out DIR
-//   [--json]
+// pkm spif placement PROGRAM --machine M --z1 FROM:TO:STEP|Z,Z,... [--load SPEC] [--step-mm S]
+//   [--law L [--bounds LO,HI[,...]]] --out DIR [--json]
 // Single point incremental forming (Smirnov 2019, §3.8.1): the forming path, and where to put the sheet so
 // that the drives spend least energy on it (docs/spif.md).
 #include <fmt/format.h>
@@ -18,6 +18,7 @@
 #include "program/spif_path.hpp"
 #include "program_options.hpp"
 #include "progress_display.hpp"
+#include "redundancy_options.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -105,6 +106,29 @@ Result<std::vector<double>> parse_heights(const std::string& text) {
   return heights;
 }
 
+void print_placement(const nlohmann::json& s, const std::string& program, const std::string& out) {
+  std::cout << fmt::format("{}: drive energy at {} heights of the first plane\n", program,
+                           s["placements"].size());
+  for (const auto& row : s["placements"]) {
+    if (!row["feasible"].get<bool>()) {
+      std::cout << fmt::format("  Z{:<8g} out of reach from line {}\n", row["z1_mm"].get<double>(),
+                               row["first_infeasible_line"].get<int>());
+      continue;
+    }
+    const std::string law = row.contains("law_energy_J")
+                                ? fmt::format(", by the law {:.3f} J", row["law_energy_J"].get<double>())
+                                : std::string();
+    std::cout << fmt::format("  Z{:<8g} {:12.3f} J{}   (required work {:.3f} J, peak force {:.1f} N)\n",
+                             row["z1_mm"].get<double>(), row["energy_J"].get<double>(), law,
+                             row["required_work_J"].get<double>(), row["peak_force_N"].get<double>());
+  }
+  std::cout << fmt::format(
+      "  least at Z{:g}, most at Z{:g}: {:.2f} times as much\n  written     {}/placement.csv, placement.svg, "
+      "summary.json\n",
+      s["lowest_energy"]["z1_mm"].get<double>(), s["highest_energy"]["z1_mm"].get<double>(),
+      s["energy_ratio"].get<double>(), out);
+}
+
 void add_placement_subcommand(CLI::App& spif, int& exit_code) {
   auto* cmd = spif.add_subcommand(
       "placement", "the drive energy of a forming program at a range of heights of its first plane");
@@ -119,6 +143,14 @@ void add_placement_subcommand(CLI::App& spif, int& exit_code) {
   cmd->add_option("--load", job->load_text,
                   "the forming load: key=value list (axial, tangential, normal, ...) or @FILE.yaml "
                   "(docs/statics.md)");
+  auto law = std::make_shared<std::string>();
+  auto bounds = std::make_shared<std::string>();
+  cmd->add_option("--law", *law,
+                  "also the energy with the angles chosen by this law (energy, the seeds'; increment, force, "
+                  "rotation, potential), returned to the programmed ones at every plane");
+  cmd->add_option("--bounds", *bounds,
+                  "with --law: LO,HI of every angle or LO,HI,LO,HI,LO,HI of each (degrees; the seeds: "
+                  "-5,5,-5,5,-20,20)");
   cmd->add_option("--step-mm", job->placement.step_mm, "path step the energy is summed over")
       ->capture_default_str()
       ->check(number_in({0.0, 1000.0, false, true, "mm"}));
@@ -133,6 +165,28 @@ void add_placement_subcommand(CLI::App& spif, int& exit_code) {
       return;
     }
     job->placement.z1_mm = std::move(*z1);
+    if (!law->empty()) {
+      const auto chosen = redundancy::law_from_string(*law);
+      if (!chosen) {
+        exit_code = report_error(
+            "spif placement",
+            make_error(
+                ErrorCode::bad_input,
+                fmt::format("--law {}: expected energy, increment, force, rotation or potential", *law)));
+        return;
+      }
+      job->placement.law = *chosen;
+    }
+    if (!bounds->empty()) {
+      auto parsed = parse_bounds(*bounds);
+      if (!parsed || law->empty()) {
+        exit_code =
+            report_error("spif placement",
+                         parsed ? make_error(ErrorCode::bad_input, "--bounds needs --law") : parsed.error());
+        return;
+      }
+      job->placement.law_bounds_deg = std::move(*parsed);
+    }
     if (!job->load_text.empty()) {
       auto loads = statics::parse_load_spec(job->load_text);
       if (!loads) {
@@ -161,22 +215,7 @@ void add_placement_subcommand(CLI::App& spif, int& exit_code) {
       print_json(s);
       return;
     }
-    std::cout << fmt::format("{}: drive energy at {} heights of the first plane\n", job->program_path,
-                             s["placements"].size());
-    for (const auto& row : s["placements"]) {
-      std::cout << (row["feasible"].get<bool>()
-                        ? fmt::format(
-                              "  Z{:<8g} {:12.3f} J   (required work {:.3f} J, peak force {:.1f} N)\n",
-                              row["z1_mm"].get<double>(), row["energy_J"].get<double>(),
-                              row["required_work_J"].get<double>(), row["peak_force_N"].get<double>())
-                        : fmt::format("  Z{:<8g} out of reach from line {}\n", row["z1_mm"].get<double>(),
-                                      row["first_infeasible_line"].get<int>()));
-    }
-    std::cout << fmt::format(
-        "  least at Z{:g}, most at Z{:g}: {:.2f} times as much\n  written     {}/placement.csv, "
-        "placement.svg, summary.json\n",
-        s["lowest_energy"]["z1_mm"].get<double>(), s["highest_energy"]["z1_mm"].get<double>(),
-        s["energy_ratio"].get<double>(), job->out_directory);
+    print_placement(s, job->program_path, job->out_directory);
   });
 }
 

@@ -19,7 +19,8 @@ void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, b
                   "free coordinates: spin (about the tool axis; planar: phi) | all (every angle)")
       ->capture_default_str();
   command.add_option("--bounds", arguments.bounds,
-                     "LO,HI bounds of every free coordinate, degrees (default: start ± 30)");
+                     "LO,HI bounds of every free coordinate, or LO,HI,LO,HI,LO,HI of each of three, degrees "
+                     "(default: start ± 30)");
   command
       .add_option("--step-mm", arguments.step_mm,
                   "path step between optimised points, mm (adaptive parts: the step the criterion is "
@@ -84,36 +85,50 @@ bool parse_double(std::string_view text, double& value) {
   return error == std::errc() && end == text.data() + text.size();
 }
 
-// --bounds LO,HI (degrees): two finite numbers, LO below HI. from_chars reads "nan" and "inf" as numbers,
-// and NaN fails every comparison: without the check "nan,nan" was refused as "the lower bound must be below".
-Result<std::array<double, 2>> parse_bounds(const std::string& text) {
-  const auto comma = text.find(',');
-  const std::string_view parts[2] = {
-      std::string_view(text).substr(0, comma),
-      comma == std::string::npos ? std::string_view() : std::string_view(text).substr(comma + 1)};
-  std::array<double, 2> bounds{};
-  for (int i = 0; i < 2; ++i) {
-    if (comma == std::string::npos || !parse_double(parts[i], bounds[i])) {
-      return make_error(ErrorCode::bad_input,
-                        fmt::format("--bounds {}: expected LO,HI in degrees, e.g. --bounds 5,30", text));
+}  // namespace
+
+// --bounds LO,HI[,LO,HI,LO,HI] (degrees): pairs of finite numbers, each LO below its HI. from_chars reads
+// "nan" and "inf" as numbers, and NaN fails every comparison: without the check "nan,nan" was refused as "the
+// lower bound must be below".
+Result<redundancy::FreeBounds> parse_bounds(const std::string& text) {
+  std::vector<std::string_view> parts;
+  for (std::size_t from = 0;;) {
+    const std::size_t comma = text.find(',', from);
+    parts.push_back(std::string_view(text).substr(from, comma == std::string::npos ? comma : comma - from));
+    if (comma == std::string::npos) break;
+    from = comma + 1;
+  }
+  if (parts.size() != 2 && parts.size() != 6) {
+    return make_error(ErrorCode::bad_input,
+                      fmt::format("--bounds {}: expected LO,HI in degrees for every free coordinate, or "
+                                  "LO,HI,LO,HI,LO,HI for each of three, e.g. --bounds 5,30",
+                                  text));
+  }
+  redundancy::FreeBounds bounds(parts.size() / 2);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    double& value = bounds[i / 2][i % 2];
+    const char* which = i % 2 == 0 ? "LO" : "HI";
+    if (!parse_double(parts[i], value)) {
+      return make_error(ErrorCode::bad_input, fmt::format("--bounds {}: {} '{}' is not a number in degrees",
+                                                          text, which, parts[i]));
     }
-    if (!std::isfinite(bounds[i]) || std::abs(bounds[i]) > kMaxBoundDeg) {
+    if (!std::isfinite(value) || std::abs(value) > kMaxBoundDeg) {
       return make_error(ErrorCode::bad_input,
-                        fmt::format("--bounds {}: {} '{}' is {}", text, i == 0 ? "LO" : "HI", parts[i],
-                                    std::isfinite(bounds[i])
+                        fmt::format("--bounds {}: {} '{}' is {}", text, which, parts[i],
+                                    std::isfinite(value)
                                         ? fmt::format("out of range (at most {:g} deg in size)", kMaxBoundDeg)
                                         : std::string("not a number")));
     }
   }
-  if (!(bounds[0] < bounds[1])) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("--bounds {}: LO must be below HI (degrees), got {:g} and {:g}", text,
-                                  bounds[0], bounds[1]));
+  for (const auto& range : bounds) {
+    if (!(range[0] < range[1])) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("--bounds {}: LO must be below HI (degrees), got {:g} and {:g}", text,
+                                    range[0], range[1]));
+    }
   }
   return bounds;
 }
-
-}  // namespace
 
 Result<redundancy::OptimizeOptions> redundancy_options(const RedundancyArguments& arguments) {
   redundancy::OptimizeOptions options;

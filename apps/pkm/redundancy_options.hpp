@@ -31,6 +31,9 @@ struct RedundancyArguments {
 /// --energy-accounting, --force-limit and --max-rate to a subcommand.
 void add_redundancy_options(CLI::App& command, RedundancyArguments& arguments, bool law_required);
 
+/// --bounds: LO,HI for every free coordinate, or LO,HI,LO,HI,LO,HI for each of three (degrees).
+Result<redundancy::FreeBounds> parse_bounds(const std::string& text);
+
 /// The options, or an error naming the bad argument.
 Result<redundancy::OptimizeOptions> redundancy_options(const RedundancyArguments& arguments);
 

@@ -44,7 +44,7 @@ Result<redundancy::OptimizeOptions> optimize_options(const LawArguments& a) {
   if (a.bounds_deg) {
     if (!std::isfinite((*a.bounds_deg)[0]) || !std::isfinite((*a.bounds_deg)[1]))
       return make_error(ErrorCode::bad_input, "bounds_deg: expected two finite angles (lo, hi) in degrees");
-    options.bounds_deg = a.bounds_deg;
+    options.bounds_deg = {*a.bounds_deg};
   }
   if (!(a.step_mm > 0.0 && a.step_mm <= 1000.0))
     return make_error(ErrorCode::bad_input,

@@ -13,6 +13,7 @@ namespace pkm::pipeline {
 namespace {
 
 using redundancy::Placement;
+using Series = std::vector<std::pair<double, double>>;  // (x, y) points of one curve
 
 nlohmann::json summary_json(const Machine& machine, const SpifPlacementJob& job,
                             const std::vector<Placement>& placements) {
@@ -22,6 +23,12 @@ nlohmann::json summary_json(const Machine& machine, const SpifPlacementJob& job,
   json["load"] = job.load_text;
   json["step_mm"] = job.placement.step_mm;
   json["energy_accounting"] = redundancy::to_string(job.placement.accounting);
+  if (job.placement.law) {
+    json["law"] = redundancy::to_string(*job.placement.law);
+    nlohmann::json bounds = nlohmann::json::array();
+    for (const auto& range : job.placement.law_bounds_deg) bounds.push_back({range[0], range[1]});
+    json["law_bounds_deg"] = bounds;
+  }
   nlohmann::json rows = nlohmann::json::array();
   const Placement* lowest = nullptr;
   const Placement* highest = nullptr;
@@ -33,6 +40,7 @@ nlohmann::json summary_json(const Machine& machine, const SpifPlacementJob& job,
       row["energy_J"] = p.energy_J;
       row["required_work_J"] = p.required_work_J;
       row["peak_force_N"] = p.peak_force_N;
+      if (job.placement.law) row["law_energy_J"] = p.law_energy_J;
       if (!lowest || p.energy_J < lowest->energy_J) lowest = &p;
       if (!highest || p.energy_J > highest->energy_J) highest = &p;
     }
@@ -46,13 +54,15 @@ nlohmann::json summary_json(const Machine& machine, const SpifPlacementJob& job,
 }
 
 std::string placement_csv(const std::vector<Placement>& placements) {
-  std::string csv = "z1_mm,plane,plane_z_mm,first_line,energy_J\n";
+  std::string csv = "z1_mm,plane,plane_z_mm,first_line,energy_J,law_energy_J\n";
   for (const Placement& p : placements) {
     if (!p.feasible) continue;
     for (std::size_t i = 0; i < p.planes.size(); ++i) {
       const redundancy::PlaneEnergy& plane = p.planes[i];
-      csv += fmt::format("{:.6g},{},{:.6f},{},{:.9g}\n", p.z1_mm, i + 1, plane.z_mm, plane.first_line,
-                         plane.energy_J);
+      // The law's column is empty where no law was asked.
+      csv += fmt::format(
+          "{:.6g},{},{:.6f},{},{:.9g},{}\n", p.z1_mm, i + 1, plane.z_mm, plane.first_line, plane.energy_J,
+          std::isnan(plane.law_energy_J) ? std::string() : fmt::format("{:.9g}", plane.law_energy_J));
     }
   }
   return csv;
@@ -71,6 +81,7 @@ std::string panel(const std::string& title, const std::vector<std::vector<std::p
       "<text x=\"{0}\" y=\"{4}\">{5} (0 … {6:.4g} J)</text>\n",
       kPanelLeft, top, kPanelWidth, kPanelHeight, top - 8, title, y1);
   for (std::size_t i = 0; i < series.size(); ++i) {
+    if (series[i].empty()) continue;
     std::string d;
     for (const auto& [x, y] : series[i]) {
       d += fmt::format("{}{:.1f},{:.1f}", d.empty() ? "M" : " L", kPanelLeft + kPanelWidth * (x - x0) / dx,
@@ -83,31 +94,38 @@ std::string panel(const std::string& title, const std::vector<std::vector<std::p
 
 // The drive energy against the first plane's height, and per line (plane) at the lowest and highest heights.
 std::string placement_svg(const std::vector<Placement>& placements) {
-  static const char* const kColours[] = {"#1f77b4", "#d62728"};
+  static const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c"};
   std::vector<std::pair<double, double>> total;
+  std::vector<std::pair<double, double>> total_law;
   const Placement* low = nullptr;
   const Placement* high = nullptr;
   for (const Placement& p : placements) {
     if (!p.feasible) continue;
     total.emplace_back(p.z1_mm, p.energy_J);
+    if (!std::isnan(p.law_energy_J)) total_law.emplace_back(p.z1_mm, p.law_energy_J);
     if (!low || p.z1_mm < low->z1_mm) low = &p;
     if (!high || p.z1_mm > high->z1_mm) high = &p;
   }
-  auto per_plane = [](const Placement& p) {
+  auto per_plane = [](const Placement& p, bool law) {
     std::vector<std::pair<double, double>> s;
     for (std::size_t i = 0; i < p.planes.size(); ++i)
-      s.emplace_back(static_cast<double>(i + 1), p.planes[i].energy_J);
+      s.emplace_back(static_cast<double>(i + 1), law ? p.planes[i].law_energy_J : p.planes[i].energy_J);
     return s;
   };
+  const bool law = !total_law.empty();
   std::string svg =
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"880\" height=\"700\" font-family=\"sans-serif\" "
       "font-size=\"13\">\n";
-  svg += panel(
-      fmt::format("drive energy against the first plane's height, Z{:g} … Z{:g} mm", low->z1_mm, high->z1_mm),
-      {total}, 40.0, kColours);
-  svg += panel(fmt::format("energy per plane, n = 1 … {}: blue first plane at Z{:g}, red at Z{:g}",
-                           low->planes.size(), low->z1_mm, high->z1_mm),
-               {per_plane(*low), per_plane(*high)}, 380.0, kColours);
+  svg += panel(fmt::format("drive energy against the first plane's height, Z{:g} … Z{:g} mm{}", low->z1_mm,
+                           high->z1_mm, law ? ": blue angles held, green chosen by the law" : ""),
+               law ? std::vector<Series>{total, {}, total_law} : std::vector<Series>{total}, 40.0, kColours);
+  svg +=
+      panel(fmt::format("energy per plane, n = 1 … {}: blue first plane at Z{:g}, red at Z{:g}{}",
+                        low->planes.size(), low->z1_mm, high->z1_mm,
+                        law ? fmt::format(", green Z{:g} by the law", low->z1_mm) : ""),
+            law ? std::vector<Series>{per_plane(*low, false), per_plane(*high, false), per_plane(*low, true)}
+                : std::vector<Series>{per_plane(*low, false), per_plane(*high, false)},
+            380.0, kColours);
   return svg + "</svg>\n";
 }
 

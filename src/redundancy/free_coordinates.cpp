@@ -67,8 +67,7 @@ FreeValues FreeCoordinates::values_for(Kind kind, AngleConvention convention,
 }
 
 Result<FreeCoordinates> FreeCoordinates::create(const Mechanism& mechanism, FreeSet set,
-                                                std::optional<std::array<double, 2>> bounds_deg,
-                                                const FreeValues& start_rad) {
+                                                const FreeBounds& bounds_deg, const FreeValues& start_rad) {
   auto kind = kind_for(mechanism, set);
   if (!kind) return kind.error();
   FreeCoordinates free;
@@ -77,24 +76,32 @@ Result<FreeCoordinates> FreeCoordinates::create(const Mechanism& mechanism, Free
   free.convention_ = mechanism.convention();
   free.tool_axis_platform_ = home_tool_axis(mechanism);
   free.start_ = start_rad;
-  if (bounds_deg && !((*bounds_deg)[0] < (*bounds_deg)[1])) {
-    return make_error(ErrorCode::bad_input,
-                      fmt::format("bounds {},{}: the lower bound must be below the upper one (degrees)",
-                                  (*bounds_deg)[0], (*bounds_deg)[1]));
+  const int ranges = static_cast<int>(bounds_deg.size());
+  if (ranges > 1 && ranges != free.count_) {
+    return make_error(
+        ErrorCode::bad_input,
+        fmt::format("bounds: {} ranges given; give one for every free coordinate or one for each "
+                    "of the {} ({})",
+                    ranges, free.count_, free.count_ == 3 ? "three angles" : free.name(0)));
   }
   for (int i = 0; i < free.count_; ++i) {
-    if (bounds_deg) {
-      free.lower_rad_[i] = rad_from_deg((*bounds_deg)[0]);
-      free.upper_rad_[i] = rad_from_deg((*bounds_deg)[1]);
-      if (start_rad[i] < free.lower_rad_[i] - 1e-9 || start_rad[i] > free.upper_rad_[i] + 1e-9) {
-        return make_error(
-            ErrorCode::bad_input,
-            fmt::format("the program starts with {} = {:.4f} deg, outside the bounds {},{}", free.name(i),
-                        deg_from_rad(start_rad[i]), (*bounds_deg)[0], (*bounds_deg)[1]));
-      }
-    } else {
+    if (ranges == 0) {
       free.lower_rad_[i] = start_rad[i] - rad_from_deg(kDefaultHalfRangeDeg);
       free.upper_rad_[i] = start_rad[i] + rad_from_deg(kDefaultHalfRangeDeg);
+      continue;
+    }
+    const std::array<double, 2>& range = bounds_deg[ranges == 1 ? 0 : i];
+    if (!(range[0] < range[1])) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("bounds {},{}: the lower bound must be below the upper one (degrees)",
+                                    range[0], range[1]));
+    }
+    free.lower_rad_[i] = rad_from_deg(range[0]);
+    free.upper_rad_[i] = rad_from_deg(range[1]);
+    if (start_rad[i] < free.lower_rad_[i] - 1e-9 || start_rad[i] > free.upper_rad_[i] + 1e-9) {
+      return make_error(ErrorCode::bad_input,
+                        fmt::format("the program starts with {} = {:.4f} deg, outside the bounds {},{}",
+                                    free.name(i), deg_from_rad(start_rad[i]), range[0], range[1]));
     }
   }
   return free;

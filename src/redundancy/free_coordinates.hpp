@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/pose.hpp"
 #include "core/result.hpp"
@@ -28,6 +29,10 @@ std::string_view to_string(FreeSet set);
 
 /// Values of the free coordinates in radians; only the first FreeCoordinates::count() are used.
 using FreeValues = Eigen::Vector3d;
+
+/// Bounds of the free coordinates, degrees (absolute values): none (each may move ±30° from its start), one
+/// [lo, hi] for every coordinate, or one per coordinate in order.
+using FreeBounds = std::vector<std::array<double, 2>>;
 
 /// What the program fixes at one point of the tool path, in the machine's base frame.
 struct PathPoint {
@@ -51,10 +56,9 @@ class FreeCoordinates {
  public:
   enum class Kind { planar_angle, spin, convention_angles };
 
-  /// `bounds_deg` bounds every free coordinate (absolute values); without it each may move ±30° from its
-  /// start.
-  static Result<FreeCoordinates> create(const Mechanism& mechanism, FreeSet set,
-                                        std::optional<std::array<double, 2>> bounds_deg,
+  /// `bounds_deg`: see FreeBounds; errors name a range that is empty or excludes the start, or a count that
+  /// is neither one nor the coordinates'.
+  static Result<FreeCoordinates> create(const Mechanism& mechanism, FreeSet set, const FreeBounds& bounds_deg,
                                         const FreeValues& start_rad);
 
   Kind kind() const { return kind_; }

@@ -53,7 +53,8 @@ Result<Trajectory> solve_greedy(const Problem& problem, const GreedySettings& se
   }
   for (int k = 0; k + 1 < count; ++k) {
     PointStep step(problem, trajectory.nodes[k], k + 1);
-    const FreeValues chosen = search.minimise(step, trajectory.values[k]);
+    const bool reset = !problem.reset.empty() && problem.reset[static_cast<std::size_t>(k + 1)];
+    const FreeValues chosen = reset ? free.start() : search.minimise(step, trajectory.values[k]);
     Node& node = trajectory.nodes[k + 1];
     if (!law.evaluate(problem.points[k + 1], problem.loads[k + 1], chosen, node, true)) {
       return make_error(

@@ -22,7 +22,7 @@ std::optional<Solver> solver_from_string(std::string_view name);
 struct OptimizeOptions {
   LawOptions law;
   FreeSet free = FreeSet::spin;
-  std::optional<std::array<double, 2>> bounds_deg;
+  FreeBounds bounds_deg;
   /// Fixed parts: every block cut into parts no longer than this. Adaptive parts (`subdivision`): the step
   /// along which each part's criterion is measured.
   double step_mm = 1.0;

@@ -10,6 +10,9 @@ struct Problem {
   const LawEvaluator* law = nullptr;
   std::vector<PathPoint> points;       ///< points[0] is fixed at the start values
   std::vector<statics::Wrench> loads;  ///< external load at each point (about the tool point)
+  /// Points where the free coordinates return to their start values rather than being chosen (the seeds'
+  /// forming study returns the angles to zero at each plane); empty: none.
+  std::vector<char> reset;
 };
 
 struct Trajectory {

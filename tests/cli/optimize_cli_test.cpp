@@ -66,6 +66,8 @@ TEST(OptimizeCli, BadArgumentsFailWithoutOutput) {
       {" --law energy --force-model newton", "--force-model newton"},
       {" --law energy --force-model dynamics", "dynamics: section"},  // planar3.yaml has none
       {" --law increment --parts some", "--parts some"},
+      {" --law increment --bounds 5,30,5", "--bounds 5,30,5"},
+      {" --law increment --bounds 5,30,5,30,5,30", "3 ranges"},
       {" --law increment --parts adaptive --solver global", "--parts fixed"},
       {" --law increment --parts adaptive --improvement 1.5", "--improvement"},
       {" --law increment --parts adaptive --min-part-mm 0", "--min-part-mm"},

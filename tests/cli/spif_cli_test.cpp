@@ -50,7 +50,7 @@ TEST(SpifCli, TheSeedsStudyFromTheCommandLine) {
   std::istringstream csv(read(dir + "/placement.csv"));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "z1_mm,plane,plane_z_mm,first_line,energy_J");
+  EXPECT_EQ(line, "z1_mm,plane,plane_z_mm,first_line,energy_J,law_energy_J");
   std::map<double, double> sums;
   int rows = 0;
   while (std::getline(csv, line)) {
@@ -87,6 +87,8 @@ TEST(SpifCli, BadInputIsNamedAndWritesNothing) {
   };
   for (const Case& c : {Case{" --z1 300:700", "--z1 300:700", 2}, Case{" --z1 700:300:50", "--z1", 2},
                         Case{" --z1 a,b", "--z1 a,b", 2}, Case{" --z1 0 --load axial=x", "axial", 2},
+                        Case{" --z1 0 --law fastest", "--law fastest", 2},
+                        Case{" --z1 0 --bounds -5,5", "--bounds needs --law", 2},
                         Case{" --z1 1000,2000", "at no height", 3}}) {
     const auto run = test::run_pkm("spif placement " + cone + machine + c.args + " --out " + dir);
     EXPECT_EQ(run.exit_code, c.exit_code) << c.args << ": " << run.out;

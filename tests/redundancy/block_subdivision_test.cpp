@@ -25,7 +25,7 @@ redundancy::OptimizeOptions v7_options(double step_mm) {
   options.law.law = Law::increment;
   options.free = redundancy::FreeSet::all;
   options.step_mm = step_mm;
-  options.bounds_deg = std::array<double, 2>{-10.0, 10.0};
+  options.bounds_deg = redundancy::FreeBounds{{-10.0, 10.0}};
   return options;
 }
 
@@ -213,7 +213,7 @@ TEST(BlockSubdivision, GeneratedProgramsKeepTheRules) {
     options.law.law = laws[trial % 5];
     options.loads = *loads;
     options.step_mm = 0.5;
-    options.bounds_deg = std::array<double, 2>{5.0, 30.0};
+    options.bounds_deg = redundancy::FreeBounds{{5.0, 30.0}};
     const double min_part_mm = 2.0;
     const auto cut = optimize_or_fail(machine, program, adaptive(options, 0.01, min_part_mm));
     SCOPED_TRACE(::testing::Message()
@@ -265,7 +265,7 @@ TEST(BlockSubdivision, ASmallerThresholdIsNeverWorseOnOneBlock) {
     const auto program = gcode_for(machine, planar_program(random, 1), "generated.ngc");
     redundancy::OptimizeOptions options;
     options.step_mm = 0.25;
-    options.bounds_deg = std::array<double, 2>{5.0, 30.0};
+    options.bounds_deg = redundancy::FreeBounds{{5.0, 30.0}};
     const auto coarse = optimize_or_fail(machine, program, adaptive(options, 0.05, 0.5));
     const auto fine = optimize_or_fail(machine, program, adaptive(options, 0.001, 0.5));
     EXPECT_LE(fine.greedy.metrics.increment_sum_mm, coarse.greedy.metrics.increment_sum_mm + 1e-9)

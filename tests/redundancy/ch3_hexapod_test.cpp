@@ -21,7 +21,7 @@ redundancy::OptimizeOptions v7_options(redundancy::FreeSet free, redundancy::Sol
   options.free = free;
   options.solver = solver;
   options.step_mm = one_degree_mm(50.0);
-  options.bounds_deg = std::array<double, 2>{-10.0, 10.0};
+  options.bounds_deg = redundancy::FreeBounds{{-10.0, 10.0}};
   return options;
 }
 

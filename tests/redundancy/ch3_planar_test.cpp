@@ -61,7 +61,7 @@ TEST(Ch3PlanarIncrement, WholePathIsNoWorseThanGreedyAndBoundsHold) {
   options.law.law = Law::increment;
   options.step_mm = one_degree_mm(40.0);
   options.solver = redundancy::Solver::global;
-  options.bounds_deg = std::array<double, 2>{5.0, 30.0};
+  options.bounds_deg = redundancy::FreeBounds{{5.0, 30.0}};
   const auto result = optimize_or_fail(machine, program, options);
   ASSERT_TRUE(result.whole_path.has_value());
   EXPECT_LE(result.whole_path->metrics.increment_sum_mm, result.greedy.metrics.increment_sum_mm + 1e-9);
@@ -80,7 +80,7 @@ TEST(Ch3PlanarForce, V4PeakForceDropsBelowA900NDrive) {
   redundancy::OptimizeOptions options;
   options.law.law = Law::force;
   options.step_mm = one_degree_mm(40.0);
-  options.bounds_deg = std::array<double, 2>{5.0, 30.0};
+  options.bounds_deg = redundancy::FreeBounds{{5.0, 30.0}};
   auto loads = statics::parse_load_spec("tangential=1000,normal=100,cutter_radius=5,contact=right");
   ASSERT_TRUE(loads) << loads.error().message;
   options.loads = *loads;

@@ -45,7 +45,7 @@ redundancy::OptimizeOptions scenario_options(Law law) {
   options.law.law = law;
   options.solver = redundancy::Solver::global;
   options.step_mm = 2.0;
-  options.bounds_deg = std::array<double, 2>{-40.0, 40.0};
+  options.bounds_deg = redundancy::FreeBounds{{-40.0, 40.0}};
   return options;
 }
 

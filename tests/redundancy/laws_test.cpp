@@ -14,7 +14,7 @@ redundancy::OptimizeOptions planar_options(Law law) {
   redundancy::OptimizeOptions options;
   options.law.law = law;
   options.step_mm = one_degree_mm(40.0);
-  options.bounds_deg = std::array<double, 2>{5.0, 30.0};
+  options.bounds_deg = redundancy::FreeBounds{{5.0, 30.0}};
   auto loads = statics::parse_load_spec("tangential=1000,normal=100,cutter_radius=5,contact=right");
   EXPECT_TRUE(loads);
   options.loads = *loads;
@@ -31,7 +31,7 @@ TEST(RedundancyLaws, GreedyStepsNeverLoseToHolding) {
     options.law.law = law;
     options.free = redundancy::FreeSet::all;
     options.step_mm = 3.0;
-    options.bounds_deg = std::array<double, 2>{-10.0, 10.0};
+    options.bounds_deg = redundancy::FreeBounds{{-10.0, 10.0}};
     auto loads = statics::parse_load_spec("tangential=800,normal=300,axial=200");
     ASSERT_TRUE(loads);
     options.loads = *loads;
@@ -89,7 +89,7 @@ TEST(RedundancyLaws, EnergyLawSavesEnergyButNotBelowTheRequiredWork) {
   spatial.law.law = Law::energy;
   spatial.free = redundancy::FreeSet::all;
   spatial.step_mm = 2.0;
-  spatial.bounds_deg = std::array<double, 2>{-10.0, 10.0};
+  spatial.bounds_deg = redundancy::FreeBounds{{-10.0, 10.0}};
   spatial.loads = *statics::parse_load_spec("tangential=1000");
   const auto three = optimize_or_fail(hexapod, circle, spatial);
   EXPECT_LT(three.greedy.metrics.energy_J, three.constant.energy_J);
@@ -116,7 +116,7 @@ TEST(RedundancyLaws, LawsStayOnTheStartSideOfASingularPosition) {
   const auto program = gcode_for(machine, circle_program(40.0, 0.0, 15.0));
   for (Law law : {Law::increment, Law::force, Law::energy}) {
     auto options = planar_options(law);
-    options.bounds_deg = std::array<double, 2>{-30.0, 30.0};
+    options.bounds_deg = redundancy::FreeBounds{{-30.0, 30.0}};
     options.solver = redundancy::Solver::global;
     const auto result = optimize_or_fail(machine, program, options);
     auto free = redundancy::FreeCoordinates::create(*machine.mechanism, options.free, options.bounds_deg,

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "planning/plan_test_support.hpp"
@@ -123,6 +124,41 @@ TEST(PlacementStudy, OutOfReachHeightsAreMarkedAndMachinesWithoutAnglesRefused) 
   ASSERT_FALSE(refused);
   EXPECT_NE(refused.error().message.find("holds the platform's angles"), std::string::npos)
       << refused.error().message;
+}
+
+// The seeds' second lever (§3.8.1, Fig. 123): the energy law over the three angles within ψ, ϑ ±5°, γ ±20°,
+// the angles returned to zero at each plane. Between two returns it never costs more than holding the angles,
+// so neither does the whole path.
+TEST(PlacementStudy, TheEnergyLawWithItsResetsNeverCostsMoreThanHolding) {
+  const Machine machine = machine_from_example("examples/machines/hexapod_ch3.yaml");
+  program::SpifPathOptions path;
+  path.planes = 4;
+  const auto program = spif_program(machine, path);
+  auto options = heights({400, 700});
+  options.law = redundancy::Law::energy;
+  options.law_bounds_deg = {{-5.0, 5.0}, {-5.0, 5.0}, {-20.0, 20.0}};
+  auto placements = redundancy::placement_study(program, machine, options);
+  ASSERT_TRUE(placements) << placements.error().message;
+  for (const auto& p : *placements) {
+    ASSERT_TRUE(p.feasible);
+    ASSERT_FALSE(std::isnan(p.law_energy_J));
+    EXPECT_LE(p.law_energy_J, p.energy_J * (1.0 + 1e-12)) << p.z1_mm;
+    EXPECT_GE(p.law_energy_J, p.required_work_J * (1.0 - 1e-9)) << p.z1_mm;
+    double planes_J = 0.0;
+    // (A plane's own figure holds the return of the angles at its start, which the plane before chose.)
+    for (const auto& plane : p.planes) planes_J += plane.law_energy_J;
+    EXPECT_LE(planes_J, p.law_energy_J * (1.0 + 1e-12));
+  }
+  // Without a law the law's figures are not there.
+  auto held = redundancy::placement_study(program, machine, heights({700}));
+  ASSERT_TRUE(held);
+  EXPECT_TRUE(std::isnan(held->front().law_energy_J));
+  EXPECT_TRUE(std::isnan(held->front().planes.front().law_energy_J));
+  // Bounds for two of the three angles are refused, naming them.
+  options.law_bounds_deg = {{-5.0, 5.0}, {-5.0, 5.0}};
+  auto refused = redundancy::placement_study(program, machine, options);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("2 ranges"), std::string::npos) << refused.error().message;
 }
 
 }  // namespace

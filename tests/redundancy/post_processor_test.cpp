@@ -29,7 +29,7 @@ TEST(PostProcessor, WrittenProgramCarriesTheChosenAngles) {
   redundancy::OptimizeOptions options;
   options.free = redundancy::FreeSet::all;
   options.step_mm = 2.0;
-  options.bounds_deg = std::array<double, 2>{-10.0, 10.0};
+  options.bounds_deg = redundancy::FreeBounds{{-10.0, 10.0}};
   const auto result = optimize_or_fail(machine, program, options);
   const auto written = reinterpret(machine, result.program);
   // Read back: the same moves, each part of the circle an arc with the chosen A B C.
@@ -74,7 +74,7 @@ TEST(PostProcessor, MachiningTimeDropsByTheIncrementRatio) {
   const auto program = gcode_for(machine, circle_program(40.0, 0.0, 15.0));
   redundancy::OptimizeOptions options;
   options.step_mm = one_degree_mm(40.0);
-  options.bounds_deg = std::array<double, 2>{5.0, 30.0};
+  options.bounds_deg = redundancy::FreeBounds{{5.0, 30.0}};
   const auto result = optimize_or_fail(machine, program, options);
   const double predicted = result.constant.increment_sum_mm / result.greedy.metrics.increment_sum_mm;
 
