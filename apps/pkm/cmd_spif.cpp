@@ -1,4 +1,5 @@
-// pkm spif program --out FILE.ngc [--radius-mm R] [--radius-step-mm D] [--planes N] [--step-down-mm S]
+// pkm spif program --out FILE.ngc [--radius-mm R] [--radius-step-mm D] [--planes N | --profile CSV]
+//   [--step-down-mm S]
 //   [--direction ccw|cw] [--depth down|up] [--z1-mm Z] [--centre X,Y] [--feed-mm-min F] [--path planes|helix]
 // pkm spif placement PROGRAM --machine M --z1 FROM:TO:STEP|Z,Z,... [--load SPEC] [--step-mm S]
 //   [--law L [--bounds LO,HI[,...]]] --out DIR [--json]
@@ -13,6 +14,7 @@
 #include "commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_set.hpp"
+#include "io/spif_profile_file.hpp"
 #include "number_options.hpp"
 #include "pipeline/spif_placement_job.hpp"
 #include "program/spif_path.hpp"
@@ -33,10 +35,19 @@ void add_program_subcommand(CLI::App& spif, int& exit_code) {
   auto kind = std::make_shared<std::string>("planes");
   auto centre = std::make_shared<std::vector<double>>(std::vector<double>{0.0, 0.0});
   cmd->add_option("--out", *out, "the program (.ngc)")->required();
-  cmd->add_option("--radius-mm", options->radius_mm, "the first circle's radius")->capture_default_str();
-  cmd->add_option("--radius-step-mm", options->radius_step_mm, "each next circle this much smaller")
-      ->capture_default_str();
-  cmd->add_option("--planes", options->planes, "how many planes")->capture_default_str();
+  auto profile = std::make_shared<std::string>();
+  auto* radius =
+      cmd->add_option("--radius-mm", options->radius_mm, "the first circle's radius")->capture_default_str();
+  auto* radius_step =
+      cmd->add_option("--radius-step-mm", options->radius_step_mm, "each next circle this much smaller")
+          ->capture_default_str();
+  auto* planes = cmd->add_option("--planes", options->planes, "how many planes")->capture_default_str();
+  cmd->add_option(
+         "--profile", *profile,
+         "an axisymmetric wall instead of the cone: CSV depth_mm,radius_mm from depth 0 (docs/spif.md)")
+      ->excludes(radius)
+      ->excludes(radius_step)
+      ->excludes(planes);
   cmd->add_option("--step-down-mm", options->step_down_mm, "between planes")->capture_default_str();
   cmd->add_option("--direction", *direction, "ccw (G3, positive phi) | cw (G2)")
       ->check(CLI::IsMember({"ccw", "cw"}))
@@ -55,6 +66,14 @@ void add_program_subcommand(CLI::App& spif, int& exit_code) {
     options->depth_up = *depth == "up";
     options->kind = *kind == "helix" ? program::SpifPathKind::helix : program::SpifPathKind::planes;
     options->centre_mm = Eigen::Vector2d((*centre)[0], (*centre)[1]);
+    if (!profile->empty()) {
+      auto rows = read_spif_profile(*profile);
+      if (!rows) {
+        exit_code = report_error("spif program", rows.error());
+        return;
+      }
+      options->profile = std::move(*rows);
+    }
     auto text = program::spif_program_text(*options);
     if (!text) {
       exit_code = report_error("spif program", text.error());
@@ -68,8 +87,8 @@ void add_program_subcommand(CLI::App& spif, int& exit_code) {
       exit_code = report_error("spif program", written.error());
       return;
     }
-    std::cout << fmt::format("written {}: {} planes from R {:g} mm\n", *out, options->planes,
-                             options->radius_mm);
+    // The program's first line says what it holds.
+    std::cout << fmt::format("written {}: {}\n", *out, text->substr(2, text->find(" )") - 2));
   });
 }
 

@@ -144,7 +144,7 @@ def interpret(program_path: str | os.PathLike[str], machine: Optional[Machine] =
 
 def plan(machine: Machine, program_path: str | os.PathLike[str], *, servo_period_ms: Optional[float] = None,
          feed_override_pct: float = 100.0, blend_tolerance_mm: Optional[float] = None, law: Optional[str] = None,
-         free: str = "spin", bounds_deg: Optional[tuple[float, float]] = None, law_step_mm: float = 1.0,
+         free: str = "spin", bounds_deg: Optional[tuple[float, float] | Sequence[tuple[float, float]]] = None, law_step_mm: float = 1.0,
          solver: str = "greedy", energy_accounting: str = "no-recovery", force_model: str = "statics",
          force_limit_N: Optional[float] = None, max_rate_deg_per_mm: Optional[float] = None, load: str = "",
          dynamics: bool = False, elastic: bool = False, path_error: bool = True,
@@ -173,7 +173,7 @@ def interpolate(machine: Machine, program_path: str | os.PathLike[str], *, metho
     contour_error_mm, tool_mm (P, 3), path_mm (P, 3)."""
 
 def optimize(machine: Machine, program_path: str | os.PathLike[str], law: str, *, free: str = "spin",
-             bounds_deg: Optional[tuple[float, float]] = None, step_mm: float = 1.0, solver: str = "greedy",
+             bounds_deg: Optional[tuple[float, float] | Sequence[tuple[float, float]]] = None, step_mm: float = 1.0, solver: str = "greedy",
              energy_accounting: str = "no-recovery", force_model: str = "statics",
              force_limit_N: Optional[float] = None, max_rate_deg_per_mm: Optional[float] = None, load: str = "",
              parts: str = "fixed", improvement: float = 0.01, min_part_mm: float = 1.0, patience: int = 3,

@@ -41,11 +41,11 @@ Result<redundancy::OptimizeOptions> optimize_options(const LawArguments& a) {
                       fmt::format("force_model '{}': expected statics or dynamics", a.force_model));
   }
   options.law.forces = *forces;
-  if (a.bounds_deg) {
-    if (!std::isfinite((*a.bounds_deg)[0]) || !std::isfinite((*a.bounds_deg)[1]))
-      return make_error(ErrorCode::bad_input, "bounds_deg: expected two finite angles (lo, hi) in degrees");
-    options.bounds_deg = {*a.bounds_deg};
+  for (const auto& range : a.bounds_deg) {
+    if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+      return make_error(ErrorCode::bad_input, "bounds_deg: expected finite angles (lo, hi) in degrees");
   }
+  options.bounds_deg = a.bounds_deg;
   if (!(a.step_mm > 0.0 && a.step_mm <= 1000.0))
     return make_error(ErrorCode::bad_input,
                       fmt::format("step_mm {}: must be a length in (0, 1000] mm", a.step_mm));

@@ -14,7 +14,7 @@ namespace pkm::python {
 struct LawArguments {
   std::string law;  ///< increment | force | energy | rotation | potential
   std::string free = "spin";
-  std::optional<std::array<double, 2>> bounds_deg;
+  std::vector<std::array<double, 2>> bounds_deg;  ///< none, one for every free coordinate, or one for each
   double step_mm = 1.0;
   std::string solver = "greedy";
   std::string energy_accounting = "no-recovery";

@@ -86,15 +86,15 @@ void bind_optimize(py::module_& m) {
   m.def(
       "optimize",
       [](const Machine& machine, const py::object& program_path, const std::string& law,
-         const std::string& free, std::optional<std::array<double, 2>> bounds_deg, double step_mm,
-         const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
+         const std::string& free, const py::object& bounds_deg, double step_mm, const std::string& solver,
+         const std::string& energy_accounting, const std::string& force_model,
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
          const std::string& load, const std::string& parts, double improvement, double min_part_mm,
          int patience, const py::object& tool_table, const py::object& subroutine_path,
          const py::object& parameter_file, const py::object& out_path) {
         const LawArguments arguments{
-            law,         free,          bounds_deg,          step_mm, solver, energy_accounting,
-            force_model, force_limit_N, max_rate_deg_per_mm, load,    parts,  improvement,
+            law,         free,          free_bounds(bounds_deg), step_mm, solver, energy_accounting,
+            force_model, force_limit_N, max_rate_deg_per_mm,     load,    parts,  improvement,
             min_part_mm, patience};
         const std::string path = optional_path(program_path);
         const pipeline::ProgramOptions read = program_options(tool_table, subroutine_path, parameter_file);
@@ -113,7 +113,7 @@ void bind_optimize(py::module_& m) {
       R"doc(Chooses the coordinates a program leaves free by a drive control law, as `pkm optimize`.
 
 law: 'increment' (Σ of the largest strut increments), 'force' or 'energy'; free: 'spin' (about the tool axis;
-planar: phi) or 'all'; bounds_deg (lo, hi) of every free coordinate (default start ± 30°); step_mm between
+planar: phi) or 'all'; bounds_deg (lo, hi) of every free coordinate or ((lo, hi), ...) of each (default start ± 30°); step_mm between
 optimised points; solver 'greedy' or 'global'; energy_accounting 'no-recovery' | 'braking-free' | 'recovery';
 force_model 'statics' | 'dynamics'; force_limit_N; max_rate_deg_per_mm (global solver); load: the CLI's
 --load text (e.g. 'tangential=200,normal=50' or '@FILE.yaml'); parts 'fixed' (every block cut at step_mm) or

@@ -262,8 +262,8 @@ void bind_plan(py::module_& m) {
       "plan",
       [](const Machine& machine, const py::object& program_path, std::optional<double> servo_period_ms,
          double feed_override_pct, std::optional<double> blend_tolerance_mm, std::optional<std::string> law,
-         const std::string& free, std::optional<std::array<double, 2>> bounds_deg, double law_step_mm,
-         const std::string& solver, const std::string& energy_accounting, const std::string& force_model,
+         const std::string& free, const py::object& bounds_deg, double law_step_mm, const std::string& solver,
+         const std::string& energy_accounting, const std::string& force_model,
          std::optional<double> force_limit_N, std::optional<double> max_rate_deg_per_mm,
          const std::string& load, bool dynamics, bool elastic, bool path_error, const py::object& tool_table,
          const py::object& subroutine_path, const py::object& parameter_file, const py::object& out_dir,
@@ -279,8 +279,8 @@ void bind_plan(py::module_& m) {
                               lookahead_moves);
         if (law) {
           a.law = LawArguments{
-              *law,        free,          bounds_deg,          law_step_mm, solver, energy_accounting,
-              force_model, force_limit_N, max_rate_deg_per_mm, load};
+              *law,        free,          free_bounds(bounds_deg), law_step_mm, solver, energy_accounting,
+              force_model, force_limit_N, max_rate_deg_per_mm,     load};
         }
         if (elastic && !dynamics)
           throw py::value_error("elastic=True: only with dynamics=True (the elastic machine's masses)");

@@ -79,4 +79,19 @@ pipeline::ProgramOptions program_options(const py::object& tool_table, const py:
   return options;
 }
 
+std::vector<std::array<double, 2>> free_bounds(const py::object& value) {
+  if (value.is_none()) return {};
+  try {
+    return {value.cast<std::array<double, 2>>()};
+  } catch (const py::cast_error&) {
+  }
+  try {
+    return value.cast<std::vector<std::array<double, 2>>>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(
+        "bounds_deg: expected (lo, hi) in degrees for every free coordinate, or one (lo, hi) "
+        "for each, e.g. ((-5, 5), (-5, 5), (-20, 20))");
+  }
+}
+
 }  // namespace pkm::python

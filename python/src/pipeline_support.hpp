@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 // What the pipeline and analysis bindings share: numpy arrays that take over a std::vector without copying
 // it, poses in and out as [x_mm, y_mm, z_mm, a_rad, b_rad, c_rad] in the machine's angle convention (as the
 // C++ PoseVector), and the units of a machine's actuators in the names of the keys.
@@ -59,6 +60,9 @@ std::string drive_force_unit(const Mechanism& mechanism);
 
 /// The optional string argument, empty for None.
 std::string optional_path(const py::object& value);
+
+/// bounds_deg of the redundancy laws: None, (lo, hi) for every free coordinate, or ((lo, hi), ...) for each.
+std::vector<std::array<double, 2>> free_bounds(const py::object& value);
 
 /// How a program is read, from the keyword arguments every function that reads one takes: tool_table (path
 /// or None), subroutine_path (None, a path, a colon-separated string as LinuxCNC's SUBROUTINE_PATH, or a

@@ -4,7 +4,9 @@
 // angle), as G-code the interpreter reads like any other program. The seeds' case is the default: 21 planes
 // 1.06 mm apart, the first circle R 75 mm, each next one 0.5 mm smaller, counter-clockwise (positive φ).
 #include <Eigen/Core>
+#include <array>
 #include <string>
+#include <vector>
 
 #include "core/result.hpp"
 
@@ -27,6 +29,10 @@ struct SpifPathOptions {
   double feed_mm_min = 1200.0;
   double approach_mm = 5.0;  ///< the rapid comes to this height over the first plane (on the far side)
   SpifPathKind kind = SpifPathKind::planes;
+  /// The wall of an axisymmetric part as (depth, radius) rows from depth 0 (io/spif_profile_file.hpp): when
+  /// given, the planes lie every step down to its deepest row and each circle's radius is the wall's there,
+  /// in place of radius_mm, radius_step_mm and planes.
+  std::vector<std::array<double, 2>> profile;
 };
 
 /// The program's text, its first lines saying how it was made; errors name the bad option.

@@ -104,5 +104,30 @@ TEST(SpifPath, ImpossibleOptionsAreNamed) {
   refused(o, "z1");
 }
 
+// A wall given as a profile: the planes every step down to its deepest row, each circle's radius the wall's
+// there (linear between rows); two rows make the cone, the same circles as the cone's own options.
+TEST(SpifPath, AProfileGivesTheWallsRadiusAtEveryPlane) {
+  program::SpifPathOptions o;
+  o.step_down_mm = 1.0;
+  o.profile = {{0.0, 75.0}, {10.0, 70.0}, {20.0, 60.0}};
+  const auto program = read_back(o);
+  std::vector<double> radii;
+  for (const auto& move : program.moves)
+    if (move.kind == MoveKind::arc) radii.push_back((move.end_mm - move.center_mm).head<2>().norm());
+  ASSERT_EQ(radii.size(), 21u);
+  for (std::size_t n = 0; n < radii.size(); ++n) {
+    const double depth = static_cast<double>(n);
+    const double wall = depth <= 10.0 ? 75.0 - 0.5 * depth : 70.0 - (depth - 10.0);
+    EXPECT_NEAR(radii[n], wall, 1e-4) << "plane " << n;
+  }
+  program::SpifPathOptions cone;
+  cone.profile = {{0.0, 75.0}, {21.2, 65.0}};
+  const auto from_profile = read_back(cone);
+  const auto seeds = read_back({});
+  ASSERT_EQ(from_profile.moves.size(), seeds.moves.size());
+  for (std::size_t m = 0; m < seeds.moves.size(); ++m)
+    EXPECT_LT((from_profile.moves[m].end_mm - seeds.moves[m].end_mm).norm(), 1e-9) << m;
+}
+
 }  // namespace
 }  // namespace pkm::test

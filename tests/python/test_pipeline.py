@@ -308,6 +308,25 @@ def test_optimize_adaptive_parts_match_cli(tmp_path):
         pkm.optimize(machine, program_path("planar_circle.ngc"), "increment", parts="some")
 
 
+def test_optimize_bounds_each_angle_as_the_cli(tmp_path):
+    """bounds_deg=((lo, hi), ...) bounds each of the three angles, as `--bounds LO,HI,LO,HI,LO,HI`."""
+    machine = pkm.Machine.load(machine_path("hexapod_ch3"))
+    each = ((-5.0, 5.0), (-5.0, 5.0), (-20.0, 20.0))
+    result = pkm.optimize(machine, program_path("hexapod_circle.ngc"), "increment", free="all", bounds_deg=each,
+                          step_mm=5.0)
+    expected = json.loads(cli("optimize", program_path("hexapod_circle.ngc"), "--machine", machine_path("hexapod_ch3"),
+                              "--law", "increment", "--free", "all", "--bounds", "-5,5,-5,5,-20,20", "--step-mm", "5",
+                              "--out", tmp_path / "cli.ngc", "--json"))
+    assert_same(result["summary"], expected, skip={"seconds", "out", "machine"})
+    assert result["summary"]["bounds_deg"] == [list(b) for b in each]
+    lo, hi = np.radians(np.array(each).T)
+    assert (result["free_rad"] >= lo - 1e-12).all() and (result["free_rad"] <= hi + 1e-12).all()
+    with pytest.raises(TypeError, match="bounds_deg"):
+        pkm.optimize(machine, program_path("hexapod_circle.ngc"), "increment", free="all", bounds_deg="wide")
+    with pytest.raises(ValueError, match="2 ranges"):
+        pkm.optimize(machine, program_path("hexapod_circle.ngc"), "increment", free="all", bounds_deg=each[:2])
+
+
 def test_optimize_glide_scenarios_measure_rotation_and_limit_margin(tmp_path):
     """The rotation law turns the hexaglide's platform no more than holding the spin; the potential law keeps the
     carriages at least as far from their limits as the increment law; both metrics are in every run's dicts."""
