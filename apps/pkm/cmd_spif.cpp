@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
 #include <iostream>
 
 #include "cli_common.hpp"
@@ -121,7 +122,9 @@ Result<std::vector<double>> parse_heights(const std::string& text) {
       (values[1] - values[0]) / values[2] > 1000.0)
     return bad();
   std::vector<double> heights;
-  for (double z = values[0]; z <= values[1] + 1e-9 * values[2]; z += values[2]) heights.push_back(z);
+  // Each height from the first and its index (a running sum would drift off TO and print 300.00000000001).
+  const int count = static_cast<int>(std::floor((values[1] - values[0]) / values[2] + 1e-9)) + 1;
+  for (int i = 0; i < count; ++i) heights.push_back(values[0] + i * values[2]);
   return heights;
 }
 

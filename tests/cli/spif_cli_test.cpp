@@ -68,6 +68,15 @@ TEST(SpifCli, TheSeedsStudyFromTheCommandLine) {
     EXPECT_NEAR(sums[row["z1_mm"].get<double>()], total, 0.01 * total);
   }
   EXPECT_NE(read(dir + "/placement.svg").find("<svg"), std::string::npos);
+  // A range of fractional steps ends on its last height exactly.
+  const auto fine = test::run_pkm("spif placement " + program + " --machine " +
+                                      test::source_path("examples/machines/hexapod_ch3.yaml") +
+                                      " --z1 700.1:700.3:0.1 --out " + fresh_path("fine") + " --json",
+                                  false);
+  ASSERT_EQ(fine.exit_code, 0) << fine.out;
+  const auto heights = nlohmann::json::parse(fine.out)["placements"];
+  ASSERT_EQ(heights.size(), 3u);
+  EXPECT_NEAR(heights[2]["z1_mm"].get<double>(), 700.3, 1e-9);
 }
 
 TEST(SpifCli, BadInputIsNamedAndWritesNothing) {
